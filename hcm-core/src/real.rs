@@ -1,0 +1,83 @@
+//! The float type the laws are generic over.
+
+use nalgebra::RealField;
+
+/// A float type a contact law can be evaluated in: `f32` (controller) or `f64`
+/// (host simulation).
+///
+/// It is `nalgebra`'s [`RealField`] (so vectors, `sqrt`, `powf` work the same for
+/// both) plus the two things the laws need that `RealField` lacks: literal
+/// constants and a saturation bound.
+pub trait Real: RealField + Copy {
+    /// Largest finite value; law outputs saturate here instead of overflowing.
+    const MAX: Self;
+
+    /// Converts an `f64` literal (rounding to nearest for `f32`).
+    fn of(value: f64) -> Self;
+
+    /// Widens (or, from `f64`, keeps) the value as an `f64`.
+    fn to_f64(self) -> f64;
+
+    /// Converts between float types: `f64` → `f32` rounds to nearest.
+    #[inline]
+    fn cast<U: Real>(self) -> U {
+        U::of(self.to_f64())
+    }
+
+    /// Clamps ±∞ to ±[`Real::MAX`]; NaN passes through unchanged.
+    #[inline]
+    fn saturate(self) -> Self {
+        if self > Self::MAX {
+            Self::MAX
+        } else if self < -Self::MAX {
+            -Self::MAX
+        } else {
+            self
+        }
+    }
+
+    /// True for NaN.
+    #[inline]
+    #[allow(clippy::eq_op)]
+    fn is_nan(self) -> bool {
+        self != self
+    }
+
+    /// `self` if it is finite and strictly positive, otherwise `None`.
+    #[inline]
+    fn positive(self) -> Option<Self> {
+        if self > Self::zero() && self < Self::MAX {
+            Some(self)
+        } else {
+            None
+        }
+    }
+}
+
+impl Real for f32 {
+    const MAX: Self = f32::MAX;
+
+    #[inline]
+    fn of(value: f64) -> Self {
+        value as f32
+    }
+
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+}
+
+impl Real for f64 {
+    const MAX: Self = f64::MAX;
+
+    #[inline]
+    fn of(value: f64) -> Self {
+        value
+    }
+
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self
+    }
+}

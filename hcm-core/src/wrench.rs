@@ -1,0 +1,47 @@
+//! Contact wrench assembly: forces and torques on both bodies, Eq 1.
+
+use crate::Real;
+use nalgebra::Vector3;
+use serde::{Deserialize, Serialize};
+
+/// Force and torque that one contact applies to each of its two bodies.
+///
+/// All vectors are in the frame the inputs were given in; torques are about each
+/// body's reference point (the origin of its arm vector).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ContactWrench<T: Real> {
+    /// Force on body 1, F1 = f_n·**n** + **f_f** (N).
+    pub force_1: Vector3<T>,
+    /// Torque on body 1, T1 = **l1** × F1 (N·m).
+    pub torque_1: Vector3<T>,
+    /// Force on body 2, F2 = −F1 (N).
+    pub force_2: Vector3<T>,
+    /// Torque on body 2, T2 = **l2** × F2 (N·m).
+    pub torque_2: Vector3<T>,
+}
+
+impl<T: Real> ContactWrench<T> {
+    /// Assembles Eq 1, F_i = (−1)^(i−1)·(f_n + f_f), T_i = (−1)^(i−1)·l_i × (f_n + f_f)
+    /// (the printed "I_i ×" is a misprint for the arm l_i).
+    ///
+    /// `normal_force` f_n (N, > 0 repulsive) acts along `normal` (unit, from body 2 to
+    /// body 1); `friction` **f_f** (N) is the friction force on body 1; `arm_1`, `arm_2`
+    /// (m) run from each body's reference point to the contact point. The normal is
+    /// used as given (not re-normalised); NaN anywhere propagates.
+    pub fn assemble(
+        normal_force: T,
+        normal: &Vector3<T>,
+        friction: &Vector3<T>,
+        arm_1: &Vector3<T>,
+        arm_2: &Vector3<T>,
+    ) -> Self {
+        let force_1 = normal * normal_force + friction;
+        let force_2 = -force_1;
+        ContactWrench {
+            force_1,
+            torque_1: arm_1.cross(&force_1),
+            force_2,
+            torque_2: arm_2.cross(&force_2),
+        }
+    }
+}

@@ -1,0 +1,45 @@
+//! `hcm force`: one law at one contact state, in f64 and in the controller's f32.
+
+use hcm_core::law::{Indentation, NormalLaw};
+use hcm_host::law_catalogue;
+
+/// Evaluate a normal law: `hcm force --law hertz --set stiffness=3.6e9 --set exponent=1.5 --depth 1e-5`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Law name (see `hcm laws`).
+    #[arg(long)]
+    law: String,
+    /// A law parameter, `name=value` in SI units; repeat for each parameter.
+    #[arg(long = "set", value_name = "NAME=VALUE", value_parser = super::parse_assignment)]
+    parameters: Vec<(String, f64)>,
+    /// Indentation δ (m), > 0 in contact.
+    #[arg(long, allow_negative_numbers = true)]
+    depth: f64,
+    /// Indentation rate δ̇ (m/s), > 0 while approaching.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    rate: f64,
+    /// Approach speed δ̇0 (m/s) of this impact (Lankarani–Nikravesh, Flores).
+    #[arg(long, default_value_t = 1.0)]
+    approach_speed: f64,
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let law = law_catalogue::build(&args.law, &args.parameters)?;
+    let state = Indentation {
+        depth: args.depth,
+        rate: args.rate,
+        approach_speed: args.approach_speed,
+    };
+    let force = law.normal_force(&state);
+    let state_32 = Indentation {
+        depth: state.depth as f32,
+        rate: state.rate as f32,
+        approach_speed: state.approach_speed as f32,
+    };
+    let force_32 = law.cast::<f32>().normal_force(&state_32);
+    println!(
+        "{}: f_n = {force:.6e} N (f64), {force_32:.6e} N (f32)",
+        law.name()
+    );
+    Ok(())
+}

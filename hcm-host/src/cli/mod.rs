@@ -1,0 +1,51 @@
+//! The `hcm` command line: one module per subcommand, each with its `Args` and `run`.
+
+mod force;
+mod laws;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Hybrid contact modeling: contact laws, simulation, identification and diagnosis.
+#[derive(Parser)]
+#[command(name = "hcm", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the normal contact laws with their equations and parameters.
+    Laws(laws::Args),
+    /// Evaluate one normal law at one contact state.
+    Force(force::Args),
+}
+
+/// Parses the command line, runs the subcommand, and reports errors in plain words.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Laws(args) => laws::run(args),
+        Command::Force(args) => force::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Parses `key=value` with a floating-point value (for `--set`).
+pub fn parse_assignment(text: &str) -> Result<(String, f64), String> {
+    let (key, value) = text
+        .split_once('=')
+        .ok_or_else(|| format!("`{text}` is not key=value (e.g. stiffness=6.86e9)"))?;
+    let value: f64 = value
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{value}` in `{text}` is not a number"))?;
+    Ok((key.trim().to_owned(), value))
+}

@@ -1,0 +1,190 @@
+//! The normal laws by name: what each one is, its parameters with units, and how
+//! to build one from `key=value` pairs.
+
+use hcm_core::law::AnyNormalLaw;
+use hcm_core::LawError;
+
+/// One parameter of a law: its field name, unit and meaning.
+#[derive(Clone, Copy, Debug)]
+pub struct Parameter {
+    /// Field name, as in scenario files and `--set`.
+    pub name: &'static str,
+    /// SI unit.
+    pub unit: &'static str,
+    /// Symbol and meaning.
+    pub meaning: &'static str,
+}
+
+/// One normal law as described to users.
+#[derive(Clone, Copy, Debug)]
+pub struct LawEntry {
+    /// Name used in files and on the command line.
+    pub name: &'static str,
+    /// Where the formula comes from.
+    pub source: &'static str,
+    /// The formula, f_n for δ > 0.
+    pub formula: &'static str,
+    /// Its parameters.
+    pub parameters: &'static [Parameter],
+}
+
+const fn p(name: &'static str, unit: &'static str, meaning: &'static str) -> Parameter {
+    Parameter {
+        name,
+        unit,
+        meaning,
+    }
+}
+
+const STIFFNESS: Parameter = p("stiffness", "N/m^n", "k, contact stiffness");
+const EXPONENT: Parameter = p("exponent", "-", "n, force exponent");
+const RESTITUTION: Parameter = p("restitution", "-", "ce, coefficient of restitution");
+
+/// Every normal law of the core.
+pub const LAWS: &[LawEntry] = &[
+    LawEntry {
+        name: "hertz",
+        source: "Eq 2 (k from Eq 3)",
+        formula: "k·δ^n",
+        parameters: &[STIFFNESS, EXPONENT],
+    },
+    LawEntry {
+        name: "lankarani_nikravesh",
+        source: "Eq 4–5",
+        formula: "k·δ^n + 3k(1−ce²)δ^n/(4δ̇0)·δ̇",
+        parameters: &[STIFFNESS, EXPONENT, RESTITUTION],
+    },
+    LawEntry {
+        name: "variable_stiffness",
+        source: "Eq 6–7 (as printed)",
+        formula: "k(δ)·δ + 2λ·√(k(δ)·m_e)·δ·δ̇, k(δ) = c·E*·√(2rδ−δ²)",
+        parameters: &[
+            p(
+                "surface_loading",
+                "-",
+                "c, surface loading coefficient (4/3…2π)",
+            ),
+            p("effective_modulus", "Pa", "E*, effective modulus"),
+            p("radius", "m", "r, sphere radius"),
+            p("damping", "1/m", "λ, damping (literal Eq 6)"),
+            p("effective_mass", "kg", "m_e, effective mass"),
+        ],
+    },
+    LawEntry {
+        name: "impact",
+        source: "Eq 8–9 (MSC ADAMS)",
+        formula: "max(0, k·δ^e + step(δ, 0, 0, δ_max, d_max)·δ̇)",
+        parameters: &[
+            STIFFNESS,
+            p("exponent", "-", "e, force exponent"),
+            p("max_damping", "N·s/m", "d_max, maximum damping"),
+            p("full_damping_depth", "m", "δ_max, depth of full damping"),
+        ],
+    },
+    LawEntry {
+        name: "hunt_crossley",
+        source: "Hunt & Crossley 1975",
+        formula: "k·δ^n·(1 + χ·δ̇)",
+        parameters: &[
+            STIFFNESS,
+            EXPONENT,
+            p("damping", "s/m", "χ, damping factor"),
+        ],
+    },
+    LawEntry {
+        name: "flores",
+        source: "Flores et al. 2011",
+        formula: "k·δ^n·(1 + 8(1−ce)/(5·ce·δ̇0)·δ̇)",
+        parameters: &[STIFFNESS, EXPONENT, RESTITUTION],
+    },
+];
+
+/// Why a law could not be built from user input.
+#[derive(Debug, thiserror::Error)]
+pub enum LawInputError {
+    /// No law has that name.
+    #[error("unknown law `{0}`; the laws are: {1}")]
+    UnknownLaw(String, String),
+    /// A parameter is missing or has the wrong type.
+    #[error("law `{law}`: {message}; its parameters are: {expected}")]
+    Parameters {
+        law: String,
+        message: String,
+        expected: String,
+    },
+    /// The parameters parse but are outside their physical domain.
+    #[error("law `{0}`: {1}")]
+    Domain(String, LawError),
+}
+
+/// Looks a law up by name.
+pub fn entry(name: &str) -> Result<&'static LawEntry, LawInputError> {
+    LAWS.iter().find(|law| law.name == name).ok_or_else(|| {
+        let names: Vec<_> = LAWS.iter().map(|law| law.name).collect();
+        LawInputError::UnknownLaw(name.to_owned(), names.join(", "))
+    })
+}
+
+/// Builds and validates a law from its name and `(parameter, value)` pairs.
+pub fn build(name: &str, values: &[(String, f64)]) -> Result<AnyNormalLaw<f64>, LawInputError> {
+    let law = entry(name)?;
+    let mut table = toml::Table::new();
+    for (key, value) in values {
+        table.insert(key.clone(), toml::Value::Float(*value));
+    }
+    let mut outer = toml::Table::new();
+    outer.insert(name.to_owned(), toml::Value::Table(table));
+    let built: AnyNormalLaw<f64> =
+        toml::Value::Table(outer)
+            .try_into()
+            .map_err(|e: toml::de::Error| LawInputError::Parameters {
+                law: name.to_owned(),
+                message: e.message().trim().to_owned(),
+                expected: law
+                    .parameters
+                    .iter()
+                    .map(|p| p.name)
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })?;
+    use hcm_core::law::NormalLaw;
+    built
+        .validate()
+        .map_err(|e| LawInputError::Domain(name.to_owned(), e))?;
+    Ok(built)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_catalogued_law_builds_from_its_parameters() {
+        for law in LAWS {
+            let values: Vec<_> = law
+                .parameters
+                .iter()
+                .map(|p| (p.name.to_owned(), 0.5))
+                .collect();
+            let built = build(law.name, &values).expect(law.name);
+            assert_eq!(built.name(), law.name);
+        }
+    }
+
+    #[test]
+    fn a_missing_parameter_is_named() {
+        let err = build("lankarani_nikravesh", &[("stiffness".into(), 1e9)]).unwrap_err();
+        assert!(err.to_string().contains("exponent"), "{err}");
+    }
+
+    #[test]
+    fn out_of_domain_is_rejected() {
+        let values = [
+            ("stiffness".into(), 1e9),
+            ("exponent".into(), 1.5),
+            ("restitution".into(), 1.5),
+        ];
+        let err = build("flores", &values).unwrap_err();
+        assert!(err.to_string().contains("restitution"), "{err}");
+    }
+}

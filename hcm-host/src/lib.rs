@@ -1,0 +1,5 @@
+//! hcm-host: the std side of hybrid contact modeling — the pipeline stages behind the
+//! `hcm` command line. The library computes and returns values; only the CLI
+//! (`src/cli/`) prints.
+
+pub mod law_catalogue;
