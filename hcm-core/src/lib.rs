@@ -52,6 +52,7 @@
 pub mod error;
 pub mod friction;
 pub mod geometry;
+pub mod integrate;
 pub mod law;
 mod real;
 pub mod wrench;

@@ -1,7 +1,7 @@
 //! The normal laws by name: what each one is, its parameters with units, and how
 //! to build one from `key=value` pairs.
 
-use hcm_core::law::AnyNormalLaw;
+use hcm_core::law::{AnyNormalLaw, NormalLaw};
 use hcm_core::LawError;
 
 /// One parameter of a law: its field name, unit and meaning.
@@ -127,13 +127,21 @@ pub fn entry(name: &str) -> Result<&'static LawEntry, LawInputError> {
 
 /// Builds and validates a law from its name and `(parameter, value)` pairs.
 pub fn build(name: &str, values: &[(String, f64)]) -> Result<AnyNormalLaw<f64>, LawInputError> {
+    let table = values
+        .iter()
+        .map(|(key, value)| (key.clone(), toml::Value::Float(*value)))
+        .collect();
+    build_from_table(name, &table)
+}
+
+/// Builds and validates a law from its name and a TOML table of its parameters.
+pub fn build_from_table(
+    name: &str,
+    parameters: &toml::Table,
+) -> Result<AnyNormalLaw<f64>, LawInputError> {
     let law = entry(name)?;
-    let mut table = toml::Table::new();
-    for (key, value) in values {
-        table.insert(key.clone(), toml::Value::Float(*value));
-    }
     let mut outer = toml::Table::new();
-    outer.insert(name.to_owned(), toml::Value::Table(table));
+    outer.insert(name.to_owned(), toml::Value::Table(parameters.clone()));
     let built: AnyNormalLaw<f64> =
         toml::Value::Table(outer)
             .try_into()
@@ -147,7 +155,6 @@ pub fn build(name: &str, values: &[(String, f64)]) -> Result<AnyNormalLaw<f64>, 
                     .collect::<Vec<_>>()
                     .join(", "),
             })?;
-    use hcm_core::law::NormalLaw;
     built
         .validate()
         .map_err(|e| LawInputError::Domain(name.to_owned(), e))?;

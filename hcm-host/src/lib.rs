@@ -2,4 +2,9 @@
 //! `hcm` command line. The library computes and returns values; only the CLI
 //! (`src/cli/`) prints.
 
+pub mod dataset;
+pub mod indicators;
 pub mod law_catalogue;
+pub mod output;
+pub mod scenario;
+pub mod simulate;

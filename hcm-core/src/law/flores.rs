@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 /// Unlike Lankarani–Nikravesh it stays accurate for low restitution. δ̇0 ≤ 0 drops
 /// the damping; ce = 0 gives unbounded damping, saturated at [`Real::MAX`].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Flores<T> {
     /// Contact stiffness k (N/m^n).
     pub stiffness: T,

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 ///
 /// Conserves energy: the restitution of a Hertz impact is exactly 1.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Hertz<T> {
     /// Contact stiffness k (N/m^n); Eq 3 gives it for spheres and planes
     /// ([`crate::geometry`]).

@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 /// Lankarani–Nikravesh and Flores are this law with χ set from the restitution and
 /// the approach speed.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct HuntCrossley<T> {
     /// Contact stiffness k (N/m^n).
     pub stiffness: T,

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 /// The damping coefficient rises from 0 at touch-down to `max_damping` at
 /// `full_damping_depth` along the cubic STEP of Eq 9; the force never pulls.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Impact<T> {
     /// Contact stiffness k (N/m^e).
     pub stiffness: T,

@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 /// [`Indentation::approach_speed`]. δ̇0 ≤ 0 (a contact that began at rest) drops the
 /// damping term, leaving Hertz.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct LankaraniNikravesh<T> {
     /// Contact stiffness k (N/m^n).
     pub stiffness: T,

@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 /// is the one that reproduces the paper's tables. Only the product c·E* enters the
 /// force. For δ > 2r the radicand is clamped at 0 (no contact area, no force).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct VariableStiffness<T> {
     /// Surface loading coefficient c (dimensionless, 4/3 ≤ c ≤ 2π).
     pub surface_loading: T,

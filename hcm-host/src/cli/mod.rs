@@ -1,7 +1,10 @@
 //! The `hcm` command line: one module per subcommand, each with its `Args` and `run`.
 
 mod force;
+mod indicators;
 mod laws;
+mod report;
+mod simulate;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -20,6 +23,10 @@ enum Command {
     Laws(laws::Args),
     /// Evaluate one normal law at one contact state.
     Force(force::Args),
+    /// Simulate a scenario and write its trajectory (measured-data CSV).
+    Simulate(simulate::Args),
+    /// Contact indicators (max force, impulse, energy loss, duration) from a data file.
+    Indicators(indicators::Args),
 }
 
 /// Parses the command line, runs the subcommand, and reports errors in plain words.
@@ -28,6 +35,8 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Laws(args) => laws::run(args),
         Command::Force(args) => force::run(args),
+        Command::Simulate(args) => simulate::run(args),
+        Command::Indicators(args) => indicators::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

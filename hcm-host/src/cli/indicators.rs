@@ -1,0 +1,79 @@
+//! `hcm indicators`: the paper's contact indicators from a data file.
+
+use super::report;
+use hcm_host::dataset::Dataset;
+use hcm_host::indicators::{from_run, summarize};
+use hcm_host::scenario::Scenario;
+use std::path::PathBuf;
+
+/// Contact indicators per event and run, with mean and standard deviation over runs.
+///
+/// The scenario supplies what the data cannot: the bodies' shapes (to recompute the
+/// indentation δ from the recorded positions and interpolate its zero crossings)
+/// and masses (for the energy loss ½·m_e·(δ̇_in² − δ̇_out²)).
+#[derive(clap::Args)]
+pub struct Args {
+    /// Data file in the measured-data format (CSV).
+    #[arg(long)]
+    data: PathBuf,
+    /// Scenario describing the bodies and contacts of the data.
+    #[arg(long)]
+    scenario: PathBuf,
+    /// Override a scenario value (see `hcm simulate --help`). Repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    overrides: Vec<String>,
+    /// Print JSON (per-event indicators, summary, runs without contact) instead of markdown.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let model = Scenario::load(&args.scenario, &args.overrides)?.resolve(&args.scenario)?;
+    let dataset = Dataset::read(&args.data)?;
+    let mut events = Vec::new();
+    let mut without_contact = Vec::new();
+    for run in &dataset.runs {
+        let found = from_run(&model, run)?;
+        if found.is_empty() {
+            without_contact.push(run.id.clone());
+        }
+        events.extend(found);
+    }
+    let summary = summarize(&events);
+    if args.json {
+        let per_event: Vec<_> = events
+            .iter()
+            .map(|e| {
+                serde_json::json!({
+                    "run": e.run, "contact": e.contact, "event": e.event,
+                    "touch_down": e.touch_down, "lift_off": e.lift_off, "indicators": e.indicators,
+                })
+            })
+            .collect();
+        let json = serde_json::json!({ "events": per_event, "summary": summary, "runs_without_contact": without_contact });
+        println!("{}", serde_json::to_string_pretty(&json)?);
+        return Ok(());
+    }
+    if dataset.runs.len() <= 10 {
+        let rows: Vec<_> = events
+            .iter()
+            .map(|e| {
+                (
+                    format!("run {} {}", e.run, e.contact),
+                    e.touch_down,
+                    Some(e.indicators),
+                )
+            })
+            .collect();
+        print!("{}", report::event_table(&rows));
+        println!();
+    }
+    print!("{}", report::summary_table(&summary));
+    if !without_contact.is_empty() {
+        println!(
+            "\nruns without a completed contact: {}",
+            without_contact.join(", ")
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,50 @@
+//! Markdown tables shared by the subcommands.
+
+use hcm_host::indicators::{EventSummary, Indicators};
+use std::fmt::Write;
+
+/// One row per contact event: label, touch-down time and the indicators.
+pub fn event_table(rows: &[(String, f64, Option<Indicators>)]) -> String {
+    let mut out = String::from(
+        "| contact | touch-down (s) | max force (N) | impulse (N·s) | energy loss (N·m) | duration (s) |\n|---|---|---|---|---|---|\n",
+    );
+    for (label, touch_down, indicators) in rows {
+        match indicators {
+            Some(i) => writeln!(
+                out,
+                "| {label} | {touch_down:.9} | {:.6e} | {:.6e} | {:.6e} | {:.6e} |",
+                i.max_force, i.impulse, i.energy_loss, i.duration
+            ),
+            None => writeln!(
+                out,
+                "| {label} | {touch_down:.9} | (still in contact at the end) | | | |"
+            ),
+        }
+        .expect("writing to a String cannot fail");
+    }
+    out
+}
+
+/// Mean ± standard deviation over runs, one row per contact event.
+pub fn summary_table(summaries: &[EventSummary]) -> String {
+    let mut out = String::from(
+        "| contact | event | runs | max force (N) | impulse (N·s) | energy loss (N·m) | duration (s) |\n|---|---|---|---|---|---|---|\n",
+    );
+    for s in summaries {
+        let cell =
+            |st: hcm_host::indicators::Statistic| format!("{:.6e} ± {:.2e}", st.mean, st.std);
+        writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {} | {} |",
+            s.contact,
+            s.event,
+            s.runs,
+            cell(s.max_force),
+            cell(s.impulse),
+            cell(s.energy_loss),
+            cell(s.duration)
+        )
+        .expect("writing to a String cannot fail");
+    }
+    out
+}

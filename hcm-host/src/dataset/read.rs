@@ -1,0 +1,432 @@
+//! Reading the CSV format: one streaming pass, rows grouped by (run, body), every
+//! problem reported with its file, line and column.
+
+use std::collections::{HashMap, VecDeque};
+use std::io::Read;
+
+use super::schema::{self, Column, BODY, COLUMNS, COLUMN_COUNT, FIRST_NUMERIC, NUMERIC_COUNT, RUN};
+use super::{BodyTrack, DataError, Dataset, Run};
+
+/// Reads a whole dataset from `reader`; `source` names it in errors.
+pub(super) fn read(source: &str, reader: impl Read) -> Result<Dataset, DataError> {
+    let mut csv = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(false)
+        .from_reader(LineCounter::new(reader));
+    let mut record = csv::StringRecord::new();
+    let Some(header_line) = next_record(source, &mut csv, &mut record)? else {
+        return Err(DataError::new(
+            source,
+            format!(
+                "the file is empty; expected a header row `{}`",
+                schema::header()
+            ),
+        ));
+    };
+    let layout = Layout::from_header(source, header_line, &record)?;
+    let mut groups = Groups::default();
+    while let Some(line) = next_record(source, &mut csv, &mut record)? {
+        groups.push(source, &layout, line, &record)?;
+    }
+    if groups.dataset.runs.is_empty() {
+        return Err(DataError::new(
+            source,
+            "no data rows after the header; expected at least one sample",
+        )
+        .at_line(layout.line));
+    }
+    Ok(groups.dataset)
+}
+
+/// Reads the next record into `record` and returns the line it starts on; `None` at
+/// the end of the input.
+fn next_record<R: Read>(
+    source: &str,
+    csv: &mut csv::Reader<LineCounter<R>>,
+    record: &mut csv::StringRecord,
+) -> Result<Option<u64>, DataError> {
+    match csv.read_record(record) {
+        Ok(true) => {
+            let start = record.position().map_or(0, |position| position.byte());
+            Ok(Some(csv.get_mut().line_at(start)))
+        }
+        Ok(false) => Ok(None),
+        Err(error) => Err(csv_error(source, csv.get_mut(), error)),
+    }
+}
+
+/// Translates the csv crate's errors (ragged rows, invalid UTF-8, I/O).
+fn csv_error<R>(source: &str, lines: &mut LineCounter<R>, error: csv::Error) -> DataError {
+    let mut at = |error: DataError, position: &Option<csv::Position>| match position {
+        Some(position) => error.at_line(lines.line_at(position.byte())),
+        None => error,
+    };
+    match error.kind() {
+        csv::ErrorKind::UnequalLengths {
+            pos,
+            expected_len,
+            len,
+        } => at(
+            DataError::new(
+                source,
+                format!("expected {expected_len} cells as in the header, found {len}"),
+            ),
+            pos,
+        ),
+        csv::ErrorKind::Utf8 { pos, err } => at(
+            DataError::new(
+                source,
+                format!(
+                    "cell {} is not valid UTF-8 text; expected a UTF-8 CSV file",
+                    err.field() + 1
+                ),
+            ),
+            pos,
+        ),
+        csv::ErrorKind::Io(io) => DataError::new(source, format!("cannot read: {io}")),
+        _ => DataError::new(source, error.to_string()),
+    }
+}
+
+/// Passes the input through to the csv reader and notes where each non-blank line
+/// starts, so that a record's line is exact. (The csv crate's own line numbers count a
+/// record from the end of the previous one: they are one short after blank lines and
+/// for every record of a CRLF file.) Line breaks are `\n`, `\r\n` and a lone `\r`, as
+/// for the csv reader.
+struct LineCounter<R> {
+    inner: R,
+    /// Offset of the next byte read.
+    offset: u64,
+    /// Line of the next byte read (1-based).
+    line: u64,
+    /// Whether the next byte starts a line.
+    at_line_start: bool,
+    /// Whether the last byte was `\r` (so that a following `\n` ends no further line).
+    after_cr: bool,
+    /// `(offset, line)` of the first byte of each non-blank line read and not yet
+    /// passed by [`LineCounter::line_at`].
+    starts: VecDeque<(u64, u64)>,
+}
+
+impl<R> LineCounter<R> {
+    fn new(inner: R) -> Self {
+        LineCounter {
+            inner,
+            offset: 0,
+            line: 1,
+            at_line_start: true,
+            after_cr: false,
+            starts: VecDeque::new(),
+        }
+    }
+
+    /// The line of the first record that begins at or after byte `offset`: a record's
+    /// reported start may precede it by blank lines or the `\n` of a `\r\n`, never by
+    /// other bytes. Offsets must not decrease from call to call.
+    fn line_at(&mut self, offset: u64) -> u64 {
+        while self
+            .starts
+            .front()
+            .is_some_and(|&(start, _)| start < offset)
+        {
+            self.starts.pop_front();
+        }
+        self.starts.front().map_or(self.line, |&(_, line)| line)
+    }
+}
+
+impl<R: Read> Read for LineCounter<R> {
+    fn read(&mut self, buffer: &mut [u8]) -> std::io::Result<usize> {
+        let count = self.inner.read(buffer)?;
+        let mut rest = &buffer[..count];
+        while let Some((&byte, tail)) = rest.split_first() {
+            match byte {
+                b'\n' => {
+                    if !self.after_cr {
+                        self.line += 1;
+                    }
+                    self.at_line_start = true;
+                    self.after_cr = false;
+                }
+                b'\r' => {
+                    self.line += 1;
+                    self.at_line_start = true;
+                    self.after_cr = true;
+                }
+                _ => {
+                    if self.at_line_start {
+                        self.starts.push_back((self.offset, self.line));
+                    }
+                    self.at_line_start = false;
+                    self.after_cr = false;
+                    // Skip to the next line break in one go.
+                    let content = tail
+                        .iter()
+                        .position(|&b| b == b'\n' || b == b'\r')
+                        .unwrap_or(tail.len());
+                    self.offset += content as u64;
+                    rest = &tail[content..];
+                    self.offset += 1;
+                    continue;
+                }
+            }
+            self.offset += 1;
+            rest = tail;
+        }
+        Ok(count)
+    }
+}
+
+/// Where each column of the schema is in the file.
+struct Layout {
+    /// Line of the header.
+    line: u64,
+    /// `cell[i]` is the position in a row of `COLUMNS[i]`.
+    cell: [usize; COLUMN_COUNT],
+}
+
+impl Layout {
+    fn from_header(source: &str, line: u64, header: &csv::StringRecord) -> Result<Self, DataError> {
+        let here = |column: &str, problem: String| {
+            DataError::new(source, problem)
+                .at_line(line)
+                .in_column(column)
+        };
+        let mut found: [Option<usize>; COLUMN_COUNT] = [None; COLUMN_COUNT];
+        for (position, name) in header.iter().enumerate() {
+            let name = match position {
+                0 => name.trim_start_matches('\u{feff}').trim(),
+                _ => name.trim(),
+            };
+            if let Some(index) = COLUMNS.iter().position(|column| column.name == name) {
+                if let Some(first) = found[index] {
+                    return Err(here(
+                        name,
+                        format!(
+                            "appears twice in the header (cells {} and {}); expected it once",
+                            first + 1,
+                            position + 1
+                        ),
+                    ));
+                }
+                found[index] = Some(position);
+            }
+        }
+        let missing: Vec<&str> = COLUMNS
+            .iter()
+            .zip(&found)
+            .filter(|(_, position)| position.is_none())
+            .map(|(column, _)| column.name)
+            .collect();
+        if let Some(&first) = missing.first() {
+            let mut problem = String::from("missing from the header");
+            if let Some(near) = header
+                .iter()
+                .map(str::trim)
+                .find(|name| name.eq_ignore_ascii_case(first))
+            {
+                problem.push_str(&format!(" (found `{near}`; names are case-sensitive)"));
+            }
+            if missing.len() > 1 {
+                problem.push_str(&format!("; also missing: {}", missing[1..].join(", ")));
+            }
+            problem.push_str(&format!(
+                "; expected all of {} in any order",
+                schema::header()
+            ));
+            return Err(here(first, problem));
+        }
+        Ok(Layout {
+            line,
+            cell: found.map(|position| position.unwrap_or_default()),
+        })
+    }
+}
+
+/// The dataset being assembled, with indexes to group rows in constant time.
+#[derive(Default)]
+struct Groups {
+    dataset: Dataset,
+    /// Run id → index in `dataset.runs`.
+    runs: HashMap<String, usize>,
+    /// Per run: body name → index in that run's `bodies`.
+    bodies: Vec<HashMap<String, usize>>,
+    /// Per run, per body: the line of its latest sample.
+    last_line: Vec<Vec<u64>>,
+}
+
+impl Groups {
+    /// Parses one data row and appends its sample to its (run, body).
+    fn push(
+        &mut self,
+        source: &str,
+        layout: &Layout,
+        line: u64,
+        record: &csv::StringRecord,
+    ) -> Result<(), DataError> {
+        let cell = |index: usize| record.get(layout.cell[index]).unwrap_or("").trim();
+        let run = text(source, line, &COLUMNS[RUN], cell(RUN), "a run identifier")?;
+        let body = text(source, line, &COLUMNS[BODY], cell(BODY), "a body name")?;
+        let mut values = [0.0; NUMERIC_COUNT];
+        for (offset, value) in values.iter_mut().enumerate() {
+            let index = FIRST_NUMERIC + offset;
+            *value = number(source, line, &COLUMNS[index], cell(index))?;
+        }
+        let sample = schema::sample_from_values(values);
+
+        let run_index = match self.runs.get(run) {
+            Some(&index) => index,
+            None => {
+                let index = self.dataset.runs.len();
+                self.runs.insert(run.to_owned(), index);
+                self.dataset.runs.push(Run {
+                    id: run.to_owned(),
+                    bodies: Vec::new(),
+                });
+                self.bodies.push(HashMap::new());
+                self.last_line.push(Vec::new());
+                index
+            }
+        };
+        let bodies = &mut self.bodies[run_index];
+        let tracks = &mut self.dataset.runs[run_index].bodies;
+        let body_index = match bodies.get(body) {
+            Some(&index) => index,
+            None => {
+                let index = tracks.len();
+                bodies.insert(body.to_owned(), index);
+                tracks.push(BodyTrack {
+                    body: body.to_owned(),
+                    samples: Vec::new(),
+                });
+                self.last_line[run_index].push(line);
+                index
+            }
+        };
+        let track = &mut tracks[body_index];
+        let last_line = &mut self.last_line[run_index][body_index];
+        if let Some(previous) = track.samples.last() {
+            if sample.time <= previous.time {
+                return Err(DataError::new(
+                    source,
+                    format!(
+                        "within run `{run}`, body `{body}`, time must increase strictly; \
+                         found {:?} s after {:?} s on line {}",
+                        sample.time, previous.time, last_line
+                    ),
+                )
+                .at_line(line)
+                .in_column(COLUMNS[schema::TIME].name));
+            }
+        }
+        track.samples.push(sample);
+        *last_line = line;
+        Ok(())
+    }
+}
+
+/// A non-empty text cell.
+fn text<'a>(
+    source: &str,
+    line: u64,
+    column: &Column,
+    cell: &'a str,
+    expected: &str,
+) -> Result<&'a str, DataError> {
+    if cell.is_empty() {
+        return Err(
+            DataError::new(source, format!("expected {expected}, found an empty cell"))
+                .at_line(line)
+                .in_column(column.name),
+        );
+    }
+    Ok(cell)
+}
+
+/// A finite number cell.
+fn number(source: &str, line: u64, column: &Column, cell: &str) -> Result<f64, DataError> {
+    let expected = match column.unit {
+        "–" => String::from("a finite number"),
+        unit => format!("a finite number in {unit}"),
+    };
+    let found = match cell.parse::<f64>() {
+        Ok(value) if value.is_finite() => return Ok(value),
+        _ if cell.is_empty() => String::from("an empty cell"),
+        _ => format!("`{cell}`"),
+    };
+    Err(
+        DataError::new(source, format!("expected {expected}, found {found}"))
+            .at_line(line)
+            .in_column(column.name),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_byte_order_mark_before_the_header_is_skipped() {
+        let header = schema::header();
+        let text = format!("\u{feff}{header}\n0,ball,0,0,0,0,1,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n");
+        let dataset = read("bom.csv", text.as_bytes()).unwrap();
+        assert_eq!(dataset.runs[0].bodies[0].samples.len(), 1);
+    }
+
+    /// The line `read` blames for a repeated time in the last of `rows`, given with
+    /// `separator` after each.
+    fn line_of_repeated_time(rows: &[&str], separator: &str) -> Option<u64> {
+        let mut text = schema::header() + separator;
+        for row in rows {
+            text.push_str(row);
+            text.push_str(separator);
+        }
+        let error = read("lines.csv", text.as_bytes()).unwrap_err();
+        assert_eq!(error.column.as_deref(), Some("time"), "{error}");
+        error.line
+    }
+
+    const ROW: &str = "0,ball,0,0,0,0,1,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0";
+    const QUOTED: &str = "0,\"ball\",0,0,0,0,1,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0";
+
+    #[test]
+    fn line_numbers_are_exact_for_every_line_ending() {
+        for separator in ["\n", "\r\n", "\r"] {
+            assert_eq!(line_of_repeated_time(&[ROW, ROW], separator), Some(3));
+            // Blank lines still count.
+            assert_eq!(
+                line_of_repeated_time(&[ROW, "", "", ROW], separator),
+                Some(5),
+                "{separator:?}"
+            );
+        }
+        // Without a final line break.
+        let text = format!("{}\n{ROW}\n\n{ROW}", schema::header());
+        assert_eq!(
+            read("lines.csv", text.as_bytes()).unwrap_err().line,
+            Some(4)
+        );
+    }
+
+    #[test]
+    fn a_line_break_inside_quotes_counts_as_a_line() {
+        let two_lines = "0,\"ba\nll\",0,0,0,0,1,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0";
+        let text = format!("{}\n{two_lines}\n{QUOTED}\n{two_lines}\n", schema::header());
+        let error = read("lines.csv", text.as_bytes()).unwrap_err();
+        assert_eq!(error.line, Some(5), "{error}");
+        let dataset = read(
+            "lines.csv",
+            format!("{}\n{two_lines}\n", schema::header()).as_bytes(),
+        );
+        assert_eq!(dataset.unwrap().runs[0].bodies[0].body, "ba\nll");
+    }
+
+    #[test]
+    fn a_short_row_is_reported_with_its_line() {
+        let header = schema::header();
+        let text = format!("{header}\n0,ball,0,0,0\n");
+        let error = read("short.csv", text.as_bytes()).unwrap_err();
+        assert_eq!(error.line, Some(2), "{error}");
+        assert!(error.problem.contains("22"), "{error}");
+    }
+}

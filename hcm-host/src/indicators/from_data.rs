@@ -1,0 +1,299 @@
+//! Indicators read back from sampled data (simulated or measured).
+//!
+//! The indentation is recomputed from the bodies' recorded motion and the
+//! scenario's geometry, so touch-down and lift-off are the interpolated δ = 0
+//! crossings, not the nearest samples. Sampling error bounds (1 µs sampling, a
+//! smooth contact of ~100 µs): δ between samples by cubic Hermite on (δ, δ̇), so
+//! crossing times are exact to O(h⁴); δ̇ at a crossing extrapolated from the free
+//! flight side, f_n there by linear interpolation; the impulse by the trapezoid rule (relative error ≈ (πh/T)²/12);
+//! the peak by a parabola through the three highest samples.
+
+use super::Indicators;
+use crate::dataset::{BodyTrack, Run};
+use crate::scenario::Model;
+use crate::simulate::pair_kinematics;
+use nalgebra::Vector3;
+
+/// One contact event found in a run's data.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DataEvent {
+    /// Run id.
+    pub run: String,
+    /// Contact label, `body1–body2`.
+    pub contact: String,
+    /// Event number within this contact and run (0 = first).
+    pub event: usize,
+    /// Interpolated touch-down time (s).
+    pub touch_down: f64,
+    /// Interpolated lift-off time (s).
+    pub lift_off: f64,
+    /// The indicators.
+    pub indicators: Indicators,
+}
+
+/// Why indicators could not be read from a run.
+#[derive(Debug, thiserror::Error)]
+pub enum IndicatorError {
+    /// A moving body of a contact has no rows in the run.
+    #[error("run `{run}` has no rows for body `{body}`, which the scenario's contacts need")]
+    MissingBody { run: String, body: String },
+    /// Two moving bodies were sampled on different clocks.
+    #[error("run `{run}`: bodies `{first}` and `{second}` are sampled at different times; resample them onto one clock")]
+    DifferentClocks {
+        run: String,
+        first: String,
+        second: String,
+    },
+}
+
+/// The sampled normal-direction history of one contact pair.
+struct PairHistory {
+    time: Vec<f64>,
+    depth: Vec<f64>,
+    rate: Vec<f64>,
+    force: Vec<f64>,
+}
+
+/// Every completed contact event of every contact of `model` in `run`. Events still
+/// open at the end of the data are left out.
+pub fn from_run(model: &Model, run: &Run) -> Result<Vec<DataEvent>, IndicatorError> {
+    let mut events = Vec::new();
+    for (c, contact) in model.contacts.iter().enumerate() {
+        let label = format!(
+            "{}–{}",
+            model.bodies[contact.body_1].name, model.bodies[contact.body_2].name
+        );
+        let history = pair_history(model, run, c)?;
+        for (event, indicators) in scan(&history, contact.effective_mass)
+            .into_iter()
+            .enumerate()
+        {
+            let (touch_down, lift_off, indicators) = indicators;
+            events.push(DataEvent {
+                run: run.id.clone(),
+                contact: label.clone(),
+                event,
+                touch_down,
+                lift_off,
+                indicators,
+            });
+        }
+    }
+    Ok(events)
+}
+
+fn track<'a>(
+    model: &Model,
+    run: &'a Run,
+    body: usize,
+) -> Result<Option<&'a BodyTrack>, IndicatorError> {
+    let spec = &model.bodies[body];
+    match run.body(&spec.name) {
+        Some(track) if !spec.fixed || !track.samples.is_empty() => Ok(Some(track)),
+        _ if spec.fixed => Ok(None),
+        _ => Err(IndicatorError::MissingBody {
+            run: run.id.clone(),
+            body: spec.name.clone(),
+        }),
+    }
+}
+
+fn pair_history(model: &Model, run: &Run, c: usize) -> Result<PairHistory, IndicatorError> {
+    let contact = &model.contacts[c];
+    let (t1, t2) = (
+        track(model, run, contact.body_1)?,
+        track(model, run, contact.body_2)?,
+    );
+    let clock = match (t1, t2) {
+        (Some(a), Some(b)) if !model.bodies[contact.body_2].fixed => {
+            if a.samples.len() != b.samples.len()
+                || a.samples
+                    .iter()
+                    .zip(&b.samples)
+                    .any(|(x, y)| x.time != y.time)
+            {
+                return Err(IndicatorError::DifferentClocks {
+                    run: run.id.clone(),
+                    first: a.body.clone(),
+                    second: b.body.clone(),
+                });
+            }
+            a
+        }
+        (Some(a), _) => a,
+        (None, Some(b)) => b,
+        (None, None) => unreachable!("resolve() rejects contacts between two fixed bodies"),
+    };
+    let motion = |track: Option<&BodyTrack>, body: usize, i: usize| match track {
+        Some(t) if !model.bodies[body].fixed => {
+            let s = &t.samples[i];
+            (Vector3::from(s.position), Vector3::from(s.velocity))
+        }
+        _ => (model.bodies[body].position, Vector3::zeros()),
+    };
+    let n = clock.samples.len();
+    let mut history = PairHistory {
+        time: Vec::with_capacity(n),
+        depth: Vec::with_capacity(n),
+        rate: Vec::with_capacity(n),
+        force: Vec::with_capacity(n),
+    };
+    for i in 0..n {
+        let k = pair_kinematics(
+            model,
+            contact,
+            motion(t1, contact.body_1, i),
+            motion(t2, contact.body_2, i),
+        );
+        // Force on body 1 along the normal; from body 2's reaction if only it was measured.
+        let force = match (t1, t2) {
+            (Some(a), _) if a.samples.len() == n => {
+                Vector3::from(a.samples[i].force).dot(&k.normal)
+            }
+            (_, Some(b)) if b.samples.len() == n => {
+                -Vector3::from(b.samples[i].force).dot(&k.normal)
+            }
+            _ => 0.0,
+        };
+        history.time.push(clock.samples[i].time);
+        history.depth.push(k.depth);
+        history.rate.push(k.rate);
+        history.force.push(force);
+    }
+    Ok(history)
+}
+
+/// Cubic Hermite zero of δ on [t_a, t_b] from (δ, δ̇) at both ends: the fraction s ∈ [0, 1].
+fn hermite_zero(h: f64, (d0, r0): (f64, f64), (d1, r1): (f64, f64)) -> f64 {
+    let delta = |s: f64| {
+        let (s2, s3) = (s * s, s * s * s);
+        (2.0 * s3 - 3.0 * s2 + 1.0) * d0
+            + (s3 - 2.0 * s2 + s) * h * r0
+            + (-2.0 * s3 + 3.0 * s2) * d1
+            + (s3 - s2) * h * r1
+    };
+    let (mut lo, mut hi) = (0.0, 1.0);
+    let rising = d1 > d0;
+    for _ in 0..64 {
+        let mid = 0.5 * (lo + hi);
+        if (delta(mid) > 0.0) == rising {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// A δ = 0 crossing between samples i − 1 and i: (time, δ̇, f_n) there.
+///
+/// δ̇ at the crossing is extrapolated from the two neighbouring samples on the
+/// out-of-contact side, where no contact force acts and δ̇ is linear in time (free
+/// flight under constant gravity), so the extrapolation is exact there; a lone
+/// out-of-contact sample falls back to linear interpolation across the crossing.
+fn crossing(h: &PairHistory, i: usize) -> (f64, f64, f64) {
+    let dt = h.time[i] - h.time[i - 1];
+    let s = hermite_zero(dt, (h.depth[i - 1], h.rate[i - 1]), (h.depth[i], h.rate[i]));
+    let time = h.time[i - 1] + s * dt;
+    let lerp = |v: &[f64]| v[i - 1] + s * (v[i] - v[i - 1]);
+    let apart = |j: usize| h.depth[j] <= 0.0;
+    let line = |a: usize, b: usize| {
+        h.rate[a] + (time - h.time[a]) * (h.rate[b] - h.rate[a]) / (h.time[b] - h.time[a])
+    };
+    let rate = if apart(i - 1) && i >= 2 && apart(i - 2) {
+        line(i - 2, i - 1)
+    } else if apart(i) && i + 1 < h.time.len() && apart(i + 1) {
+        line(i, i + 1)
+    } else {
+        lerp(&h.rate)
+    };
+    (time, rate, lerp(&h.force))
+}
+
+/// Completed events of one pair: (touch-down, lift-off, indicators).
+fn scan(h: &PairHistory, effective_mass: f64) -> Vec<(f64, f64, Indicators)> {
+    let mut events = Vec::new();
+    let n = h.time.len();
+    let in_contact = |i: usize| h.depth[i] > 0.0;
+    let mut start = match n {
+        0 => return events,
+        _ if in_contact(0) || (h.depth[0] == 0.0 && h.rate[0] > 0.0) => {
+            Some((h.time[0], h.rate[0], h.force[0], 0))
+        }
+        _ => None,
+    };
+    for i in 1..n {
+        match start {
+            None if !in_contact(i - 1) && in_contact(i) => {
+                let (t, rate, force) = crossing(h, i);
+                start = Some((t, rate, force, i));
+            }
+            Some((t_in, rate_in, force_in, first)) if !in_contact(i) => {
+                start = None;
+                if !in_contact(i - 1) {
+                    continue; // touched δ = 0 at the first sample and left at once
+                }
+                let (t_out, rate_out, force_out) = crossing(h, i);
+                let inside = first..i;
+                let indicators = Indicators {
+                    max_force: peak(h, inside.clone()),
+                    impulse: impulse(h, inside, (t_in, force_in), (t_out, force_out)),
+                    energy_loss: 0.5 * effective_mass * (rate_in * rate_in - rate_out * rate_out),
+                    duration: t_out - t_in,
+                };
+                events.push((t_in, t_out, indicators));
+            }
+            _ => {}
+        }
+    }
+    events
+}
+
+/// Trapezoid rule over the samples inside the contact, closed by the crossings.
+fn impulse(
+    h: &PairHistory,
+    inside: std::ops::Range<usize>,
+    (t_in, f_in): (f64, f64),
+    (t_out, f_out): (f64, f64),
+) -> f64 {
+    let mut points = vec![(t_in, f_in)];
+    points.extend(
+        inside
+            .map(|i| (h.time[i], h.force[i]))
+            .filter(|&(t, _)| t > t_in && t < t_out),
+    );
+    points.push((t_out, f_out));
+    points
+        .windows(2)
+        .map(|w| 0.5 * (w[1].0 - w[0].0) * (w[0].1 + w[1].1))
+        .sum()
+}
+
+/// Largest sampled f_n inside the contact, refined by the vertex of the parabola
+/// through it and its two neighbours (kept only if it lies between them).
+fn peak(h: &PairHistory, inside: std::ops::Range<usize>) -> f64 {
+    let Some(j) = inside
+        .clone()
+        .max_by(|&a, &b| h.force[a].total_cmp(&h.force[b]))
+    else {
+        return 0.0;
+    };
+    let best = h.force[j];
+    if j == 0 || j + 1 >= h.time.len() || j == inside.start || j + 1 == inside.end {
+        return best;
+    }
+    let (t0, t1, t2) = (h.time[j - 1], h.time[j], h.time[j + 1]);
+    let (f0, f1, f2) = (h.force[j - 1], h.force[j], h.force[j + 1]);
+    // Divided differences of the interpolating parabola f = f1 + b·(t − t1) + a·(t − t1)².
+    let (d01, d12) = ((f1 - f0) / (t1 - t0), (f2 - f1) / (t2 - t1));
+    let a = (d12 - d01) / (t2 - t0);
+    if a >= 0.0 {
+        return best;
+    }
+    let b = d01 + a * (t1 - t0);
+    let dt = -b / (2.0 * a);
+    if t1 + dt <= t0 || t1 + dt >= t2 {
+        return best;
+    }
+    f1 + b * dt + a * dt * dt
+}

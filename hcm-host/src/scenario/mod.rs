@@ -1,0 +1,215 @@
+//! Scenario files: the bodies, materials, contacts, initial conditions and solver
+//! and recording settings of one experiment, in TOML.
+//!
+//! A scenario is read in three steps: the TOML text is parsed, `--set key=value`
+//! overrides are applied to the parsed document ([`overrides`]), and the result is
+//! deserialised and checked ([`Scenario::resolve`]) into a [`Model`] ready to simulate.
+//! Every key is documented in the README ("Scenario files").
+
+pub mod overrides;
+mod resolve;
+
+pub use resolve::{Body, Contact, Model, Shape};
+
+use hcm_core::geometry::Material;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// A scenario file as written by a user, before its references are resolved.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario {
+    /// Short name, used as a label in outputs.
+    pub name: String,
+    /// Free text for people.
+    #[serde(default)]
+    pub description: String,
+    /// Gravitational acceleration **g** (m/s²), world frame.
+    pub gravity: [f64; 3],
+    /// Named materials, referred to by bodies.
+    #[serde(default, rename = "material")]
+    pub materials: BTreeMap<String, Material<f64>>,
+    /// The bodies, moving or fixed.
+    #[serde(rename = "body")]
+    pub bodies: Vec<BodySpec>,
+    /// The contact pairs and their laws.
+    #[serde(rename = "contact")]
+    pub contacts: Vec<ContactSpec>,
+    /// Solver settings and when to stop.
+    pub simulation: SimulationSpec,
+    /// What the recorded trajectory holds.
+    pub record: RecordSpec,
+}
+
+/// One body.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Unique name, as in the data files' `body` column.
+    pub name: String,
+    /// Mass m (kg); required for moving bodies, ignored for fixed ones.
+    pub mass: Option<f64>,
+    /// A fixed body never moves (the ground, a hole).
+    #[serde(default)]
+    pub fixed: bool,
+    /// Contact geometry.
+    pub shape: ShapeSpec,
+    /// Name of an entry of `[material.*]`; needed where a law derives parameters
+    /// from the materials (variable stiffness, Hertz without `stiffness`).
+    pub material: Option<String>,
+    /// Initial position of the body's reference point (its centre of mass) (m).
+    pub position: [f64; 3],
+    /// Initial velocity (m/s).
+    #[serde(default)]
+    pub velocity: [f64; 3],
+}
+
+/// Contact geometry of a body, relative to its reference point.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum ShapeSpec {
+    /// A sphere centred on the reference point.
+    Sphere {
+        /// Radius r (m).
+        radius: f64,
+    },
+    /// A flat surface (half-space) with outward `normal`, at `offset` (m) from the
+    /// reference point along the normal (e.g. half the thickness of a plate).
+    Plane {
+        /// Outward normal (normalised on load).
+        normal: [f64; 3],
+        /// Distance from the reference point to the surface along the normal (m).
+        #[serde(default)]
+        offset: f64,
+    },
+}
+
+/// One contact pair.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Body 1 (a sphere) and body 2; the normal points from body 2 to body 1.
+    pub bodies: [String; 2],
+    /// Normal law name (see `hcm laws`).
+    pub law: String,
+    /// Law parameters (SI). Missing geometric ones are derived where the law allows:
+    /// `effective_modulus`, `radius` and `effective_mass` of `variable_stiffness`, and
+    /// `stiffness` (Eq 3) and `exponent` (3/2) of `hertz`.
+    #[serde(default)]
+    pub parameters: toml::Table,
+}
+
+/// Solver settings and the stop condition.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimulationSpec {
+    /// Latest simulated time (s); the run starts at t = 0.
+    pub end_time: f64,
+    /// Stop `record.contact_margin` after the lift-off of this many contact events
+    /// (0: run to `end_time`).
+    #[serde(default)]
+    pub stop_after_contacts: usize,
+    /// Relative tolerance of the adaptive Runge–Kutta solver.
+    #[serde(default = "default_relative_tolerance")]
+    pub relative_tolerance: f64,
+    /// Absolute tolerance (state units: m, m/s, N·s, J).
+    #[serde(default = "default_absolute_tolerance")]
+    pub absolute_tolerance: f64,
+    /// Longest solver step (s).
+    #[serde(default = "default_max_step")]
+    pub max_step: f64,
+    /// Solver steps allowed before the run is abandoned as stiff or diverging.
+    #[serde(default = "default_max_steps")]
+    pub max_steps: u64,
+}
+
+/// What gets sampled into the trajectory.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordSpec {
+    /// Sample period inside contacts and their margins (s).
+    pub contact_sample_period: f64,
+    /// Sample period elsewhere (s).
+    pub flight_sample_period: f64,
+    /// Time recorded at the contact rate before touch-down and after lift-off (s).
+    pub contact_margin: f64,
+}
+
+fn default_relative_tolerance() -> f64 {
+    1e-10
+}
+fn default_absolute_tolerance() -> f64 {
+    1e-14
+}
+fn default_max_step() -> f64 {
+    1e-3
+}
+fn default_max_steps() -> u64 {
+    1_000_000
+}
+
+/// Why a scenario could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    /// The file could not be read.
+    #[error("cannot read scenario {}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    /// The TOML is malformed or a key has the wrong type or is missing.
+    #[error("scenario {}: {message}", path.display())]
+    Syntax { path: PathBuf, message: String },
+    /// A `--set` override could not be applied.
+    #[error("--set {assignment}: {message}")]
+    Override { assignment: String, message: String },
+    /// The scenario parses but does not describe a simulable setup.
+    #[error("scenario {}: {field}: {message}", path.display())]
+    Invalid {
+        path: PathBuf,
+        field: String,
+        message: String,
+    },
+}
+
+impl Scenario {
+    /// Reads a scenario file and applies `key=value` overrides (values in TOML syntax).
+    pub fn load(path: &Path, assignments: &[String]) -> Result<Scenario, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        Self::parse(path, &text, assignments)
+    }
+
+    /// Parses scenario text (`path` names it in errors) and applies overrides.
+    pub fn parse(
+        path: &Path,
+        text: &str,
+        assignments: &[String],
+    ) -> Result<Scenario, ScenarioError> {
+        let syntax = |message: String| ScenarioError::Syntax {
+            path: path.to_owned(),
+            message,
+        };
+        if assignments.is_empty() {
+            // Straight from the text, so that errors carry line and column.
+            return toml::from_str(text).map_err(|e: toml::de::Error| syntax(e.to_string()));
+        }
+        let mut document: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| syntax(e.to_string()))?;
+        for assignment in assignments {
+            overrides::apply(&mut document, assignment)?;
+        }
+        toml::Value::Table(document)
+            .try_into()
+            .map_err(|e: toml::de::Error| {
+                syntax(format!(
+                    "{} (after the --set overrides)",
+                    e.message().trim()
+                ))
+            })
+    }
+}

@@ -1,0 +1,139 @@
+//! `--set key=value`: change one value of a scenario document before it is read.
+//!
+//! The key is a dotted path. Arrays of tables (`[[body]]`, `[[contact]]`) take a
+//! selector after their name: a position (`contact.0.law`) or, for tables with a
+//! `name`, that name (`body.ball.velocity`). The value is TOML: `0.95`,
+//! `[0.0, 0.95, 0.0]`, `"hertz"` (a bare word is taken as a string). Every table on
+//! the path must exist; the last key may be new (typos are caught when the
+//! scenario is read, since unknown keys are rejected there).
+
+use super::ScenarioError;
+
+/// Applies one `key=value` assignment to `document`.
+pub fn apply(document: &mut toml::Table, assignment: &str) -> Result<(), ScenarioError> {
+    let fail = |message: String| ScenarioError::Override {
+        assignment: assignment.to_owned(),
+        message,
+    };
+    let (path, text) = assignment
+        .split_once('=')
+        .ok_or_else(|| fail("expected key=value, e.g. body.ball.velocity=[0,0,-1.4]".into()))?;
+    let value = parse_value(text.trim()).map_err(&fail)?;
+    let keys: Vec<&str> = path.trim().split('.').map(str::trim).collect();
+    let (last, parents) = keys.split_last().ok_or_else(|| fail("empty key".into()))?;
+    if last.is_empty() {
+        return Err(fail("empty key".into()));
+    }
+    let mut table = document;
+    let mut i = 0;
+    while i < parents.len() {
+        let key = parents[i];
+        let at = if i == 0 {
+            "at the top level".to_owned()
+        } else {
+            format!("in `{}`", parents[..i].join("."))
+        };
+        let known = table.keys().cloned().collect::<Vec<_>>().join(", ");
+        table = match table.get_mut(key) {
+            Some(toml::Value::Table(child)) => child,
+            Some(toml::Value::Array(items)) => {
+                let selector = parents.get(i + 1).ok_or_else(|| {
+                    fail(format!(
+                        "`{key}` is a list: write `{key}.<index or name>.{last}`"
+                    ))
+                })?;
+                i += 1;
+                select(items, selector).map_err(|m| fail(format!("{m} in `{key}`")))?
+            }
+            Some(_) => return Err(fail(format!("`{key}` {at} is a value, not a table"))),
+            None => return Err(fail(format!("no key `{key}` {at} (keys there: {known})"))),
+        };
+        i += 1;
+    }
+    table.insert(last.to_string(), value);
+    Ok(())
+}
+
+/// Parses a TOML value; a bare word that is not TOML is taken as a string.
+fn parse_value(text: &str) -> Result<toml::Value, String> {
+    match format!("value = {text}").parse::<toml::Table>() {
+        Ok(mut table) => table.remove("value").ok_or_else(|| "no value".to_owned()),
+        Err(_) if !text.is_empty() && text.chars().all(|c| c.is_alphanumeric() || c == '_') => {
+            Ok(toml::Value::String(text.to_owned()))
+        }
+        Err(_) => Err(format!(
+            "`{text}` is not a TOML value (number, [array], \"string\")"
+        )),
+    }
+}
+
+/// The element of an array of tables chosen by position or by its `name`.
+fn select<'a>(items: &'a mut [toml::Value], selector: &str) -> Result<&'a mut toml::Table, String> {
+    let name_of = |item: &toml::Value| item.get("name").and_then(|n| n.as_str()).map(str::to_owned);
+    let names: Vec<String> = items.iter().filter_map(name_of).collect();
+    let count = items.len();
+    let position = selector.parse::<usize>().ok().or_else(|| {
+        items
+            .iter()
+            .position(|item| name_of(item).as_deref() == Some(selector))
+    });
+    match position.and_then(|i| items.get_mut(i)) {
+        Some(toml::Value::Table(item)) => Ok(item),
+        Some(_) => Err(format!("entry `{selector}` is not a table")),
+        None if names.is_empty() => Err(format!("no entry `{selector}` among {count}")),
+        None => Err(format!(
+            "no entry `{selector}` (names: {})",
+            names.join(", ")
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn document() -> toml::Table {
+        r#"
+        gravity = [0.0, 0.0, -9.81]
+        [[body]]
+        name = "ball"
+        velocity = [0.0, 0.0, 0.0]
+        [[contact]]
+        law = "hertz"
+        [contact.parameters]
+        exponent = 1.5
+        "#
+        .parse()
+        .unwrap()
+    }
+
+    #[test]
+    fn selects_tables_by_name_and_by_index() {
+        let mut doc = document();
+        apply(&mut doc, "body.ball.velocity=[0, 0, -1.4]").unwrap();
+        apply(&mut doc, "contact.0.parameters.exponent=1.6").unwrap();
+        apply(&mut doc, "contact.0.law=flores").unwrap();
+        let body = &doc["body"][0];
+        assert_eq!(body["velocity"][2].as_float(), Some(-1.4));
+        assert_eq!(
+            doc["contact"][0]["parameters"]["exponent"].as_float(),
+            Some(1.6)
+        );
+        assert_eq!(doc["contact"][0]["law"].as_str(), Some("flores"));
+    }
+
+    #[test]
+    fn errors_name_the_missing_step() {
+        let mut doc = document();
+        let e = apply(&mut doc, "body.plate.mass=1")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("plate") && e.contains("ball"), "{e}");
+        let e = apply(&mut doc, "simulation.end_time=1")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("simulation") && e.contains("gravity"), "{e}");
+        let e = apply(&mut doc, "gravity").unwrap_err().to_string();
+        assert!(e.contains("key=value"), "{e}");
+    }
+}

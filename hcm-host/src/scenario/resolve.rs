@@ -1,0 +1,316 @@
+//! From a scenario as written to a model ready to simulate: names resolved to
+//! indices, laws built and validated, derived parameters filled in.
+
+use super::{Scenario, ScenarioError, ShapeSpec};
+use crate::law_catalogue;
+use hcm_core::geometry::{effective_modulus, sphere_sphere, Material};
+use hcm_core::law::AnyNormalLaw;
+use nalgebra::Vector3;
+use std::path::Path;
+
+/// Contact geometry of a body, in the world frame (bodies do not rotate yet).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// A sphere of radius r (m) centred on the body's reference point.
+    Sphere {
+        /// Radius r (m).
+        radius: f64,
+    },
+    /// A plane with unit outward `normal`, `offset` (m) from the reference point.
+    Plane {
+        /// Unit outward normal.
+        normal: Vector3<f64>,
+        /// Distance of the surface from the reference point along the normal (m).
+        offset: f64,
+    },
+}
+
+/// A body of the model.
+#[derive(Clone, Debug)]
+pub struct Body {
+    /// Name, as in data files.
+    pub name: String,
+    /// Mass (kg); +∞ for a fixed body.
+    pub mass: f64,
+    /// Whether the body is fixed in the world.
+    pub fixed: bool,
+    /// Contact geometry.
+    pub shape: Shape,
+    /// Material, if the scenario names one.
+    pub material: Option<Material<f64>>,
+    /// Initial position (m).
+    pub position: Vector3<f64>,
+    /// Initial velocity (m/s).
+    pub velocity: Vector3<f64>,
+}
+
+/// A contact pair of the model: body 1 is a sphere, body 2 a sphere or a plane.
+#[derive(Clone, Debug)]
+pub struct Contact {
+    /// Index of body 1 in [`Model::bodies`].
+    pub body_1: usize,
+    /// Index of body 2.
+    pub body_2: usize,
+    /// The normal law with every parameter resolved.
+    pub law: AnyNormalLaw<f64>,
+    /// Effective mass m_e = m1·m2/(m1 + m2) (kg) of the pair.
+    pub effective_mass: f64,
+}
+
+/// A scenario resolved and checked: what the simulator runs.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// The scenario it came from (settings are read from here).
+    pub scenario: Scenario,
+    /// Gravity (m/s²).
+    pub gravity: Vector3<f64>,
+    /// Bodies, in file order.
+    pub bodies: Vec<Body>,
+    /// Contacts, in file order.
+    pub contacts: Vec<Contact>,
+}
+
+impl Model {
+    /// Index of the body named `name`.
+    pub fn body_index(&self, name: &str) -> Option<usize> {
+        self.bodies.iter().position(|b| b.name == name)
+    }
+}
+
+impl Scenario {
+    /// Resolves names, builds the laws and checks everything a simulation relies on.
+    /// `path` names the scenario in errors.
+    pub fn resolve(&self, path: &Path) -> Result<Model, ScenarioError> {
+        let invalid = |field: String, message: String| ScenarioError::Invalid {
+            path: path.to_owned(),
+            field,
+            message,
+        };
+        let mut bodies = Vec::with_capacity(self.bodies.len());
+        for (i, spec) in self.bodies.iter().enumerate() {
+            let field = |key: &str| format!("body `{}` (#{i}) {key}", spec.name);
+            if self.bodies[..i].iter().any(|b| b.name == spec.name) {
+                return Err(invalid(
+                    field("name"),
+                    "appears twice; body names must be unique".into(),
+                ));
+            }
+            let mass = match (spec.fixed, spec.mass) {
+                (true, _) => f64::INFINITY,
+                (false, Some(m)) if m > 0.0 && m.is_finite() => m,
+                (false, Some(m)) => {
+                    return Err(invalid(
+                        field("mass"),
+                        format!("must be a positive number of kg, found {m}"),
+                    ))
+                }
+                (false, None) => {
+                    return Err(invalid(
+                        field("mass"),
+                        "is required for a moving body (or set fixed = true)".into(),
+                    ))
+                }
+            };
+            let shape = match spec.shape {
+                ShapeSpec::Sphere { radius } if radius > 0.0 && radius.is_finite() => {
+                    Shape::Sphere { radius }
+                }
+                ShapeSpec::Sphere { radius } => {
+                    return Err(invalid(
+                        field("shape.sphere.radius"),
+                        format!("must be a positive number of m, found {radius}"),
+                    ))
+                }
+                ShapeSpec::Plane { normal, offset } => {
+                    let n = Vector3::from(normal);
+                    if !(n.norm() > 0.0 && n.norm().is_finite() && offset.is_finite()) {
+                        return Err(invalid(
+                            field("shape.plane"),
+                            "needs a non-zero finite normal and a finite offset".into(),
+                        ));
+                    }
+                    Shape::Plane {
+                        normal: n.normalize(),
+                        offset,
+                    }
+                }
+            };
+            let material = match &spec.material {
+                None => None,
+                Some(name) => Some(*self.materials.get(name).ok_or_else(|| {
+                    let known: Vec<_> = self.materials.keys().cloned().collect();
+                    invalid(
+                        field("material"),
+                        format!(
+                            "names `{name}`, but the materials are: {}",
+                            known.join(", ")
+                        ),
+                    )
+                })?),
+            };
+            let (position, velocity) = (Vector3::from(spec.position), Vector3::from(spec.velocity));
+            if !position
+                .iter()
+                .chain(velocity.iter())
+                .all(|x| x.is_finite())
+            {
+                return Err(invalid(field("position/velocity"), "must be finite".into()));
+            }
+            bodies.push(Body {
+                name: spec.name.clone(),
+                mass,
+                fixed: spec.fixed,
+                shape,
+                material,
+                position,
+                velocity,
+            });
+        }
+        if bodies.iter().all(|b| b.fixed) {
+            return Err(invalid(
+                "body".into(),
+                "at least one body must move (fixed = false)".into(),
+            ));
+        }
+        let mut contacts = Vec::with_capacity(self.contacts.len());
+        for (i, spec) in self.contacts.iter().enumerate() {
+            let field = |key: &str| {
+                format!(
+                    "contact #{i} ({} – {}) {key}",
+                    spec.bodies[0], spec.bodies[1]
+                )
+            };
+            let index = |name: &str| {
+                bodies
+                    .iter()
+                    .position(|b: &Body| b.name == name)
+                    .ok_or_else(|| {
+                        let known: Vec<_> = bodies.iter().map(|b| b.name.as_str()).collect();
+                        invalid(
+                            field("bodies"),
+                            format!("no body `{name}` (bodies: {})", known.join(", ")),
+                        )
+                    })
+            };
+            let (body_1, body_2) = (index(&spec.bodies[0])?, index(&spec.bodies[1])?);
+            if body_1 == body_2 {
+                return Err(invalid(
+                    field("bodies"),
+                    "a body cannot touch itself".into(),
+                ));
+            }
+            let (b1, b2) = (&bodies[body_1], &bodies[body_2]);
+            let Shape::Sphere { radius: radius_1 } = b1.shape else {
+                return Err(invalid(field("bodies"), format!("body 1 (`{}`) must be a sphere: supported pairs are sphere–plane and sphere–sphere", b1.name)));
+            };
+            if b1.fixed && b2.fixed {
+                return Err(invalid(field("bodies"), "both bodies are fixed".into()));
+            }
+            let effective_mass = if b1.fixed {
+                b2.mass
+            } else if b2.fixed {
+                b1.mass
+            } else {
+                b1.mass * b2.mass / (b1.mass + b2.mass)
+            };
+            let radius = match b2.shape {
+                Shape::Sphere { radius: radius_2 } => {
+                    sphere_sphere::effective_radius(radius_1, radius_2)
+                }
+                Shape::Plane { .. } => radius_1,
+            };
+            let parameters = derived_parameters(spec, b1, b2, radius, effective_mass)
+                .map_err(|m| invalid(field("parameters"), m))?;
+            let law = law_catalogue::build_from_table(&spec.law, &parameters)
+                .map_err(|e| invalid(field("law"), e.to_string()))?;
+            contacts.push(Contact {
+                body_1,
+                body_2,
+                law,
+                effective_mass,
+            });
+        }
+        self.check_settings().map_err(|(f, m)| invalid(f, m))?;
+        Ok(Model {
+            scenario: self.clone(),
+            gravity: Vector3::from(self.gravity),
+            bodies,
+            contacts,
+        })
+    }
+
+    fn check_settings(&self) -> Result<(), (String, String)> {
+        let s = &self.simulation;
+        let r = &self.record;
+        let positive = [
+            ("simulation.end_time", s.end_time),
+            ("simulation.relative_tolerance", s.relative_tolerance),
+            ("simulation.absolute_tolerance", s.absolute_tolerance),
+            ("simulation.max_step", s.max_step),
+            ("record.contact_sample_period", r.contact_sample_period),
+            ("record.flight_sample_period", r.flight_sample_period),
+        ];
+        for (name, value) in positive {
+            if !(value > 0.0 && value.is_finite()) {
+                return Err((
+                    name.into(),
+                    format!("must be a positive finite number, found {value}"),
+                ));
+            }
+        }
+        if !(r.contact_margin >= 0.0 && r.contact_margin.is_finite()) {
+            return Err((
+                "record.contact_margin".into(),
+                "must be zero or a positive number of s".into(),
+            ));
+        }
+        if !self.gravity.iter().all(|g| g.is_finite()) {
+            return Err(("gravity".into(), "must be finite".into()));
+        }
+        Ok(())
+    }
+}
+
+/// The law's parameter table with the geometric parameters the law can derive
+/// from the bodies filled in where the scenario leaves them out.
+fn derived_parameters(
+    spec: &super::ContactSpec,
+    body_1: &Body,
+    body_2: &Body,
+    radius: f64,
+    effective_mass: f64,
+) -> Result<toml::Table, String> {
+    let mut table = spec.parameters.clone();
+    let materials = || match (body_1.material, body_2.material) {
+        (Some(m1), Some(m2)) => Ok(effective_modulus(&m1, &m2)),
+        _ => Err(format!(
+            "law `{}` needs `material` on both bodies (or give its parameters explicitly)",
+            spec.law
+        )),
+    };
+    let mut fill = |key: &str, value: f64| {
+        table
+            .entry(key.to_owned())
+            .or_insert(toml::Value::Float(value));
+    };
+    match spec.law.as_str() {
+        "variable_stiffness" => {
+            if !spec.parameters.contains_key("effective_modulus") {
+                fill("effective_modulus", materials()?);
+            }
+            fill("radius", radius);
+            fill("effective_mass", effective_mass);
+        }
+        "hertz" => {
+            if !spec.parameters.contains_key("stiffness") {
+                fill(
+                    "stiffness",
+                    hcm_core::geometry::hertz_stiffness(materials()?, radius),
+                );
+            }
+            fill("exponent", 1.5);
+        }
+        _ => {}
+    }
+    Ok(table)
+}

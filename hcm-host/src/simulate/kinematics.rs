@@ -1,0 +1,44 @@
+//! Where a contact pair touches: indentation, its rate, normal and contact point,
+//! from the two bodies' positions and velocities. Used both by the simulator and
+//! to read indentation back from measured data.
+
+use crate::scenario::{Contact, Model, Shape};
+use hcm_core::geometry::{sphere_plane, sphere_sphere};
+use nalgebra::Vector3;
+
+/// Contact kinematics of one pair at one instant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairKinematics {
+    /// Indentation δ (m), > 0 in contact.
+    pub depth: f64,
+    /// Indentation rate δ̇ = −(v1 − v2)·n (m/s), > 0 approaching.
+    pub rate: f64,
+    /// Unit normal from body 2 to body 1.
+    pub normal: Vector3<f64>,
+    /// Contact point (m).
+    pub point: Vector3<f64>,
+}
+
+/// Kinematics of `contact` with body 1 at (p1, v1) and body 2 at (p2, v2) (m, m/s).
+pub fn pair_kinematics(
+    model: &Model,
+    contact: &Contact,
+    (p1, v1): (Vector3<f64>, Vector3<f64>),
+    (p2, v2): (Vector3<f64>, Vector3<f64>),
+) -> PairKinematics {
+    let Shape::Sphere { radius } = model.bodies[contact.body_1].shape else {
+        unreachable!("resolve() only accepts spheres as body 1")
+    };
+    let geometry = match model.bodies[contact.body_2].shape {
+        Shape::Plane { normal, offset } => {
+            sphere_plane::contact(&p1, radius, &(p2 + normal * offset), &normal)
+        }
+        Shape::Sphere { radius: radius_2 } => sphere_sphere::contact(&p1, radius, &p2, radius_2),
+    };
+    PairKinematics {
+        depth: geometry.depth,
+        rate: -(v1 - v2).dot(&geometry.normal),
+        normal: geometry.normal,
+        point: geometry.point,
+    }
+}

@@ -1,0 +1,116 @@
+//! The equations of motion of a scenario as an ODE: Newton for every moving body
+//! under gravity and contact forces (Eq 17 and Eq 21 are special cases), plus the
+//! impulse and work of each contact.
+
+use super::kinematics::{pair_kinematics, PairKinematics};
+use super::state::{Layout, StateVector};
+use crate::scenario::Model;
+use hcm_core::integrate::OdeSystem;
+use hcm_core::law::{Indentation, NormalLaw};
+use hcm_core::wrench::ContactWrench;
+use nalgebra::Vector3;
+
+/// Per-contact discrete state: whether the pair is in contact and the approach
+/// speed latched at touch-down (the δ̇0 of Lankarani–Nikravesh and Flores).
+///
+/// Contact forces act only in contact mode; mode switches happen at located
+/// δ = 0 events, so a solver step never straddles a touch-down or lift-off.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactModes {
+    /// In contact, per contact.
+    pub touching: Vec<bool>,
+    /// Approach speed δ̇0 (m/s) of the current (or last) impact, per contact.
+    pub approach_speed: Vec<f64>,
+}
+
+/// A scenario's dynamics in the current contact modes.
+pub struct ContactSystem<'a> {
+    /// The model.
+    pub model: &'a Model,
+    /// State layout.
+    pub layout: &'a Layout,
+    /// Contact modes in force.
+    pub modes: ContactModes,
+}
+
+/// Forces and torques (N, N·m) on every body, and each contact's normal force (N).
+#[derive(Clone, Debug)]
+pub struct Loads {
+    /// Force on each body (N).
+    pub force: Vec<Vector3<f64>>,
+    /// Torque on each body about its reference point (N·m).
+    pub torque: Vec<Vector3<f64>>,
+    /// Normal force f_n of each contact (N), 0 when apart.
+    pub normal_force: Vec<f64>,
+    /// Kinematics of each contact.
+    pub kinematics: Vec<PairKinematics>,
+}
+
+impl ContactSystem<'_> {
+    /// Kinematics of contact `c` in state `y`.
+    pub fn kinematics(&self, y: &[f64], c: usize) -> PairKinematics {
+        let contact = &self.model.contacts[c];
+        let motion = |b| self.layout.motion(self.model, y, b);
+        pair_kinematics(
+            self.model,
+            contact,
+            motion(contact.body_1),
+            motion(contact.body_2),
+        )
+    }
+
+    /// Contact loads in state `y` under the current modes.
+    pub fn loads(&self, y: &[f64]) -> Loads {
+        let n_bodies = self.model.bodies.len();
+        let mut loads = Loads {
+            force: vec![Vector3::zeros(); n_bodies],
+            torque: vec![Vector3::zeros(); n_bodies],
+            normal_force: vec![0.0; self.model.contacts.len()],
+            kinematics: Vec::with_capacity(self.model.contacts.len()),
+        };
+        for (c, contact) in self.model.contacts.iter().enumerate() {
+            let k = self.kinematics(y, c);
+            loads.kinematics.push(k);
+            if !self.modes.touching[c] {
+                continue;
+            }
+            let state = Indentation {
+                depth: k.depth,
+                rate: k.rate,
+                approach_speed: self.modes.approach_speed[c],
+            };
+            let f_n = contact.law.normal_force(&state);
+            let origin = |b| self.layout.motion(self.model, y, b).0;
+            let (arm_1, arm_2) = (
+                k.point - origin(contact.body_1),
+                k.point - origin(contact.body_2),
+            );
+            let w = ContactWrench::assemble(f_n, &k.normal, &Vector3::zeros(), &arm_1, &arm_2);
+            loads.normal_force[c] = f_n;
+            loads.force[contact.body_1] += w.force_1;
+            loads.torque[contact.body_1] += w.torque_1;
+            loads.force[contact.body_2] += w.force_2;
+            loads.torque[contact.body_2] += w.torque_2;
+        }
+        loads
+    }
+}
+
+impl OdeSystem<f64, StateVector> for ContactSystem<'_> {
+    fn derivative(&mut self, _time: f64, state: &StateVector, derivative: &mut StateVector) {
+        let (y, dy) = (&state.0, &mut derivative.0);
+        let loads = self.loads(y);
+        for (b, body) in self.model.bodies.iter().enumerate() {
+            if let Some(s) = self.layout.slot(b) {
+                let acceleration = self.model.gravity + loads.force[b] / body.mass;
+                dy[s..s + 3].copy_from_slice(&y[s + 3..s + 6]);
+                dy[s + 3..s + 6].copy_from_slice(acceleration.as_slice());
+            }
+        }
+        for (c, k) in loads.kinematics.iter().enumerate() {
+            let i = self.layout.impulse_index(c);
+            dy[i] = loads.normal_force[c];
+            dy[i + 1] = loads.normal_force[c] * k.rate;
+        }
+    }
+}

@@ -1,0 +1,145 @@
+//! The `hcm` binary end to end: simulate → CSV → indicators, and bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn hcm(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_hcm"))
+        .args(args)
+        .output()
+        .expect("hcm runs")
+}
+
+fn scenario(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenarios")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+#[test]
+fn simulate_then_indicators_json_round_trip() {
+    let dir = tempfile::tempdir().unwrap();
+    let out: PathBuf = dir.path().join("ball.csv");
+    let ball = scenario("bouncing_ball.toml");
+    let run = hcm(&[
+        "simulate",
+        "--scenario",
+        &ball,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(stdout.contains("ball–ground"), "{stdout}");
+    let run = hcm(&[
+        "indicators",
+        "--data",
+        out.to_str().unwrap(),
+        "--scenario",
+        &ball,
+        "--json",
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    let summary = &json["summary"][0];
+    assert_eq!(summary["runs"], 1);
+    let max_force = summary["max_force"]["mean"].as_f64().unwrap();
+    assert!((max_force / 2923.6 - 1.0).abs() < 1e-3, "{max_force}");
+    assert_eq!(json["runs_without_contact"].as_array().unwrap().len(), 0);
+}
+
+#[test]
+fn a_bad_override_names_the_field_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("never.csv");
+    let ball = scenario("bouncing_ball.toml");
+    let run = hcm(&[
+        "simulate",
+        "--scenario",
+        &ball,
+        "--set",
+        "body.ball.mass=-1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("ball") && stderr.contains("mass"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "something was left behind"
+    );
+}
+
+#[test]
+fn an_unknown_scenario_key_is_an_error_with_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(scenario("bouncing_ball.toml"))
+        .unwrap()
+        .replace("end_time", "end_tme");
+    let path = dir.path().join("typo.toml");
+    std::fs::write(&path, text).unwrap();
+    let out = dir.path().join("x.csv");
+    let run = hcm(&[
+        "simulate",
+        "--scenario",
+        path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("end_tme") && stderr.contains("typo.toml") && stderr.contains("line"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+}
+
+#[test]
+fn indicators_name_the_bad_line_of_a_data_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ball.csv");
+    let ball = scenario("bouncing_ball.toml");
+    assert!(hcm(&[
+        "simulate",
+        "--scenario",
+        &ball,
+        "--out",
+        out.to_str().unwrap()
+    ])
+    .status
+    .success());
+    let text = std::fs::read_to_string(&out).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    lines[5] = lines[5].replacen("0.0,", "NaN,", 1);
+    std::fs::write(&out, lines.join("\n")).unwrap();
+    let run = hcm(&[
+        "indicators",
+        "--data",
+        out.to_str().unwrap(),
+        "--scenario",
+        &ball,
+    ]);
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("line 6") && stderr.contains("NaN"),
+        "{stderr}"
+    );
+}
