@@ -5,6 +5,7 @@ mod common;
 
 use common::reference::{self, BALL_MASS, IMPACT_SPEED};
 use hcm_core::friction::VelocityStepFriction;
+use hcm_core::integrate::hermite_zero;
 use hcm_core::law::{step, AnyNormalLaw, Indentation, LankaraniNikravesh, NormalLaw};
 use hcm_core::wrench::ContactWrench;
 use nalgebra::Vector3;
@@ -43,25 +44,8 @@ fn integrate_impact(law: &impl NormalLaw<f64>, mass: f64, speed: f64) -> Impact 
             y[1] + h / 6.0 * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1]),
         ];
         if next[0] <= 0.0 && t > 0.0 {
-            // Cubic Hermite on δ over the step; bisect for its zero.
             let (d0, d1, r0, r1) = (y[0], next[0], y[1], next[1]);
-            let delta = |s: f64| {
-                let (s2, s3) = (s * s, s * s * s);
-                (2.0 * s3 - 3.0 * s2 + 1.0) * d0
-                    + (s3 - 2.0 * s2 + s) * h * r0
-                    + (-2.0 * s3 + 3.0 * s2) * d1
-                    + (s3 - s2) * h * r1
-            };
-            let (mut lo, mut hi) = (0.0, 1.0);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if delta(mid) > 0.0 {
-                    lo = mid
-                } else {
-                    hi = mid
-                }
-            }
-            let s = 0.5 * (lo + hi);
+            let s = hermite_zero(h, (d0, r0), (d1, r1));
             let exit_speed = -(r0 + s * (r1 - r0));
             return Impact {
                 max_depth,

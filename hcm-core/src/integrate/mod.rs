@@ -54,9 +54,11 @@
 mod dopri5;
 mod error;
 mod event;
+mod hermite;
 mod state;
 
 pub use dopri5::{Dopri5, Settings};
 pub use error::IntegrationError;
 pub use event::locate_crossing;
+pub use hermite::{cubic_hermite, hermite_zero};
 pub use state::{OdeState, OdeSystem};

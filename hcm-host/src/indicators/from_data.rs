@@ -12,6 +12,7 @@ use super::Indicators;
 use crate::dataset::{BodyTrack, Run};
 use crate::scenario::Model;
 use crate::simulate::pair_kinematics;
+use hcm_core::integrate::hermite_zero;
 use nalgebra::Vector3;
 
 /// One contact event found in a run's data.
@@ -161,28 +162,6 @@ fn pair_history(model: &Model, run: &Run, c: usize) -> Result<PairHistory, Indic
         history.force.push(force);
     }
     Ok(history)
-}
-
-/// Cubic Hermite zero of δ on [t_a, t_b] from (δ, δ̇) at both ends: the fraction s ∈ [0, 1].
-fn hermite_zero(h: f64, (d0, r0): (f64, f64), (d1, r1): (f64, f64)) -> f64 {
-    let delta = |s: f64| {
-        let (s2, s3) = (s * s, s * s * s);
-        (2.0 * s3 - 3.0 * s2 + 1.0) * d0
-            + (s3 - 2.0 * s2 + s) * h * r0
-            + (-2.0 * s3 + 3.0 * s2) * d1
-            + (s3 - s2) * h * r1
-    };
-    let (mut lo, mut hi) = (0.0, 1.0);
-    let rising = d1 > d0;
-    for _ in 0..64 {
-        let mid = 0.5 * (lo + hi);
-        if (delta(mid) > 0.0) == rising {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    0.5 * (lo + hi)
 }
 
 /// A δ = 0 crossing between samples i − 1 and i: (time, δ̇, f_n) there.
