@@ -87,6 +87,7 @@ fn hertz_ball_matches_the_closed_forms() {
         &[
             "contact.0.law=hertz",
             "contact.0.parameters={}",
+            "contact.0.noise={}",
             "gravity=[0.0, 0.0, 0.0]",
             "body.ball.position=[0.0, 0.0, 0.0128]",
             &format!("body.ball.velocity=[0.0, 0.0, {}]", -speed),

@@ -161,9 +161,77 @@ pub fn build_from_table(
     Ok(built)
 }
 
+/// A law's parameters by name, in catalogue order, with their values.
+pub fn parameters(law: &AnyNormalLaw<f64>) -> Vec<(&'static str, f64)> {
+    let table = parameter_table(law);
+    entry(law.name())
+        .map(|e| e.parameters)
+        .unwrap_or(&[])
+        .iter()
+        .filter_map(|p| {
+            table
+                .get(p.name)
+                .and_then(toml::Value::as_float)
+                .map(|v| (p.name, v))
+        })
+        .collect()
+}
+
+/// The same law with every parameter passed through `f(name, value)`.
+pub fn map_parameters(
+    law: &AnyNormalLaw<f64>,
+    mut f: impl FnMut(&str, f64) -> f64,
+) -> AnyNormalLaw<f64> {
+    let mut table = parameter_table(law);
+    for (name, value) in table.iter_mut() {
+        if let Some(v) = value.as_float() {
+            *value = toml::Value::Float(f(name, v));
+        }
+    }
+    let mut outer = toml::Table::new();
+    outer.insert(law.name().to_owned(), toml::Value::Table(table));
+    toml::Value::Table(outer).try_into().unwrap_or(*law)
+}
+
+/// The law's fields as a TOML table (the externally tagged serde form, unwrapped).
+pub fn parameter_table(law: &AnyNormalLaw<f64>) -> toml::Table {
+    match toml::Value::try_from(law) {
+        Ok(toml::Value::Table(mut outer)) => match outer.remove(law.name()) {
+            Some(toml::Value::Table(inner)) => inner,
+            _ => toml::Table::new(),
+        },
+        _ => toml::Table::new(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn parameters_round_trip_through_map() {
+        let law = build(
+            "lankarani_nikravesh",
+            &[
+                ("stiffness".into(), 6.86e9),
+                ("exponent".into(), 1.489),
+                ("restitution".into(), 0.929),
+            ],
+        )
+        .unwrap();
+        let doubled = map_parameters(
+            &law,
+            |name, v| if name == "stiffness" { 2.0 * v } else { v },
+        );
+        assert_eq!(
+            parameters(&doubled),
+            vec![
+                ("stiffness", 13.72e9),
+                ("exponent", 1.489),
+                ("restitution", 0.929)
+            ]
+        );
+    }
 
     #[test]
     fn every_catalogued_law_builds_from_its_parameters() {

@@ -3,6 +3,9 @@
 //! (`src/cli/`) prints.
 
 pub mod dataset;
+pub mod evaluate;
+pub mod experiment;
+pub mod identify;
 pub mod indicators;
 pub mod law_catalogue;
 pub mod output;

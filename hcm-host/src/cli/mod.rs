@@ -1,6 +1,9 @@
 //! The `hcm` command line: one module per subcommand, each with its `Args` and `run`.
 
+mod evaluate;
 mod force;
+mod generate;
+mod identify;
 mod indicators;
 mod laws;
 mod report;
@@ -27,6 +30,12 @@ enum Command {
     Simulate(simulate::Args),
     /// Contact indicators (max force, impulse, energy loss, duration) from a data file.
     Indicators(indicators::Args),
+    /// Generate a noise-added experiment (PM1) and split it into S1 and S2.
+    Generate(generate::Args),
+    /// Identify a physics model (PM2) from data: least squares or genetic algorithm.
+    Identify(identify::Args),
+    /// The paper's table for a physics model on validation data (S2).
+    Evaluate(evaluate::Args),
 }
 
 /// Parses the command line, runs the subcommand, and reports errors in plain words.
@@ -37,6 +46,9 @@ pub fn main() -> ExitCode {
         Command::Force(args) => force::run(args),
         Command::Simulate(args) => simulate::run(args),
         Command::Indicators(args) => indicators::run(args),
+        Command::Generate(args) => generate::run(args),
+        Command::Identify(args) => identify::run(args),
+        Command::Evaluate(args) => evaluate::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -57,4 +69,17 @@ pub fn parse_assignment(text: &str) -> Result<(String, f64), String> {
         .parse()
         .map_err(|_| format!("`{value}` in `{text}` is not a number"))?;
     Ok((key.trim().to_owned(), value))
+}
+
+/// A progress bar on standard error for `total` steps of long work; hidden when
+/// standard error is not a terminal (CI logs, pipes).
+pub fn progress_bar(total: u64, message: &'static str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(total);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{msg:>16} [{bar:40}] {pos}/{len} ({eta})")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar.set_message(message);
+    bar
 }

@@ -3,6 +3,7 @@
 use super::report;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
+use hcm_host::identify::Physics;
 use hcm_host::scenario::Scenario;
 use hcm_host::simulate::simulate;
 use std::path::PathBuf;
@@ -17,14 +18,20 @@ pub struct Args {
     /// `--set contact.0.parameters.damping=500`. Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     overrides: Vec<String>,
+    /// Physics file from `hcm identify`: replaces the scenario's contact laws.
+    #[arg(long)]
+    physics: Option<PathBuf>,
     /// Where to write the trajectory (CSV, measured-data format).
     #[arg(long)]
     out: PathBuf,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let scenario = Scenario::load(&args.scenario, &args.overrides)?;
-    let model = scenario.resolve(&args.scenario)?;
+    let mut scenario = Scenario::load(&args.scenario, &args.overrides)?;
+    if let Some(path) = &args.physics {
+        scenario = Physics::read(path)?.apply(&scenario, path)?;
+    }
+    let model = scenario.model()?;
     let simulation = simulate(&model)?;
     let dataset = Dataset {
         runs: vec![simulation.run.clone()],

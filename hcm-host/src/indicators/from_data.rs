@@ -47,12 +47,47 @@ pub enum IndicatorError {
     },
 }
 
-/// The sampled normal-direction history of one contact pair.
-struct PairHistory {
-    time: Vec<f64>,
-    depth: Vec<f64>,
-    rate: Vec<f64>,
-    force: Vec<f64>,
+/// The sampled normal-direction history of one contact pair in one run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactHistory {
+    /// Sample times (s).
+    pub time: Vec<f64>,
+    /// Indentation δ from the recorded motion and the scenario's geometry (m).
+    pub depth: Vec<f64>,
+    /// Indentation rate δ̇ (m/s), > 0 approaching.
+    pub rate: Vec<f64>,
+    /// Recorded normal force f_n on body 1 along the normal (N).
+    pub force: Vec<f64>,
+}
+
+/// One completed contact event located in a [`ContactHistory`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventSpan {
+    /// Indices of the samples inside the contact (δ > 0).
+    pub inside: std::ops::Range<usize>,
+    /// Interpolated touch-down time (s), δ̇ there (m/s) and f_n there (N).
+    pub touch_down: (f64, f64, f64),
+    /// Interpolated lift-off time (s), δ̇ there (m/s) and f_n there (N).
+    pub lift_off: (f64, f64, f64),
+}
+
+impl EventSpan {
+    /// Approach speed δ̇0 of the impact (m/s).
+    pub fn approach_speed(&self) -> f64 {
+        self.touch_down.1
+    }
+
+    /// The four indicators of the event; `effective_mass` m_e (kg) for the energy loss.
+    pub fn indicators(&self, h: &ContactHistory, effective_mass: f64) -> Indicators {
+        let ((t_in, rate_in, force_in), (t_out, rate_out, force_out)) =
+            (self.touch_down, self.lift_off);
+        Indicators {
+            max_force: peak(h, self.inside.clone()),
+            impulse: impulse(h, self.inside.clone(), (t_in, force_in), (t_out, force_out)),
+            energy_loss: 0.5 * effective_mass * (rate_in * rate_in - rate_out * rate_out),
+            duration: t_out - t_in,
+        }
+    }
 }
 
 /// Every completed contact event of every contact of `model` in `run`. Events still
@@ -64,19 +99,15 @@ pub fn from_run(model: &Model, run: &Run) -> Result<Vec<DataEvent>, IndicatorErr
             "{}–{}",
             model.bodies[contact.body_1].name, model.bodies[contact.body_2].name
         );
-        let history = pair_history(model, run, c)?;
-        for (event, indicators) in scan(&history, contact.effective_mass)
-            .into_iter()
-            .enumerate()
-        {
-            let (touch_down, lift_off, indicators) = indicators;
+        let history = contact_history(model, run, c)?;
+        for (event, span) in event_spans(&history).into_iter().enumerate() {
             events.push(DataEvent {
                 run: run.id.clone(),
                 contact: label.clone(),
                 event,
-                touch_down,
-                lift_off,
-                indicators,
+                touch_down: span.touch_down.0,
+                lift_off: span.lift_off.0,
+                indicators: span.indicators(&history, contact.effective_mass),
             });
         }
     }
@@ -99,7 +130,12 @@ fn track<'a>(
     }
 }
 
-fn pair_history(model: &Model, run: &Run, c: usize) -> Result<PairHistory, IndicatorError> {
+/// The normal-direction history of contact `c` of `model` in `run`.
+pub fn contact_history(
+    model: &Model,
+    run: &Run,
+    c: usize,
+) -> Result<ContactHistory, IndicatorError> {
     let contact = &model.contacts[c];
     let (t1, t2) = (
         track(model, run, contact.body_1)?,
@@ -133,7 +169,7 @@ fn pair_history(model: &Model, run: &Run, c: usize) -> Result<PairHistory, Indic
         _ => (model.bodies[body].position, Vector3::zeros()),
     };
     let n = clock.samples.len();
-    let mut history = PairHistory {
+    let mut history = ContactHistory {
         time: Vec::with_capacity(n),
         depth: Vec::with_capacity(n),
         rate: Vec::with_capacity(n),
@@ -170,7 +206,7 @@ fn pair_history(model: &Model, run: &Run, c: usize) -> Result<PairHistory, Indic
 /// out-of-contact side, where no contact force acts and δ̇ is linear in time (free
 /// flight under constant gravity), so the extrapolation is exact there; a lone
 /// out-of-contact sample falls back to linear interpolation across the crossing.
-fn crossing(h: &PairHistory, i: usize) -> (f64, f64, f64) {
+fn crossing(h: &ContactHistory, i: usize) -> (f64, f64, f64) {
     let dt = h.time[i] - h.time[i - 1];
     let s = hermite_zero(dt, (h.depth[i - 1], h.rate[i - 1]), (h.depth[i], h.rate[i]));
     let time = h.time[i - 1] + s * dt;
@@ -189,38 +225,31 @@ fn crossing(h: &PairHistory, i: usize) -> (f64, f64, f64) {
     (time, rate, lerp(&h.force))
 }
 
-/// Completed events of one pair: (touch-down, lift-off, indicators).
-fn scan(h: &PairHistory, effective_mass: f64) -> Vec<(f64, f64, Indicators)> {
+/// The completed contact events of a history, in time order. An event still open
+/// at the end of the data is left out.
+pub fn event_spans(h: &ContactHistory) -> Vec<EventSpan> {
     let mut events = Vec::new();
     let n = h.time.len();
     let in_contact = |i: usize| h.depth[i] > 0.0;
     let mut start = match n {
         0 => return events,
         _ if in_contact(0) || (h.depth[0] == 0.0 && h.rate[0] > 0.0) => {
-            Some((h.time[0], h.rate[0], h.force[0], 0))
+            Some(((h.time[0], h.rate[0], h.force[0]), 0))
         }
         _ => None,
     };
     for i in 1..n {
         match start {
-            None if !in_contact(i - 1) && in_contact(i) => {
-                let (t, rate, force) = crossing(h, i);
-                start = Some((t, rate, force, i));
-            }
-            Some((t_in, rate_in, force_in, first)) if !in_contact(i) => {
+            None if !in_contact(i - 1) && in_contact(i) => start = Some((crossing(h, i), i)),
+            Some((touch_down, first)) if !in_contact(i) => {
                 start = None;
-                if !in_contact(i - 1) {
-                    continue; // touched δ = 0 at the first sample and left at once
+                if in_contact(i - 1) {
+                    events.push(EventSpan {
+                        inside: first..i,
+                        touch_down,
+                        lift_off: crossing(h, i),
+                    });
                 }
-                let (t_out, rate_out, force_out) = crossing(h, i);
-                let inside = first..i;
-                let indicators = Indicators {
-                    max_force: peak(h, inside.clone()),
-                    impulse: impulse(h, inside, (t_in, force_in), (t_out, force_out)),
-                    energy_loss: 0.5 * effective_mass * (rate_in * rate_in - rate_out * rate_out),
-                    duration: t_out - t_in,
-                };
-                events.push((t_in, t_out, indicators));
             }
             _ => {}
         }
@@ -230,7 +259,7 @@ fn scan(h: &PairHistory, effective_mass: f64) -> Vec<(f64, f64, Indicators)> {
 
 /// Trapezoid rule over the samples inside the contact, closed by the crossings.
 fn impulse(
-    h: &PairHistory,
+    h: &ContactHistory,
     inside: std::ops::Range<usize>,
     (t_in, f_in): (f64, f64),
     (t_out, f_out): (f64, f64),
@@ -250,7 +279,7 @@ fn impulse(
 
 /// Largest sampled f_n inside the contact, refined by the vertex of the parabola
 /// through it and its two neighbours (kept only if it lies between them).
-fn peak(h: &PairHistory, inside: std::ops::Range<usize>) -> f64 {
+fn peak(h: &ContactHistory, inside: std::ops::Range<usize>) -> f64 {
     let Some(j) = inside
         .clone()
         .max_by(|&a, &b| h.force[a].total_cmp(&h.force[b]))

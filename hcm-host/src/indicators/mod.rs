@@ -9,7 +9,9 @@
 mod from_data;
 mod summary;
 
-pub use from_data::{from_run, DataEvent, IndicatorError};
+pub use from_data::{
+    contact_history, event_spans, from_run, ContactHistory, DataEvent, EventSpan, IndicatorError,
+};
 pub use summary::{summarize, EventSummary, Statistic};
 
 use serde::Serialize;

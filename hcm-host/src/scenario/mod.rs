@@ -40,6 +40,25 @@ pub struct Scenario {
     pub simulation: SimulationSpec,
     /// What the recorded trajectory holds.
     pub record: RecordSpec,
+    /// How noise-added experiments (PM1) are generated from this scenario.
+    #[serde(default)]
+    pub experiment: ExperimentSpec,
+    /// Identification (PM2) settings.
+    #[serde(default)]
+    pub identify: IdentifySpec,
+    /// The file and parsed document it came from, overrides applied, so that
+    /// experimental conditions can be layered on top ([`Scenario::with`]).
+    #[serde(skip)]
+    pub source: Source,
+}
+
+/// Where a scenario came from.
+#[derive(Clone, Debug, Default)]
+pub struct Source {
+    /// The scenario file (names it in errors).
+    pub path: PathBuf,
+    /// The TOML document with every override applied so far.
+    pub document: toml::Table,
 }
 
 /// One body.
@@ -98,6 +117,10 @@ pub struct ContactSpec {
     /// `stiffness` (Eq 3) and `exponent` (3/2) of `hertz`.
     #[serde(default)]
     pub parameters: toml::Table,
+    /// Parameter noise of the noise-added experiment (Eq 18): for each named
+    /// parameter, b in η = a + a·b·ζ, ζ ~ N(0, 1) drawn once per run (dimensionless).
+    #[serde(default)]
+    pub noise: BTreeMap<String, f64>,
 }
 
 /// Solver settings and the stop condition.
@@ -134,6 +157,74 @@ pub struct RecordSpec {
     pub flight_sample_period: f64,
     /// Time recorded at the contact rate before touch-down and after lift-off (s).
     pub contact_margin: f64,
+    /// Bodies to record (default: all). Leaving out a fixed body halves a file.
+    #[serde(default)]
+    pub bodies: Vec<String>,
+}
+
+/// The noise-added experiment (paper Section 4, Eq 14, 18, 19).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExperimentSpec {
+    /// σ of the output noise σ·ζ on every sampled force component (N), Eq 19.
+    #[serde(default = "default_force_noise")]
+    pub force_noise: f64,
+    /// σ of the noise on every sampled torque component (N·m).
+    #[serde(default)]
+    pub torque_noise: f64,
+    /// σ of the noise on every sampled position component (m).
+    #[serde(default)]
+    pub position_noise: f64,
+    /// σ of the noise on every sampled velocity component (m/s).
+    #[serde(default)]
+    pub velocity_noise: f64,
+    /// Experimental conditions; `--runs` runs are made of each. None: one condition,
+    /// the scenario as written.
+    #[serde(default, rename = "condition")]
+    pub conditions: Vec<ConditionSpec>,
+    /// Conditions whose runs form S2 (validation). Empty: S2 is a random
+    /// `holdout_fraction` of all runs.
+    #[serde(default)]
+    pub holdout_conditions: Vec<String>,
+    /// Share of runs drawn at random into S2 when no holdout condition is named.
+    #[serde(default = "default_holdout_fraction")]
+    pub holdout_fraction: f64,
+}
+
+impl Default for ExperimentSpec {
+    fn default() -> Self {
+        ExperimentSpec {
+            force_noise: default_force_noise(),
+            torque_noise: 0.0,
+            position_noise: 0.0,
+            velocity_noise: 0.0,
+            conditions: Vec::new(),
+            holdout_conditions: Vec::new(),
+            holdout_fraction: default_holdout_fraction(),
+        }
+    }
+}
+
+/// Identification settings.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IdentifySpec {
+    /// Search intervals per law and parameter: `[identify.bounds.lankarani_nikravesh]
+    /// stiffness = [1e9, 1e10]`. Parameters not named keep hcm's defaults.
+    #[serde(default)]
+    pub bounds: BTreeMap<String, BTreeMap<String, [f64; 2]>>,
+}
+
+/// One experimental condition: a name (the run-id prefix) and the scenario
+/// overrides that make it.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConditionSpec {
+    /// Name, used as the prefix of the condition's run ids (`name/007`).
+    pub name: String,
+    /// `key=value` overrides, as for `--set`.
+    #[serde(default)]
+    pub set: Vec<String>,
 }
 
 fn default_relative_tolerance() -> f64 {
@@ -147,6 +238,12 @@ fn default_max_step() -> f64 {
 }
 fn default_max_steps() -> u64 {
     1_000_000
+}
+fn default_force_noise() -> f64 {
+    15.0
+}
+fn default_holdout_fraction() -> f64 {
+    0.1
 }
 
 /// Why a scenario could not be loaded.
@@ -193,23 +290,45 @@ impl Scenario {
             path: path.to_owned(),
             message,
         };
-        if assignments.is_empty() {
-            // Straight from the text, so that errors carry line and column.
-            return toml::from_str(text).map_err(|e: toml::de::Error| syntax(e.to_string()));
-        }
         let mut document: toml::Table = text
             .parse()
             .map_err(|e: toml::de::Error| syntax(e.to_string()))?;
+        let mut scenario: Scenario = if assignments.is_empty() {
+            // Straight from the text, so that errors carry line and column.
+            toml::from_str(text).map_err(|e: toml::de::Error| syntax(e.to_string()))?
+        } else {
+            for assignment in assignments {
+                overrides::apply(&mut document, assignment)?;
+            }
+            Self::from_document(path, &document)?
+        };
+        scenario.source = Source {
+            path: path.to_owned(),
+            document,
+        };
+        Ok(scenario)
+    }
+
+    /// This scenario with more `key=value` overrides applied.
+    pub fn with(&self, assignments: &[String]) -> Result<Scenario, ScenarioError> {
+        let mut document = self.source.document.clone();
         for assignment in assignments {
             overrides::apply(&mut document, assignment)?;
         }
-        toml::Value::Table(document)
+        let mut scenario = Self::from_document(&self.source.path, &document)?;
+        scenario.source = Source {
+            path: self.source.path.clone(),
+            document,
+        };
+        Ok(scenario)
+    }
+
+    fn from_document(path: &Path, document: &toml::Table) -> Result<Scenario, ScenarioError> {
+        toml::Value::Table(document.clone())
             .try_into()
-            .map_err(|e: toml::de::Error| {
-                syntax(format!(
-                    "{} (after the --set overrides)",
-                    e.message().trim()
-                ))
+            .map_err(|e: toml::de::Error| ScenarioError::Syntax {
+                path: path.to_owned(),
+                message: format!("{} (after the --set overrides)", e.message().trim()),
             })
     }
 }

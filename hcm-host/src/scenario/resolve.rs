@@ -55,6 +55,8 @@ pub struct Contact {
     pub law: AnyNormalLaw<f64>,
     /// Effective mass m_e = m1·m2/(m1 + m2) (kg) of the pair.
     pub effective_mass: f64,
+    /// Parameter noise b per law parameter (Eq 18), for generated experiments.
+    pub noise: Vec<(String, f64)>,
 }
 
 /// A scenario resolved and checked: what the simulator runs.
@@ -78,6 +80,11 @@ impl Model {
 }
 
 impl Scenario {
+    /// [`Scenario::resolve`] naming the scenario by the file it was loaded from.
+    pub fn model(&self) -> Result<Model, ScenarioError> {
+        self.resolve(&self.source.path)
+    }
+
     /// Resolves names, builds the laws and checks everything a simulation relies on.
     /// `path` names the scenario in errors.
     pub fn resolve(&self, path: &Path) -> Result<Model, ScenarioError> {
@@ -223,14 +230,43 @@ impl Scenario {
                 .map_err(|m| invalid(field("parameters"), m))?;
             let law = law_catalogue::build_from_table(&spec.law, &parameters)
                 .map_err(|e| invalid(field("law"), e.to_string()))?;
+            let known = law_catalogue::entry(&spec.law)
+                .map(|e| e.parameters)
+                .unwrap_or(&[]);
+            for (name, b) in &spec.noise {
+                if !known.iter().any(|p| p.name == name) {
+                    let names: Vec<_> = known.iter().map(|p| p.name).collect();
+                    return Err(invalid(
+                        field("noise"),
+                        format!(
+                            "`{name}` is not a parameter of `{}` ({})",
+                            spec.law,
+                            names.join(", ")
+                        ),
+                    ));
+                }
+                if !(*b >= 0.0 && b.is_finite()) {
+                    return Err(invalid(
+                        field("noise"),
+                        format!("`{name}` must be a relative standard deviation ≥ 0, found {b}"),
+                    ));
+                }
+            }
+            let noise = spec.noise.iter().map(|(k, v)| (k.clone(), *v)).collect();
             contacts.push(Contact {
                 body_1,
                 body_2,
                 law,
                 effective_mass,
+                noise,
             });
         }
         self.check_settings().map_err(|(f, m)| invalid(f, m))?;
+        for name in &self.record.bodies {
+            if !bodies.iter().any(|b| &b.name == name) {
+                return Err(invalid("record.bodies".into(), format!("no body `{name}`")));
+            }
+        }
         Ok(Model {
             scenario: self.clone(),
             gravity: Vector3::from(self.gravity),
@@ -263,6 +299,49 @@ impl Scenario {
                 "record.contact_margin".into(),
                 "must be zero or a positive number of s".into(),
             ));
+        }
+        let e = &self.experiment;
+        for (name, value) in [
+            ("experiment.force_noise", e.force_noise),
+            ("experiment.torque_noise", e.torque_noise),
+            ("experiment.position_noise", e.position_noise),
+            ("experiment.velocity_noise", e.velocity_noise),
+        ] {
+            if !(value >= 0.0 && value.is_finite()) {
+                return Err((
+                    name.into(),
+                    format!("must be a standard deviation ≥ 0, found {value}"),
+                ));
+            }
+        }
+        if !(e.holdout_fraction > 0.0 && e.holdout_fraction < 1.0) {
+            return Err((
+                "experiment.holdout_fraction".into(),
+                format!("must lie in (0, 1), found {}", e.holdout_fraction),
+            ));
+        }
+        for (i, condition) in e.conditions.iter().enumerate() {
+            if condition.name.is_empty() || condition.name.contains('/') {
+                return Err((
+                    "experiment.condition.name".into(),
+                    format!("`{}` must be non-empty and without `/`", condition.name),
+                ));
+            }
+            if e.conditions[..i].iter().any(|c| c.name == condition.name) {
+                return Err((
+                    "experiment.condition.name".into(),
+                    format!("`{}` appears twice", condition.name),
+                ));
+            }
+        }
+        for name in &e.holdout_conditions {
+            if !e.conditions.iter().any(|c| &c.name == name) {
+                let names: Vec<_> = e.conditions.iter().map(|c| c.name.as_str()).collect();
+                return Err((
+                    "experiment.holdout_conditions".into(),
+                    format!("no condition `{name}` (conditions: {})", names.join(", ")),
+                ));
+            }
         }
         if !self.gravity.iter().all(|g| g.is_finite()) {
             return Err(("gravity".into(), "must be finite".into()));

@@ -90,6 +90,7 @@ pub enum SimulationError {
 /// One stretch of solver output with constant contact modes.
 #[derive(Clone)]
 pub(crate) struct Segment {
+    pub start: f64,
     pub end: f64,
     pub stepper: Dopri5<f64, StateVector>,
     pub modes: ContactModes,
@@ -137,6 +138,8 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
     let mut stepper = Dopri5::new(&mut system, 0.0, y0.clone(), settings);
     let mut scratch = y0;
     let mut segments: Vec<Segment> = Vec::new();
+    // Best grid point of each event's force, refined once the event ends.
+    let mut peaks: Vec<Option<peak::PeakCandidate>> = vec![None; events.len()];
     let mut end = spec.end_time;
     let mut lift_offs = 0;
     while stepper.time() < end {
@@ -145,17 +148,15 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
         let segment_end = event.map_or(stepper.time(), |(t, _)| t);
         for (c, index) in open.iter().enumerate() {
             if let Some(e) = *index {
-                let peak = peak::max_normal_force(
-                    &system,
-                    &stepper,
-                    c,
-                    stepper.previous_time(),
-                    segment_end,
-                );
-                events[e].max_force = events[e].max_force.max(peak);
+                let span = (stepper.previous_time(), segment_end);
+                let candidate = peak::grid_max(&system, &stepper, c, span, segments.len());
+                if peaks[e].is_none_or(|best| candidate.force > best.force) {
+                    peaks[e] = Some(candidate);
+                }
             }
         }
         segments.push(Segment {
+            start: stepper.previous_time(),
             end: segment_end,
             stepper: stepper.clone(),
             modes: system.modes.clone(),
@@ -166,6 +167,7 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
         let rate = system.kinematics(&y.0, c).rate;
         match open[c].take() {
             Some(e) => {
+                events[e].max_force = refined_peak(model, &layout, &segments, c, peaks[e]);
                 lift_off(
                     model,
                     &layout,
@@ -182,6 +184,7 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
             }
             None => {
                 open[c] = Some(events.len());
+                peaks.push(None);
                 events.push(touch_down(
                     model,
                     &layout,
@@ -198,6 +201,7 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
     // Contacts still open at the end keep their running totals.
     for (c, index) in open.iter().enumerate() {
         if let Some(e) = *index {
+            events[e].max_force = refined_peak(model, &layout, &segments, c, peaks[e]);
             let i = layout.impulse_index(c);
             let y = stepper.state().components();
             events[e].impulse = y[i] - events[e].impulse;
@@ -212,6 +216,33 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
         steps: (stepper.accepted_steps(), stepper.rejected_steps()),
         run,
     })
+}
+
+/// The event's peak force (N): the golden-section refinement around its best grid
+/// point, in the solver step that holds it.
+fn refined_peak(
+    model: &Model,
+    layout: &Layout,
+    segments: &[Segment],
+    c: usize,
+    candidate: Option<peak::PeakCandidate>,
+) -> f64 {
+    let Some(candidate) = candidate else {
+        return 0.0;
+    };
+    let segment = &segments[candidate.segment];
+    let system = ContactSystem {
+        model,
+        layout,
+        modes: segment.modes.clone(),
+    };
+    peak::refine(
+        &system,
+        &segment.stepper,
+        c,
+        candidate,
+        (segment.start, segment.end),
+    )
 }
 
 /// The first δ = 0 crossing in the last step that changes a contact's mode:

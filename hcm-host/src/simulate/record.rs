@@ -38,11 +38,14 @@ pub fn sample(
     end_time: f64,
 ) -> Run {
     let tick = model.scenario.record.contact_sample_period;
-    let mut tracks: Vec<BodyTrack> = model
-        .bodies
+    let wanted = &model.scenario.record.bodies;
+    let recorded: Vec<usize> = (0..model.bodies.len())
+        .filter(|&b| wanted.is_empty() || wanted.contains(&model.bodies[b].name))
+        .collect();
+    let mut tracks: Vec<BodyTrack> = recorded
         .iter()
-        .map(|b| BodyTrack {
-            body: b.name.clone(),
+        .map(|&b| BodyTrack {
+            body: model.bodies[b].name.clone(),
             samples: Vec::new(),
         })
         .collect();
@@ -71,7 +74,7 @@ pub fn sample(
             modes: segment.modes.clone(),
         };
         let loads = system.loads(y.components());
-        for (b, track) in tracks.iter_mut().enumerate() {
+        for (&b, track) in recorded.iter().zip(tracks.iter_mut()) {
             let (position, velocity) = layout.motion(model, y.components(), b);
             track.samples.push(Sample {
                 time: t,

@@ -1,0 +1,67 @@
+//! `hcm evaluate`: the paper's table for a physics model on validation data.
+
+use hcm_host::dataset::Dataset;
+use hcm_host::evaluate::{evaluate, markdown};
+use hcm_host::identify::Physics;
+use hcm_host::scenario::Scenario;
+use std::path::PathBuf;
+
+/// Compare a physics model with validation data: S2 mean, PM2 and the Eq 20 error per
+/// indicator, per condition. Each condition is replayed from the mean state of its
+/// runs just before touch-down.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Scenario file.
+    #[arg(long)]
+    scenario: PathBuf,
+    /// Override a scenario value. Repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    overrides: Vec<String>,
+    /// Validation data (measured-data CSV), e.g. the S2 file of `hcm generate`.
+    #[arg(long)]
+    data: PathBuf,
+    /// Physics file written by `hcm identify`.
+    #[arg(long)]
+    physics: PathBuf,
+    /// Which contact of the scenario.
+    #[arg(long, default_value_t = 0)]
+    contact: usize,
+    /// Print JSON instead of markdown.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let scenario = Scenario::load(&args.scenario, &args.overrides)?;
+    let physics = Physics::read(&args.physics)?;
+    let pm2 = physics.apply(&scenario, &args.physics)?.model()?;
+    anyhow::ensure!(
+        args.contact < pm2.contacts.len(),
+        "--contact {}: the scenario has {} contact(s)",
+        args.contact,
+        pm2.contacts.len()
+    );
+    let data = Dataset::read(&args.data)?;
+    let tables = evaluate(&[("PM2", &pm2)], &data, args.contact)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&tables)?);
+        return Ok(());
+    }
+    for table in &tables {
+        let name = if table.condition.is_empty() {
+            String::new()
+        } else {
+            format!(" — condition {}", table.condition)
+        };
+        println!(
+            "{}{} ({} runs), PM2 = {}\n",
+            scenario.name,
+            name,
+            table.runs,
+            pm2.contacts[args.contact].law.name()
+        );
+        print!("{}", markdown(table));
+        println!();
+    }
+    Ok(())
+}

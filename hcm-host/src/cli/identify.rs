@@ -1,0 +1,130 @@
+//! `hcm identify`: fit a normal law (PM2) to measured data.
+
+use super::progress_bar;
+use anyhow::Context;
+use hcm_host::dataset::Dataset;
+use hcm_host::identify::evolve::Fitness;
+use hcm_host::identify::genetic::GeneticSettings;
+use hcm_host::identify::{identify, Method, Physics};
+use hcm_host::law_catalogue;
+use hcm_host::scenario::Scenario;
+use std::path::PathBuf;
+
+/// Identify a physics model (PM2) from data:
+/// `hcm identify --scenario scenarios/bouncing_ball.toml --data data.s1.csv --law lankarani_nikravesh --method lsq --out pm2.toml`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Scenario file: geometry, masses and search bounds (`[identify.bounds.<law>]`).
+    #[arg(long)]
+    scenario: PathBuf,
+    /// Override a scenario value (see `hcm simulate --help`). Repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    overrides: Vec<String>,
+    /// Training data (measured-data CSV), e.g. the S1 file of `hcm generate`.
+    #[arg(long)]
+    data: PathBuf,
+    /// Law to identify (see `hcm laws`).
+    #[arg(long)]
+    law: String,
+    /// `lsq`: separable least squares + Levenberg–Marquardt on the force samples
+    /// (fast). `ga`: the paper's genetic algorithm on simulated vs measured data.
+    #[arg(long, value_parser = ["lsq", "ga"], default_value = "lsq")]
+    method: String,
+    /// GA fitness: `curve` (force curves, default) or `indicators`.
+    #[arg(long, value_parser = ["curve", "indicators"], default_value = "curve")]
+    fitness: String,
+    /// Which contact of the scenario (index of its `[[contact]]`).
+    #[arg(long, default_value_t = 0)]
+    contact: usize,
+    /// Seed of the genetic algorithm.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// GA population size.
+    #[arg(long, default_value_t = GeneticSettings::default().population)]
+    population: usize,
+    /// GA generations (it stops earlier when the best stalls).
+    #[arg(long, default_value_t = GeneticSettings::default().generations)]
+    generations: usize,
+    /// Physics file to write (TOML), read by `simulate --physics` and `evaluate`.
+    #[arg(long)]
+    out: PathBuf,
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let scenario = Scenario::load(&args.scenario, &args.overrides)?;
+    let model = scenario.model()?;
+    anyhow::ensure!(
+        args.contact < model.contacts.len(),
+        "--contact {}: the scenario has {} contact(s)",
+        args.contact,
+        model.contacts.len()
+    );
+    let data = Dataset::read(&args.data)?;
+    let settings = GeneticSettings {
+        seed: args.seed,
+        population: args.population,
+        generations: args.generations,
+        ..GeneticSettings::default()
+    };
+    let method = match (args.method.as_str(), args.fitness.as_str()) {
+        ("lsq", _) => Method::Lsq,
+        (_, "indicators") => Method::Ga(Fitness::Indicators, settings),
+        _ => Method::Ga(Fitness::Curve, settings),
+    };
+    let bar = progress_bar(1, "GA generations");
+    if method == Method::Lsq {
+        bar.finish_and_clear();
+    }
+    let result = identify(
+        &scenario,
+        &model,
+        &data,
+        args.contact,
+        &args.law,
+        method.clone(),
+        |generation, total, best| {
+            bar.set_length(total as u64);
+            bar.set_position(generation as u64 + 1);
+            bar.set_message(format!("best {best:.4e}"));
+        },
+    )?;
+    bar.finish_and_clear();
+    let mut fit = result.fit.clone();
+    fit.data = args.data.display().to_string();
+    println!(
+        "{} by {} on {} runs ({} events, {} force samples) in {:.3} s",
+        args.law, fit.method, fit.runs, fit.events, fit.samples, fit.seconds
+    );
+    for (name, value) in law_catalogue::parameters(&result.law) {
+        let error = result
+            .standard_errors
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, e)| format!("  ± {e:.3e} (1σ)"))
+            .unwrap_or_default();
+        println!("  {name:<20} {value:.6e}{error}");
+    }
+    println!(
+        "  force residual RMS   {:.4} N over the force samples",
+        fit.force_rms
+    );
+    println!(
+        "  force curve RMS      {:.4} N between replayed and mean measured curves",
+        fit.curve_rms
+    );
+    for note in &fit.notes {
+        println!("  note: {note}");
+    }
+    let physics = Physics::for_contact(&model, args.contact, &result.law, fit);
+    physics
+        .write(
+            &args.out,
+            &format!(
+                "PM2 of scenario `{}` identified by hcm identify",
+                scenario.name
+            ),
+        )
+        .with_context(|| format!("writing {}", args.out.display()))?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}

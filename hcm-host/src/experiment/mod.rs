@@ -1,0 +1,153 @@
+//! Noise-added experiments (PM1, paper Section 4): many runs of a scenario with
+//! noise on the contact parameters (Eq 18) and on the sampled outputs (Eq 19),
+//! split into a training set S1 and a validation set S2.
+//!
+//! Every run draws from its own random stream, derived from the seed and the run's
+//! index, so the data are bit-identical for a seed whatever the number of threads.
+
+mod split;
+
+pub use split::{condition_of, split, Split};
+
+use crate::dataset::{Dataset, Run};
+use crate::law_catalogue;
+use crate::scenario::{Model, Scenario, ScenarioError};
+use crate::simulate::{simulate, SimulationError};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
+use rayon::prelude::*;
+
+/// Why an experiment could not be generated.
+#[derive(Debug, thiserror::Error)]
+pub enum ExperimentError {
+    /// A condition's overrides do not make a valid scenario.
+    #[error("condition `{condition}`: {source}")]
+    Condition {
+        condition: String,
+        source: ScenarioError,
+    },
+    /// A run's simulation failed.
+    #[error("run `{run}`: {source}")]
+    Simulation {
+        run: String,
+        source: SimulationError,
+    },
+    /// Nothing to generate.
+    #[error("--runs must be at least 1")]
+    NoRuns,
+}
+
+/// The conditions of an experiment: (name, model). A scenario without conditions
+/// has one, named "".
+pub fn conditions(scenario: &Scenario) -> Result<Vec<(String, Model)>, ExperimentError> {
+    let specs = &scenario.experiment.conditions;
+    if specs.is_empty() {
+        let model = scenario
+            .model()
+            .map_err(|source| ExperimentError::Condition {
+                condition: String::new(),
+                source,
+            })?;
+        return Ok(vec![(String::new(), model)]);
+    }
+    specs
+        .iter()
+        .map(|c| {
+            let fail = |source| ExperimentError::Condition {
+                condition: c.name.clone(),
+                source,
+            };
+            let model = scenario.with(&c.set).map_err(fail)?.model().map_err(fail)?;
+            Ok((c.name.clone(), model))
+        })
+        .collect()
+}
+
+/// Run id of run `k` of `condition` (`0007`, or `v0.95/007` with conditions).
+fn run_id(condition: &str, k: usize, runs: usize) -> String {
+    let width = (runs.max(2) - 1).to_string().len();
+    if condition.is_empty() {
+        format!("{k:0width$}")
+    } else {
+        format!("{condition}/{k:0width$}")
+    }
+}
+
+/// A random stream for run `index` of an experiment seeded with `seed`: SplitMix64
+/// of the pair, so neighbouring runs get unrelated streams.
+fn run_rng(seed: u64, index: u64) -> ChaCha8Rng {
+    let mut z = seed ^ index.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    ChaCha8Rng::seed_from_u64(z ^ (z >> 31))
+}
+
+/// Generates `runs_per_condition` noisy runs of every condition of `scenario`.
+/// `progress` is called once per finished run (from worker threads).
+pub fn generate(
+    scenario: &Scenario,
+    runs_per_condition: usize,
+    seed: u64,
+    progress: impl Fn() + Sync,
+) -> Result<Dataset, ExperimentError> {
+    if runs_per_condition == 0 {
+        return Err(ExperimentError::NoRuns);
+    }
+    let conditions = conditions(scenario)?;
+    let jobs: Vec<(usize, usize)> = (0..conditions.len())
+        .flat_map(|c| (0..runs_per_condition).map(move |k| (c, k)))
+        .collect();
+    let runs: Result<Vec<Run>, ExperimentError> = jobs
+        .par_iter()
+        .enumerate()
+        .map(|(index, &(c, k))| {
+            let (name, model) = &conditions[c];
+            let id = run_id(name, k, runs_per_condition);
+            let mut rng = run_rng(seed, index as u64);
+            let run = noisy_run(model, &mut rng).map_err(|source| ExperimentError::Simulation {
+                run: id.clone(),
+                source,
+            })?;
+            progress();
+            Ok(Run { id, ..run })
+        })
+        .collect();
+    Ok(Dataset { runs: runs? })
+}
+
+/// One run of PM1: contact parameters η = a + a·b·ζ (Eq 18), then output noise
+/// γ = γ0 + σ·ζ on every recorded sample (Eq 19).
+pub fn noisy_run(model: &Model, rng: &mut ChaCha8Rng) -> Result<Run, SimulationError> {
+    let mut model = model.clone();
+    for contact in &mut model.contacts {
+        let noise = contact.noise.clone();
+        contact.law = law_catalogue::map_parameters(&contact.law, |name, a| {
+            match noise.iter().find(|(n, _)| n == name) {
+                Some((_, b)) => a + a * b * normal(rng),
+                None => a,
+            }
+        });
+    }
+    let mut run = simulate(&model)?.run;
+    let e = &model.scenario.experiment;
+    for track in &mut run.bodies {
+        for sample in &mut track.samples {
+            for (values, sigma) in [
+                (&mut sample.force[..], e.force_noise),
+                (&mut sample.torque[..], e.torque_noise),
+                (&mut sample.position[..], e.position_noise),
+                (&mut sample.velocity[..], e.velocity_noise),
+            ] {
+                if sigma > 0.0 {
+                    values.iter_mut().for_each(|v| *v += sigma * normal(rng));
+                }
+            }
+        }
+    }
+    Ok(run)
+}
+
+fn normal(rng: &mut ChaCha8Rng) -> f64 {
+    StandardNormal.sample(rng)
+}

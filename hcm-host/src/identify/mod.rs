@@ -1,0 +1,167 @@
+//! Parameter identification (PM2): fit a normal law to measured data, by separable
+//! least squares ([`separable`]) or by the paper's genetic algorithm ([`evolve`]).
+
+pub mod bounds;
+pub mod evolve;
+pub mod genetic;
+pub mod least_squares;
+pub mod levenberg_marquardt;
+pub mod physics;
+pub mod replay;
+pub mod samples;
+pub mod separable;
+
+pub use physics::{FitRecord, Physics};
+
+use crate::dataset::Dataset;
+use crate::indicators::IndicatorError;
+use crate::scenario::{Model, Scenario, ScenarioError};
+use bounds::Bounds;
+use hcm_core::law::{AnyNormalLaw, Indentation, NormalLaw};
+use samples::ForceSample;
+use std::time::Instant;
+
+/// Why identification failed.
+#[derive(Debug, thiserror::Error)]
+pub enum IdentifyError {
+    /// The data hold no runs.
+    #[error("the data file holds no runs")]
+    NoData,
+    /// A run never makes (and ends) contact: it cannot be fitted and is not dropped silently.
+    #[error("run `{run}` (t = {from} … {to} s) has no completed contact; remove it from the data or check the scenario's geometry")]
+    NoContact { run: String, from: f64, to: f64 },
+    /// The data do not match the scenario.
+    #[error(transparent)]
+    Data(#[from] IndicatorError),
+    /// The law cannot be built in this scenario.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// Bad bounds or law name.
+    #[error("{0}")]
+    Setup(String),
+    /// The law has no least-squares structure here.
+    #[error("law `{0}` cannot be identified")]
+    UnsupportedLaw(String),
+    /// The least-squares solver failed.
+    #[error("least squares: {0}")]
+    LeastSquares(#[from] least_squares::LeastSquaresError),
+    /// The genetic algorithm failed.
+    #[error("genetic algorithm: {0}")]
+    Genetic(#[from] genetic::GeneticError),
+}
+
+/// How to identify.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Method {
+    /// Separable least squares + Levenberg–Marquardt on the force samples.
+    Lsq,
+    /// Genetic algorithm on simulated vs measured data.
+    Ga(evolve::Fitness, genetic::GeneticSettings),
+}
+
+/// An identified law.
+#[derive(Clone, Debug)]
+pub struct Identification {
+    /// The law with every parameter.
+    pub law: AnyNormalLaw<f64>,
+    /// Index of the contact it was fitted for.
+    pub contact: usize,
+    /// How it went.
+    pub fit: FitRecord,
+    /// One-sigma standard errors of the free parameters (least squares only).
+    pub standard_errors: Vec<(String, f64)>,
+}
+
+/// The law `law_name` for contact `c` of `scenario`, with its fixed parameters
+/// (geometry, masses) derived from the scenario and its free ones at the middle of
+/// their box, and that box.
+pub fn template(
+    scenario: &Scenario,
+    c: usize,
+    law_name: &str,
+) -> Result<(AnyNormalLaw<f64>, Bounds), IdentifyError> {
+    let bounds = Bounds::for_law(law_name, scenario.identify.bounds.get(law_name))
+        .map_err(IdentifyError::Setup)?;
+    if bounds.parameters.is_empty() {
+        return Err(IdentifyError::UnsupportedLaw(law_name.to_owned()));
+    }
+    let middle: Vec<String> = bounds
+        .middle()
+        .iter()
+        .map(|(n, v)| format!("{n} = {v:?}"))
+        .collect();
+    let assignments = [
+        format!("contact.{c}.law=\"{law_name}\""),
+        format!("contact.{c}.parameters={{ {} }}", middle.join(", ")),
+        format!("contact.{c}.noise={{}}"),
+    ];
+    let model = scenario.with(&assignments)?.model()?;
+    Ok((model.contacts[c].law, bounds))
+}
+
+/// RMS of modelled − measured force over `samples` (N).
+pub fn force_rms(law: &AnyNormalLaw<f64>, samples: &[ForceSample]) -> f64 {
+    let sum: f64 = samples
+        .iter()
+        .map(|s| {
+            let state = Indentation {
+                depth: s.depth,
+                rate: s.rate,
+                approach_speed: s.approach_speed,
+            };
+            (law.normal_force(&state) - s.force).powi(2)
+        })
+        .sum();
+    (sum / samples.len().max(1) as f64).sqrt()
+}
+
+/// Identifies `law_name` for contact `c` of `scenario` from `data`.
+pub fn identify(
+    scenario: &Scenario,
+    model: &Model,
+    data: &Dataset,
+    c: usize,
+    law_name: &str,
+    method: Method,
+    progress: impl FnMut(usize, usize, f64),
+) -> Result<Identification, IdentifyError> {
+    let started = Instant::now();
+    let (template, bounds) = template(scenario, c, law_name)?;
+    let (samples, events) = samples::force_samples(model, data, c)?;
+    let targets = replay::targets(model, data, c)?;
+    let (law, notes, standard_errors, label) = match method {
+        Method::Lsq => {
+            let fit = separable::fit(&template, &samples, &bounds)?;
+            (fit.law, fit.notes, fit.standard_errors, "lsq".to_owned())
+        }
+        Method::Ga(fitness, settings) => {
+            let law = evolve::fit(
+                &template, &bounds, &targets, c, fitness, &settings, progress,
+            )?;
+            (
+                law,
+                Vec::new(),
+                Vec::new(),
+                format!("ga ({})", fitness.name()),
+            )
+        }
+    };
+    let seconds = started.elapsed().as_secs_f64();
+    let fit = FitRecord {
+        method: label,
+        data: String::new(),
+        runs: data.runs.len(),
+        events,
+        samples: samples.len(),
+        force_rms: force_rms(&law, &samples),
+        curve_rms: evolve::fitness(&law, &targets, c, evolve::Fitness::Curve),
+        seconds,
+        notes,
+    };
+    Ok(Identification {
+        law,
+        contact: c,
+        fit,
+        standard_errors,
+    })
+}

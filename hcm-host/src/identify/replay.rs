@@ -1,0 +1,173 @@
+//! Replaying measured impacts in simulation: for each experimental condition, the
+//! mean state of the bodies just before touch-down becomes a simulation's initial
+//! state, and the mean measured force curve and indicators its targets. The genetic
+//! fitness and `evaluate` compare a physics model with data this way, so they need
+//! no knowledge of how the data were made.
+
+use super::IdentifyError;
+use crate::dataset::{Dataset, Run};
+use crate::experiment::condition_of;
+use crate::indicators::{contact_history, event_spans, Indicators};
+use crate::scenario::Model;
+use crate::simulate::simulate;
+use hcm_core::law::AnyNormalLaw;
+use nalgebra::Vector3;
+
+/// One experimental condition to reproduce.
+#[derive(Clone, Debug)]
+pub struct Target {
+    /// Condition name (run-id prefix; "" for none).
+    pub condition: String,
+    /// Runs averaged.
+    pub runs: usize,
+    /// The model started from the mean pre-contact state.
+    pub model: Model,
+    /// Mean measured normal force at τ = j·period after touch-down (N).
+    pub curve: Vec<f64>,
+    /// Mean measured indicators.
+    pub indicators: Indicators,
+    /// Time step of the curve (s).
+    pub period: f64,
+}
+
+/// The normal-force curve of the first event of contact `c` in `run`, sampled at
+/// τ = j·period after touch-down for j < len (0 after lift-off), and its indicators.
+pub fn curve(
+    model: &Model,
+    run: &Run,
+    c: usize,
+    period: f64,
+    len: usize,
+) -> Result<Option<(Vec<f64>, Indicators)>, IdentifyError> {
+    let history = contact_history(model, run, c)?;
+    let Some(span) = event_spans(&history).into_iter().next() else {
+        return Ok(None);
+    };
+    let indicators = span.indicators(&history, model.contacts[c].effective_mass);
+    let (t_in, t_out) = (span.touch_down.0, span.lift_off.0);
+    let mut i = span.inside.start;
+    let values = (0..len)
+        .map(|j| {
+            let t = t_in + j as f64 * period;
+            if t >= t_out || i >= history.time.len() {
+                return 0.0;
+            }
+            while i + 1 < history.time.len() && history.time[i] < t {
+                i += 1;
+            }
+            let (a, b) = (i.saturating_sub(1), i);
+            let (ta, tb) = (history.time[a], history.time[b]);
+            if tb <= ta {
+                history.force[b]
+            } else {
+                history.force[a] + (t - ta) / (tb - ta) * (history.force[b] - history.force[a])
+            }
+        })
+        .collect();
+    Ok(Some((values, indicators)))
+}
+
+/// The targets of contact `c` in `data`, one per condition, in order of appearance.
+pub fn targets(model: &Model, data: &Dataset, c: usize) -> Result<Vec<Target>, IdentifyError> {
+    let period = model.scenario.record.contact_sample_period;
+    let mut names: Vec<&str> = Vec::new();
+    for run in &data.runs {
+        if !names.contains(&condition_of(&run.id)) {
+            names.push(condition_of(&run.id));
+        }
+    }
+    let mut targets = Vec::new();
+    for name in names {
+        let runs: Vec<&Run> = data
+            .runs
+            .iter()
+            .filter(|r| condition_of(&r.id) == name)
+            .collect();
+        // Longest contact, so every curve fits.
+        let mut len = 0;
+        let mut starts: Vec<Vec<(Vector3<f64>, Vector3<f64>)>> = Vec::new();
+        for run in &runs {
+            let history = contact_history(model, run, c)?;
+            let Some(span) = event_spans(&history).into_iter().next() else {
+                return Err(IdentifyError::NoContact {
+                    run: run.id.clone(),
+                    from: history.time.first().copied().unwrap_or(f64::NAN),
+                    to: history.time.last().copied().unwrap_or(f64::NAN),
+                });
+            };
+            len = len.max(((span.lift_off.0 - span.touch_down.0) / period).ceil() as usize + 2);
+            starts.push(pre_contact_state(
+                model,
+                run,
+                span.inside.start.saturating_sub(1),
+            ));
+        }
+        let mut start = model.clone();
+        for (b, body) in start.bodies.iter_mut().enumerate() {
+            if !body.fixed && starts.iter().all(|s| s.len() == model.bodies.len()) {
+                body.position =
+                    starts.iter().map(|s| s[b].0).sum::<Vector3<f64>>() / starts.len() as f64;
+                body.velocity =
+                    starts.iter().map(|s| s[b].1).sum::<Vector3<f64>>() / starts.len() as f64;
+            }
+        }
+        start.scenario.simulation.stop_after_contacts = 1;
+        let mut curves = Vec::new();
+        let mut indicators = Vec::new();
+        for run in &runs {
+            if let Some((values, i)) = curve(model, run, c, period, len)? {
+                curves.push(values);
+                indicators.push(i);
+            }
+        }
+        let n = curves.len() as f64;
+        let mean_curve = (0..len)
+            .map(|j| curves.iter().map(|v| v[j]).sum::<f64>() / n)
+            .collect();
+        let mean = |f: fn(&Indicators) -> f64| indicators.iter().map(f).sum::<f64>() / n;
+        targets.push(Target {
+            condition: name.to_owned(),
+            runs: runs.len(),
+            model: start,
+            curve: mean_curve,
+            indicators: Indicators {
+                max_force: mean(|i| i.max_force),
+                impulse: mean(|i| i.impulse),
+                energy_loss: mean(|i| i.energy_loss),
+                duration: mean(|i| i.duration),
+            },
+            period,
+        });
+    }
+    Ok(targets)
+}
+
+/// Every body's recorded (position, velocity) at sample `i` of `run` (bodies not
+/// in the data keep the scenario's state).
+fn pre_contact_state(model: &Model, run: &Run, i: usize) -> Vec<(Vector3<f64>, Vector3<f64>)> {
+    model
+        .bodies
+        .iter()
+        .map(
+            |body| match run.body(&body.name).and_then(|t| t.samples.get(i)) {
+                Some(s) => (Vector3::from(s.position), Vector3::from(s.velocity)),
+                None => (body.position, body.velocity),
+            },
+        )
+        .collect()
+}
+
+/// Simulates `target` with contact `c` under `law`: its force curve and indicators,
+/// or None when the simulation fails or makes no complete contact.
+pub fn simulate_target(
+    target: &Target,
+    c: usize,
+    law: &AnyNormalLaw<f64>,
+) -> Option<(Vec<f64>, Indicators)> {
+    let mut model = target.model.clone();
+    model.contacts[c].law = *law;
+    let run = simulate(&model).ok()?.run;
+    curve(&model, &run, c, target.period, target.curve.len())
+        .ok()
+        .flatten()
+}

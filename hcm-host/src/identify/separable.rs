@@ -1,0 +1,249 @@
+//! Least-squares identification by variable projection (Golub & Pereyra 1973):
+//! every law of the core is linear in some parameters once the others are fixed,
+//! so those are solved exactly by QR for each value of the rest, an outer search
+//! picks the rest, and Levenberg–Marquardt then refines all of them on the law
+//! itself (with its clamps and guards).
+//!
+//! | law | nonlinear part | linear part (regressors) |
+//! |---|---|---|
+//! | hertz | n | k (δ^n) |
+//! | lankarani_nikravesh | n | k (δ^n), k(1−ce²) (¾·δ^n·δ̇/δ̇0) |
+//! | hunt_crossley | n | k (δ^n), k·χ (δ^n·δ̇) |
+//! | flores | n | k (δ^n), k·8(1−ce)/(5ce) (δ^n·δ̇/δ̇0) |
+//! | variable_stiffness | — | c·E* (a(δ)·δ), λ·√(c·E*) (2√(a(δ)·m_e)·δ·δ̇) |
+//! | impact | e, δ_max | k (δ^e), d_max (step(δ, 0, 0, δ_max, 1)·δ̇) |
+
+use super::bounds::Bounds;
+use super::least_squares::{linear_least_squares, minimize_box2, minimize_scalar};
+use super::levenberg_marquardt::{levenberg_marquardt, LmSettings};
+use super::samples::ForceSample;
+use super::IdentifyError;
+use crate::law_catalogue;
+use hcm_core::law::{step, AnyNormalLaw, Indentation, NormalLaw};
+
+/// The result of a least-squares fit.
+#[derive(Clone, Debug)]
+pub struct LsqFit {
+    /// The identified law.
+    pub law: AnyNormalLaw<f64>,
+    /// RMS force residual (N).
+    pub force_rms: f64,
+    /// What the data fix and what they do not.
+    pub notes: Vec<String>,
+    /// One-sigma standard errors of the free parameters, by name (from LM's covariance).
+    pub standard_errors: Vec<(String, f64)>,
+}
+
+/// Fits `template`'s law (its fixed parameters, e.g. geometry, are kept) to `samples`.
+pub fn fit(
+    template: &AnyNormalLaw<f64>,
+    samples: &[ForceSample],
+    bounds: &Bounds,
+) -> Result<LsqFit, IdentifyError> {
+    let mut notes = Vec::new();
+    let initial = linear_stage(template, samples, bounds, &mut notes)?;
+    refine(initial, samples, bounds, notes)
+}
+
+/// Inner linear solve for fixed nonlinear parameters: returns the coefficients and
+/// the residual sum of squares.
+fn solve(
+    samples: &[ForceSample],
+    regressors: impl Fn(&ForceSample, &mut [f64]),
+    columns: usize,
+) -> Result<(Vec<f64>, f64), IdentifyError> {
+    let fit = linear_least_squares(samples.len(), columns, |i, row| {
+        regressors(&samples[i], row);
+        samples[i].force
+    })?;
+    Ok((fit.coefficients, fit.residual_sum_of_squares))
+}
+
+/// δ̇/δ̇0, 0 when the approach speed is not positive (the laws drop damping then).
+fn relative_rate(s: &ForceSample) -> f64 {
+    if s.approach_speed > 0.0 {
+        s.rate / s.approach_speed
+    } else {
+        0.0
+    }
+}
+
+const GRID: usize = 41;
+const TOLERANCE: f64 = 1e-10;
+
+/// Variable projection: the law with the best linear parameters at the best nonlinear ones.
+fn linear_stage(
+    template: &AnyNormalLaw<f64>,
+    samples: &[ForceSample],
+    bounds: &Bounds,
+    notes: &mut Vec<String>,
+) -> Result<AnyNormalLaw<f64>, IdentifyError> {
+    let (n_lo, n_hi) = bounds.range("exponent");
+    // Solves the linear part at exponent n with the given second regressor.
+    let two_term = |n: f64, damping: fn(&ForceSample) -> f64| {
+        solve(
+            samples,
+            |s, row| {
+                let elastic = s.depth.powf(n);
+                row[0] = elastic;
+                row[1] = elastic * damping(s);
+            },
+            2,
+        )
+    };
+    let best_exponent = |damping: fn(&ForceSample) -> f64| {
+        minimize_scalar(
+            |n| two_term(n, damping).map_or(f64::INFINITY, |(_, rss)| rss),
+            n_lo,
+            n_hi,
+            GRID,
+            TOLERANCE,
+        )
+        .0
+    };
+    let law = match *template {
+        AnyNormalLaw::Hertz(mut law) => {
+            let rss = |n: f64| {
+                solve(samples, |s, row| row[0] = s.depth.powf(n), 1)
+                    .map_or(f64::INFINITY, |(_, r)| r)
+            };
+            law.exponent = minimize_scalar(rss, n_lo, n_hi, GRID, TOLERANCE).0;
+            law.stiffness = solve(samples, |s, row| row[0] = s.depth.powf(law.exponent), 1)?.0[0];
+            law.into()
+        }
+        AnyNormalLaw::LankaraniNikravesh(mut law) => {
+            let damping = |s: &ForceSample| 0.75 * relative_rate(s);
+            law.exponent = best_exponent(damping);
+            let (theta, _) = two_term(law.exponent, damping)?;
+            law.stiffness = theta[0];
+            law.restitution = (1.0 - theta[1] / theta[0]).max(0.0).sqrt();
+            law.into()
+        }
+        AnyNormalLaw::HuntCrossley(mut law) => {
+            let damping = |s: &ForceSample| s.rate;
+            law.exponent = best_exponent(damping);
+            let (theta, _) = two_term(law.exponent, damping)?;
+            law.stiffness = theta[0];
+            law.damping = theta[1] / theta[0];
+            law.into()
+        }
+        AnyNormalLaw::Flores(mut law) => {
+            law.exponent = best_exponent(relative_rate);
+            let (theta, _) = two_term(law.exponent, relative_rate)?;
+            law.stiffness = theta[0];
+            law.restitution = 8.0 / (5.0 * theta[1] / theta[0] + 8.0);
+            law.into()
+        }
+        AnyNormalLaw::VariableStiffness(mut law) => {
+            let (r, m) = (law.radius, law.effective_mass);
+            let (theta, _) = solve(
+                samples,
+                |s, row| {
+                    let area = (2.0 * r * s.depth - s.depth * s.depth).max(0.0).sqrt();
+                    row[0] = area * s.depth;
+                    row[1] = 2.0 * (area * m).sqrt() * s.depth * s.rate;
+                },
+                2,
+            )?;
+            law.surface_loading = theta[0] / law.effective_modulus;
+            law.damping = theta[1] / theta[0].max(f64::MIN_POSITIVE).sqrt();
+            notes.push(format!(
+                "variable_stiffness: the force fixes only c·E* = {:.6e} Pa; c is reported for E* = {:.6e} Pa from the scenario's materials",
+                theta[0], law.effective_modulus
+            ));
+            law.into()
+        }
+        AnyNormalLaw::Impact(mut law) => {
+            let (d_lo, d_hi) = bounds.range("full_damping_depth");
+            let (e_lo, e_hi) = bounds.range("exponent");
+            let rss = |e: f64, depth: f64| {
+                solve(
+                    samples,
+                    |s, row| {
+                        row[0] = s.depth.powf(e);
+                        row[1] = step(s.depth, 0.0, 0.0, depth, 1.0) * s.rate;
+                    },
+                    2,
+                )
+                .map_or(f64::INFINITY, |(_, r)| r)
+            };
+            let ((e, depth), _) = minimize_box2(rss, (e_lo, e_hi), (d_lo, d_hi), 11, TOLERANCE);
+            let (theta, _) = solve(
+                samples,
+                |s, row| {
+                    row[0] = s.depth.powf(e);
+                    row[1] = step(s.depth, 0.0, 0.0, depth, 1.0) * s.rate;
+                },
+                2,
+            )?;
+            (
+                law.exponent,
+                law.full_damping_depth,
+                law.stiffness,
+                law.max_damping,
+            ) = (e, depth, theta[0], theta[1]);
+            law.into()
+        }
+    };
+    Ok(bounds.clamp(&law))
+}
+
+/// Levenberg–Marquardt on the free parameters of `law`, residual = model − measured force.
+fn refine(
+    law: AnyNormalLaw<f64>,
+    samples: &[ForceSample],
+    bounds: &Bounds,
+    notes: Vec<String>,
+) -> Result<LsqFit, IdentifyError> {
+    let free = bounds.free();
+    let start: Vec<f64> = free.iter().map(|name| lookup(&law, name)).collect();
+    let scales: Vec<f64> = start.iter().map(|v| v.abs().max(1e-12)).collect();
+    let box_bounds: Vec<(f64, f64)> = free.iter().map(|name| bounds.range(name)).collect();
+    let with = |p: &[f64]| {
+        law_catalogue::map_parameters(&law, |name, v| {
+            free.iter().position(|f| *f == name).map_or(v, |i| p[i])
+        })
+    };
+    let residuals = |p: &[f64], out: &mut [f64]| {
+        let candidate = with(p);
+        for (r, s) in out.iter_mut().zip(samples) {
+            let state = Indentation {
+                depth: s.depth,
+                rate: s.rate,
+                approach_speed: s.approach_speed,
+            };
+            *r = candidate.normal_force(&state) - s.force;
+        }
+    };
+    let result = levenberg_marquardt(
+        residuals,
+        samples.len(),
+        &start,
+        &scales,
+        Some(&box_bounds),
+        &LmSettings::default(),
+    )?;
+    let fitted = with(&result.parameters);
+    let standard_errors = match &result.covariance {
+        Some(cov) => free
+            .iter()
+            .enumerate()
+            .map(|(i, name)| (name.to_string(), cov[i][i].max(0.0).sqrt()))
+            .collect(),
+        None => Vec::new(),
+    };
+    Ok(LsqFit {
+        law: fitted,
+        force_rms: (2.0 * result.cost / samples.len() as f64).sqrt(),
+        notes,
+        standard_errors,
+    })
+}
+
+/// The value of parameter `name` of `law`.
+pub fn lookup(law: &AnyNormalLaw<f64>, name: &str) -> f64 {
+    law_catalogue::parameters(law)
+        .into_iter()
+        .find(|(n, _)| *n == name)
+        .map_or(f64::NAN, |(_, v)| v)
+}
