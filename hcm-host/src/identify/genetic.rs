@@ -836,9 +836,11 @@ mod tests {
 
     #[test]
     fn stalled_search_stops_early() {
-        let result = run(&cube(), &GeneticSettings::default(), |_| 1.0);
-        assert_eq!(result.generations, 1 + 15);
-        assert_eq!(result.evaluations, 40 + 15 * 38);
+        let settings = GeneticSettings::default();
+        let stall = settings.stall_generations;
+        let result = run(&cube(), &settings, |_| 1.0);
+        assert_eq!(result.generations, 1 + stall);
+        assert_eq!(result.evaluations, 40 + stall * 38);
     }
 
     #[test]
