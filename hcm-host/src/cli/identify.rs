@@ -40,10 +40,10 @@ pub struct Args {
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// GA population size.
-    #[arg(long, default_value_t = GeneticSettings::default().population)]
+    #[arg(long, default_value_t = 60)]
     population: usize,
-    /// GA generations (it stops earlier when the best stalls).
-    #[arg(long, default_value_t = GeneticSettings::default().generations)]
+    /// GA generations (it stops earlier when the best has stalled for 30).
+    #[arg(long, default_value_t = 150)]
     generations: usize,
     /// Physics file to write (TOML), read by `simulate --physics` and `evaluate`.
     #[arg(long)]

@@ -135,12 +135,19 @@ pub fn identify(
             (fit.law, fit.notes, fit.standard_errors, "lsq".to_owned())
         }
         Method::Ga(fitness, settings) => {
-            let law = evolve::fit(
+            let outcome = evolve::fit(
                 &template, &bounds, &targets, c, fitness, &settings, progress,
             )?;
+            let note = format!(
+                "GA: {} generations, {} fitness evaluations, best {} fitness {:.6e} before the Levenberg–Marquardt polish",
+                outcome.generations,
+                outcome.evaluations,
+                fitness.name(),
+                outcome.ga_fitness
+            );
             (
-                law,
-                Vec::new(),
+                outcome.law,
+                vec![note],
                 Vec::new(),
                 format!("ga ({})", fitness.name()),
             )

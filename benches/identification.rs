@@ -1,0 +1,73 @@
+//! `lsq` vs `ga` on the same data: time per identification (criterion) and the fit
+//! each reaches (printed once: force RMS over the samples, curve RMS of the replay).
+//!
+//! Data: 20 noisy runs of the shipped bouncing ball (seed 1), PM2 = Lankarani–Nikravesh,
+//! GA with the CLI defaults (population 60, 150 generations, curve fitness).
+//! Run: `cargo bench -p hcm-host --bench identification`
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use hcm_host::experiment::generate;
+use hcm_host::identify::evolve::Fitness;
+use hcm_host::identify::genetic::GeneticSettings;
+use hcm_host::identify::{identify, Method};
+use hcm_host::scenario::Scenario;
+use std::path::Path;
+use std::time::Duration;
+
+fn bench_identification(c: &mut Criterion) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/bouncing_ball.toml");
+    let scenario = Scenario::load(&path, &[]).unwrap();
+    let model = scenario.model().unwrap();
+    let data = generate(&scenario, 20, 1, || {}).unwrap();
+    let ga = Method::Ga(
+        Fitness::Curve,
+        GeneticSettings {
+            population: 60,
+            generations: 150,
+            seed: 1,
+            ..GeneticSettings::default()
+        },
+    );
+    let methods = [("lsq", Method::Lsq), ("ga", ga)];
+    for (name, method) in &methods {
+        let fit = identify(
+            &scenario,
+            &model,
+            &data,
+            0,
+            "lankarani_nikravesh",
+            method.clone(),
+            |_, _, _| {},
+        )
+        .unwrap()
+        .fit;
+        eprintln!(
+            "{name}: force RMS {:.4} N, curve RMS {:.4} N, {:.3} s",
+            fit.force_rms, fit.curve_rms, fit.seconds
+        );
+    }
+    let mut group = c.benchmark_group("identify_lankarani_nikravesh_ball_20_runs");
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(30));
+    for (name, method) in methods {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                identify(
+                    &scenario,
+                    &model,
+                    &data,
+                    0,
+                    "lankarani_nikravesh",
+                    method.clone(),
+                    |_, _, _| {},
+                )
+                .unwrap()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_identification);
+criterion_main!(benches);
