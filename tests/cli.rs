@@ -143,3 +143,107 @@ fn indicators_name_the_bad_line_of_a_data_file() {
         "{stderr}"
     );
 }
+
+#[test]
+fn generate_identify_evaluate_through_the_binary() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data.csv");
+    let pm2 = dir.path().join("pm2.toml");
+    let ball = scenario("bouncing_ball.toml");
+    let run = hcm(&[
+        "generate",
+        "--scenario",
+        &ball,
+        "--runs",
+        "10",
+        "--seed",
+        "3",
+        "--out",
+        data.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let (s1, s2) = (
+        dir.path().join("data.s1.csv"),
+        dir.path().join("data.s2.csv"),
+    );
+    assert!(s1.exists() && s2.exists());
+    let run = hcm(&[
+        "identify",
+        "--scenario",
+        &ball,
+        "--data",
+        s1.to_str().unwrap(),
+        "--law",
+        "lankarani_nikravesh",
+        "--method",
+        "lsq",
+        "--out",
+        pm2.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let physics: toml::Table = std::fs::read_to_string(&pm2).unwrap().parse().unwrap();
+    let k = physics["contact"][0]["parameters"]["stiffness"]
+        .as_float()
+        .unwrap();
+    assert!(
+        (1e9..1e10).contains(&k),
+        "stiffness {k} outside the scenario's bounds"
+    );
+    let run = hcm(&[
+        "evaluate",
+        "--scenario",
+        &ball,
+        "--data",
+        s2.to_str().unwrap(),
+        "--physics",
+        pm2.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    let errors = json[0]["models"][0]["errors"].as_array().unwrap();
+    assert_eq!(errors.len(), 4);
+    assert!(
+        errors.iter().all(|e| e.as_f64().unwrap() < 0.2),
+        "{errors:?}"
+    );
+}
+
+#[test]
+fn identify_names_an_empty_data_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let empty = dir.path().join("empty.csv");
+    std::fs::write(&empty, "").unwrap();
+    let out = dir.path().join("pm2.toml");
+    let ball = scenario("bouncing_ball.toml");
+    let run = hcm(&[
+        "identify",
+        "--scenario",
+        &ball,
+        "--data",
+        empty.to_str().unwrap(),
+        "--law",
+        "hertz",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!run.status.success());
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("empty.csv"),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(!out.exists());
+}
