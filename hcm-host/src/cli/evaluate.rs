@@ -3,7 +3,6 @@
 use hcm_host::dataset::Dataset;
 use hcm_host::evaluate::{evaluate, markdown};
 use hcm_host::identify::Physics;
-use hcm_host::scenario::Scenario;
 use std::path::PathBuf;
 
 /// Compare a physics model with validation data: S2 mean, PM2 and the Eq 20 error per
@@ -11,12 +10,8 @@ use std::path::PathBuf;
 /// runs just before touch-down.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scenario file.
-    #[arg(long)]
-    scenario: PathBuf,
-    /// Override a scenario value. Repeatable.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    overrides: Vec<String>,
+    #[command(flatten)]
+    scenario: super::ScenarioArgs,
     /// Validation data (measured-data CSV), e.g. the S2 file of `hcm generate`.
     #[arg(long)]
     data: PathBuf,
@@ -32,7 +27,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let scenario = Scenario::load(&args.scenario, &args.overrides)?;
+    let scenario = args.scenario.load()?;
     let physics = Physics::read(&args.physics)?;
     let pm2 = physics.apply(&scenario, &args.physics)?.model()?;
     anyhow::ensure!(

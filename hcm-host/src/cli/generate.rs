@@ -3,7 +3,6 @@
 use super::progress_bar;
 use anyhow::Context;
 use hcm_host::experiment::{generate, split};
-use hcm_host::scenario::Scenario;
 use std::path::{Path, PathBuf};
 
 /// Generate noisy runs of a scenario: `hcm generate --scenario scenarios/bouncing_ball.toml --runs 1000 --seed 1 --out data.csv`.
@@ -13,12 +12,8 @@ use std::path::{Path, PathBuf};
 /// the scenario's `[experiment]` and `[[contact]] noise` (see the README).
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scenario file (TOML).
-    #[arg(long)]
-    scenario: PathBuf,
-    /// Override a scenario value (see `hcm simulate --help`). Repeatable.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    overrides: Vec<String>,
+    #[command(flatten)]
+    scenario: super::ScenarioArgs,
     /// Runs per experimental condition (the flat shot has ten conditions).
     #[arg(long)]
     runs: usize,
@@ -40,7 +35,7 @@ pub fn sibling(out: &Path, suffix: &str) -> PathBuf {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let scenario = Scenario::load(&args.scenario, &args.overrides)?;
+    let scenario = args.scenario.load()?;
     let conditions = scenario.experiment.conditions.len().max(1);
     let bar = progress_bar((conditions * args.runs) as u64, "simulating runs");
     let data = generate(&scenario, args.runs, args.seed, || bar.inc(1))?;

@@ -7,19 +7,14 @@ use hcm_host::identify::evolve::Fitness;
 use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::{identify, Method, Physics};
 use hcm_host::law_catalogue;
-use hcm_host::scenario::Scenario;
 use std::path::PathBuf;
 
 /// Identify a physics model (PM2) from data:
 /// `hcm identify --scenario scenarios/bouncing_ball.toml --data data.s1.csv --law lankarani_nikravesh --method lsq --out pm2.toml`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scenario file: geometry, masses and search bounds (`[identify.bounds.<law>]`).
-    #[arg(long)]
-    scenario: PathBuf,
-    /// Override a scenario value (see `hcm simulate --help`). Repeatable.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    overrides: Vec<String>,
+    #[command(flatten)]
+    scenario: super::ScenarioArgs,
     /// Training data (measured-data CSV), e.g. the S1 file of `hcm generate`.
     #[arg(long)]
     data: PathBuf,
@@ -51,7 +46,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let scenario = Scenario::load(&args.scenario, &args.overrides)?;
+    let scenario = args.scenario.load()?;
     let model = scenario.model()?;
     anyhow::ensure!(
         args.contact < model.contacts.len(),

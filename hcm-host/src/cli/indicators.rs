@@ -3,7 +3,6 @@
 use super::report;
 use hcm_host::dataset::Dataset;
 use hcm_host::indicators::{from_run, summarize};
-use hcm_host::scenario::Scenario;
 use std::path::PathBuf;
 
 /// Contact indicators per event and run, with mean and standard deviation over runs.
@@ -16,19 +15,15 @@ pub struct Args {
     /// Data file in the measured-data format (CSV).
     #[arg(long)]
     data: PathBuf,
-    /// Scenario describing the bodies and contacts of the data.
-    #[arg(long)]
-    scenario: PathBuf,
-    /// Override a scenario value (see `hcm simulate --help`). Repeatable.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    overrides: Vec<String>,
+    #[command(flatten)]
+    scenario: super::ScenarioArgs,
     /// Print JSON (per-event indicators, summary, runs without contact) instead of markdown.
     #[arg(long)]
     json: bool,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let model = Scenario::load(&args.scenario, &args.overrides)?.resolve(&args.scenario)?;
+    let model = args.scenario.load()?.model()?;
     let dataset = Dataset::read(&args.data)?;
     let mut events = Vec::new();
     let mut without_contact = Vec::new();

@@ -83,3 +83,22 @@ pub fn progress_bar(total: u64, message: &'static str) -> indicatif::ProgressBar
     bar.set_message(message);
     bar
 }
+
+/// The scenario options every subcommand that reads a scenario shares.
+#[derive(clap::Args)]
+pub struct ScenarioArgs {
+    /// Scenario file (TOML); see the README's "Scenario files".
+    #[arg(long)]
+    pub scenario: std::path::PathBuf,
+    /// Override a scenario value, e.g. `--set body.ball.velocity=[0,0,-1]`,
+    /// `--set contact.0.parameters.damping=500`. Repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub overrides: Vec<String>,
+}
+
+impl ScenarioArgs {
+    /// Reads the scenario with the overrides applied.
+    pub fn load(&self) -> Result<hcm_host::scenario::Scenario, hcm_host::scenario::ScenarioError> {
+        hcm_host::scenario::Scenario::load(&self.scenario, &self.overrides)
+    }
+}

@@ -4,20 +4,14 @@ use super::report;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::Physics;
-use hcm_host::scenario::Scenario;
 use hcm_host::simulate::simulate;
 use std::path::PathBuf;
 
 /// Simulate a scenario: `hcm simulate --scenario scenarios/bouncing_ball.toml --out traj.csv`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scenario file (TOML); see the README's "Scenario files".
-    #[arg(long)]
-    scenario: PathBuf,
-    /// Override a scenario value, e.g. `--set body.ball.velocity=[0,0,-1]`,
-    /// `--set contact.0.parameters.damping=500`. Repeatable.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    overrides: Vec<String>,
+    #[command(flatten)]
+    scenario: super::ScenarioArgs,
     /// Physics file from `hcm identify`: replaces the scenario's contact laws.
     #[arg(long)]
     physics: Option<PathBuf>,
@@ -27,7 +21,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let mut scenario = Scenario::load(&args.scenario, &args.overrides)?;
+    let mut scenario = args.scenario.load()?;
     if let Some(path) = &args.physics {
         scenario = Physics::read(path)?.apply(&scenario, path)?;
     }
