@@ -52,9 +52,11 @@
 pub mod error;
 pub mod friction;
 pub mod geometry;
+pub mod hybrid;
 pub mod integrate;
 pub mod law;
 mod real;
+pub mod residual;
 pub mod wrench;
 
 pub use error::LawError;

@@ -5,9 +5,11 @@
 pub mod dataset;
 pub mod evaluate;
 pub mod experiment;
+pub mod export;
 pub mod identify;
 pub mod indicators;
 pub mod law_catalogue;
 pub mod output;
 pub mod scenario;
 pub mod simulate;
+pub mod train;

@@ -1,0 +1,538 @@
+//! The weights blob: how a trained residual travels from the host to the controller.
+//!
+//! ```text
+//! postcard(BlobContents) ‖ CRC-32 (4 bytes, little-endian) of everything before it
+//! ```
+//!
+//! [`BlobContents`] opens with the magic `HCM1` (four raw bytes, so `head -c4` shows
+//! it), the format [`VERSION`], the [`Shape`], the activation and quantisation tags,
+//! then three byte sections whose numbers are little-endian:
+//!
+//! - `normalisation`: μ_x, σ_x (INPUTS `f32` each), μ_y, σ_y (OUTPUTS `f32` each);
+//! - `envelope`: min, max (INPUTS `f32` each), raw units;
+//! - `layers`: for each layer, input → hidden → … → output: the weights row-major
+//!   `[out][in]` (`f32`, or `i8` in \[−127, 127\]), for int8 one `f32` scale per output row,
+//!   then the bias `[out]` (`f32`).
+//!
+//! The arrays are raw bytes in a borrowed postcard byte field, not serde sequences:
+//! decoding then borrows from the blob (nothing allocated) and works for any size
+//! (serde derives arrays only up to 32 elements). [`decode`] checks, in order: length
+//! and magic, version, the postcard structure, the CRC, the tags and the shape, then
+//! that every number is finite and every scale positive.
+
+use super::mlp::{Hidden, HiddenDepth, Layer, Mlp, WeightFormat};
+use super::{crc32, Activation, Quantisation};
+use core::fmt;
+use serde::{Deserialize, Serialize, Serializer};
+
+/// The first four bytes of every blob.
+pub const MAGIC: [u8; 4] = *b"HCM1";
+
+/// The blob format this crate writes and reads.
+pub const VERSION: u16 = 1;
+
+/// The layer sizes of a network.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Shape {
+    /// Number of inputs.
+    pub inputs: u32,
+    /// Neurons in each hidden layer.
+    pub width: u32,
+    /// Number of outputs.
+    pub outputs: u32,
+    /// Number of hidden layers, 1 to 3.
+    pub hidden_layers: u32,
+}
+
+impl Shape {
+    /// The shape of an [`Mlp`] with these const generics.
+    pub fn of<
+        const INPUTS: usize,
+        const WIDTH: usize,
+        const OUTPUTS: usize,
+        const HIDDEN: usize,
+    >() -> Self {
+        let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        Shape {
+            inputs: count(INPUTS),
+            width: count(WIDTH),
+            outputs: count(OUTPUTS),
+            hidden_layers: count(HIDDEN),
+        }
+    }
+}
+
+impl fmt::Display for Shape {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} inputs, {} hidden layer(s) of {}, {} outputs",
+            self.inputs, self.hidden_layers, self.width, self.outputs
+        )
+    }
+}
+
+/// Everything in a blob but the trailing CRC, as postcard (de)serialises it.
+///
+/// Public so that the host encoder writes exactly what [`decode`] reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct BlobContents<'a> {
+    /// [`MAGIC`].
+    pub magic: [u8; 4],
+    /// [`VERSION`].
+    pub version: u16,
+    /// Layer sizes.
+    pub shape: Shape,
+    /// [`Activation::tag`].
+    pub activation: u8,
+    /// [`Quantisation::tag`].
+    pub quantisation: u8,
+    /// μ_x, σ_x, μ_y, σ_y, `f32` little-endian.
+    #[serde(serialize_with = "as_bytes")]
+    pub normalisation: &'a [u8],
+    /// Envelope min, max, `f32` little-endian.
+    #[serde(serialize_with = "as_bytes")]
+    pub envelope: &'a [u8],
+    /// Weights, row scales (int8) and biases of every layer.
+    #[serde(serialize_with = "as_bytes")]
+    pub layers: &'a [u8],
+}
+
+/// Writes a byte slice as one postcard byte string (length, then the bytes), which is
+/// what `&[u8]`'s `Deserialize` borrows back, rather than as a sequence of `u8`.
+fn as_bytes<S: Serializer>(bytes: &&[u8], serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_bytes(bytes)
+}
+
+/// Why a weights blob was refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum BlobError {
+    /// The blob ends before its contents or its CRC do.
+    Truncated,
+    /// The blob does not start with `HCM1`: it is not a weights blob.
+    BadMagic,
+    /// The blob was written in a format version this firmware cannot read.
+    UnsupportedVersion {
+        /// The version in the blob.
+        found: u16,
+    },
+    /// The CRC-32 stored in the blob does not match its contents: it was corrupted.
+    BadCrc {
+        /// The CRC stored in the blob.
+        expected: u32,
+        /// The CRC computed over the blob's contents.
+        found: u32,
+    },
+    /// The blob holds a network of another size than the one the firmware declares.
+    WrongShape {
+        /// The firmware's network.
+        expected: Shape,
+        /// The blob's network.
+        found: Shape,
+    },
+    /// The blob's network has 0 or more than 3 hidden layers.
+    UnsupportedDepth {
+        /// Its number of hidden layers.
+        found: u32,
+    },
+    /// The activation tag is not one this firmware knows.
+    BadActivation {
+        /// The tag in the blob.
+        found: u8,
+    },
+    /// The weight-storage tag is not one this firmware knows.
+    BadQuantisation {
+        /// The tag in the blob.
+        found: u8,
+    },
+    /// The blob stores its weights in another format than the firmware declares.
+    WrongQuantisation {
+        /// The firmware's storage.
+        expected: Quantisation,
+        /// The blob's storage.
+        found: Quantisation,
+    },
+    /// A weight, bias or row scale is NaN or infinite.
+    NonFiniteWeight,
+    /// A normalisation mean is not finite, or a scale is not finite and > 0.
+    BadNormalisation,
+    /// An envelope bound is NaN, or a minimum exceeds its maximum.
+    BadEnvelope,
+    /// The blob's structure is not a weights blob's (bad encoding, a section of the
+    /// wrong length, an int8 weight of −128, bytes after the CRC).
+    Malformed,
+}
+
+impl fmt::Display for BlobError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BlobError::Truncated => f.write_str("the weights blob is cut short"),
+            BlobError::BadMagic => f.write_str("this is not a weights blob (no HCM1 header)"),
+            BlobError::UnsupportedVersion { found } => write!(
+                f,
+                "the weights blob has format version {found}; this firmware reads version {VERSION}"
+            ),
+            BlobError::BadCrc { expected, found } => write!(
+                f,
+                "the weights blob is corrupted: its CRC is {expected:#010x} but its contents give {found:#010x}"
+            ),
+            BlobError::WrongShape { expected, found } => write!(
+                f,
+                "the weights blob holds a network of {found}; this firmware expects {expected}"
+            ),
+            BlobError::UnsupportedDepth { found } => write!(
+                f,
+                "the weights blob's network has {found} hidden layers; 1 to 3 are supported"
+            ),
+            BlobError::BadActivation { found } => {
+                write!(f, "the weights blob names an unknown activation (tag {found})")
+            }
+            BlobError::BadQuantisation { found } => {
+                write!(f, "the weights blob names an unknown weight storage (tag {found})")
+            }
+            BlobError::WrongQuantisation { expected, found } => write!(
+                f,
+                "the weights blob stores {found} weights; this firmware expects {expected}"
+            ),
+            BlobError::NonFiniteWeight => {
+                f.write_str("the weights blob contains a NaN or infinite weight")
+            }
+            BlobError::BadNormalisation => f.write_str(
+                "the weights blob's normalisation has a non-finite mean or a scale that is not positive",
+            ),
+            BlobError::BadEnvelope => f.write_str(
+                "the weights blob's training envelope has a NaN bound or a minimum above its maximum",
+            ),
+            BlobError::Malformed => f.write_str("the weights blob is malformed"),
+        }
+    }
+}
+
+impl core::error::Error for BlobError {}
+
+/// Decodes a weights blob into a network of the caller's shape and weight storage,
+/// without allocating.
+///
+/// Fails, never panics, on any byte string that is not a valid blob of exactly this
+/// shape and storage.
+pub fn decode<
+    const INPUTS: usize,
+    const WIDTH: usize,
+    const OUTPUTS: usize,
+    const HIDDEN: usize,
+    Q,
+>(
+    bytes: &[u8],
+) -> Result<Mlp<INPUTS, WIDTH, OUTPUTS, HIDDEN, Q>, BlobError>
+where
+    Q: WeightFormat,
+    Hidden<HIDDEN>: HiddenDepth<WIDTH, Q>,
+{
+    let contents = open(bytes)?;
+    let expected = Shape::of::<INPUTS, WIDTH, OUTPUTS, HIDDEN>();
+    if !(1..=3).contains(&contents.shape.hidden_layers) {
+        return Err(BlobError::UnsupportedDepth {
+            found: contents.shape.hidden_layers,
+        });
+    }
+    if contents.shape != expected {
+        return Err(BlobError::WrongShape {
+            expected,
+            found: contents.shape,
+        });
+    }
+    let activation = Activation::from_tag(contents.activation).ok_or(BlobError::BadActivation {
+        found: contents.activation,
+    })?;
+    let quantisation =
+        Quantisation::from_tag(contents.quantisation).ok_or(BlobError::BadQuantisation {
+            found: contents.quantisation,
+        })?;
+    if quantisation != Q::KIND {
+        return Err(BlobError::WrongQuantisation {
+            expected: Q::KIND,
+            found: quantisation,
+        });
+    }
+
+    let mut mlp = Mlp::zeroed(activation);
+    let scaling = &mut mlp.normalisation;
+    let mut section = Reader(contents.normalisation);
+    let positive = |scale: f32| scale > 0.0 && scale.is_finite();
+    let finite = |value: f32| value.is_finite();
+    section.read_f32s(&mut scaling.input_mean, finite, BlobError::BadNormalisation)?;
+    section.read_f32s(
+        &mut scaling.input_scale,
+        positive,
+        BlobError::BadNormalisation,
+    )?;
+    section.read_f32s(
+        &mut scaling.output_mean,
+        finite,
+        BlobError::BadNormalisation,
+    )?;
+    section.read_f32s(
+        &mut scaling.output_scale,
+        positive,
+        BlobError::BadNormalisation,
+    )?;
+    section.finish()?;
+
+    let mut section = Reader(contents.envelope);
+    let envelope = &mut mlp.envelope;
+    let not_nan = |bound: f32| !bound.is_nan();
+    section.read_f32s(&mut envelope.min, not_nan, BlobError::BadEnvelope)?;
+    section.read_f32s(&mut envelope.max, not_nan, BlobError::BadEnvelope)?;
+    section.finish()?;
+    if envelope
+        .min
+        .iter()
+        .zip(&envelope.max)
+        .any(|(min, max)| min > max)
+    {
+        return Err(BlobError::BadEnvelope);
+    }
+
+    let mut section = Reader(contents.layers);
+    section.read_layer(&mut mlp.input_layer)?;
+    for layer in mlp.hidden_layers.as_mut() {
+        section.read_layer(layer)?;
+    }
+    section.read_layer(&mut mlp.output_layer)?;
+    section.finish()?;
+    Ok(mlp)
+}
+
+/// Checks magic, version, structure and CRC, and returns the blob's contents.
+fn open(bytes: &[u8]) -> Result<BlobContents<'_>, BlobError> {
+    match bytes.get(..MAGIC.len()) {
+        Some(magic) if magic != MAGIC => return Err(BlobError::BadMagic),
+        None if !MAGIC.starts_with(bytes) => return Err(BlobError::BadMagic),
+        None => return Err(BlobError::Truncated),
+        Some(_) => {}
+    }
+    // The version first, on its own: another version may lay out the rest differently.
+    let (_, version): ([u8; 4], u16) = postcard::take_from_bytes(bytes)
+        .map(|(header, _)| header)
+        .map_err(postcard_error)?;
+    if version != VERSION {
+        return Err(BlobError::UnsupportedVersion { found: version });
+    }
+
+    let (contents, trailer) = match postcard::take_from_bytes::<BlobContents<'_>>(bytes) {
+        Ok(parsed) => parsed,
+        Err(postcard::Error::DeserializeUnexpectedEnd) => return Err(BlobError::Truncated),
+        // Damage can break the structure before the CRC is reached: report the
+        // corruption, not its symptom, when the CRC at the end disagrees.
+        Err(error) => {
+            let body_end = bytes.len().saturating_sub(4);
+            let (body, trailer) = bytes.split_at_checked(body_end).unwrap_or((bytes, &[]));
+            check_crc(body, trailer)?;
+            return Err(postcard_error(error));
+        }
+    };
+    let body = bytes
+        .get(..bytes.len().saturating_sub(trailer.len()))
+        .ok_or(BlobError::Malformed)?;
+    match trailer.len() {
+        0..=3 => Err(BlobError::Truncated),
+        4 => check_crc(body, trailer).map(|()| contents),
+        _ => Err(BlobError::Malformed),
+    }
+}
+
+/// `Ok` if `trailer` is the little-endian CRC-32 of `body`.
+fn check_crc(body: &[u8], trailer: &[u8]) -> Result<(), BlobError> {
+    let stored: [u8; 4] = trailer.try_into().map_err(|_| BlobError::Truncated)?;
+    let expected = u32::from_le_bytes(stored);
+    let found = crc32(body);
+    if expected == found {
+        Ok(())
+    } else {
+        Err(BlobError::BadCrc { expected, found })
+    }
+}
+
+fn postcard_error(error: postcard::Error) -> BlobError {
+    match error {
+        postcard::Error::DeserializeUnexpectedEnd => BlobError::Truncated,
+        _ => BlobError::Malformed,
+    }
+}
+
+/// Reads little-endian numbers off the front of a section.
+struct Reader<'a>(&'a [u8]);
+
+impl<'a> Reader<'a> {
+    fn take(&mut self, count: usize) -> Result<&'a [u8], BlobError> {
+        let (head, tail) = self.0.split_at_checked(count).ok_or(BlobError::Malformed)?;
+        self.0 = tail;
+        Ok(head)
+    }
+
+    fn read_f32(&mut self) -> Result<f32, BlobError> {
+        let bytes: [u8; 4] = self.take(4)?.try_into().map_err(|_| BlobError::Malformed)?;
+        Ok(f32::from_le_bytes(bytes))
+    }
+
+    /// Fills `values`, refusing any value for which `valid` is false with `error`.
+    fn read_f32s(
+        &mut self,
+        values: &mut [f32],
+        valid: impl Fn(f32) -> bool,
+        error: BlobError,
+    ) -> Result<(), BlobError> {
+        for value in values {
+            *value = self.read_f32()?;
+            if !valid(*value) {
+                return Err(error);
+            }
+        }
+        Ok(())
+    }
+
+    fn read_layer<const IN: usize, const OUT: usize, Q: WeightFormat>(
+        &mut self,
+        layer: &mut Layer<IN, OUT, Q>,
+    ) -> Result<(), BlobError> {
+        for weight in layer.weights.iter_mut().flatten() {
+            *weight = Q::weight_from_le(self.take(Q::WEIGHT_BYTES)?)?;
+        }
+        if Q::HAS_ROW_SCALE {
+            for scale in &mut layer.row_scales {
+                *scale = Q::row_scale(self.read_f32()?)?;
+            }
+        }
+        let finite = |value: f32| value.is_finite();
+        self.read_f32s(&mut layer.bias, finite, BlobError::NonFiniteWeight)
+    }
+
+    /// `Ok` if the whole section was read.
+    fn finish(&self) -> Result<(), BlobError> {
+        if self.0.is_empty() {
+            Ok(())
+        } else {
+            Err(BlobError::Malformed)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+
+    use super::*;
+    use crate::residual::{Envelope, F32Weights, Int8Weights, Normalisation};
+    use proptest::collection::vec;
+    use proptest::prelude::*;
+    use std::vec::Vec;
+
+    fn le_bytes(values: &[&[f32]]) -> Vec<u8> {
+        values
+            .iter()
+            .flat_map(|part| part.iter().flat_map(|value| value.to_le_bytes()))
+            .collect()
+    }
+
+    /// A hand-built 2-3-1 tanh network and its blob, written with `postcard::to_slice`.
+    fn tiny() -> (Mlp<2, 3, 1, 1>, Vec<u8>) {
+        let mut mlp = Mlp::zeroed(Activation::Tanh);
+        mlp.normalisation = Normalisation {
+            input_mean: [1.0, -1.0],
+            input_scale: [2.0, 4.0],
+            output_mean: [5.0],
+            output_scale: [10.0],
+        };
+        mlp.envelope = Envelope {
+            min: [-3.0, -5.0],
+            max: [5.0, 3.0],
+        };
+        mlp.input_layer.weights = [[0.5, -1.0], [1.0, 1.0], [-2.0, 0.25]];
+        mlp.input_layer.bias = [0.1, -0.2, 0.0];
+        mlp.output_layer.weights = [[1.0, -0.5, 2.0]];
+        mlp.output_layer.bias = [0.3];
+
+        let scaling = &mlp.normalisation;
+        let normalisation = le_bytes(&[
+            &scaling.input_mean,
+            &scaling.input_scale,
+            &scaling.output_mean,
+            &scaling.output_scale,
+        ]);
+        let envelope = le_bytes(&[&mlp.envelope.min, &mlp.envelope.max]);
+        let input = &mlp.input_layer;
+        let output = &mlp.output_layer;
+        let layers = le_bytes(&[
+            input.weights.as_flattened(),
+            &input.bias,
+            output.weights.as_flattened(),
+            &output.bias,
+        ]);
+        let contents = BlobContents {
+            magic: MAGIC,
+            version: VERSION,
+            shape: Shape::of::<2, 3, 1, 1>(),
+            activation: Activation::Tanh.tag(),
+            quantisation: Quantisation::F32.tag(),
+            normalisation: &normalisation,
+            envelope: &envelope,
+            layers: &layers,
+        };
+        let mut buffer = [0_u8; 256];
+        let mut blob = postcard::to_slice(&contents, &mut buffer).unwrap().to_vec();
+        let crc = crc32(&blob);
+        blob.extend_from_slice(&crc.to_le_bytes());
+        (mlp, blob)
+    }
+
+    #[test]
+    fn decodes_exactly_the_network_that_was_written() {
+        let (mlp, blob) = tiny();
+        assert_eq!(&blob[..4], b"HCM1");
+        assert_eq!(decode::<2, 3, 1, 1, F32Weights>(&blob), Ok(mlp));
+    }
+
+    #[test]
+    fn messages_name_the_problem() {
+        let shape = Shape::of::<3, 16, 1, 2>();
+        let message = std::format!(
+            "{}",
+            BlobError::WrongShape {
+                expected: Shape { inputs: 2, ..shape },
+                found: shape
+            }
+        );
+        assert_eq!(
+            message,
+            "the weights blob holds a network of 3 inputs, 2 hidden layer(s) of 16, 1 outputs; \
+             this firmware expects 2 inputs, 2 hidden layer(s) of 16, 1 outputs"
+        );
+    }
+
+    proptest! {
+        #[test]
+        fn arbitrary_bytes_never_panic(bytes in vec(any::<u8>(), 0..600)) {
+            prop_assert!(decode::<2, 3, 1, 1, F32Weights>(&bytes).is_err());
+            prop_assert!(decode::<3, 16, 1, 2, Int8Weights>(&bytes).is_err());
+        }
+
+        #[test]
+        fn arbitrary_bytes_after_a_valid_header_never_panic(tail in vec(any::<u8>(), 0..600)) {
+            let mut bytes = MAGIC.to_vec();
+            bytes.push(1); // version 1, as a postcard varint
+            bytes.extend_from_slice(&tail);
+            let _ = decode::<2, 3, 1, 1, F32Weights>(&bytes);
+            let _ = decode::<3, 16, 1, 2, Int8Weights>(&bytes);
+        }
+
+        #[test]
+        fn a_changed_byte_is_always_refused(at in 0_usize..200, byte in any::<u8>()) {
+            let (_, mut blob) = tiny();
+            let at = at % blob.len();
+            prop_assume!(blob[at] != byte);
+            blob[at] = byte;
+            prop_assert!(decode::<2, 3, 1, 1, F32Weights>(&blob).is_err());
+        }
+    }
+}

@@ -1,0 +1,466 @@
+//! The residual network: a fixed-size multilayer perceptron evaluated in `f32`.
+//!
+//! For an input x (raw units) the network computes
+//!
+//! ```text
+//! x̂   = (x − μ_x) / σ_x                       input normalisation
+//! h_1 = a(W_1·x̂ + b_1)                         input → first hidden layer
+//! h_k = a(W_k·h_(k−1) + b_k),  k = 2..HIDDEN   hidden → hidden
+//! ŷ   = W_o·h_HIDDEN + b_o                      linear output
+//! y   = ŷ·σ_y + μ_y                            output de-normalisation
+//! ```
+//!
+//! with a = tanh or ReLU ([`Activation`]). Every size is a const generic, so the
+//! network lives in a `static` or on the stack with no allocator; the number of hidden
+//! layers (1 to 3) picks, through [`HiddenDepth`], an array of exactly HIDDEN − 1
+//! width × width layers, so no storage is wasted on unused layers.
+//!
+//! The weights are stored as `f32` ([`F32Weights`]) or as `i8` with one `f32` scale per
+//! output row ([`Int8Weights`], a quarter of the flash); the format is a type
+//! parameter rather than an enum so that an int8 network does not reserve room for
+//! f32 weights.
+
+use super::{Activation, BlobError, Quantisation};
+use crate::Real;
+use core::fmt::Debug;
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for super::F32Weights {}
+    impl Sealed for super::Int8Weights {}
+}
+
+/// How one layer stores its weights; implemented by [`F32Weights`] and
+/// [`Int8Weights`] only (the blob format knows exactly these two).
+pub trait WeightFormat: Copy + Debug + PartialEq + sealed::Sealed {
+    /// One stored weight.
+    type Weight: Copy + Debug + PartialEq;
+    /// One stored per-output-row scale (`()` when there is none).
+    type RowScale: Copy + Debug + PartialEq;
+    /// The blob tag of this format.
+    const KIND: Quantisation;
+    /// A zero weight.
+    const ZERO: Self::Weight;
+    /// The row scale that leaves a row unchanged.
+    const UNIT: Self::RowScale;
+    /// Bytes one weight takes in a blob.
+    const WEIGHT_BYTES: usize;
+    /// Whether a blob carries one `f32` scale per output row of each layer.
+    const HAS_ROW_SCALE: bool;
+
+    /// Σ_i row_i·x_i (times the row scale), accumulated in `f32`.
+    fn dot<const N: usize>(row: &[Self::Weight; N], scale: Self::RowScale, x: &[f32; N]) -> f32;
+
+    /// The weight stored little-endian in `raw` (`WEIGHT_BYTES` long).
+    fn weight_from_le(raw: &[u8]) -> Result<Self::Weight, BlobError>;
+
+    /// The row scale read from a blob (ignored by formats without one).
+    fn row_scale(scale: f32) -> Result<Self::RowScale, BlobError>;
+}
+
+/// Full-precision weights: every weight an `f32`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct F32Weights;
+
+/// Symmetric int8 weights: w ≈ q·scale_row with q ∈ [−127, 127] and one `f32` scale
+/// per output row; products are accumulated in `f32` and scaled once per row.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Int8Weights;
+
+impl WeightFormat for F32Weights {
+    type Weight = f32;
+    type RowScale = ();
+    const KIND: Quantisation = Quantisation::F32;
+    const ZERO: f32 = 0.0;
+    const UNIT: () = ();
+    const WEIGHT_BYTES: usize = 4;
+    const HAS_ROW_SCALE: bool = false;
+
+    #[inline]
+    fn dot<const N: usize>(row: &[f32; N], _scale: (), x: &[f32; N]) -> f32 {
+        row.iter().zip(x).fold(0.0, |sum, (w, x)| sum + w * x)
+    }
+
+    fn weight_from_le(raw: &[u8]) -> Result<f32, BlobError> {
+        let bytes: [u8; 4] = raw.try_into().map_err(|_| BlobError::Malformed)?;
+        finite(f32::from_le_bytes(bytes))
+    }
+
+    fn row_scale(_scale: f32) -> Result<(), BlobError> {
+        Ok(())
+    }
+}
+
+impl WeightFormat for Int8Weights {
+    type Weight = i8;
+    type RowScale = f32;
+    const KIND: Quantisation = Quantisation::Int8;
+    const ZERO: i8 = 0;
+    const UNIT: f32 = 1.0;
+    const WEIGHT_BYTES: usize = 1;
+    const HAS_ROW_SCALE: bool = true;
+
+    #[inline]
+    fn dot<const N: usize>(row: &[i8; N], scale: f32, x: &[f32; N]) -> f32 {
+        row.iter()
+            .zip(x)
+            .fold(0.0, |sum, (&q, x)| sum + f32::from(q) * x)
+            * scale
+    }
+
+    fn weight_from_le(raw: &[u8]) -> Result<i8, BlobError> {
+        match raw {
+            // −128 has no positive twin: the symmetric range is [−127, 127].
+            [byte] if *byte != 0x80 => Ok(i8::from_le_bytes([*byte])),
+            _ => Err(BlobError::Malformed),
+        }
+    }
+
+    fn row_scale(scale: f32) -> Result<f32, BlobError> {
+        finite(scale)
+    }
+}
+
+/// `value` if finite, else [`BlobError::NonFiniteWeight`].
+fn finite(value: f32) -> Result<f32, BlobError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(BlobError::NonFiniteWeight)
+    }
+}
+
+/// One fully connected layer with `IN` inputs and `OUT` outputs: z = W·x + b.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Layer<const IN: usize, const OUT: usize, Q: WeightFormat = F32Weights> {
+    /// Weights, row-major `[out][in]` (dimensionless: the layer works on normalised values).
+    pub weights: [[Q::Weight; IN]; OUT],
+    /// One scale per output row (int8 only; `()` for f32).
+    pub row_scales: [Q::RowScale; OUT],
+    /// Bias, one per output.
+    pub bias: [f32; OUT],
+}
+
+impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
+    /// A layer whose weights and biases are all zero.
+    pub const fn zeroed() -> Self {
+        Layer {
+            weights: [[Q::ZERO; IN]; OUT],
+            row_scales: [Q::UNIT; OUT],
+            bias: [0.0; OUT],
+        }
+    }
+
+    /// z = W·x + b, before any activation.
+    #[inline]
+    pub fn forward(&self, x: &[f32; IN]) -> [f32; OUT] {
+        let mut z = self.bias;
+        for ((z, row), scale) in z.iter_mut().zip(&self.weights).zip(&self.row_scales) {
+            *z += Q::dot(row, *scale, x);
+        }
+        z
+    }
+}
+
+/// A hidden-layer count, as a type: `Hidden<1>`, `Hidden<2>`, `Hidden<3>` implement
+/// [`HiddenDepth`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Hidden<const HIDDEN: usize>;
+
+/// The storage of the HIDDEN − 1 width → width layers between the first hidden layer
+/// and the output layer.
+///
+/// Stable Rust cannot write `[Layer; HIDDEN - 1]`, so this trait names the array for
+/// each supported depth; a network with 0 or more than 3 hidden layers does not compile.
+pub trait HiddenDepth<const WIDTH: usize, Q: WeightFormat> {
+    /// `[Layer<WIDTH, WIDTH, Q>; HIDDEN - 1]`.
+    type Layers: Copy
+        + Debug
+        + PartialEq
+        + AsRef<[Layer<WIDTH, WIDTH, Q>]>
+        + AsMut<[Layer<WIDTH, WIDTH, Q>]>;
+
+    /// The layers with every weight and bias zero.
+    fn zeroed() -> Self::Layers;
+}
+
+macro_rules! hidden_depth {
+    ($($hidden:literal => $between:literal),*) => {$(
+        impl<const WIDTH: usize, Q: WeightFormat> HiddenDepth<WIDTH, Q> for Hidden<$hidden> {
+            type Layers = [Layer<WIDTH, WIDTH, Q>; $between];
+
+            fn zeroed() -> Self::Layers {
+                core::array::from_fn(|_| Layer::zeroed())
+            }
+        }
+    )*};
+}
+hidden_depth!(1 => 0, 2 => 1, 3 => 2);
+
+/// The affine maps between raw units and the network's normalised values.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Normalisation<const INPUTS: usize, const OUTPUTS: usize> {
+    /// Mean μ_x of each input over the training data (the input's unit).
+    pub input_mean: [f32; INPUTS],
+    /// Scale σ_x of each input (the input's unit), finite and > 0.
+    pub input_scale: [f32; INPUTS],
+    /// Mean μ_y of each output (the output's unit, N for a force correction).
+    pub output_mean: [f32; OUTPUTS],
+    /// Scale σ_y of each output (the output's unit), finite and > 0.
+    pub output_scale: [f32; OUTPUTS],
+}
+
+impl<const INPUTS: usize, const OUTPUTS: usize> Normalisation<INPUTS, OUTPUTS> {
+    /// Means 0 and scales 1: the network sees raw values.
+    pub const fn identity() -> Self {
+        Normalisation {
+            input_mean: [0.0; INPUTS],
+            input_scale: [1.0; INPUTS],
+            output_mean: [0.0; OUTPUTS],
+            output_scale: [1.0; OUTPUTS],
+        }
+    }
+}
+
+/// The box of inputs the network was trained on, in raw units: outside it the
+/// residual is an extrapolation and the hybrid model switches it off.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Envelope<const INPUTS: usize> {
+    /// Smallest value of each input seen in training (the input's unit).
+    pub min: [f32; INPUTS],
+    /// Largest value of each input seen in training (the input's unit).
+    pub max: [f32; INPUTS],
+}
+
+impl<const INPUTS: usize> Envelope<INPUTS> {
+    /// Every finite input is inside.
+    pub const fn unbounded() -> Self {
+        Envelope {
+            min: [-f32::MAX; INPUTS],
+            max: [f32::MAX; INPUTS],
+        }
+    }
+
+    /// True if min_i ≤ x_i ≤ max_i for every input; false if any input is NaN.
+    pub fn contains(&self, input: &[f32; INPUTS]) -> bool {
+        input
+            .iter()
+            .zip(self.min.iter().zip(&self.max))
+            .all(|(x, (min, max))| min <= x && x <= max)
+    }
+}
+
+/// A multilayer perceptron with `INPUTS` inputs, `HIDDEN` hidden layers of `WIDTH`
+/// neurons, and `OUTPUTS` linear outputs, weights stored as `Q`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mlp<
+    const INPUTS: usize,
+    const WIDTH: usize,
+    const OUTPUTS: usize,
+    const HIDDEN: usize,
+    Q: WeightFormat = F32Weights,
+> where
+    Hidden<HIDDEN>: HiddenDepth<WIDTH, Q>,
+{
+    /// Nonlinearity after every hidden layer.
+    pub activation: Activation,
+    /// Input normalisation and output de-normalisation.
+    pub normalisation: Normalisation<INPUTS, OUTPUTS>,
+    /// Training envelope, raw units.
+    pub envelope: Envelope<INPUTS>,
+    /// Normalised input → first hidden layer.
+    pub input_layer: Layer<INPUTS, WIDTH, Q>,
+    /// Hidden → hidden, HIDDEN − 1 of them, in order.
+    pub hidden_layers: <Hidden<HIDDEN> as HiddenDepth<WIDTH, Q>>::Layers,
+    /// Last hidden layer → normalised output.
+    pub output_layer: Layer<WIDTH, OUTPUTS, Q>,
+}
+
+impl<const INPUTS: usize, const WIDTH: usize, const OUTPUTS: usize, const HIDDEN: usize, Q>
+    Mlp<INPUTS, WIDTH, OUTPUTS, HIDDEN, Q>
+where
+    Q: WeightFormat,
+    Hidden<HIDDEN>: HiddenDepth<WIDTH, Q>,
+{
+    /// A network whose weights and biases are all zero (it outputs μ_y), with identity
+    /// normalisation and an unbounded envelope; fill its fields to build one by hand.
+    pub fn zeroed(activation: Activation) -> Self {
+        Mlp {
+            activation,
+            normalisation: Normalisation::identity(),
+            envelope: Envelope::unbounded(),
+            input_layer: Layer::zeroed(),
+            hidden_layers: <Hidden<HIDDEN> as HiddenDepth<WIDTH, Q>>::zeroed(),
+            output_layer: Layer::zeroed(),
+        }
+    }
+
+    /// The network's outputs for `input` (raw units in, raw units out).
+    ///
+    /// NaN in any input gives NaN outputs; outputs saturate at ±`f32::MAX`. The
+    /// envelope is not consulted: see [`Mlp::inside_envelope`].
+    pub fn evaluate(&self, input: &[f32; INPUTS]) -> [f32; OUTPUTS] {
+        let scaling = &self.normalisation;
+        let mut x = *input;
+        for (x, (mean, scale)) in x
+            .iter_mut()
+            .zip(scaling.input_mean.iter().zip(&scaling.input_scale))
+        {
+            *x = (*x - mean) / scale;
+        }
+
+        let mut hidden = self.input_layer.forward(&x);
+        self.activate(&mut hidden);
+        for layer in self.hidden_layers.as_ref() {
+            hidden = layer.forward(&hidden);
+            self.activate(&mut hidden);
+        }
+
+        let mut output = self.output_layer.forward(&hidden);
+        for (y, (mean, scale)) in output
+            .iter_mut()
+            .zip(scaling.output_mean.iter().zip(&scaling.output_scale))
+        {
+            *y = (*y * scale + mean).saturate();
+        }
+        output
+    }
+
+    /// True if every input lies inside the training envelope (NaN is outside).
+    pub fn inside_envelope(&self, input: &[f32; INPUTS]) -> bool {
+        self.envelope.contains(input)
+    }
+
+    fn activate(&self, values: &mut [f32; WIDTH]) {
+        for value in values {
+            *value = self.activation.apply(*value);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 2 inputs, 3 tanh/relu neurons, 1 output, with weights small enough to compute
+    /// by hand. Normalisation: x̂ = (x − [1, −1]) / [2, 4]; y = ŷ·10 + 5.
+    fn hand_built(activation: Activation) -> Mlp<2, 3, 1, 1> {
+        let mut mlp = Mlp::zeroed(activation);
+        mlp.normalisation = Normalisation {
+            input_mean: [1.0, -1.0],
+            input_scale: [2.0, 4.0],
+            output_mean: [5.0],
+            output_scale: [10.0],
+        };
+        mlp.envelope = Envelope {
+            min: [-3.0, -5.0],
+            max: [5.0, 3.0],
+        };
+        mlp.input_layer = Layer {
+            weights: [[0.5, -1.0], [1.0, 1.0], [-2.0, 0.25]],
+            row_scales: [(); 3],
+            bias: [0.1, -0.2, 0.0],
+        };
+        mlp.output_layer = Layer {
+            weights: [[1.0, -0.5, 2.0]],
+            row_scales: [()],
+            bias: [0.3],
+        };
+        mlp
+    }
+
+    /// The same network by hand in f64: x = [3, 1] → x̂ = [1, 0.5];
+    /// z = [0.5 − 0.5 + 0.1, 1 + 0.5 − 0.2, −2 + 0.125] = [0.1, 1.3, −1.875].
+    fn by_hand(activation: Activation) -> f64 {
+        let z: [f64; 3] = [0.1, 1.3, -1.875];
+        let h = z.map(|z| match activation {
+            Activation::Tanh => z.tanh(),
+            Activation::Relu => z.max(0.0),
+        });
+        let y_hat = h[0] - 0.5 * h[1] + 2.0 * h[2] + 0.3;
+        y_hat * 10.0 + 5.0
+    }
+
+    #[test]
+    fn hand_built_tanh_network_gives_the_hand_computed_output() {
+        let [y] = hand_built(Activation::Tanh).evaluate(&[3.0, 1.0]);
+        let expected = by_hand(Activation::Tanh);
+        // tanh: 0.09967 − 0.43086 − 1.90809 + 0.3 = −1.93928 → −14.3928
+        assert!((expected - -14.3928).abs() < 1e-4, "{expected}");
+        assert!((f64::from(y) - expected).abs() < 1e-5, "{y} vs {expected}");
+    }
+
+    #[test]
+    fn hand_built_relu_network_gives_the_hand_computed_output() {
+        let [y] = hand_built(Activation::Relu).evaluate(&[3.0, 1.0]);
+        // relu: h = [0.1, 1.3, 0]; ŷ = 0.1 − 0.65 + 0 + 0.3 = −0.25; y = 2.5
+        assert!((by_hand(Activation::Relu) - 2.5).abs() < 1e-12);
+        assert!((y - 2.5).abs() < 1e-6, "{y}");
+    }
+
+    #[test]
+    fn int8_weights_are_scaled_per_row() {
+        let float = hand_built(Activation::Tanh);
+        let mut int8: Mlp<2, 3, 1, 1, Int8Weights> = Mlp::zeroed(Activation::Tanh);
+        int8.normalisation = float.normalisation;
+        // Every weight of `float` is a multiple of 0.25 (row 0: 0.5 → 2·0.25, …):
+        // exact in int8 with these row scales.
+        int8.input_layer = Layer {
+            weights: [[1, -2], [1, 1], [-8, 1]],
+            row_scales: [0.5, 1.0, 0.25],
+            bias: float.input_layer.bias,
+        };
+        int8.output_layer = Layer {
+            weights: [[2, -1, 4]],
+            row_scales: [0.5],
+            bias: float.output_layer.bias,
+        };
+        let [y8] = int8.evaluate(&[3.0, 1.0]);
+        let [y32] = float.evaluate(&[3.0, 1.0]);
+        assert!((y8 - y32).abs() < 1e-5, "{y8} vs {y32}");
+    }
+
+    #[test]
+    fn nan_input_gives_nan_output_for_both_activations() {
+        for activation in [Activation::Tanh, Activation::Relu] {
+            let mlp = hand_built(activation);
+            assert!(mlp.evaluate(&[f32::NAN, 0.0])[0].is_nan(), "{activation:?}");
+            assert!(mlp.evaluate(&[0.0, f32::NAN])[0].is_nan(), "{activation:?}");
+            assert!(!mlp.inside_envelope(&[f32::NAN, 0.0]));
+        }
+    }
+
+    #[test]
+    fn infinite_input_saturates_instead_of_overflowing() {
+        let mlp = hand_built(Activation::Relu);
+        let [y] = mlp.evaluate(&[f32::INFINITY, 1.0]);
+        // Relu passes +∞ through, and +∞ − ∞ = NaN in the next row: either way no panic
+        // and no infinity.
+        assert!(y.is_nan() || y.is_finite(), "{y}");
+    }
+
+    #[test]
+    fn envelope_is_closed_and_checks_every_input() {
+        let mlp = hand_built(Activation::Tanh);
+        assert!(mlp.inside_envelope(&[3.0, 1.0]));
+        assert!(mlp.inside_envelope(&[-3.0, 3.0])); // both on the boundary
+        assert!(!mlp.inside_envelope(&[5.001, 0.0]));
+        assert!(!mlp.inside_envelope(&[0.0, -5.001]));
+        assert!(!mlp.inside_envelope(&[f32::INFINITY, 0.0]));
+    }
+
+    #[test]
+    fn deeper_networks_apply_every_hidden_layer() {
+        // Width 1, relu, every weight 2, 3 hidden layers: four layers in all, so
+        // y = 2⁴·x for x > 0 and 0 for x < 0.
+        let mut mlp: Mlp<1, 1, 1, 3> = Mlp::zeroed(Activation::Relu);
+        mlp.input_layer.weights = [[2.0]];
+        for layer in mlp.hidden_layers.as_mut() {
+            layer.weights = [[2.0]];
+        }
+        mlp.output_layer.weights = [[2.0]];
+        assert_eq!(mlp.hidden_layers.len(), 2);
+        assert_eq!(mlp.evaluate(&[1.5]), [24.0]);
+        assert_eq!(mlp.evaluate(&[-1.5]), [0.0]);
+    }
+}

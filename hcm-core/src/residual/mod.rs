@@ -1,0 +1,124 @@
+//! The data-driven residual of the hybrid contact model: a small fixed-size network
+//! that learns what the physics law gets wrong (paper Section 3.2).
+//!
+//! The host trains the network and writes it as a weights blob (`hcm export`); the
+//! controller embeds the blob with `include_bytes!` and [`decode`]s it into an [`Mlp`]
+//! whose shape it fixes at compile time. Nothing here allocates, and nothing panics:
+//! a blob that is short, corrupted, of another version or of another shape is a
+//! [`BlobError`], and any input (NaN included) gives an output.
+//!
+//! - [`mlp`]: the network, its input/output normalisation and its training envelope;
+//! - [`blob`]: the weights blob format and its decoder;
+//! - [`crc`]: the CRC-32 that guards the blob.
+//!
+//! ## Example
+//!
+//! A controller holding a 3-input, width-16, two-hidden-layer, one-output residual
+//! (inputs [δ (m), δ̇ (m/s), δ̇0 (m/s)], output the normal-force correction (N)):
+//!
+//! ```no_run
+//! use hcm_core::residual::{decode, Mlp};
+//!
+//! # let blob: &[u8] = &[];
+//! // let blob: &[u8] = include_bytes!("residual.hcm");
+//! let residual: Mlp<3, 16, 1, 2> = decode(blob)?;
+//! let input = [10e-6, 1.2, 1.4];
+//! if residual.inside_envelope(&input) {
+//!     let [correction] = residual.evaluate(&input);
+//!     # let _ = correction;
+//! }
+//! # Ok::<(), hcm_core::residual::BlobError>(())
+//! ```
+
+pub mod blob;
+pub mod crc;
+pub mod mlp;
+
+pub use blob::{decode, BlobError};
+pub use crc::crc32;
+pub use mlp::WeightFormat;
+pub use mlp::{Envelope, F32Weights, Hidden, HiddenDepth, Int8Weights, Layer, Mlp, Normalisation};
+
+use core::fmt;
+
+/// The nonlinearity applied after every hidden layer; the output layer is linear.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Activation {
+    /// tanh(z).
+    Tanh,
+    /// max(z, 0), with NaN passed through.
+    Relu,
+}
+
+impl Activation {
+    /// The tag that stands for this activation in a weights blob.
+    pub const fn tag(self) -> u8 {
+        match self {
+            Activation::Tanh => 0,
+            Activation::Relu => 1,
+        }
+    }
+
+    /// The activation a blob tag stands for, if any.
+    pub const fn from_tag(tag: u8) -> Option<Self> {
+        match tag {
+            0 => Some(Activation::Tanh),
+            1 => Some(Activation::Relu),
+            _ => None,
+        }
+    }
+
+    /// The activation applied to one pre-activation z; NaN stays NaN.
+    #[inline]
+    pub fn apply(self, z: f32) -> f32 {
+        match self {
+            Activation::Tanh => nalgebra::ComplexField::tanh(z),
+            // `f32::max(0.0, NaN)` is 0.0: test explicitly so that NaN propagates.
+            Activation::Relu => {
+                if z < 0.0 {
+                    0.0
+                } else {
+                    z
+                }
+            }
+        }
+    }
+}
+
+/// How the weights are stored: full `f32`, or `i8` with one `f32` scale per output row.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quantisation {
+    /// Every weight an `f32` (4 bytes).
+    F32,
+    /// Every weight an `i8` q ∈ [−127, 127], w ≈ q·scale_row, one `f32` scale per
+    /// output row; accumulation in `f32`.
+    Int8,
+}
+
+impl Quantisation {
+    /// The tag that stands for this storage in a weights blob.
+    pub const fn tag(self) -> u8 {
+        match self {
+            Quantisation::F32 => 0,
+            Quantisation::Int8 => 1,
+        }
+    }
+
+    /// The storage a blob tag stands for, if any.
+    pub const fn from_tag(tag: u8) -> Option<Self> {
+        match tag {
+            0 => Some(Quantisation::F32),
+            1 => Some(Quantisation::Int8),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Quantisation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Quantisation::F32 => "f32",
+            Quantisation::Int8 => "int8",
+        })
+    }
+}

@@ -1,0 +1,49 @@
+//! The residual's training pairs: what PM2 misses at each measured contact sample.
+
+use crate::identify::samples::ForceSample;
+use hcm_core::law::{AnyNormalLaw, Indentation, NormalLaw};
+
+/// Residual training pairs of the 1D normal contact: inputs [δ (m), δ̇ (m/s), δ̇0 (m/s)],
+/// target [f_measured − f_law (N)], one row per sample, in the samples' order.
+pub fn residual_pairs(
+    samples: &[ForceSample],
+    law: &AnyNormalLaw<f64>,
+) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
+    samples
+        .iter()
+        .map(|s| {
+            let state = Indentation {
+                depth: s.depth,
+                rate: s.rate,
+                approach_speed: s.approach_speed,
+            };
+            let error = s.force - law.normal_force(&state);
+            (vec![s.depth, s.rate, s.approach_speed], vec![error])
+        })
+        .unzip()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hcm_core::law::Hertz;
+
+    #[test]
+    fn target_is_measured_minus_law_force() {
+        let law: AnyNormalLaw<f64> = Hertz {
+            stiffness: 1e9,
+            exponent: 1.5,
+        }
+        .into();
+        let sample = ForceSample {
+            depth: 1e-5,
+            rate: 0.5,
+            approach_speed: 1.0,
+            force: 40.0,
+        };
+        let (inputs, targets) = residual_pairs(&[sample], &law);
+        assert_eq!(inputs, vec![vec![1e-5, 0.5, 1.0]]);
+        let hertz = 1e9 * 1e-5_f64.powf(1.5);
+        assert!((targets[0][0] - (40.0 - hertz)).abs() < 1e-9);
+    }
+}
