@@ -3,7 +3,7 @@
 //! replayed from the same pre-contact state, and the Eq 20 error of each.
 
 use crate::dataset::Dataset;
-use crate::identify::replay::{simulate_target, targets};
+use crate::identify::replay::{simulate_target_with, targets};
 use crate::identify::IdentifyError;
 use crate::indicators::Indicators;
 use crate::scenario::Model;
@@ -54,7 +54,7 @@ pub fn evaluate(
                 .iter()
                 .map(|(label, model)| {
                     let indicators =
-                        simulate_target(target, c, &model.contacts[c].law).map(|(_, i)| i);
+                        simulate_target_with(target, c, &model.contacts[c]).map(|(_, i)| i);
                     ModelColumn {
                         label: label.to_string(),
                         indicators,

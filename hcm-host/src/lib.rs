@@ -10,6 +10,7 @@ pub mod identify;
 pub mod indicators;
 pub mod law_catalogue;
 pub mod output;
+pub mod residual;
 pub mod scenario;
 pub mod simulate;
 pub mod train;

@@ -1,8 +1,10 @@
 //! `hcm evaluate`: the paper's table for a physics model on validation data.
 
+use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::evaluate::{evaluate, markdown};
 use hcm_host::identify::Physics;
+use hcm_host::residual::ContactResidual;
 use std::path::PathBuf;
 
 /// Compare a physics model with validation data: S2 mean, PM2 and the Eq 20 error per
@@ -18,6 +20,10 @@ pub struct Args {
     /// Physics file written by `hcm identify`.
     #[arg(long)]
     physics: PathBuf,
+    /// Residual network blob from `hcm train`: adds the HCM column (PM2 + residual,
+    /// simulated with the residual inside the integrator's force).
+    #[arg(long)]
+    residual: Option<PathBuf>,
     /// Which contact of the scenario.
     #[arg(long, default_value_t = 0)]
     contact: usize,
@@ -37,7 +43,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         pm2.contacts.len()
     );
     let data = Dataset::read(&args.data)?;
-    let tables = evaluate(&[("PM2", &pm2)], &data, args.contact)?;
+    let mut models = vec![("PM2", pm2.clone())];
+    if let Some(path) = &args.residual {
+        let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
+        let residual = ContactResidual::decode(&bytes)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let mut hcm = pm2.clone();
+        hcm.contacts[args.contact].residual = Some(residual);
+        models.push(("HCM", hcm));
+    }
+    let columns: Vec<(&str, &hcm_host::scenario::Model)> =
+        models.iter().map(|(l, m)| (*l, m)).collect();
+    let tables = evaluate(&columns, &data, args.contact)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&tables)?);
         return Ok(());

@@ -8,6 +8,7 @@ mod indicators;
 mod laws;
 mod report;
 mod simulate;
+mod train;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -36,6 +37,8 @@ enum Command {
     Identify(identify::Args),
     /// The paper's table for a physics model on validation data (S2).
     Evaluate(evaluate::Args),
+    /// Train the residual network of the HCM on S1 and export its weights blob.
+    Train(train::Args),
 }
 
 /// Parses the command line, runs the subcommand, and reports errors in plain words.
@@ -49,6 +52,7 @@ pub fn main() -> ExitCode {
         Command::Generate(args) => generate::run(args),
         Command::Identify(args) => identify::run(args),
         Command::Evaluate(args) => evaluate::run(args),
+        Command::Train(args) => train::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

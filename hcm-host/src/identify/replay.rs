@@ -8,7 +8,7 @@ use super::IdentifyError;
 use crate::dataset::{Dataset, Run};
 use crate::experiment::condition_of;
 use crate::indicators::{contact_history, event_spans, Indicators};
-use crate::scenario::Model;
+use crate::scenario::{Contact, Model};
 use crate::simulate::simulate;
 use hcm_core::law::AnyNormalLaw;
 use nalgebra::Vector3;
@@ -164,8 +164,19 @@ pub fn simulate_target(
     c: usize,
     law: &AnyNormalLaw<f64>,
 ) -> Option<(Vec<f64>, Indicators)> {
+    let mut contact = target.model.contacts[c].clone();
+    contact.law = *law;
+    simulate_target_with(target, c, &contact)
+}
+
+/// Simulates `target` with contact `c` replaced by `contact` (law and residual).
+pub fn simulate_target_with(
+    target: &Target,
+    c: usize,
+    contact: &Contact,
+) -> Option<(Vec<f64>, Indicators)> {
     let mut model = target.model.clone();
-    model.contacts[c].law = *law;
+    model.contacts[c] = contact.clone();
     let run = simulate(&model).ok()?.run;
     curve(&model, &run, c, target.period, target.curve.len())
         .ok()

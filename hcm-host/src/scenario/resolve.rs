@@ -57,6 +57,8 @@ pub struct Contact {
     pub effective_mass: f64,
     /// Parameter noise b per law parameter (Eq 18), for generated experiments.
     pub noise: Vec<(String, f64)>,
+    /// Residual network added to the law's force (the HCM), if attached.
+    pub residual: Option<crate::residual::ContactResidual>,
 }
 
 /// A scenario resolved and checked: what the simulator runs.
@@ -259,6 +261,7 @@ impl Scenario {
                 law,
                 effective_mass,
                 noise,
+                residual: None,
             });
         }
         self.check_settings().map_err(|(f, m)| invalid(f, m))?;

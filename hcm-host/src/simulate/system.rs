@@ -79,7 +79,15 @@ impl ContactSystem<'_> {
                 rate: k.rate,
                 approach_speed: self.modes.approach_speed[c],
             };
-            let f_n = contact.law.normal_force(&state);
+            let correction = contact
+                .residual
+                .as_ref()
+                .and_then(|r| r.correction(k.depth, k.rate, state.approach_speed));
+            let f_n = if k.depth > 0.0 {
+                contact.law.normal_force(&state) + correction.unwrap_or(0.0)
+            } else {
+                0.0
+            };
             let origin = |b| self.layout.motion(self.model, y, b).0;
             let (arm_1, arm_2) = (
                 k.point - origin(contact.body_1),

@@ -299,8 +299,11 @@ fn shuffle(items: &mut [usize], rng: &mut ChaCha8Rng) {
     }
 }
 
-/// Per-column mean and standard deviation over `rows` of `table` (a constant column
-/// gets scale 1, so it normalises to 0 instead of dividing by zero).
+/// Per-column mean and standard deviation over `rows` of `table`. A constant column
+/// gets scale 1, so it normalises to 0 instead of dividing by zero; "constant" means a
+/// spread below 1e-4 of its mean, because the exported network runs in f32
+/// (ε ≈ 1.2e-7), where dividing by a rounding-level spread (e.g. 5e-15 for an impact
+/// speed identical in every run) would turn f32 rounding into huge inputs.
 fn normalisation(table: &[Vec<f64>], rows: &[usize]) -> (Vec<f64>, Vec<f64>) {
     let columns = table[0].len();
     let n = rows.len() as f64;
@@ -315,7 +318,7 @@ fn normalisation(table: &[Vec<f64>], rows: &[usize]) -> (Vec<f64>, Vec<f64>) {
                 .sum::<f64>()
                 / n;
             let std = variance.sqrt();
-            if std > 0.0 && std.is_finite() {
+            if std > 1e-4 * mean[c].abs() && std.is_finite() {
                 std
             } else {
                 1.0

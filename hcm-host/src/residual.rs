@@ -1,0 +1,70 @@
+//! The residual network as the simulator uses it: the core's fixed-size model,
+//! decoded from the exported blob, attached to one contact of a model. Inside its
+//! training envelope it adds its force correction to the law's; outside it is
+//! switched off (the paper's strategy for conditions without data).
+
+use crate::export::ExportModel;
+use crate::train::{Activation as HostActivation, Network};
+use hcm_core::residual::{decode, Activation, BlobError, F32Weights, Int8Weights, Mlp};
+use std::sync::Arc;
+
+/// Inputs of the 1D contact residual: δ (m), δ̇ (m/s), δ̇0 (m/s).
+pub const INPUTS: usize = 3;
+/// Hidden-layer width of the shipped residual architecture.
+pub const WIDTH: usize = 16;
+/// Hidden layers of the shipped residual architecture.
+pub const HIDDEN: usize = 2;
+
+/// A decoded residual network, in either weight storage.
+#[derive(Clone, Debug)]
+pub enum ContactResidual {
+    /// f32 weights.
+    F32(Arc<Mlp<INPUTS, WIDTH, 1, HIDDEN, F32Weights>>),
+    /// int8 weights with per-row scales.
+    Int8(Arc<Mlp<INPUTS, WIDTH, 1, HIDDEN, Int8Weights>>),
+}
+
+impl ContactResidual {
+    /// Decodes a blob (f32 or int8) of the shipped architecture.
+    pub fn decode(bytes: &[u8]) -> Result<ContactResidual, BlobError> {
+        match decode::<INPUTS, WIDTH, 1, HIDDEN, F32Weights>(bytes) {
+            Ok(mlp) => Ok(ContactResidual::F32(Arc::new(mlp))),
+            Err(BlobError::WrongQuantisation { .. }) => {
+                decode::<INPUTS, WIDTH, 1, HIDDEN, Int8Weights>(bytes)
+                    .map(|m| ContactResidual::Int8(Arc::new(m)))
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    /// The force correction (N) at (δ, δ̇, δ̇0), or None outside the envelope.
+    pub fn correction(&self, depth: f64, rate: f64, approach_speed: f64) -> Option<f64> {
+        let input = [depth as f32, rate as f32, approach_speed as f32];
+        let (inside, output) = match self {
+            ContactResidual::F32(m) => (m.inside_envelope(&input), m.evaluate(&input)),
+            ContactResidual::Int8(m) => (m.inside_envelope(&input), m.evaluate(&input)),
+        };
+        inside.then_some(output[0] as f64)
+    }
+}
+
+/// The trained host network in the exporter's form.
+pub fn export_model(network: &Network) -> ExportModel {
+    ExportModel {
+        inputs: network.inputs,
+        width: network.width,
+        outputs: network.outputs,
+        hidden_layers: network.hidden_layers,
+        activation: match network.activation {
+            HostActivation::Tanh => Activation::Tanh,
+            HostActivation::Relu => Activation::Relu,
+        },
+        layers: network.layers.clone(),
+        input_mean: network.input_mean.clone(),
+        input_scale: network.input_scale.clone(),
+        output_mean: network.output_mean.clone(),
+        output_scale: network.output_scale.clone(),
+        envelope_min: network.envelope_min.clone(),
+        envelope_max: network.envelope_max.clone(),
+    }
+}
