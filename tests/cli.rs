@@ -247,3 +247,44 @@ fn identify_names_an_empty_data_file() {
     );
     assert!(!out.exists());
 }
+
+#[test]
+fn reproduce_writes_the_report_blobs_and_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ball");
+    let ball = scenario("bouncing_ball.toml");
+    let run = hcm(&[
+        "reproduce",
+        "bouncing-ball",
+        "--runs",
+        "12",
+        "--method",
+        "lsq",
+        "--seed",
+        "4",
+        "--scenario",
+        &ball,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for needle in [
+        "error of PM2",
+        "error of HCM",
+        "PM2 error (paper)",
+        "| identify PM2 |",
+    ] {
+        assert!(report.contains(needle), "report lacks {needle}:\n{report}");
+    }
+    for figure in ["contact_force.svg", "force_error.svg"] {
+        let svg = std::fs::read_to_string(out.join(figure)).unwrap();
+        assert!(svg.matches("<polyline").count() >= 2, "{figure}");
+    }
+    let blob = std::fs::read(out.join("residual.bin")).unwrap();
+    assert!(hcm_host::residual::ContactResidual::decode(&blob).is_ok());
+}

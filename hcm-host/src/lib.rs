@@ -6,6 +6,7 @@ pub mod dataset;
 pub mod evaluate;
 pub mod experiment;
 pub mod export;
+pub mod figure;
 pub mod identify;
 pub mod indicators;
 pub mod law_catalogue;

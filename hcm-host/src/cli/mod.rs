@@ -7,6 +7,7 @@ mod identify;
 mod indicators;
 mod laws;
 mod report;
+mod reproduce;
 mod simulate;
 mod train;
 
@@ -39,6 +40,8 @@ enum Command {
     Evaluate(evaluate::Args),
     /// Train the residual network of the HCM on S1 and export its weights blob.
     Train(train::Args),
+    /// Reproduce one of the paper's examples end to end, with report and figures.
+    Reproduce(reproduce::Args),
 }
 
 /// Parses the command line, runs the subcommand, and reports errors in plain words.
@@ -53,6 +56,7 @@ pub fn main() -> ExitCode {
         Command::Identify(args) => identify::run(args),
         Command::Evaluate(args) => evaluate::run(args),
         Command::Train(args) => train::run(args),
+        Command::Reproduce(args) => reproduce::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
