@@ -6,39 +6,12 @@
 //! evaluation is tested against.
 
 use hcm_core::residual::blob::{BlobContents, Shape, MAGIC, VERSION};
-use hcm_core::residual::{crc32, Activation, Quantisation};
+use hcm_core::residual::{crc32, Quantisation};
 
 /// A trained residual network as the host holds it (f64, heap), in the layout the
 /// blob stores: layers input → hidden 1 → … → output, each with its weights row-major
 /// `[out][in]` and its bias `[out]`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ExportModel {
-    /// Number of inputs.
-    pub inputs: usize,
-    /// Neurons per hidden layer.
-    pub width: usize,
-    /// Number of outputs; the first is the normal-force correction (N).
-    pub outputs: usize,
-    /// Number of hidden layers, 1 to 3.
-    pub hidden_layers: usize,
-    /// Nonlinearity after every hidden layer; the output layer is linear.
-    pub activation: Activation,
-    /// (weights row-major `[out][in]`, bias `[out]`) for each of the `hidden_layers + 1`
-    /// layers, on normalised values.
-    pub layers: Vec<(Vec<f64>, Vec<f64>)>,
-    /// Mean of each input (its unit).
-    pub input_mean: Vec<f64>,
-    /// Scale of each input (its unit), > 0: the network sees (x − mean) / scale.
-    pub input_scale: Vec<f64>,
-    /// Mean of each output (its unit).
-    pub output_mean: Vec<f64>,
-    /// Scale of each output (its unit), > 0: y = ŷ·scale + mean.
-    pub output_scale: Vec<f64>,
-    /// Smallest training value of each input (its unit).
-    pub envelope_min: Vec<f64>,
-    /// Largest training value of each input (its unit).
-    pub envelope_max: Vec<f64>,
-}
+pub use crate::train::Network as ExportModel;
 
 /// Why a network cannot be exported.
 #[derive(Debug, thiserror::Error)]
@@ -136,37 +109,6 @@ impl ExportModel {
             length(what.into(), expected, values.len())?;
         }
         Ok(())
-    }
-
-    /// The network's outputs for `input` (raw units), in f64: the reference for the
-    /// core's `f32` evaluation. Assumes [`ExportModel::check_shape`] passes.
-    pub fn evaluate(&self, input: &[f64]) -> Vec<f64> {
-        let mut values: Vec<f64> = input
-            .iter()
-            .zip(self.input_mean.iter().zip(&self.input_scale))
-            .map(|(x, (mean, scale))| (x - mean) / scale)
-            .collect();
-        let last = self.layers.len().saturating_sub(1);
-        for (index, (weights, bias)) in self.layers.iter().enumerate() {
-            let columns = values.len().max(1);
-            values = weights
-                .chunks(columns)
-                .zip(bias)
-                .map(|(row, b)| {
-                    let z = b + row.iter().zip(&values).map(|(w, x)| w * x).sum::<f64>();
-                    match self.activation {
-                        _ if index == last => z,
-                        Activation::Tanh => z.tanh(),
-                        Activation::Relu => z.max(0.0),
-                    }
-                })
-                .collect();
-        }
-        values
-            .iter()
-            .zip(self.output_mean.iter().zip(&self.output_scale))
-            .map(|(y, (mean, scale))| y * scale + mean)
-            .collect()
     }
 }
 

@@ -4,8 +4,8 @@
 //! switched off (the paper's strategy for conditions without data).
 
 use crate::export::ExportModel;
-use crate::train::{Activation as HostActivation, Network};
-use hcm_core::residual::{decode, Activation, BlobError, F32Weights, Int8Weights, Mlp};
+use crate::train::Network;
+use hcm_core::residual::{decode, BlobError, F32Weights, Int8Weights, Mlp};
 use std::sync::Arc;
 
 /// Inputs of the 1D contact residual: δ (m), δ̇ (m/s), δ̇0 (m/s).
@@ -48,23 +48,8 @@ impl ContactResidual {
     }
 }
 
-/// The trained host network in the exporter's form.
+/// The trained host network in the exporter's form (the same type: kept as a
+/// function so callers need not know that).
 pub fn export_model(network: &Network) -> ExportModel {
-    ExportModel {
-        inputs: network.inputs,
-        width: network.width,
-        outputs: network.outputs,
-        hidden_layers: network.hidden_layers,
-        activation: match network.activation {
-            HostActivation::Tanh => Activation::Tanh,
-            HostActivation::Relu => Activation::Relu,
-        },
-        layers: network.layers.clone(),
-        input_mean: network.input_mean.clone(),
-        input_scale: network.input_scale.clone(),
-        output_mean: network.output_mean.clone(),
-        output_scale: network.output_scale.clone(),
-        envelope_min: network.envelope_min.clone(),
-        envelope_max: network.envelope_max.clone(),
-    }
+    network.clone()
 }

@@ -12,27 +12,28 @@
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
-/// Activation of the hidden layers (the output layer is linear).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Activation {
-    /// σ(z) = tanh z.
-    Tanh,
-    /// σ(z) = max(z, 0).
-    Relu,
+/// Activation of the hidden layers (the output layer is linear): the core's, so the
+/// trained network and the exported one cannot disagree on it.
+pub use hcm_core::residual::Activation;
+
+/// The activation in f64 for training.
+trait Training {
+    /// σ(z).
+    fn apply_f64(self, z: f64) -> f64;
+    /// σ'(z) written through a = σ(z), which is what backpropagation has at hand:
+    /// tanh' = 1 − a², relu' = 1 for a > 0 else 0.
+    fn slope(self, a: f64) -> f64;
 }
 
-impl Activation {
-    /// σ(z).
+impl Training for Activation {
     #[inline]
-    pub fn apply(self, z: f64) -> f64 {
+    fn apply_f64(self, z: f64) -> f64 {
         match self {
             Activation::Tanh => z.tanh(),
             Activation::Relu => z.max(0.0),
         }
     }
 
-    /// σ'(z) written through a = σ(z), which is what backpropagation has at hand:
-    /// tanh' = 1 − a², relu' = 1 for a > 0 else 0.
     #[inline]
     fn slope(self, a: f64) -> f64 {
         match self {
@@ -119,7 +120,7 @@ fn affine(weights: &[f64], biases: &[f64], a: &[f64], activation: Option<Activat
         .zip(weights.chunks_exact(a.len()))
         .map(|(b, row)| {
             let z = b + dot(row, a);
-            activation.map_or(z, |s| s.apply(z))
+            activation.map_or(z, |s| s.apply_f64(z))
         })
         .collect()
 }
@@ -252,7 +253,7 @@ impl Layout {
             for ((z, b), row) in out.iter_mut().zip(biases).zip(weights.chunks_exact(n_in)) {
                 let sum = b + dot(row, a);
                 *z = if l < last {
-                    self.activation.apply(sum)
+                    self.activation.apply_f64(sum)
                 } else {
                     sum
                 };
