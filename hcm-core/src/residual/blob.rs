@@ -423,7 +423,7 @@ mod tests {
     extern crate std;
 
     use super::*;
-    use crate::residual::{Envelope, F32Weights, Int8Weights, Normalisation};
+    use crate::residual::{F32Weights, Int8Weights};
     use proptest::collection::vec;
     use proptest::prelude::*;
     use std::vec::Vec;
@@ -435,23 +435,9 @@ mod tests {
             .collect()
     }
 
-    /// A hand-built 2-3-1 tanh network and its blob, written with `postcard::to_slice`.
+    /// The mlp tests' hand-built 2-3-1 tanh network and its blob, written with `postcard::to_slice`.
     fn tiny() -> (Mlp<2, 3, 1, 1>, Vec<u8>) {
-        let mut mlp = Mlp::zeroed(Activation::Tanh);
-        mlp.normalisation = Normalisation {
-            input_mean: [1.0, -1.0],
-            input_scale: [2.0, 4.0],
-            output_mean: [5.0],
-            output_scale: [10.0],
-        };
-        mlp.envelope = Envelope {
-            min: [-3.0, -5.0],
-            max: [5.0, 3.0],
-        };
-        mlp.input_layer.weights = [[0.5, -1.0], [1.0, 1.0], [-2.0, 0.25]];
-        mlp.input_layer.bias = [0.1, -0.2, 0.0];
-        mlp.output_layer.weights = [[1.0, -0.5, 2.0]];
-        mlp.output_layer.bias = [0.3];
+        let mlp = crate::residual::mlp::tests::hand_built(Activation::Tanh);
 
         let scaling = &mlp.normalisation;
         let normalisation = le_bytes(&[

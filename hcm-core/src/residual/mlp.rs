@@ -339,12 +339,12 @@ where
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// 2 inputs, 3 tanh/relu neurons, 1 output, with weights small enough to compute
     /// by hand. Normalisation: x̂ = (x − [1, −1]) / [2, 4]; y = ŷ·10 + 5.
-    fn hand_built(activation: Activation) -> Mlp<2, 3, 1, 1> {
+    pub(crate) fn hand_built(activation: Activation) -> Mlp<2, 3, 1, 1> {
         let mut mlp = Mlp::zeroed(activation);
         mlp.normalisation = Normalisation {
             input_mean: [1.0, -1.0],
