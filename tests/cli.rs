@@ -10,6 +10,17 @@ fn hcm(args: &[&str]) -> std::process::Output {
         .expect("hcm runs")
 }
 
+/// Runs `hcm` and asserts it succeeded, showing its standard error otherwise.
+fn hcm_ok(args: &[&str]) -> std::process::Output {
+    let run = hcm(args);
+    assert!(
+        run.status.success(),
+        "hcm {args:?} failed:\n{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    run
+}
+
 fn scenario(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../scenarios")
@@ -23,21 +34,16 @@ fn simulate_then_indicators_json_round_trip() {
     let dir = tempfile::tempdir().unwrap();
     let out: PathBuf = dir.path().join("ball.csv");
     let ball = scenario("bouncing_ball.toml");
-    let run = hcm(&[
+    let run = hcm_ok(&[
         "simulate",
         "--scenario",
         &ball,
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
     let stdout = String::from_utf8_lossy(&run.stdout);
     assert!(stdout.contains("ball–ground"), "{stdout}");
-    let run = hcm(&[
+    let run = hcm_ok(&[
         "indicators",
         "--data",
         out.to_str().unwrap(),
@@ -45,11 +51,6 @@ fn simulate_then_indicators_json_round_trip() {
         &ball,
         "--json",
     ]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
     let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
     let summary = &json["summary"][0];
     assert_eq!(summary["runs"], 1);
@@ -116,15 +117,13 @@ fn indicators_name_the_bad_line_of_a_data_file() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("ball.csv");
     let ball = scenario("bouncing_ball.toml");
-    assert!(hcm(&[
+    hcm_ok(&[
         "simulate",
         "--scenario",
         &ball,
         "--out",
-        out.to_str().unwrap()
-    ])
-    .status
-    .success());
+        out.to_str().unwrap(),
+    ]);
     let text = std::fs::read_to_string(&out).unwrap();
     let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
     lines[5] = lines[5].replacen("0.0,", "NaN,", 1);
@@ -150,7 +149,7 @@ fn generate_identify_evaluate_through_the_binary() {
     let data = dir.path().join("data.csv");
     let pm2 = dir.path().join("pm2.toml");
     let ball = scenario("bouncing_ball.toml");
-    let run = hcm(&[
+    hcm_ok(&[
         "generate",
         "--scenario",
         &ball,
@@ -161,17 +160,12 @@ fn generate_identify_evaluate_through_the_binary() {
         "--out",
         data.to_str().unwrap(),
     ]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
     let (s1, s2) = (
         dir.path().join("data.s1.csv"),
         dir.path().join("data.s2.csv"),
     );
     assert!(s1.exists() && s2.exists());
-    let run = hcm(&[
+    hcm_ok(&[
         "identify",
         "--scenario",
         &ball,
@@ -184,11 +178,6 @@ fn generate_identify_evaluate_through_the_binary() {
         "--out",
         pm2.to_str().unwrap(),
     ]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
     let physics: toml::Table = std::fs::read_to_string(&pm2).unwrap().parse().unwrap();
     let k = physics["contact"][0]["parameters"]["stiffness"]
         .as_float()
@@ -197,7 +186,7 @@ fn generate_identify_evaluate_through_the_binary() {
         (1e9..1e10).contains(&k),
         "stiffness {k} outside the scenario's bounds"
     );
-    let run = hcm(&[
+    let run = hcm_ok(&[
         "evaluate",
         "--scenario",
         &ball,
@@ -207,11 +196,6 @@ fn generate_identify_evaluate_through_the_binary() {
         pm2.to_str().unwrap(),
         "--json",
     ]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
     let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
     let errors = json[0]["models"][0]["errors"].as_array().unwrap();
     assert_eq!(errors.len(), 4);
@@ -253,7 +237,7 @@ fn reproduce_writes_the_report_blobs_and_figures() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("ball");
     let ball = scenario("bouncing_ball.toml");
-    let run = hcm(&[
+    hcm_ok(&[
         "reproduce",
         "bouncing-ball",
         "--runs",
@@ -267,11 +251,6 @@ fn reproduce_writes_the_report_blobs_and_figures() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
     let report = std::fs::read_to_string(out.join("report.md")).unwrap();
     for needle in [
         "error of PM2",
