@@ -36,12 +36,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let physics = Physics::read(&args.physics)?;
     let pm2 = physics.apply(&scenario, &args.physics)?.model()?;
-    anyhow::ensure!(
-        args.contact < pm2.contacts.len(),
-        "--contact {}: the scenario has {} contact(s)",
-        args.contact,
-        pm2.contacts.len()
-    );
+    super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
     let mut models = vec![("PM2", pm2.clone())];
     if let Some(path) = &args.residual {

@@ -48,12 +48,7 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let model = scenario.model()?;
-    anyhow::ensure!(
-        args.contact < model.contacts.len(),
-        "--contact {}: the scenario has {} contact(s)",
-        args.contact,
-        model.contacts.len()
-    );
+    super::check_contact(args.contact, &model)?;
     let data = Dataset::read(&args.data)?;
     let settings = GeneticSettings {
         seed: args.seed,

@@ -110,3 +110,13 @@ impl ScenarioArgs {
         hcm_host::scenario::Scenario::load(&self.scenario, &self.overrides)
     }
 }
+
+/// Checks that `contact` indexes one of `model`'s contacts.
+pub fn check_contact(contact: usize, model: &hcm_host::scenario::Model) -> anyhow::Result<usize> {
+    anyhow::ensure!(
+        contact < model.contacts.len(),
+        "--contact {contact}: the scenario has {} contact(s), numbered from 0",
+        model.contacts.len()
+    );
+    Ok(contact)
+}

@@ -52,12 +52,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let pm2 = Physics::read(&args.physics)?
         .apply(&scenario, &args.physics)?
         .model()?;
-    anyhow::ensure!(
-        args.contact < pm2.contacts.len(),
-        "--contact {}: the scenario has {} contact(s)",
-        args.contact,
-        pm2.contacts.len()
-    );
+    super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
     let (samples, _) = force_samples(&pm2, &data, args.contact)?;
     let (inputs, targets) = residual_pairs(&samples, &pm2.contacts[args.contact].law);
