@@ -101,14 +101,11 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
     let spec = &model.scenario.simulation;
     let layout = Layout::new(model);
     let y0 = layout.initial_state(model);
-    let mut system = ContactSystem {
-        model,
-        layout: &layout,
-        modes: ContactModes {
-            touching: vec![false; model.contacts.len()],
-            approach_speed: vec![0.0; model.contacts.len()],
-        },
+    let modes = ContactModes {
+        touching: vec![false; model.contacts.len()],
+        approach_speed: vec![0.0; model.contacts.len()],
     };
+    let mut system = ContactSystem::new(model, &layout, modes);
     let mut events: Vec<ContactEvent> = Vec::new();
     let mut open: Vec<Option<usize>> = vec![None; model.contacts.len()];
     for (c, slot) in open.iter_mut().enumerate() {
@@ -231,11 +228,7 @@ fn refined_peak(
         return 0.0;
     };
     let segment = &segments[candidate.segment];
-    let system = ContactSystem {
-        model,
-        layout,
-        modes: segment.modes.clone(),
-    };
+    let system = ContactSystem::new(model, layout, segment.modes.clone());
     peak::refine(
         &system,
         &segment.stepper,

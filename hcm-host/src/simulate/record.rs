@@ -68,11 +68,7 @@ pub fn sample(
         }
         let segment = &segments[index];
         segment.stepper.dense_output(t, &mut y);
-        let system = ContactSystem {
-            model,
-            layout,
-            modes: segment.modes.clone(),
-        };
+        let system = ContactSystem::new(model, layout, segment.modes.clone());
         let loads = system.loads(y.components());
         for (&b, track) in recorded.iter().zip(tracks.iter_mut()) {
             let (position, velocity) = layout.motion(model, y.components(), b);

@@ -31,10 +31,12 @@ pub struct ContactSystem<'a> {
     pub layout: &'a Layout,
     /// Contact modes in force.
     pub modes: ContactModes,
+    /// Reused by [`OdeSystem::derivative`], so the solver's hot path does not allocate.
+    scratch: Loads,
 }
 
 /// Forces and torques (N, N·m) on every body, and each contact's normal force (N).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct Loads {
     /// Force on each body (N).
     pub force: Vec<Vector3<f64>>,
@@ -60,14 +62,32 @@ impl ContactSystem<'_> {
     }
 
     /// Contact loads in state `y` under the current modes.
+    /// A system for `model` in the given contact `modes`.
+    pub fn new<'m>(model: &'m Model, layout: &'m Layout, modes: ContactModes) -> ContactSystem<'m> {
+        ContactSystem {
+            model,
+            layout,
+            modes,
+            scratch: Loads::default(),
+        }
+    }
+
     pub fn loads(&self, y: &[f64]) -> Loads {
-        let n_bodies = self.model.bodies.len();
-        let mut loads = Loads {
-            force: vec![Vector3::zeros(); n_bodies],
-            torque: vec![Vector3::zeros(); n_bodies],
-            normal_force: vec![0.0; self.model.contacts.len()],
-            kinematics: Vec::with_capacity(self.model.contacts.len()),
-        };
+        let mut loads = Loads::default();
+        self.fill_loads(y, &mut loads);
+        loads
+    }
+
+    /// [`ContactSystem::loads`] into existing buffers.
+    fn fill_loads(&self, y: &[f64], loads: &mut Loads) {
+        let (n_bodies, n_contacts) = (self.model.bodies.len(), self.model.contacts.len());
+        loads.force.clear();
+        loads.force.resize(n_bodies, Vector3::zeros());
+        loads.torque.clear();
+        loads.torque.resize(n_bodies, Vector3::zeros());
+        loads.normal_force.clear();
+        loads.normal_force.resize(n_contacts, 0.0);
+        loads.kinematics.clear();
         for (c, contact) in self.model.contacts.iter().enumerate() {
             let k = self.kinematics(y, c);
             loads.kinematics.push(k);
@@ -100,14 +120,14 @@ impl ContactSystem<'_> {
             loads.force[contact.body_2] += w.force_2;
             loads.torque[contact.body_2] += w.torque_2;
         }
-        loads
     }
 }
 
 impl OdeSystem<f64, StateVector> for ContactSystem<'_> {
     fn derivative(&mut self, _time: f64, state: &StateVector, derivative: &mut StateVector) {
         let (y, dy) = (&state.0, &mut derivative.0);
-        let loads = self.loads(y);
+        let mut loads = std::mem::take(&mut self.scratch);
+        self.fill_loads(y, &mut loads);
         for (b, body) in self.model.bodies.iter().enumerate() {
             if let Some(s) = self.layout.slot(b) {
                 let acceleration = self.model.gravity + loads.force[b] / body.mass;
@@ -120,5 +140,6 @@ impl OdeSystem<f64, StateVector> for ContactSystem<'_> {
             dy[i] = loads.normal_force[c];
             dy[i + 1] = loads.normal_force[c] * k.rate;
         }
+        self.scratch = loads;
     }
 }
