@@ -203,6 +203,64 @@ fn generate_identify_evaluate_through_the_binary() {
         errors.iter().all(|e| e.as_f64().unwrap() < 0.2),
         "{errors:?}"
     );
+
+    // train → export (f32 and int8) → evaluate with the residual: the HCM column.
+    let trained = dir.path().join("residual.json");
+    hcm_ok(&[
+        "train",
+        "--scenario",
+        &ball,
+        "--data",
+        s1.to_str().unwrap(),
+        "--physics",
+        pm2.to_str().unwrap(),
+        "--epochs",
+        "20",
+        "--int8-epochs",
+        "2",
+        "--out",
+        trained.to_str().unwrap(),
+    ]);
+    for weights in ["f32", "int8"] {
+        let blob = dir.path().join(format!("residual.{weights}.bin"));
+        hcm_ok(&[
+            "export",
+            "--residual",
+            trained.to_str().unwrap(),
+            "--weights",
+            weights,
+            "--out",
+            blob.to_str().unwrap(),
+        ]);
+        let run = hcm_ok(&[
+            "evaluate",
+            "--scenario",
+            &ball,
+            "--data",
+            s2.to_str().unwrap(),
+            "--physics",
+            pm2.to_str().unwrap(),
+            "--residual",
+            blob.to_str().unwrap(),
+            "--json",
+        ]);
+        let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+        let models = json[0]["models"].as_array().unwrap();
+        assert_eq!(models.len(), 2, "{weights}: PM2 and HCM columns");
+        assert_eq!(models[1]["errors"].as_array().unwrap().len(), 4);
+    }
+    // A missing or foreign trained-residual file is named, and no blob appears.
+    let blob = dir.path().join("never.bin");
+    let run = hcm(&[
+        "export",
+        "--residual",
+        pm2.to_str().unwrap(),
+        "--out",
+        blob.to_str().unwrap(),
+    ]);
+    assert!(!run.status.success());
+    assert!(String::from_utf8_lossy(&run.stderr).contains("pm2.toml"));
+    assert!(!blob.exists());
 }
 
 #[test]
@@ -263,7 +321,11 @@ fn reproduce_writes_the_report_blobs_and_figures() {
     for figure in ["contact_force.svg", "force_error.svg"] {
         let svg = std::fs::read_to_string(out.join(figure)).unwrap();
         assert!(svg.matches("<polyline").count() >= 2, "{figure}");
+        let png = std::fs::read(out.join(figure.replace(".svg", ".png"))).unwrap();
+        assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"), "{figure} as PNG");
     }
+    // The trained network and its int8 twin, for `hcm export`.
+    assert!(hcm_host::train::TrainedResidual::read(&out.join("residual.json")).is_ok());
     let blob = std::fs::read(out.join("residual.bin")).unwrap();
     assert!(hcm_host::residual::ContactResidual::decode(&blob).is_ok());
 }

@@ -298,3 +298,111 @@ fn speed_of_100_000_residual_pairs_with_the_defaults() {
         report.validation_loss.sqrt()
     );
 }
+
+#[test]
+fn the_int8_twin_beats_plain_rounding_and_exports_exactly() {
+    use hcm_core::residual::{decode, Int8Weights, Mlp, Quantisation};
+    use hcm_host::export::encode;
+    use hcm_host::train::quantisation_aware;
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let samples = impact_samples(&mut rng, 300, 20, 0.0);
+    let (inputs, targets) = residual_pairs(&samples, &pm2());
+    let settings = TrainSettings {
+        max_epochs: 60,
+        ..TrainSettings::default()
+    };
+    let (teacher, _) = quiet(&inputs, &targets, &settings).unwrap();
+    let (twin, report) = quantisation_aware(&teacher, &inputs, 5, 1, |_, _| {}).unwrap();
+    println!(
+        "int8 twin: RMS to the teacher {:.3} N plainly rounded, {:.3} N tuned (worst {:.3} N)",
+        report.rounded_rms, report.tuned_rms, report.tuned_max
+    );
+    assert!(
+        report.tuned_rms < 0.5 * report.rounded_rms,
+        "fine-tuning gained too little: {report:?}"
+    );
+    // Same shape, normalisation and envelope; only the weights moved.
+    assert_eq!(
+        (&twin.input_mean, &twin.envelope_max),
+        (&teacher.input_mean, &teacher.envelope_max)
+    );
+    // Its hidden weights sit on their int8 levels, so the int8 blob stores it
+    // exactly: the core reproduces the host twin to f32 rounding.
+    let blob = encode(&twin, Quantisation::Int8).unwrap();
+    let core: Mlp<3, 16, 1, 2, Int8Weights> = decode(&blob).unwrap();
+    let scale = targets.iter().map(|t| t[0].abs()).fold(0.0, f64::max);
+    for x in inputs.iter().step_by(97) {
+        let host = twin.evaluate(x)[0];
+        let [y] = core.evaluate(&[x[0] as f32, x[1] as f32, x[2] as f32]);
+        assert!(
+            (f64::from(y) - host).abs() < 1e-5 * scale,
+            "core {y} vs host {host} at {x:?}"
+        );
+    }
+}
+
+/// Two outputs with one cause: the force error and the moment error it makes about
+/// a point 5 mm off the contact normal, plus a rate term of its own (N·m).
+fn force_and_moment(s: &ForceSample) -> [f64; 2] {
+    let force = correction(s.depth, s.rate);
+    [force, 0.005 * force + 0.05 * s.rate]
+}
+
+#[test]
+fn output_nets_joint_and_per_output() {
+    use hcm_host::train::OutputNets;
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let samples = impact_samples(&mut rng, 400, 20, 0.0);
+    let inputs: Vec<Vec<f64>> = samples
+        .iter()
+        .map(|s| vec![s.depth, s.rate, s.approach_speed])
+        .collect();
+    // Measured = truth + noise: σ 15 N on the force, 0.05 N·m on the moment.
+    let targets: Vec<Vec<f64>> = samples
+        .iter()
+        .map(|s| {
+            let [f, m] = force_and_moment(s);
+            vec![f + 15.0 * gaussian(&mut rng), m + 0.05 * gaussian(&mut rng)]
+        })
+        .collect();
+    let held_out = impact_samples(&mut rng, 100, 20, 0.0);
+    let mut rms = Vec::new();
+    for output_nets in [OutputNets::Joint, OutputNets::PerOutput] {
+        let settings = TrainSettings {
+            output_nets,
+            ..TrainSettings::default()
+        };
+        let (network, report) = quiet(&inputs, &targets, &settings).unwrap();
+        let mut sums = [0.0; 2];
+        for s in &held_out {
+            let y = network.evaluate(&[s.depth, s.rate, s.approach_speed]);
+            let truth = force_and_moment(s);
+            for o in 0..2 {
+                sums[o] += (y[o] - truth[o]).powi(2);
+            }
+        }
+        let r = sums.map(|v| (v / held_out.len() as f64).sqrt());
+        let parameters: usize = network.layers.iter().map(|(w, b)| w.len() + b.len()).sum();
+        println!(
+            "{output_nets:?}: held-out RMS against the truth {:.2} N, {:.4} N·m; {parameters} parameters, {} epochs, {:.2} s",
+            r[0], r[1], report.epochs, report.seconds
+        );
+        rms.push(r);
+        if output_nets == OutputNets::PerOutput {
+            // The merged network's output o is exactly the network trained on column o.
+            let column: Vec<Vec<f64>> = targets.iter().map(|t| vec![t[1]]).collect();
+            let (alone, _) = quiet(&inputs, &column, &TrainSettings::default()).unwrap();
+            for x in inputs.iter().step_by(211) {
+                let (merged, part) = (network.evaluate(x)[1], alone.evaluate(x)[0]);
+                assert!(
+                    (merged - part).abs() <= 1e-12 * part.abs().max(1.0),
+                    "{merged} vs {part}"
+                );
+            }
+        }
+    }
+    // Both strategies learn both outputs well below their noise.
+    for r in &rms {
+        assert!(r[0] < 5.0 && r[1] < 0.02, "{rms:?}");
+    }
+}

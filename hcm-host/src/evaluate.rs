@@ -29,6 +29,9 @@ pub struct ConditionTable {
     pub runs: usize,
     /// S2 mean indicators.
     pub measured: Indicators,
+    /// Standard error of each S2 mean (s/√n, same units): errors below about twice
+    /// this, relative to the mean, are within the sampling noise of S2.
+    pub standard_error: Indicators,
     /// The models compared.
     pub models: Vec<ModelColumn>,
 }
@@ -50,6 +53,7 @@ pub fn evaluate(
             condition: target.condition.clone(),
             runs: target.runs,
             measured: target.indicators,
+            standard_error: target.standard_error,
             models: models
                 .iter()
                 .map(|(label, model)| {
@@ -70,8 +74,8 @@ pub fn evaluate(
 pub fn markdown(table: &ConditionTable) -> String {
     use std::fmt::Write;
     let mut out = String::new();
-    let mut header = String::from("| indicator | S2 (mean) |");
-    let mut rule = String::from("|---|---|");
+    let mut header = String::from("| indicator | S2 (mean) | S2 standard error |");
+    let mut rule = String::from("|---|---|---|");
     for m in &table.models {
         let _ = write!(header, " {} |", m.label);
         rule.push_str("---|");
@@ -88,7 +92,12 @@ pub fn markdown(table: &ConditionTable) -> String {
         "contact duration (s)",
     ];
     for (i, label) in labels.iter().enumerate() {
-        let _ = write!(out, "| {label} | {:.5e} |", table.measured.values()[i]);
+        let (mean, error) = (table.measured.values()[i], table.standard_error.values()[i]);
+        let _ = write!(
+            out,
+            "| {label} | {mean:.5e} | {:.2} % |",
+            100.0 * (error / mean).abs()
+        );
         for m in &table.models {
             match m.indicators {
                 Some(v) => {

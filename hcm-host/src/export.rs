@@ -114,9 +114,10 @@ impl ExportModel {
 
 /// Encodes `model` as a weights blob with its weights stored as `quantisation`.
 ///
-/// Int8 stores each weight row as q = round(w / s) with s = max|w_row| / 127 (s = 1 for
-/// an all-zero row), so the largest weight of each row is exact to f32 rounding and
-/// the others are off by at most s/2.
+/// Int8 stores each weight row of the hidden → hidden layers as q = round(w / s) with
+/// s = max|w_row| / 127 (s = 1 for an all-zero row), so the largest weight of each row
+/// is exact to f32 rounding and the others are off by at most s/2; the input and
+/// output layers stay f32.
 pub fn encode(model: &ExportModel, quantisation: Quantisation) -> Result<Vec<u8>, ExportError> {
     model.check_shape()?;
     let size = |n: usize| u32::try_from(n).map_err(|_| ExportError::TooLarge);
@@ -146,9 +147,13 @@ pub fn encode(model: &ExportModel, quantisation: Quantisation) -> Result<Vec<u8>
         model.layers.iter().zip(model.layer_sizes()).enumerate()
     {
         let what = format!("layer {index} weights");
+        // Only hidden → hidden layers are int8 (blob format version 2).
+        let hidden_to_hidden = index > 0 && index + 1 < model.layers.len();
         match quantisation {
-            Quantisation::F32 => push_f32s(&mut layers, &what, weights)?,
-            Quantisation::Int8 => push_int8(&mut layers, &what, weights, inputs)?,
+            Quantisation::Int8 if hidden_to_hidden => {
+                push_int8(&mut layers, &what, weights, inputs)?
+            }
+            _ => push_f32s(&mut layers, &what, weights)?,
         }
         push_f32s(&mut layers, &format!("layer {index} bias"), bias)?;
     }
@@ -207,6 +212,23 @@ fn push_positive(out: &mut Vec<u8>, what: &str, values: &[f64]) -> Result<(), Ex
     push_f32s(out, what, values)
 }
 
+/// One weight row in the int8 storage: levels q = round(w / s) in −127…127 and the
+/// row's f32 scale s = max|w| / 127 (1 for an all-zero row); the core computes q·s.
+/// Finite weights expected (the encoder checks them first).
+pub fn int8_row(row: &[f64]) -> (Vec<i8>, f32) {
+    let largest = row.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
+    // The f32 scale the core multiplies by; quantise against it, not its f64 twin.
+    let scale = match (largest / 127.0) as f32 {
+        s if s > 0.0 && s.is_finite() => s,
+        _ => 1.0,
+    };
+    let levels = row
+        .iter()
+        .map(|w| (w / f64::from(scale)).round().clamp(-127.0, 127.0) as i8)
+        .collect();
+    (levels, scale)
+}
+
 /// Appends the rows of `weights` as int8 (one byte each), then one `f32` scale per row.
 fn push_int8(
     out: &mut Vec<u8>,
@@ -221,16 +243,8 @@ fn push_int8(
     }
     let mut scales = Vec::new();
     for row in weights.chunks(columns.max(1)) {
-        let largest = row.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
-        // The f32 scale the core multiplies by; quantise against it, not its f64 twin.
-        let scale = match (largest / 127.0) as f32 {
-            s if s > 0.0 && s.is_finite() => s,
-            _ => 1.0,
-        };
-        for w in row {
-            let q = (w / f64::from(scale)).round().clamp(-127.0, 127.0) as i8;
-            out.extend_from_slice(&q.to_le_bytes());
-        }
+        let (levels, scale) = int8_row(row);
+        out.extend(levels.iter().map(|q| q.to_le_bytes()[0]));
         scales.push(f64::from(scale));
     }
     push_f32s(out, &format!("{what} row scale"), &scales)

@@ -113,3 +113,15 @@ impl Drop for Temporary {
         }
     }
 }
+
+/// Writes `bytes` as the whole content of the file at `path`, atomically (see
+/// [`write_atomically`]).
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+    write_atomically(path, |w: &mut dyn Write| {
+        w.write_all(bytes).map_err(|source| OutputError {
+            path: path.to_owned(),
+            action: "write",
+            source,
+        })
+    })
+}

@@ -53,3 +53,28 @@ impl ContactResidual {
 pub fn export_model(network: &Network) -> ExportModel {
     network.clone()
 }
+
+/// Worst |core − host| of `decoded` against the host `network` it was exported from,
+/// relative to the largest |host output|, over a 9×9×9 grid spanning the training
+/// envelope (the points where the core runs the residual).
+pub fn round_trip_error(network: &Network, decoded: &ContactResidual) -> f64 {
+    let steps = 9;
+    let axis = |i: usize, k: usize| {
+        let (lo, hi) = (network.envelope_min[i], network.envelope_max[i]);
+        lo + (hi - lo) * k as f64 / (steps - 1) as f64
+    };
+    let (mut worst, mut largest) = (0.0_f64, 0.0_f64);
+    for a in 0..steps {
+        for b in 0..steps {
+            for c in 0..steps {
+                let x = [axis(0, a), axis(1, b), axis(2, c)];
+                let host = network.evaluate(&x)[0];
+                largest = largest.max(host.abs());
+                if let Some(core) = decoded.correction(x[0], x[1], x[2]) {
+                    worst = worst.max((core - host).abs());
+                }
+            }
+        }
+    }
+    worst / largest.max(f64::MIN_POSITIVE)
+}

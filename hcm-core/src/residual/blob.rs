@@ -11,8 +11,10 @@
 //! - `normalisation`: μ_x, σ_x (INPUTS `f32` each), μ_y, σ_y (OUTPUTS `f32` each);
 //! - `envelope`: min, max (INPUTS `f32` each), raw units;
 //! - `layers`: for each layer, input → hidden → … → output: the weights row-major
-//!   `[out][in]` (`f32`, or `i8` in \[−127, 127\]), for int8 one `f32` scale per output row,
-//!   then the bias `[out]` (`f32`).
+//!   `[out][in]` (`f32`, or for the hidden → hidden layers of an int8 blob `i8` in
+//!   \[−127, 127\] followed by one `f32` scale per output row), then the bias `[out]`
+//!   (`f32`). The input and output layers are `f32` in both kinds (version 2; version
+//!   1 stored every layer of an int8 blob as int8).
 //!
 //! The arrays are raw bytes in a borrowed postcard byte field, not serde sequences:
 //! decoding then borrows from the blob (nothing allocated) and works for any size
@@ -29,7 +31,7 @@ use serde::{Deserialize, Serialize, Serializer};
 pub const MAGIC: [u8; 4] = *b"HCM1";
 
 /// The blob format this crate writes and reads.
-pub const VERSION: u16 = 1;
+pub const VERSION: u16 = 2;
 
 /// The layer sizes of a network.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

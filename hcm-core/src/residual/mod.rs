@@ -42,7 +42,8 @@ pub use mlp::{Envelope, F32Weights, Hidden, HiddenDepth, Int8Weights, Layer, Mlp
 use core::fmt;
 
 /// The nonlinearity applied after every hidden layer; the output layer is linear.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Activation {
     /// tanh(z).
     Tanh,

@@ -1,6 +1,7 @@
 //! The `hcm` command line: one module per subcommand, each with its `Args` and `run`.
 
 mod evaluate;
+mod export;
 mod force;
 mod generate;
 mod identify;
@@ -38,8 +39,10 @@ enum Command {
     Identify(identify::Args),
     /// The paper's table for a physics model on validation data (S2).
     Evaluate(evaluate::Args),
-    /// Train the residual network of the HCM on S1 and export its weights blob.
+    /// Train the residual network of the HCM on S1 (and its int8 twin).
     Train(train::Args),
+    /// Export a trained residual network as the core's weights blob (f32 or int8).
+    Export(export::Args),
     /// Reproduce one of the paper's examples end to end, with report and figures.
     Reproduce(reproduce::Args),
 }
@@ -56,6 +59,7 @@ pub fn main() -> ExitCode {
         Command::Identify(args) => identify::run(args),
         Command::Evaluate(args) => evaluate::run(args),
         Command::Train(args) => train::run(args),
+        Command::Export(args) => export::run(args),
         Command::Reproduce(args) => reproduce::run(args),
     };
     match result {

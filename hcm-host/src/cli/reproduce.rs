@@ -1,27 +1,29 @@
 //! `hcm reproduce`: the paper's whole method for one example — generate (PM1) →
 //! split → identify (PM2) → train → export → evaluate — with the report and figures.
 
+use super::export::{blob, write_blob, Weights};
 use super::progress_bar;
 use anyhow::Context;
-use hcm_core::residual::Quantisation;
 use hcm_host::evaluate::{evaluate, markdown, ConditionTable};
 use hcm_host::experiment::{generate, split};
-use hcm_host::export::encode;
-use hcm_host::figure::{line_plot, Series};
+use hcm_host::figure::{Colour, Figure, Series};
 use hcm_host::identify::evolve::Fitness;
 use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::replay::{simulate_target_with, targets};
 use hcm_host::identify::samples::force_samples;
 use hcm_host::identify::{identify, Method, Physics};
 use hcm_host::law_catalogue;
-use hcm_host::output::write_atomically;
-use hcm_host::residual::{export_model, ContactResidual, HIDDEN, WIDTH};
+use hcm_host::output::{write_atomically, write_bytes};
+use hcm_host::residual::{ContactResidual, HIDDEN, WIDTH};
 use hcm_host::scenario::Scenario;
-use hcm_host::train::{residual_pairs, train, TrainSettings};
+use hcm_host::train::{quantisation_aware, residual_pairs, train, TrainSettings, TrainedResidual};
 use std::fmt::Write as _;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+/// Epochs of quantisation-aware fine-tuning of the int8 twin.
+const INT8_EPOCHS: usize = 20;
 
 /// The paper's examples.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -104,7 +106,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
     let clock = Instant::now();
     let total = (runs * scenario.experiment.conditions.len().max(1)) as u64;
-    let bar = progress_bar(total, "1/4 generate");
+    let bar = progress_bar(total, "1/5 generate");
     let data = generate(&scenario, runs, args.seed, || bar.inc(1))?;
     bar.finish_and_clear();
     let sets = split(&scenario, data, args.seed);
@@ -126,7 +128,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             },
         ),
     };
-    let bar = progress_bar(1, "2/4 identify");
+    let bar = progress_bar(1, "2/5 identify");
     let found = identify(
         &scenario,
         &model,
@@ -157,38 +159,45 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         seed: args.seed,
         ..TrainSettings::default()
     };
-    let bar = progress_bar(settings.max_epochs as u64, "3/4 train");
+    let bar = progress_bar(settings.max_epochs as u64, "3/5 train");
     let (network, report) = train(&inputs, &outputs, &settings, |epoch, _, _| {
         bar.set_position(epoch as u64)
     })?;
     bar.finish_and_clear();
-    let export = export_model(&network);
+    let bar = progress_bar(INT8_EPOCHS as u64, "3/5 int8 twin");
+    let (int8, tuned) = quantisation_aware(&network, &inputs, INT8_EPOCHS, args.seed, |e, _| {
+        bar.set_position(e as u64)
+    })?;
+    bar.finish_and_clear();
+    let trained = TrainedResidual::new(0, network, int8);
+    trained.write(&args.out.join("residual.json"))?;
+    timings.push(("train (+ int8 twin)", clock.elapsed().as_secs_f64()));
+
+    let clock = Instant::now();
     let mut blobs = Vec::new();
-    for (quantisation, name) in [
-        (Quantisation::F32, "residual.bin"),
-        (Quantisation::Int8, "residual.int8.bin"),
+    for (weights, name) in [
+        (Weights::F32, "residual.bin"),
+        (Weights::Int8, "residual.int8.bin"),
     ] {
-        let bytes = encode(&export, quantisation)?;
-        write_atomically(
-            &args.out.join(name),
-            |w: &mut dyn Write| -> anyhow::Result<()> { Ok(w.write_all(&bytes)?) },
-        )?;
+        let (bytes, round_trip) = blob(&trained, weights)?;
+        write_blob(&args.out.join(name), &bytes)?;
         blobs.push((
-            quantisation,
+            weights,
             bytes.len(),
+            round_trip,
             ContactResidual::decode(&bytes).map_err(|e| anyhow::anyhow!("{e}"))?,
         ));
     }
-    timings.push(("train + export", clock.elapsed().as_secs_f64()));
+    timings.push(("export", clock.elapsed().as_secs_f64()));
 
     let clock = Instant::now();
-    let bar = progress_bar(1, "4/4 evaluate");
+    let bar = progress_bar(1, "5/5 evaluate");
     let mut models = vec![("PM2".to_owned(), pm2.clone())];
-    for (quantisation, _, residual) in &blobs {
+    for (weights, _, _, residual) in &blobs {
         let mut hcm = pm2.clone();
         hcm.contacts[0].residual = Some(residual.clone());
         models.push((
-            if *quantisation == Quantisation::F32 {
+            if *weights == Weights::F32 {
                 "HCM".into()
             } else {
                 "HCM int8".into()
@@ -226,8 +235,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     md.push_str(&markdown(table));
     md.push_str(&paper_comparison(args.example, table));
-    let _ = writeln!(md, "\nResidual: {} training samples, {} epochs (best {}), validation RMS {:.2} N. Blobs: {}.\n", inputs.len(), report.epochs, report.best_epoch, report.validation_loss.sqrt(),
-        blobs.iter().map(|(q, n, _)| format!("{q} {n} bytes")).collect::<Vec<_>>().join(", "));
+    let _ = writeln!(md, "\nResidual: {} training samples, {} epochs (best {}), validation RMS {:.2} N. int8 twin: RMS to the f32 network {:.3} N after plain rounding, {:.3} N after {} epochs of quantisation-aware fine-tuning. Blobs (core vs host, worst relative error over the envelope): {}.\n", inputs.len(), report.epochs, report.best_epoch, report.validation_loss.sqrt(),
+        tuned.rounded_rms, tuned.tuned_rms, tuned.epochs,
+        blobs.iter().map(|(w, n, e, _)| format!("{w:?} {n} bytes ({e:.1e})")).collect::<Vec<_>>().join(", "));
     let _ = writeln!(md, "## Stage timings (s)\n\n| stage | s |\n|---|---|");
     for (stage, seconds) in &timings {
         let _ = writeln!(md, "| {stage} | {seconds:.2} |");
@@ -268,7 +278,8 @@ fn paper_comparison(example: Example, table: &ConditionTable) -> String {
     out
 }
 
-/// Fig 9/12 (contact force of S2 mean, PM2, HCM) and Fig 10/13 (force error over the contact) as SVG.
+/// Fig 9/12 (contact force of S2 mean, PM2, HCM) and Fig 10/13 (force error over the contact),
+/// each as SVG and PNG; returns the file names.
 fn figures(
     pm2: &hcm_host::scenario::Model,
     hcm: &hcm_host::scenario::Model,
@@ -301,46 +312,52 @@ fn figures(
             .map(|(j, (m, s))| (time(j), m - s))
             .collect::<Vec<_>>()
     };
-    let force = line_plot(
+    let force = Figure::new(
         "Contact force over the contact (S2)",
         "time since touch-down (µs)",
         "normal force (N)",
-        &[
+        vec![
             Series {
                 label: "S2 mean",
-                colour: "#333333",
+                colour: Colour::hex(0x333333),
                 points: points(&target.curve),
             },
             Series {
                 label: "PM2",
-                colour: "#d62728",
+                colour: Colour::hex(0xd62728),
                 points: points(&pm2_curve),
             },
             Series {
                 label: "HCM",
-                colour: "#1f77b4",
+                colour: Colour::hex(0x1f77b4),
                 points: points(&hcm_curve),
             },
         ],
     );
-    let error = line_plot(
+    let error = Figure::new(
         "Force error: S2 mean − model",
         "time since touch-down (µs)",
         "force error (N)",
-        &[
+        vec![
             Series {
                 label: "PM2",
-                colour: "#d62728",
+                colour: Colour::hex(0xd62728),
                 points: errors(&pm2_curve),
             },
             Series {
                 label: "HCM",
-                colour: "#1f77b4",
+                colour: Colour::hex(0x1f77b4),
                 points: errors(&hcm_curve),
             },
         ],
     );
-    write_text(&out.join("contact_force.svg"), &force)?;
-    write_text(&out.join("force_error.svg"), &error)?;
-    Ok(vec!["contact_force.svg".into(), "force_error.svg".into()])
+    let mut names = Vec::new();
+    for (stem, figure) in [("contact_force", &force), ("force_error", &error)] {
+        let (svg, png) = (format!("{stem}.svg"), format!("{stem}.png"));
+        write_text(&out.join(&svg), &figure.svg())?;
+        let bytes = figure.png().with_context(|| format!("drawing {png}"))?;
+        write_bytes(&out.join(&png), &bytes)?;
+        names.extend([svg, png]);
+    }
+    Ok(names)
 }

@@ -1,21 +1,16 @@
-//! `hcm train`: the data-driven error model of the HCM, trained on S1 and exported
-//! as the core's weights blob.
+//! `hcm train`: the data-driven error model of the HCM, trained on S1, with its
+//! quantisation-aware int8 twin; `hcm export` turns the result into weights blobs.
 
 use super::progress_bar;
-use anyhow::Context;
-use hcm_core::residual::Quantisation;
 use hcm_host::dataset::Dataset;
-use hcm_host::export::encode;
 use hcm_host::identify::samples::force_samples;
 use hcm_host::identify::Physics;
-use hcm_host::output::write_atomically;
-use hcm_host::residual::{export_model, ContactResidual, HIDDEN, WIDTH};
-use hcm_host::train::{residual_pairs, train, TrainSettings};
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use hcm_host::residual::{HIDDEN, WIDTH};
+use hcm_host::train::{quantisation_aware, residual_pairs, train, TrainSettings, TrainedResidual};
+use std::path::PathBuf;
 
-/// Train the residual network (inputs δ, δ̇, δ̇0; output measured − PM2 force) and
-/// export it: OUT gets the f32 blob, OUT with `.int8` before the extension the int8 one.
+/// Train the residual network (inputs δ, δ̇, δ̇0; output measured − PM2 force) and its
+/// int8 twin; OUT is a JSON file for `hcm export`.
 #[derive(clap::Args)]
 pub struct Args {
     #[command(flatten)]
@@ -35,16 +30,12 @@ pub struct Args {
     /// Most training epochs (early stopping usually ends sooner).
     #[arg(long, default_value_t = 200)]
     epochs: usize,
-    /// Weights blob to write (f32); the int8 blob goes beside it.
+    /// Epochs of quantisation-aware fine-tuning of the int8 twin (0: plain rounding).
+    #[arg(long, default_value_t = 20)]
+    int8_epochs: usize,
+    /// Trained residual file to write (JSON), e.g. `residual.json`.
     #[arg(long)]
     out: PathBuf,
-}
-
-fn write_blob(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    write_atomically(path, |w: &mut dyn Write| -> anyhow::Result<()> {
-        Ok(w.write_all(bytes)?)
-    })
-    .with_context(|| format!("writing {}", path.display()))
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -69,33 +60,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         bar.set_message(format!("val RMS {:.2} N", validation.sqrt()));
     })?;
     bar.finish_and_clear();
-    let export = export_model(&network);
-    let int8_path = super::generate::sibling(&args.out, "int8").with_extension("bin");
-    let mut sizes = Vec::new();
-    for (quantisation, path) in [
-        (Quantisation::F32, &args.out),
-        (Quantisation::Int8, &int8_path),
-    ] {
-        let bytes = encode(&export, quantisation)?;
-        // Round trip: the blob decodes in the core and reproduces the host network.
-        let decoded = ContactResidual::decode(&bytes)
-            .map_err(|e| anyhow::anyhow!("the exported blob does not decode: {e}"))?;
-        let worst = inputs
-            .iter()
-            .step_by((inputs.len() / 2000).max(1))
-            .filter_map(|x| {
-                decoded
-                    .correction(x[0], x[1], x[2])
-                    .map(|y| (y - network.evaluate(x)[0]).abs())
-            })
-            .fold(0.0_f64, f64::max);
-        write_blob(path, &bytes)?;
-        sizes.push(format!(
-            "{quantisation} {} bytes → {} (worst |core − host| {worst:.3e} N)",
-            bytes.len(),
-            path.display()
-        ));
-    }
     println!(
         "trained on {} samples from {} runs: {} epochs (best {}), train RMS {:.3} N, validation RMS {:.3} N, {:.2} s",
         inputs.len(),
@@ -106,8 +70,26 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         report.validation_loss.sqrt(),
         report.seconds
     );
-    for line in sizes {
-        println!("  {line}");
-    }
+    let bar = progress_bar(args.int8_epochs as u64, "int8 fine-tuning");
+    let (int8, tuned) = quantisation_aware(
+        &network,
+        &inputs,
+        args.int8_epochs,
+        args.seed,
+        |epoch, rms| {
+            bar.set_position(epoch as u64);
+            bar.set_message(format!("RMS to f32 {rms:.3} N"));
+        },
+    )?;
+    bar.finish_and_clear();
+    println!(
+        "int8 twin: RMS against the f32 network {:.3} N rounded → {:.3} N after {} epochs (worst {:.3} N), {:.2} s",
+        tuned.rounded_rms, tuned.tuned_rms, tuned.epochs, tuned.tuned_max, tuned.seconds
+    );
+    TrainedResidual::new(args.contact, network, int8).write(&args.out)?;
+    println!(
+        "→ {} (export with `hcm export --residual {0} --out residual.bin`)",
+        args.out.display()
+    );
     Ok(())
 }

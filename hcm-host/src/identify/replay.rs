@@ -26,6 +26,9 @@ pub struct Target {
     pub curve: Vec<f64>,
     /// Mean measured indicators.
     pub indicators: Indicators,
+    /// Standard error of each mean indicator, s/√n over the runs (same units): the
+    /// noise floor below which a model's error against the mean cannot be told apart.
+    pub standard_error: Indicators,
     /// Time step of the curve (s).
     pub period: f64,
 }
@@ -125,6 +128,11 @@ pub fn targets(model: &Model, data: &Dataset, c: usize) -> Result<Vec<Target>, I
             .map(|j| curves.iter().map(|v| v[j]).sum::<f64>() / n)
             .collect();
         let mean = |f: fn(&Indicators) -> f64| indicators.iter().map(f).sum::<f64>() / n;
+        let standard_error = |f: fn(&Indicators) -> f64| {
+            let m = mean(f);
+            let squares = indicators.iter().map(|i| (f(i) - m).powi(2)).sum::<f64>();
+            (squares / (n - 1.0).max(1.0)).sqrt() / n.sqrt()
+        };
         targets.push(Target {
             condition: name.to_owned(),
             runs: runs.len(),
@@ -135,6 +143,12 @@ pub fn targets(model: &Model, data: &Dataset, c: usize) -> Result<Vec<Target>, I
                 impulse: mean(|i| i.impulse),
                 energy_loss: mean(|i| i.energy_loss),
                 duration: mean(|i| i.duration),
+            },
+            standard_error: Indicators {
+                max_force: standard_error(|i| i.max_force),
+                impulse: standard_error(|i| i.impulse),
+                energy_loss: standard_error(|i| i.energy_loss),
+                duration: standard_error(|i| i.duration),
             },
             period,
         });

@@ -11,8 +11,9 @@
 //!    sees rows, not runs; to hold out whole runs, split the data before calling it);
 //! 2. weights start from Glorot (tanh) or He (relu) uniform draws, biases at 0;
 //! 3. each epoch shuffles the training rows and takes one Adam step per mini-batch;
-//! 4. after each epoch the validation MSE is measured; training stops when it has not
-//!    improved for `patience` epochs, and the weights of the best epoch are returned.
+//! 4. after each epoch the validation MSE is measured; the step size is halved after
+//!    `plateau` epochs without improvement, training stops when it has not improved
+//!    for `patience` epochs, and the weights of the best epoch are returned.
 //!
 //! Reproducibility: every random draw (split, initial weights, shuffles) comes from one
 //! `ChaCha8Rng` seeded with `seed`, in a fixed order on the calling thread. Gradients
@@ -22,10 +23,16 @@
 
 pub mod adam;
 pub mod network;
+pub mod per_output;
+pub mod quantise;
 pub mod samples;
+pub mod trained;
 
 pub use network::{Activation, Network};
+pub use per_output::OutputNets;
+pub use quantise::{quantisation_aware, QuantiseReport};
 pub use samples::residual_pairs;
+pub use trained::TrainedResidual;
 
 use adam::Adam;
 use network::Layout;
@@ -60,8 +67,17 @@ pub struct TrainSettings {
     pub patience: usize,
     /// Share of the rows (not runs) held out for validation, in (0, 1). Default 0.1.
     pub validation_fraction: f64,
+    /// Halve Adam's step size when the validation loss has not improved for this many
+    /// epochs (reduce-on-plateau); 0 keeps it constant. Default 5: with a constant
+    /// step the weights keep jittering at the mini-batch noise level, and the HCM's
+    /// energy loss — a small difference of two large works — inherits that jitter.
+    pub plateau: usize,
     /// Seed of the random number generator. Default 0.
     pub seed: u64,
+    /// One network for all outputs ([`OutputNets::Joint`], the default) or one per
+    /// output, merged into one block-diagonal network ([`OutputNets::PerOutput`], the
+    /// paper's choice). See [`per_output`] for the measured comparison.
+    pub output_nets: OutputNets,
 }
 
 impl Default for TrainSettings {
@@ -75,7 +91,9 @@ impl Default for TrainSettings {
             max_epochs: 200,
             patience: 20,
             validation_fraction: 0.1,
+            plateau: 5,
             seed: 0,
+            output_nets: OutputNets::Joint,
         }
     }
 }
@@ -151,6 +169,9 @@ pub fn train(
     let started = Instant::now();
     let (n_in, n_out) = check_data(inputs, targets)?;
     check_settings(settings)?;
+    if settings.output_nets == OutputNets::PerOutput && n_out > 1 {
+        return per_output::train_each(inputs, targets, settings, &mut progress);
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(settings.seed);
     let (mut training, validation) = split(inputs.len(), settings.validation_fraction, &mut rng)?;
     let data = Normalised::new(inputs, targets, &training);
@@ -165,6 +186,8 @@ pub fn train(
     let mut adam = Adam::new(parameters.len(), settings.learning_rate);
     let (mut best, mut best_epoch, mut best_loss) = (parameters.clone(), 0, f64::INFINITY);
     let mut history = Vec::new();
+    // Epoch of the last improvement or step-size cut.
+    let mut last_change = 0;
     for epoch in 1..=settings.max_epochs {
         shuffle(&mut training, &mut rng);
         let mut sum = 0.0;
@@ -184,10 +207,13 @@ pub fn train(
         history.push((train_loss, validation_loss));
         progress(epoch, train_loss, validation_loss);
         if validation_loss < best_loss {
-            (best_loss, best_epoch) = (validation_loss, epoch);
+            (best_loss, best_epoch, last_change) = (validation_loss, epoch, epoch);
             best.copy_from_slice(&parameters);
         } else if settings.patience > 0 && epoch - best_epoch >= settings.patience {
             break;
+        } else if settings.plateau > 0 && epoch - last_change >= settings.plateau {
+            adam.learning_rate *= 0.5;
+            last_change = epoch;
         }
     }
     let report = TrainReport {
@@ -342,6 +368,16 @@ impl Normalised {
     fn new(inputs: &[Vec<f64>], targets: &[Vec<f64>], training: &[usize]) -> Self {
         let input = normalisation(inputs, training);
         let output = normalisation(targets, training);
+        Self::with(inputs, targets, input, output)
+    }
+
+    /// The rows normalised by a given (mean, scale) of the inputs and of the targets.
+    fn with(
+        inputs: &[Vec<f64>],
+        targets: &[Vec<f64>],
+        input: (Vec<f64>, Vec<f64>),
+        output: (Vec<f64>, Vec<f64>),
+    ) -> Self {
         let flatten = |table: &[Vec<f64>], (mean, scale): &(Vec<f64>, Vec<f64>)| -> Vec<f64> {
             table
                 .iter()

@@ -17,7 +17,7 @@ use rand_chacha::ChaCha8Rng;
 pub use hcm_core::residual::Activation;
 
 /// The activation in f64 for training.
-trait Training {
+pub(super) trait Training {
     /// σ(z).
     fn apply_f64(self, z: f64) -> f64;
     /// σ'(z) written through a = σ(z), which is what backpropagation has at hand:
@@ -50,7 +50,8 @@ impl Training for Activation {
 }
 
 /// A trained network with its normalisation and training envelope, ready to export.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Network {
     /// Number of inputs (3 for the 1D residual: δ, δ̇, δ̇0).
     pub inputs: usize,
@@ -212,6 +213,15 @@ impl Layout {
             }
         }
         parameters
+    }
+
+    /// The flat vector of per-layer (weights, biases), the inverse of [`Layout::layers`].
+    pub fn flatten(&self, layers: &[(Vec<f64>, Vec<f64>)]) -> Vec<f64> {
+        layers
+            .iter()
+            .flat_map(|(weights, biases)| weights.iter().chain(biases))
+            .copied()
+            .collect()
     }
 
     /// Cuts the flat vector into (weights, biases) per layer.

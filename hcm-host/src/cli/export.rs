@@ -1,0 +1,75 @@
+//! `hcm export`: a trained residual network (`hcm train`'s JSON) → the weights blob the
+//! core decodes (postcard: magic, version, shapes, quantisation, normalisation,
+//! envelope, weights, CRC-32).
+
+use anyhow::Context;
+use hcm_core::residual::Quantisation;
+use hcm_host::export::encode;
+use hcm_host::output::write_atomically;
+use hcm_host::residual::{round_trip_error, ContactResidual};
+use hcm_host::train::TrainedResidual;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Weight storage of the blob.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Weights {
+    /// f32 weights: the trained network.
+    F32,
+    /// int8 weights with one f32 scale per row: the quantisation-aware twin.
+    Int8,
+}
+
+/// Export a trained residual network as a weights blob for the core (and firmware).
+#[derive(clap::Args)]
+pub struct Args {
+    /// Trained residual file written by `hcm train`.
+    #[arg(long)]
+    residual: PathBuf,
+    /// Weight storage.
+    #[arg(long, value_enum, default_value_t = Weights::F32)]
+    weights: Weights,
+    /// Blob to write.
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// Writes `bytes` to `path` atomically.
+pub fn write_blob(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    write_atomically(path, |w: &mut dyn Write| -> anyhow::Result<()> {
+        Ok(w.write_all(bytes)?)
+    })
+    .with_context(|| format!("writing {}", path.display()))
+}
+
+/// The blob of `trained` in `weights` storage, checked by decoding it in the core:
+/// (bytes, worst relative |core − host| over the envelope grid).
+pub fn blob(trained: &TrainedResidual, weights: Weights) -> anyhow::Result<(Vec<u8>, f64)> {
+    let (network, quantisation) = match weights {
+        Weights::F32 => (&trained.network, Quantisation::F32),
+        Weights::Int8 => (&trained.int8_network, Quantisation::Int8),
+    };
+    let bytes = encode(network, quantisation)?;
+    let decoded = ContactResidual::decode(&bytes).map_err(|e| {
+        anyhow::anyhow!(
+            "the exported blob does not decode in the core: {e} (shape not the shipped 3-16-16-1?)"
+        )
+    })?;
+    Ok((bytes, round_trip_error(network, &decoded)))
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let trained = TrainedResidual::read(&args.residual)?;
+    let (bytes, error) = blob(&trained, args.weights)?;
+    write_blob(&args.out, &bytes)?;
+    println!(
+        "{} blob: {} bytes → {} (core vs host over the envelope: worst relative error {error:.2e})",
+        match args.weights {
+            Weights::F32 => "f32",
+            Weights::Int8 => "int8",
+        },
+        bytes.len(),
+        args.out.display()
+    );
+    Ok(())
+}

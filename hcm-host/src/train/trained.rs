@@ -1,0 +1,93 @@
+//! The output of `hcm train`: the trained residual network and its int8 twin, in one
+//! JSON file that `hcm export` turns into weights blobs.
+//!
+//! ```json
+//! { "format": "hcm-residual", "version": 1, "contact": 0,
+//!   "network": { "inputs": 3, "width": 16, … },
+//!   "int8_network": { … the same shape, weights on their int8 levels … } }
+//! ```
+//!
+//! `network` is the f64 network as trained; `int8_network` its quantisation-aware twin
+//! ([`super::quantise`]), whose weights the int8 blob stores exactly.
+
+use super::Network;
+use crate::output::write_atomically;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The `format` field's value.
+pub const FORMAT: &str = "hcm-residual";
+/// The version this build reads and writes.
+pub const FILE_VERSION: u32 = 1;
+
+/// A trained residual network file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrainedResidual {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// [`FILE_VERSION`].
+    pub version: u32,
+    /// Index of the scenario contact whose force error the network models.
+    pub contact: usize,
+    /// The trained network (f64; exported as f32).
+    pub network: Network,
+    /// Its int8 twin (exported as int8).
+    pub int8_network: Network,
+}
+
+/// Why a trained-residual file cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum TrainedError {
+    /// The file cannot be read or parsed.
+    #[error("{path}: {message}")]
+    File { path: String, message: String },
+    /// Not a file of this kind or version.
+    #[error("{path}: expected format `{FORMAT}` version {FILE_VERSION}, found `{format}` version {version}; write it with `hcm train`")]
+    WrongFormat {
+        path: String,
+        format: String,
+        version: u32,
+    },
+}
+
+impl TrainedResidual {
+    /// A file holding `network`, its int8 twin, for scenario contact `contact`.
+    pub fn new(contact: usize, network: Network, int8_network: Network) -> Self {
+        Self {
+            format: FORMAT.into(),
+            version: FILE_VERSION,
+            contact,
+            network,
+            int8_network,
+        }
+    }
+
+    /// Reads and checks a file written by [`TrainedResidual::write`].
+    pub fn read(path: &Path) -> Result<TrainedResidual, TrainedError> {
+        let file = |message: String| TrainedError::File {
+            path: path.display().to_string(),
+            message,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| file(e.to_string()))?;
+        let trained: TrainedResidual =
+            serde_json::from_str(&text).map_err(|e| file(e.to_string()))?;
+        if trained.format != FORMAT || trained.version != FILE_VERSION {
+            return Err(TrainedError::WrongFormat {
+                path: path.display().to_string(),
+                format: trained.format,
+                version: trained.version,
+            });
+        }
+        Ok(trained)
+    }
+
+    /// Writes it as pretty JSON, atomically.
+    pub fn write(&self, path: &Path) -> anyhow::Result<()> {
+        let text = serde_json::to_string_pretty(self)?;
+        write_atomically(path, |w: &mut dyn std::io::Write| -> anyhow::Result<()> {
+            w.write_all(text.as_bytes())?;
+            Ok(w.write_all(b"\n")?)
+        })
+    }
+}
