@@ -1,0 +1,299 @@
+//! Per-contact evaluation cost, physics vs hybrid contact model vs a general-purpose
+//! framework, all `f32`, at one state inside the residual's envelope (δ = 10 µm,
+//! δ̇ = 1 m/s, δ̇0 = 1.4 m/s, the state of `law_evaluation`):
+//!
+//! - `physics_only`: the Lankarani–Nikravesh law at the reference parameters;
+//! - `hcm_f32`: `HybridContactModel` = that law + the shipped 3-16-16-1 tanh residual
+//!   (`hcm_core::residual::Mlp`, f32 weights), envelope check included;
+//! - `hcm_int8`: the same with the int8 weights of the same network;
+//! - `hcm_candle`: the same law and envelope check, the residual (same f32 weights, same
+//!   normalisation) evaluated with candle-core on the CPU: one input row, matmul + bias
+//!   (+ tanh on the two hidden layers) per layer, the result read back as an `f32`;
+//!   with candle's default thread count (`RAYON_NUM_THREADS`, else the CPU count);
+//! - `hcm_candle_1_thread`: the same with `RAYON_NUM_THREADS=1`, which candle reads at
+//!   every matmul: gemm then gets single-threaded work (with 2, each 1-row product is
+//!   passed to gemm as multi-threaded work, which costs 20–30× more here).
+//!
+//! The group `residual_only` times the residual evaluations alone (no law, no
+//! envelope check). Before timing, the candle path is checked against `hcm_f32` on a few
+//! inputs (the same function within 1e-5 relative) and the comparison is printed.
+//!
+//! Run: `cargo bench -p hcm-host --features candle --bench residual_evaluation`
+
+#[path = "../tests/common/reference.rs"]
+mod reference;
+
+use candle_core::{Device, Tensor};
+use criterion::{criterion_group, criterion_main, Criterion};
+use hcm_core::hybrid::{Evaluated, HybridContactModel};
+use hcm_core::law::{AnyNormalLaw, Indentation, NormalLaw};
+use hcm_core::residual::{decode, Envelope, F32Weights, Int8Weights, Layer, Mlp, Quantisation};
+use hcm_host::export::encode;
+use hcm_host::residual::{export_model, HIDDEN, INPUTS, WIDTH};
+use hcm_host::train::{train, TrainSettings};
+use std::hint::black_box;
+
+type CoreMlp<Q> = Mlp<INPUTS, WIDTH, 1, HIDDEN, Q>;
+type Hybrid<Q> = HybridContactModel<INPUTS, WIDTH, 1, HIDDEN, Q>;
+
+/// δ̇0 of every synthetic row (m/s): the ball's impact speed.
+const APPROACH_SPEED: f64 = 1.4;
+
+/// A network of the shipped architecture, trained for a few epochs on a smooth
+/// synthetic force error over the ball's ranges (δ 0–60 µm, δ̇ ±1.4 m/s, δ̇0 1.4 m/s).
+/// The timings do not depend on the weight values (no branch or sparsity in the
+/// forward pass depends on them); training only gives realistic weights and
+/// normalisation, and an envelope that contains the benchmarked state.
+fn trained_blobs() -> (Vec<u8>, Vec<u8>) {
+    let (depths, rates) = (40, 50);
+    let mut inputs = Vec::with_capacity(depths * rates);
+    let mut targets = Vec::with_capacity(depths * rates);
+    for i in 0..depths {
+        let depth = 60e-6 * i as f64 / (depths - 1) as f64;
+        for j in 0..rates {
+            let rate = -1.4 + 2.8 * j as f64 / (rates - 1) as f64;
+            let s = depth / 60e-6;
+            // N: a rate-proportional damping error plus a depth-only stiffness error.
+            let error = 40.0 * s.powf(1.5) * rate - 15.0 * (std::f64::consts::PI * s).sin();
+            inputs.push(vec![depth, rate, APPROACH_SPEED]);
+            targets.push(vec![error]);
+        }
+    }
+    let settings = TrainSettings {
+        hidden_layers: HIDDEN,
+        width: WIDTH,
+        max_epochs: 5,
+        patience: 0,
+        seed: 0,
+        ..TrainSettings::default()
+    };
+    let (network, _) = train(&inputs, &targets, &settings, |_, _, _| {}).unwrap();
+    let model = export_model(&network);
+    (
+        encode(&model, Quantisation::F32).unwrap(),
+        encode(&model, Quantisation::Int8).unwrap(),
+    )
+}
+
+/// The core residual's forward pass in candle-core: the same weights, normalisation and
+/// envelope, as CPU `f32` tensors.
+struct CandleResidual {
+    device: Device,
+    input_mean: Tensor,
+    input_scale: Tensor,
+    /// (Wᵀ as (in, out), bias (out)), input → output.
+    layers: Vec<(Tensor, Tensor)>,
+    output_mean: Tensor,
+    output_scale: Tensor,
+    envelope: Envelope<INPUTS>,
+}
+
+impl CandleResidual {
+    fn from_core(mlp: &CoreMlp<F32Weights>) -> candle_core::Result<Self> {
+        let device = Device::Cpu;
+        let vector = |values: &[f32]| Tensor::from_slice(values, values.len(), &device);
+        let scaling = &mlp.normalisation;
+        let mut layers = vec![layer(&mlp.input_layer, &device)?];
+        for hidden in mlp.hidden_layers.as_ref() {
+            layers.push(layer(hidden, &device)?);
+        }
+        layers.push(layer(&mlp.output_layer, &device)?);
+        Ok(CandleResidual {
+            input_mean: vector(&scaling.input_mean)?,
+            input_scale: vector(&scaling.input_scale)?,
+            layers,
+            output_mean: vector(&scaling.output_mean)?,
+            output_scale: vector(&scaling.output_scale)?,
+            envelope: mlp.envelope,
+            device,
+        })
+    }
+
+    /// The force correction (N) for one raw input row.
+    fn evaluate(&self, input: &[f32; INPUTS]) -> candle_core::Result<f32> {
+        let x = Tensor::from_slice(input, (1, INPUTS), &self.device)?;
+        let mut h = x
+            .broadcast_sub(&self.input_mean)?
+            .broadcast_div(&self.input_scale)?;
+        let last = self.layers.len() - 1;
+        for (index, (weights, bias)) in self.layers.iter().enumerate() {
+            h = h.matmul(weights)?.broadcast_add(bias)?;
+            if index < last {
+                h = h.tanh()?;
+            }
+        }
+        h.broadcast_mul(&self.output_scale)?
+            .broadcast_add(&self.output_mean)?
+            .flatten_all()?
+            .get(0)?
+            .to_scalar::<f32>()
+    }
+}
+
+/// One core layer as (Wᵀ (in, out), bias (out)) tensors.
+fn layer<const IN: usize, const OUT: usize>(
+    layer: &Layer<IN, OUT, F32Weights>,
+    device: &Device,
+) -> candle_core::Result<(Tensor, Tensor)> {
+    let weights = Tensor::from_slice(layer.weights.as_flattened(), (OUT, IN), device)?;
+    Ok((
+        weights.t()?.contiguous()?,
+        Tensor::from_slice(&layer.bias, OUT, device)?,
+    ))
+}
+
+/// `HybridContactModel::normal_force` with the residual evaluated by candle.
+fn hybrid_candle(
+    law: &AnyNormalLaw<f32>,
+    residual: &CandleResidual,
+    contact: &Indentation<f32>,
+    input: &[f32; INPUTS],
+) -> (f32, Evaluated) {
+    if !(contact.depth > 0.0 || contact.depth.is_nan()) {
+        return (0.0, Evaluated::PhysicsOnly);
+    }
+    let physics = law.normal_force(contact);
+    if !residual.envelope.contains(input) {
+        return (physics, Evaluated::PhysicsOnly);
+    }
+    let correction = residual.evaluate(input).unwrap();
+    (physics + correction, Evaluated::PhysicsAndResidual)
+}
+
+fn state(depth: f32, rate: f32) -> (Indentation<f32>, [f32; INPUTS]) {
+    let approach_speed = APPROACH_SPEED as f32;
+    (
+        Indentation {
+            depth,
+            rate,
+            approach_speed,
+        },
+        [depth, rate, approach_speed],
+    )
+}
+
+/// Fails unless candle computes the same function as the core f32 model: hybrid force
+/// and residual correction within 1e-5 relative (the correction against
+/// max(|r|, 1 N), its scale being tens of N).
+fn check_same_function(
+    law: &AnyNormalLaw<f32>,
+    core: &Hybrid<F32Weights>,
+    candle: &CandleResidual,
+) {
+    println!("candle vs hcm_f32 (same weights and normalisation):");
+    println!("  δ (µm)  δ̇ (m/s)   force hcm_f32 (N)   force candle (N)   rel. diff   residual hcm_f32 (N)  residual candle (N)");
+    for (depth, rate) in [
+        (10e-6, 1.0),
+        (5e-6, -1.2),
+        (30e-6, -0.5),
+        (45e-6, 0.3),
+        (58e-6, 1.35),
+    ] {
+        let (contact, input) = state(depth, rate);
+        let (force, evaluated) = core.normal_force(&contact, &input);
+        let (force_candle, evaluated_candle) = hybrid_candle(law, candle, &contact, &input);
+        assert_eq!(evaluated, Evaluated::PhysicsAndResidual);
+        assert_eq!(evaluated_candle, Evaluated::PhysicsAndResidual);
+        let [residual] = core.residual.evaluate(&input);
+        let residual_candle = candle.evaluate(&input).unwrap();
+        let relative = (force_candle - force).abs() / force.abs();
+        println!(
+            "  {:6.1}  {rate:8.2}  {force:18.6}  {force_candle:17.6}  {relative:10.2e}  {residual:20.6}  {residual_candle:19.6}",
+            depth * 1e6
+        );
+        assert!(relative <= 1e-5, "force {force} vs candle {force_candle}");
+        assert!(
+            (residual_candle - residual).abs() <= 1e-5 * residual.abs().max(1.0),
+            "residual {residual} vs candle {residual_candle}"
+        );
+    }
+}
+
+fn bench_per_contact(c: &mut Criterion) {
+    let (f32_blob, int8_blob) = trained_blobs();
+    let residual_f32: CoreMlp<F32Weights> = decode(&f32_blob).unwrap();
+    let residual_int8: CoreMlp<Int8Weights> = decode(&int8_blob).unwrap();
+    let law: AnyNormalLaw<f32> = reference::lankarani_nikravesh::<f32>().into();
+    let hcm_f32 = Hybrid {
+        law,
+        residual: residual_f32,
+    };
+    let hcm_int8 = Hybrid {
+        law,
+        residual: residual_int8,
+    };
+    let candle = CandleResidual::from_core(&residual_f32).unwrap();
+    check_same_function(&law, &hcm_f32, &candle);
+    println!(
+        "candle threads (default): {}",
+        candle_core::utils::get_num_threads()
+    );
+
+    let (contact, input) = state(10e-6, 1.0);
+    for evaluated in [
+        hcm_f32.normal_force(&contact, &input).1,
+        hcm_int8.normal_force(&contact, &input).1,
+        hybrid_candle(&law, &candle, &contact, &input).1,
+    ] {
+        assert_eq!(
+            evaluated,
+            Evaluated::PhysicsAndResidual,
+            "the benchmarked state must run the residual"
+        );
+    }
+
+    let mut group = c.benchmark_group("per_contact_f32");
+    group.bench_function("physics_only", |b| {
+        b.iter(|| black_box(&law).normal_force(black_box(&contact)))
+    });
+    group.bench_function("hcm_f32", |b| {
+        b.iter(|| black_box(&hcm_f32).normal_force(black_box(&contact), black_box(&input)))
+    });
+    group.bench_function("hcm_int8", |b| {
+        b.iter(|| black_box(&hcm_int8).normal_force(black_box(&contact), black_box(&input)))
+    });
+    let candle_hcm = |b: &mut criterion::Bencher| {
+        b.iter(|| {
+            hybrid_candle(
+                black_box(&law),
+                black_box(&candle),
+                black_box(&contact),
+                black_box(&input),
+            )
+        })
+    };
+    group.bench_function("hcm_candle", candle_hcm);
+    single_threaded_candle(|| group.bench_function("hcm_candle_1_thread", candle_hcm));
+    group.finish();
+
+    let mut group = c.benchmark_group("residual_only");
+    group.bench_function("core_f32", |b| {
+        b.iter(|| black_box(&hcm_f32.residual).evaluate(black_box(&input)))
+    });
+    group.bench_function("core_int8", |b| {
+        b.iter(|| black_box(&hcm_int8.residual).evaluate(black_box(&input)))
+    });
+    let candle_residual = |b: &mut criterion::Bencher| {
+        b.iter(|| black_box(&candle).evaluate(black_box(&input)).unwrap())
+    };
+    group.bench_function("candle", candle_residual);
+    single_threaded_candle(|| group.bench_function("candle_1_thread", candle_residual));
+    group.finish();
+}
+
+/// Runs `bench` with `RAYON_NUM_THREADS=1`, then restores the variable. candle reads it
+/// at every matmul (`candle_core::utils::get_num_threads`). Set while no other thread
+/// runs: the trainer's rayon workers are idle and the benchmarks are single-threaded.
+fn single_threaded_candle<R>(bench: impl FnOnce() -> R) {
+    let previous = std::env::var_os("RAYON_NUM_THREADS");
+    std::env::set_var("RAYON_NUM_THREADS", "1");
+    assert_eq!(candle_core::utils::get_num_threads(), 1);
+    bench();
+    match previous {
+        Some(value) => std::env::set_var("RAYON_NUM_THREADS", value),
+        None => std::env::remove_var("RAYON_NUM_THREADS"),
+    }
+}
+
+criterion_group!(benches, bench_per_contact);
+criterion_main!(benches);
