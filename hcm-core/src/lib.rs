@@ -49,6 +49,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod effect;
 pub mod error;
 pub mod friction;
 pub mod geometry;

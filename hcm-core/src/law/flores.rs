@@ -28,6 +28,12 @@ super::map_fields!(Flores {
 });
 
 impl<T: Real> Flores<T> {
+    /// Elastic (non-dissipative) part k·δ^n (N) of the force; 0 for δ ≤ 0.
+    #[inline]
+    pub fn elastic_force(&self, depth: T) -> T {
+        Hertz::elastic_force(self.stiffness, self.exponent, depth)
+    }
+
     /// The Hunt–Crossley damping factor χ = 8·(1 − ce)/(5·ce·δ̇0) (s/m).
     #[inline]
     pub fn damping_factor(&self, approach_speed: T) -> T {

@@ -28,6 +28,12 @@ super::map_fields!(HuntCrossley {
 });
 
 impl<T: Real> HuntCrossley<T> {
+    /// Elastic (non-dissipative) part k·δ^n (N) of the force; 0 for δ ≤ 0.
+    #[inline]
+    pub fn elastic_force(&self, depth: T) -> T {
+        Hertz::elastic_force(self.stiffness, self.exponent, depth)
+    }
+
     /// k·δ^n·(1 + χ·δ̇) (N), 0 for δ ≤ 0: the force of every law of this family.
     #[inline]
     pub fn family_force(stiffness: T, exponent: T, damping: T, contact: &Indentation<T>) -> T {

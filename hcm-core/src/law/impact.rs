@@ -30,6 +30,12 @@ super::map_fields!(Impact {
 });
 
 impl<T: Real> Impact<T> {
+    /// Elastic (non-dissipative) part k·δ^e (N) of the force; 0 for δ ≤ 0.
+    #[inline]
+    pub fn elastic_force(&self, depth: T) -> T {
+        Hertz::elastic_force(self.stiffness, self.exponent, depth)
+    }
+
     /// Damping coefficient step(δ, 0, 0, δ_max, d_max) (N·s/m), Eq 9.
     #[inline]
     pub fn damping_at(&self, depth: T) -> T {

@@ -94,6 +94,22 @@ impl<T: Real> AnyNormalLaw<T> {
             AnyNormalLaw::Flores(_) => "flores",
         }
     }
+
+    /// Elastic (non-dissipative) part of the force (N) at indentation δ (m): the
+    /// force at δ̇ = 0 — k·δ^n (Hertz, Lankarani–Nikravesh, Hunt–Crossley, Flores),
+    /// k(δ)·δ (variable stiffness, Eq 6–7), k·δ^e (IMPACT). Exactly 0 for δ ≤ 0;
+    /// NaN propagates; saturates at [`Real::MAX`].
+    #[inline]
+    pub fn elastic_force(&self, depth: T) -> T {
+        match self {
+            AnyNormalLaw::Hertz(law) => Hertz::elastic_force(law.stiffness, law.exponent, depth),
+            AnyNormalLaw::LankaraniNikravesh(law) => law.elastic_force(depth),
+            AnyNormalLaw::VariableStiffness(law) => law.elastic_force(depth),
+            AnyNormalLaw::Impact(law) => law.elastic_force(depth),
+            AnyNormalLaw::HuntCrossley(law) => law.elastic_force(depth),
+            AnyNormalLaw::Flores(law) => law.elastic_force(depth),
+        }
+    }
 }
 
 impl<T: Copy> AnyNormalLaw<T> {

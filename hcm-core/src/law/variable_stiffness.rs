@@ -37,6 +37,16 @@ super::map_fields!(VariableStiffness {
 });
 
 impl<T: Real> VariableStiffness<T> {
+    /// Elastic (non-dissipative) part k(δ)·δ (N) of Eq 6; 0 for δ ≤ 0.
+    #[inline]
+    pub fn elastic_force(&self, depth: T) -> T {
+        if touching(depth) {
+            (self.stiffness_at(depth) * depth).saturate()
+        } else {
+            T::zero()
+        }
+    }
+
     /// Effective contact stiffness k(δ) = c·E*·√(2rδ − δ²) (N/m), Eq 7.
     #[inline]
     pub fn stiffness_at(&self, depth: T) -> T {

@@ -132,7 +132,13 @@ pub fn noisy_run(model: &Model, rng: &mut ChaCha8Rng) -> Result<Run, SimulationE
     let mut run = simulate(&model)?.run;
     let e = &model.scenario.experiment;
     for track in &mut run.bodies {
+        if e.sensor_delay > 0.0 {
+            delay_forces(&mut track.samples, e.sensor_delay);
+        }
         for sample in &mut track.samples {
+            for (f, b) in sample.force.iter_mut().zip(e.force_offset) {
+                *f += b;
+            }
             for (values, sigma) in [
                 (&mut sample.force[..], e.force_noise),
                 (&mut sample.torque[..], e.torque_noise),
@@ -146,6 +152,28 @@ pub fn noisy_run(model: &Model, rng: &mut ChaCha8Rng) -> Result<Run, SimulationE
         }
     }
     Ok(run)
+}
+
+/// Replaces each sample's force by the force τ (s) earlier, linearly interpolated
+/// between the samples (held at the first sample's value before it): a lagging sensor.
+fn delay_forces(samples: &mut [crate::dataset::Sample], delay: f64) {
+    let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
+    let forces: Vec<[f64; 3]> = samples.iter().map(|s| s.force).collect();
+    let mut j = 0;
+    for sample in samples.iter_mut() {
+        let t = sample.time - delay;
+        while j + 1 < times.len() && times[j + 1] <= t {
+            j += 1;
+        }
+        sample.force = if t <= times[0] {
+            forces[0]
+        } else if j + 1 >= times.len() {
+            forces[j]
+        } else {
+            let s = (t - times[j]) / (times[j + 1] - times[j]);
+            std::array::from_fn(|k| forces[j][k] + s * (forces[j + 1][k] - forces[j][k]))
+        };
+    }
 }
 
 fn normal(rng: &mut ChaCha8Rng) -> f64 {

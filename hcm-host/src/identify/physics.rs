@@ -4,6 +4,7 @@
 use crate::law_catalogue;
 use crate::output::write_atomically;
 use crate::scenario::{Model, Scenario, ScenarioError};
+use hcm_core::effect::ContactEffect;
 use hcm_core::law::AnyNormalLaw;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -18,6 +19,10 @@ pub struct PhysicsContact {
     pub law: String,
     /// Every parameter of the law (SI).
     pub parameters: toml::Table,
+    /// Physical effects added to the law (as `hcm diagnose` writes them in
+    /// `extended.toml`); none for a plain identified law.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub effects: Vec<ContactEffect<f64>>,
 }
 
 /// How a physics file was obtained (for people; not read back into the model).
@@ -90,6 +95,7 @@ impl Physics {
                 ],
                 law: law.name().to_owned(),
                 parameters,
+                effects: Vec::new(),
             }],
             fit,
         }
@@ -134,6 +140,14 @@ impl Physics {
                 inline_table(&contact.parameters)
             ));
             assignments.push(format!("contact.{index}.noise={{}}"));
+            // The physics file is the whole model of the contact: its effects replace
+            // the scenario's (none clears them).
+            let effects =
+                toml::Value::try_from(&contact.effects).map_err(|e| PhysicsError::File {
+                    path: path.display().to_string(),
+                    message: format!("effects: {e}"),
+                })?;
+            assignments.push(format!("contact.{index}.effects={effects}"));
         }
         Ok(scenario.with(&assignments)?)
     }

@@ -11,6 +11,7 @@ mod resolve;
 
 pub use resolve::{Body, Contact, Model, Shape};
 
+use hcm_core::effect::{AirDrag, ContactEffect};
 use hcm_core::geometry::Material;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -82,6 +83,9 @@ pub struct BodySpec {
     /// Initial velocity (m/s).
     #[serde(default)]
     pub velocity: [f64; 3],
+    /// Quadratic air drag on the body, e.g. `air_drag = { coefficient = 1e-4 }` (kg/m).
+    #[serde(default)]
+    pub air_drag: Option<AirDrag<f64>>,
 }
 
 /// Contact geometry of a body, relative to its reference point.
@@ -121,6 +125,11 @@ pub struct ContactSpec {
     /// parameter, b in η = a + a·b·ζ, ζ ~ N(0, 1) drawn once per run (dimensionless).
     #[serde(default)]
     pub noise: BTreeMap<String, f64>,
+    /// Physical effects added to the law (`hcm_core::effect`), e.g.
+    /// `effects = [{ viscous_damping = { coefficient = 40.0 } }]`; at most one of each
+    /// kind, at most four.
+    #[serde(default)]
+    pub effects: Vec<ContactEffect<f64>>,
 }
 
 /// Solver settings and the stop condition.
@@ -178,6 +187,15 @@ pub struct ExperimentSpec {
     /// σ of the noise on every sampled velocity component (m/s).
     #[serde(default)]
     pub velocity_noise: f64,
+    /// Force-sensor bias added to every recorded force sample, in flight too (N, world
+    /// components): a measurement effect, for testing `hcm diagnose`.
+    #[serde(default)]
+    pub force_offset: [f64; 3],
+    /// Force-sensor lag τ (s, ≥ 0): the force recorded at time t is the true force at
+    /// t − τ (linear interpolation between the simulation's samples; the first sample's
+    /// value before it). A measurement effect, for testing `hcm diagnose`.
+    #[serde(default)]
+    pub sensor_delay: f64,
     /// Experimental conditions; `--runs` runs are made of each. None: one condition,
     /// the scenario as written.
     #[serde(default, rename = "condition")]
@@ -198,6 +216,8 @@ impl Default for ExperimentSpec {
             torque_noise: 0.0,
             position_noise: 0.0,
             velocity_noise: 0.0,
+            force_offset: [0.0; 3],
+            sensor_delay: 0.0,
             conditions: Vec::new(),
             holdout_conditions: Vec::new(),
             holdout_fraction: default_holdout_fraction(),

@@ -3,6 +3,7 @@
 
 use super::{Scenario, ScenarioError, ShapeSpec};
 use crate::law_catalogue;
+use hcm_core::effect::{AirDrag, ContactEffect, ExtendedLaw, MAX_EFFECTS};
 use hcm_core::geometry::{effective_modulus, sphere_sphere, Material};
 use hcm_core::law::AnyNormalLaw;
 use nalgebra::Vector3;
@@ -42,6 +43,8 @@ pub struct Body {
     pub position: Vector3<f64>,
     /// Initial velocity (m/s).
     pub velocity: Vector3<f64>,
+    /// Quadratic air drag in flight and in contact, if any.
+    pub air_drag: Option<AirDrag<f64>>,
 }
 
 /// A contact pair of the model: body 1 is a sphere, body 2 a sphere or a plane.
@@ -59,6 +62,20 @@ pub struct Contact {
     pub noise: Vec<(String, f64)>,
     /// Residual network added to the law's force (the HCM), if attached.
     pub residual: Option<crate::residual::ContactResidual>,
+    /// Physical effects added to the law (validated; at most one of each kind).
+    pub effects: Vec<ContactEffect<f64>>,
+}
+
+impl Contact {
+    /// The law with its effects, as the core evaluates it.
+    pub fn extended_law(&self) -> ExtendedLaw<f64> {
+        let mut law = ExtendedLaw::new(self.law);
+        for effect in &self.effects {
+            // resolve() allows at most MAX_EFFECTS, so this never drops one.
+            let _ = law.effects.push(*effect);
+        }
+        law
+    }
 }
 
 /// A scenario resolved and checked: what the simulator runs.
@@ -173,7 +190,12 @@ impl Scenario {
                 material,
                 position,
                 velocity,
+                air_drag: spec.air_drag,
             });
+            if let Some(drag) = &spec.air_drag {
+                drag.validate()
+                    .map_err(|e| invalid(field("air_drag"), e.to_string()))?;
+            }
         }
         if bodies.iter().all(|b| b.fixed) {
             return Err(invalid(
@@ -255,14 +277,26 @@ impl Scenario {
                 }
             }
             let noise = spec.noise.iter().map(|(k, v)| (k.clone(), *v)).collect();
-            contacts.push(Contact {
+            let contact = Contact {
                 body_1,
                 body_2,
                 law,
                 effective_mass,
                 noise,
                 residual: None,
-            });
+                effects: spec.effects.clone(),
+            };
+            if spec.effects.len() > MAX_EFFECTS {
+                return Err(invalid(
+                    field("effects"),
+                    format!("{} effects; at most {MAX_EFFECTS}", spec.effects.len()),
+                ));
+            }
+            contact
+                .extended_law()
+                .validate()
+                .map_err(|e| invalid(field("effects"), e.to_string()))?;
+            contacts.push(contact);
         }
         self.check_settings().map_err(|(f, m)| invalid(f, m))?;
         for name in &self.record.bodies {

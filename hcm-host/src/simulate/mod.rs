@@ -100,7 +100,7 @@ pub(crate) struct Segment {
 pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
     let spec = &model.scenario.simulation;
     let layout = Layout::new(model);
-    let y0 = layout.initial_state(model);
+    let mut y0 = layout.initial_state(model);
     let modes = ContactModes {
         touching: vec![false; model.contacts.len()],
         approach_speed: vec![0.0; model.contacts.len()],
@@ -112,6 +112,7 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
         let k = system.kinematics(&y0.0, c);
         if k.depth > 0.0 || (k.depth == 0.0 && k.rate > 0.0) {
             *slot = Some(events.len());
+            y0.0[layout.deepest_index(c)] = k.depth.max(0.0);
             events.push(touch_down(
                 model,
                 &layout,
@@ -160,7 +161,7 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
         });
         let Some((time, c)) = event else { continue };
         stepper.dense_output(time, &mut scratch);
-        let y = scratch.clone();
+        let mut y = scratch.clone();
         let rate = system.kinematics(&y.0, c).rate;
         match open[c].take() {
             Some(e) => {
@@ -182,6 +183,7 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
             None => {
                 open[c] = Some(events.len());
                 peaks.push(None);
+                y.0[layout.deepest_index(c)] = 0.0;
                 events.push(touch_down(
                     model,
                     &layout,

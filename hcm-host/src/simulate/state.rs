@@ -21,8 +21,9 @@ impl OdeState<f64> for StateVector {
 /// Where each body's and contact's quantities sit in a [`StateVector`].
 ///
 /// Per moving body: position (m, 3) then velocity (m/s, 3). Then per contact: the
-/// normal impulse ∫f_n dt (N·s) and the contact work ∫f_n·δ̇ dt (J), integrated
-/// alongside the motion. Bodies do not rotate yet (no friction in the 1D examples):
+/// normal impulse ∫f_n dt (N·s), the contact work ∫f_n·δ̇ dt (J), and the deepest
+/// indentation of the current contact δ_max (m; its rate is δ̇ while δ̇ > 0 at
+/// δ = δ_max, else 0; reset to 0 at touch-down), integrated alongside the motion. Bodies do not rotate yet (no friction in the 1D examples):
 /// orientation and angular velocity join the layout with the rigid-body examples.
 #[derive(Clone, Debug)]
 pub struct Layout {
@@ -52,7 +53,7 @@ impl Layout {
         Layout {
             body_slot,
             contact_base,
-            len: contact_base + 2 * model.contacts.len(),
+            len: contact_base + 3 * model.contacts.len(),
         }
     }
 
@@ -97,6 +98,11 @@ impl Layout {
 
     /// Index of contact `c`'s impulse (its work follows it).
     pub fn impulse_index(&self, contact: usize) -> usize {
-        self.contact_base + 2 * contact
+        self.contact_base + 3 * contact
+    }
+
+    /// Index of contact `c`'s deepest indentation δ_max (m).
+    pub fn deepest_index(&self, contact: usize) -> usize {
+        self.contact_base + 3 * contact + 2
     }
 }

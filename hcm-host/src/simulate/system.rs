@@ -5,6 +5,7 @@
 use super::kinematics::{pair_kinematics, PairKinematics};
 use super::state::{Layout, StateVector};
 use crate::scenario::Model;
+use hcm_core::effect::ContactMemory;
 use hcm_core::integrate::OdeSystem;
 use hcm_core::law::{Indentation, NormalLaw};
 use hcm_core::wrench::ContactWrench;
@@ -104,7 +105,14 @@ impl ContactSystem<'_> {
                 .as_ref()
                 .and_then(|r| r.correction(k.depth, k.rate, state.approach_speed));
             let f_n = if k.depth > 0.0 {
-                contact.law.normal_force(&state) + correction.unwrap_or(0.0)
+                let law_force = if contact.effects.is_empty() {
+                    contact.law.normal_force(&state)
+                } else {
+                    let deepest = y[self.layout.deepest_index(c)].max(k.depth);
+                    let memory = ContactMemory { max_depth: deepest };
+                    contact.extended_law().normal_force(&state, &memory)
+                };
+                law_force + correction.unwrap_or(0.0)
             } else {
                 0.0
             };
@@ -130,7 +138,11 @@ impl OdeSystem<f64, StateVector> for ContactSystem<'_> {
         self.fill_loads(y, &mut loads);
         for (b, body) in self.model.bodies.iter().enumerate() {
             if let Some(s) = self.layout.slot(b) {
-                let acceleration = self.model.gravity + loads.force[b] / body.mass;
+                let mut acceleration = self.model.gravity + loads.force[b] / body.mass;
+                if let Some(drag) = &body.air_drag {
+                    let velocity = Vector3::new(y[s + 3], y[s + 4], y[s + 5]);
+                    acceleration += drag.force(&velocity) / body.mass;
+                }
                 dy[s..s + 3].copy_from_slice(&y[s + 3..s + 6]);
                 dy[s + 3..s + 6].copy_from_slice(acceleration.as_slice());
             }
@@ -139,6 +151,12 @@ impl OdeSystem<f64, StateVector> for ContactSystem<'_> {
             let i = self.layout.impulse_index(c);
             dy[i] = loads.normal_force[c];
             dy[i + 1] = loads.normal_force[c] * k.rate;
+            // δ_max follows δ while it grows at its maximum (a relative slack of 1e-9
+            // absorbs the rounding between the two integrals), and holds otherwise.
+            let deepest = y[self.layout.deepest_index(c)];
+            let growing =
+                self.modes.touching[c] && k.rate > 0.0 && k.depth >= deepest - 1e-9 * deepest.abs();
+            dy[self.layout.deepest_index(c)] = if growing { k.rate } else { 0.0 };
         }
         self.scratch = loads;
     }
