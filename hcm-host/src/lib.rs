@@ -3,6 +3,7 @@
 //! (`src/cli/`) prints.
 
 pub mod dataset;
+pub mod diagnose;
 pub mod evaluate;
 pub mod experiment;
 pub mod export;

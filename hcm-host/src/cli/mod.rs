@@ -1,5 +1,6 @@
 //! The `hcm` command line: one module per subcommand, each with its `Args` and `run`.
 
+mod diagnose;
 mod evaluate;
 mod export;
 mod force;
@@ -45,6 +46,9 @@ enum Command {
     Export(export::Args),
     /// Reproduce one of the paper's examples end to end, with report and figures.
     Reproduce(reproduce::Args),
+    /// Diagnose a physics model against measured data: what is wrong, the cause named,
+    /// the extended model and its gain.
+    Diagnose(diagnose::Args),
 }
 
 /// Parses the command line, runs the subcommand, and reports errors in plain words.
@@ -61,6 +65,7 @@ pub fn main() -> ExitCode {
         Command::Train(args) => train::run(args),
         Command::Export(args) => export::run(args),
         Command::Reproduce(args) => reproduce::run(args),
+        Command::Diagnose(args) => diagnose::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

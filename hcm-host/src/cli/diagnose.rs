@@ -1,0 +1,263 @@
+//! `hcm diagnose`: what the simulation gets wrong, the cause named, the model extended
+//! with it, and the gain measured on held-out runs.
+
+use super::progress_bar;
+use anyhow::Context;
+use hcm_host::dataset::Dataset;
+use hcm_host::diagnose::catalogue::Kind;
+use hcm_host::diagnose::gain::markdown;
+use hcm_host::diagnose::structure::{structure_figures, Structure};
+use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
+use hcm_host::identify::{FitRecord, Physics};
+use hcm_host::output::{write_atomically, write_bytes};
+use serde_json::json;
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Diagnose a physics model against measured data: residual structure against the
+/// noise floor, the catalogued effects that explain it (named, with parameters, 95 %
+/// intervals and shares), the extended model (DIR/extended.toml) and its gain on
+/// held-out runs (and a held-out condition) beside the base model and the HCM.
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    scenario: super::ScenarioArgs,
+    /// Measured data (measured-data CSV).
+    #[arg(long)]
+    data: PathBuf,
+    /// Physics file of the base model (as written by `hcm identify`).
+    #[arg(long)]
+    physics: PathBuf,
+    /// Output directory (created): report.md, diagnosis.json, extended.toml, figures.
+    #[arg(long)]
+    out: PathBuf,
+    /// Which contact of the scenario.
+    #[arg(long, default_value_t = 0)]
+    contact: usize,
+    /// Seed of the hold-out draw and of the HCM's training.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Share of the runs (inside the fitted range) held out for the gain table.
+    #[arg(long, default_value_t = 0.25)]
+    holdout: f64,
+}
+
+fn write_text(path: &Path, text: &str) -> anyhow::Result<()> {
+    write_atomically(path, |w: &mut dyn Write| -> anyhow::Result<()> {
+        Ok(w.write_all(text.as_bytes())?)
+    })
+    .with_context(|| format!("writing {}", path.display()))
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    if !(args.holdout > 0.0 && args.holdout < 1.0) {
+        anyhow::bail!(
+            "--holdout must lie strictly between 0 and 1, found {}",
+            args.holdout
+        );
+    }
+    let scenario = args.scenario.load()?;
+    let physics = Physics::read(&args.physics)?;
+    let base = physics.apply(&scenario, &args.physics)?.model()?;
+    super::check_contact(args.contact, &base)?;
+    let data = Dataset::read(&args.data)?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+    let bar = progress_bar(1, "diagnosing (noise, selection, re-fit, HCM, gain)");
+    let settings = DiagnoseSettings {
+        contact: args.contact,
+        seed: args.seed,
+        holdout_fraction: args.holdout,
+        ..DiagnoseSettings::default()
+    };
+    let diagnosis = diagnose(&base, &data, &settings)?;
+    bar.finish_and_clear();
+
+    // The extended model, in the physics-file format every command reads.
+    let mut extended = Physics::for_contact(
+        &base,
+        args.contact,
+        &diagnosis.extended.base,
+        FitRecord {
+            method: "diagnose".into(),
+            data: args.data.display().to_string(),
+            runs: diagnosis.runs.training,
+            ..FitRecord::default()
+        },
+    );
+    extended.contacts[0].effects = diagnosis.extended.effects.iter().copied().collect();
+    extended.write(
+        &args.out.join("extended.toml"),
+        &format!("extended model of `{}` from hcm diagnose", scenario.name),
+    )?;
+    write_text(
+        &args.out.join("diagnosis.json"),
+        &serde_json::to_string_pretty(&json_of(&diagnosis))?,
+    )?;
+    let mut figures = Vec::new();
+    for (name, figure) in structure_figures(
+        &diagnosis.before,
+        Some(&diagnosis.after),
+        ("base", "extended"),
+    ) {
+        write_text(&args.out.join(format!("{name}.svg")), &figure.svg())?;
+        write_bytes(&args.out.join(format!("{name}.png")), &figure.png()?)?;
+        figures.push(name);
+    }
+    let report = report(&diagnosis, &figures);
+    write_text(&args.out.join("report.md"), &report)?;
+    print!("{report}");
+    Ok(())
+}
+
+/// diagnosis.json (documented in the README, "hcm diagnose").
+fn json_of(d: &Diagnosis) -> serde_json::Value {
+    let causes: Vec<_> = d
+        .causes
+        .iter()
+        .map(|c| {
+            json!({
+                "effect": c.effect,
+                "kind": c.kind,
+                "parameters": c.parameters.iter().map(|p| (p.name.clone(), json!(p.value))).collect::<serde_json::Map<_, _>>(),
+                "ci": c.parameters.iter().map(|p| (p.name.clone(), json!([p.ci.0, p.ci.1]))).collect::<serde_json::Map<_, _>>(),
+                "share": c.share,
+            })
+        })
+        .collect();
+    json!({
+        "causes": causes,
+        "unexplained_share": d.unexplained_share,
+        "answer": answer(d),
+        "noise_sigma": d.noise.sigma,
+        "base_structured": d.base_structured,
+        "runs": d.runs,
+        "base_parameters": d.base_parameters,
+        "selection": d.selection,
+        "before": d.before,
+        "after": d.after,
+        "gain": d.gain,
+    })
+}
+
+/// The one-line answer: the named causes, "none", or "unexplained".
+fn answer(d: &Diagnosis) -> String {
+    let mut parts: Vec<String> = d.causes.iter().map(|c| c.effect.to_owned()).collect();
+    if d.unexplained_share > 0.0 {
+        parts.push(format!(
+            "unexplained ({:.0} %)",
+            100.0 * d.unexplained_share
+        ));
+    }
+    if parts.is_empty() {
+        "none".into()
+    } else {
+        parts.join(" + ")
+    }
+}
+
+fn report(d: &Diagnosis, figures: &[&str]) -> String {
+    let mut md = String::from("# hcm diagnose\n\n");
+    let _ = writeln!(md, "**Answer: {}.**\n", answer(d));
+    let _ = writeln!(
+        md,
+        "Fitted on {} runs; {} held out{}. Noise floor σ = {:.2} N (from {} second differences of the force).\n",
+        d.runs.training,
+        d.runs.held_out,
+        d.runs.condition.as_ref().map_or(String::new(), |c| format!(", including condition `{c}`")),
+        d.noise.sigma,
+        d.noise.samples
+    );
+    let _ = writeln!(md, "## 1. What is wrong (training runs)\n");
+    let _ = writeln!(md, "| residual | base | extended |\n|---|---|---|");
+    type Row = (&'static str, fn(&Structure) -> f64);
+    let rows: [Row; 4] = [
+        ("RMS in contact (N)", |s| s.contact_rms),
+        ("excess over noise (N)", |s| s.excess_rms),
+        ("mean in flight (N)", |s| s.flight_mean),
+        ("χ² of the time bins", |s| s.chi_squared),
+    ];
+    for (label, value) in rows {
+        let _ = writeln!(
+            md,
+            "| {label} | {:.3} | {:.3} |",
+            value(&d.before),
+            value(&d.after)
+        );
+    }
+    let _ = writeln!(
+        md,
+        "| structured beyond the noise | {} | {} |\n",
+        d.before.structured, d.after.structured
+    );
+    let _ = writeln!(
+        md,
+        "Figures (base vs extended): {}.\n",
+        figures
+            .iter()
+            .map(|f| format!("`{f}.svg`/`.png`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let _ = writeln!(md, "## 2. The cause\n");
+    if d.causes.is_empty() {
+        let _ = writeln!(md, "No catalogued effect passed the selection (cross-validation across runs, BIC, share ≥ 2 %).\n");
+    } else {
+        let _ = writeln!(md, "| effect | kind | parameter | value | 95 % interval | share |\n|---|---|---|---|---|---|");
+        for c in &d.causes {
+            for (k, p) in c.parameters.iter().enumerate() {
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | {} | {:.4e} | [{:.4e}, {:.4e}] | {} |",
+                    if k == 0 { c.effect } else { "" },
+                    if k == 0 {
+                        match c.kind {
+                            Kind::Physical => "physical",
+                            Kind::Measurement => "measurement",
+                        }
+                    } else {
+                        ""
+                    },
+                    p.name,
+                    p.value,
+                    p.ci.0,
+                    p.ci.1,
+                    if k == 0 {
+                        format!("{:.1} %", 100.0 * c.share)
+                    } else {
+                        String::new()
+                    }
+                );
+            }
+        }
+        md.push('\n');
+    }
+    let _ = writeln!(
+        md,
+        "Unexplained share: {:.1} %.\n",
+        100.0 * d.unexplained_share
+    );
+    let _ = writeln!(md, "Selection steps:\n\n| effect | shape | RSS before → with (N²) | CV RSS before → with | ΔRSS/σ² vs BIC | share | entered |\n|---|---|---|---|---|---|---|");
+    for s in &d.selection {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.4e} → {:.4e} | {:.4e} → {:.4e} | {:.1} vs {:.1} | {:.3} | {} |",
+            s.effect,
+            s.shape.map_or("–".into(), |p| format!("{p}")),
+            s.rss.0,
+            s.rss.1,
+            s.cv_rss.0,
+            s.cv_rss.1,
+            s.bic.0,
+            s.bic.1,
+            s.share,
+            s.accepted
+        );
+    }
+    let _ = writeln!(md, "\n## 3. The extended model\n\n`extended.toml`: base law with re-fitted parameters ({}) plus the physical effects; `simulate`, `evaluate` and the core read it.\n",
+        d.base_parameters.iter().map(|p| format!("{} = {:.5e}", p.name, p.value)).collect::<Vec<_>>().join(", "));
+    let _ = writeln!(md, "## 4. The gain (held-out runs)\n");
+    md.push_str(&markdown(&d.gain));
+    md
+}

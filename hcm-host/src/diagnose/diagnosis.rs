@@ -1,0 +1,203 @@
+//! The whole diagnosis of one contact: what is wrong, the named causes, the extended
+//! model and its gain — the data behind `DIR/report.md` and `DIR/diagnosis.json`.
+
+use super::gain::{gain, holdout, GainTable, Holdout};
+use super::noise::{noise_floor, NoiseFloor};
+use super::select::{refit, select, Cause, Fitted, Step};
+use super::structure::{residual_structure, Structure};
+use super::{contact_samples, ContactSamples};
+use crate::dataset::Dataset;
+use crate::export::encode;
+use crate::identify::samples::force_samples;
+use crate::identify::IdentifyError;
+use crate::residual::{ContactResidual, HIDDEN, WIDTH};
+use crate::scenario::{Contact, Model};
+use crate::train::{residual_pairs, train, TrainSettings};
+use hcm_core::effect::ExtendedLaw;
+use hcm_core::residual::Quantisation;
+use serde::Serialize;
+
+/// How to diagnose.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiagnoseSettings {
+    /// Contact of the scenario.
+    pub contact: usize,
+    /// Seed of the hold-out draw and the HCM's training.
+    pub seed: u64,
+    /// Share of the runs (inside the fitted range) held out for the gain table.
+    pub holdout_fraction: f64,
+    /// Epochs of the HCM residual network (the comparison model).
+    pub hcm_epochs: usize,
+}
+
+impl Default for DiagnoseSettings {
+    fn default() -> Self {
+        Self {
+            contact: 0,
+            seed: 1,
+            holdout_fraction: 0.25,
+            hcm_epochs: 60,
+        }
+    }
+}
+
+/// Everything the diagnosis found.
+#[derive(Clone, Debug, Serialize)]
+pub struct Diagnosis {
+    /// Noise floor of the force signal.
+    pub noise: NoiseFloor,
+    /// Training and held-out runs.
+    pub runs: RunSplit,
+    /// What is wrong with the base model (training runs).
+    pub before: Structure,
+    /// What is left with the extended model (training runs).
+    pub after: Structure,
+    /// The forward selection's steps.
+    pub selection: Vec<Step>,
+    /// Named causes with parameters, 95 % intervals and shares.
+    pub causes: Vec<Cause>,
+    /// Share of the structured residual no catalogued effect explains (0 if what is
+    /// left is indistinguishable from noise).
+    pub unexplained_share: f64,
+    /// Whether the base model departs from the data beyond the noise at all.
+    pub base_structured: bool,
+    /// Base law parameters after the joint re-fit.
+    pub base_parameters: Vec<Fitted>,
+    /// The extended law (base + physical effects), f64.
+    #[serde(skip)]
+    pub extended: ExtendedLaw<f64>,
+    /// Held-out comparison of base, extended and HCM.
+    pub gain: Vec<GainTable>,
+}
+
+/// Run indices used for fitting and for the gain.
+#[derive(Clone, Debug, Serialize)]
+pub struct RunSplit {
+    /// Fitted on.
+    pub training: usize,
+    /// Held out.
+    pub held_out: usize,
+    /// Held-out condition outside the fitted range, if the data have conditions.
+    pub condition: Option<String>,
+}
+
+fn subset(data: &Dataset, runs: &[usize]) -> Dataset {
+    Dataset {
+        runs: runs.iter().map(|&r| data.runs[r].clone()).collect(),
+    }
+}
+
+/// Diagnoses contact `settings.contact` of `base` (the scenario with the base physics
+/// applied) against `data`.
+pub fn diagnose(
+    base: &Model,
+    data: &Dataset,
+    settings: &DiagnoseSettings,
+) -> Result<Diagnosis, IdentifyError> {
+    let c = settings.contact;
+    let Holdout {
+        training,
+        held_out,
+        condition,
+    } = holdout(base, data, settings.seed, settings.holdout_fraction);
+    let fit_data = subset(data, &training);
+    let samples: ContactSamples = contact_samples(base, &fit_data, c)?;
+    let noise = noise_floor(&samples);
+    let sigma = noise.sigma;
+    let law = base.contacts[c].extended_law();
+    let before = residual_structure(&samples, &samples.model_force(&law), sigma);
+    let selection = select(&samples, &law, sigma);
+    let chosen = if before.structured {
+        selection.chosen.clone()
+    } else {
+        Vec::new()
+    };
+    let fit = refit(&samples, &law, &chosen, sigma);
+    let after = residual_structure(&samples, &corrected_prediction(&samples, &fit), sigma);
+    let unexplained_share = if after.structured {
+        fit.left_share
+    } else {
+        0.0
+    };
+
+    // The gain: base, extended and HCM on the held-out runs.
+    let mut extended = base.contacts[c].clone();
+    extended.law = fit.law.base;
+    extended.effects = fit.law.effects.iter().copied().collect();
+    let hcm = hcm_contact(base, &fit_data, c, settings)?;
+    let mut models: Vec<(&str, &Contact)> =
+        vec![("base", &base.contacts[c]), ("extended", &extended)];
+    if let Some(h) = &hcm {
+        models.push(("HCM", h));
+    }
+    let gain = gain(base, data, &held_out, c, sigma, &models)?;
+    let base_structured = before_structured(&selection, sigma);
+    Ok(Diagnosis {
+        noise,
+        runs: RunSplit {
+            training: training.len(),
+            held_out: held_out.len(),
+            condition,
+        },
+        before,
+        after,
+        selection: selection.steps,
+        causes: fit.causes,
+        unexplained_share,
+        base_structured,
+        base_parameters: fit.base_parameters,
+        extended: fit.law,
+        gain,
+    })
+}
+
+/// Whether the re-tuned base model's RSS exceeds the noise by five standard
+/// deviations of a χ² with n degrees of freedom.
+fn before_structured(selection: &super::select::Selection, sigma: f64) -> bool {
+    let n = selection.samples as f64;
+    selection.base_rss - n * sigma * sigma > 5.0 * sigma * sigma * (2.0 * n).sqrt()
+}
+
+/// The re-fitted model's prediction of the sensor signal along the samples.
+fn corrected_prediction(samples: &ContactSamples, fit: &super::select::Refit) -> Vec<f64> {
+    let f = samples.model_force(&fit.law);
+    let slope =
+        super::catalogue::Candidate::SensorDelay.column(samples, &fit.law, &f, f64::NAN, 0.0);
+    let (offset, delay) = fit.measurement;
+    f.iter()
+        .zip(&slope)
+        .map(|(f, s)| f + delay * s + offset)
+        .collect()
+}
+
+/// The HCM of the base model: a residual network trained on the training runs,
+/// exported as f32 and decoded by the core, attached to the base contact. None when
+/// the shipped architecture cannot be trained on these data.
+fn hcm_contact(
+    base: &Model,
+    data: &Dataset,
+    c: usize,
+    settings: &DiagnoseSettings,
+) -> Result<Option<Contact>, IdentifyError> {
+    let (samples, _) = force_samples(base, data, c)?;
+    let (inputs, targets) = residual_pairs(&samples, &base.contacts[c].law);
+    let train_settings = TrainSettings {
+        hidden_layers: HIDDEN,
+        width: WIDTH,
+        max_epochs: settings.hcm_epochs,
+        seed: settings.seed,
+        ..TrainSettings::default()
+    };
+    let Ok((network, _)) = train(&inputs, &targets, &train_settings, |_, _, _| {}) else {
+        return Ok(None);
+    };
+    let Ok(bytes) = encode(&network, Quantisation::F32) else {
+        return Ok(None);
+    };
+    let Ok(residual) = ContactResidual::decode(&bytes) else {
+        return Ok(None);
+    };
+    let mut contact = base.contacts[c].clone();
+    contact.residual = Some(residual);
+    Ok(Some(contact))
+}

@@ -1,0 +1,478 @@
+//! What a diagnosis gains, measured on data the fit never saw: the base model, the
+//! extended model and the HCM replayed on held-out runs (and, with several
+//! conditions, on a held-out condition outside the fitted range), each scored by its
+//! force RMSE against the measured force and by the Eq 20 errors of its indicators.
+//!
+//! Force RMSE. Each held-out run is replayed from its own pre-contact state and the
+//! simulated force is compared with the run's recorded normal force at the recorded
+//! samples inside the contact (δ > 0), the simulated curve being linearly
+//! interpolated at the same time after touch-down. The comparison is made at the
+//! recorded samples, not on the resampled curve of [`targets`], because resampling
+//! interpolates between two noisy samples and shrinks the noise (to about √(2/3)·σ
+//! on average): against that curve a perfect model would score below σ and the
+//! excess over noise would hide errors up to about 0.6·σ. At the recorded samples a
+//! perfect model scores σ, the sensor noise of Eq 19, and
+//! excess = √max(RMSE² − σ², 0) estimates the model's own error.
+
+use crate::dataset::Dataset;
+use crate::experiment::condition_of;
+use crate::identify::replay::{simulate_target_with, targets, Target};
+use crate::identify::IdentifyError;
+use crate::indicators::{contact_history, event_spans, Indicators};
+use crate::scenario::{Contact, Model};
+use rand::seq::SliceRandom;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use serde::Serialize;
+
+/// Which runs fit the models and which judge them (indices into the data set).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Holdout {
+    /// Runs the models may be fitted to, ascending.
+    pub training: Vec<usize>,
+    /// Runs kept for judging, ascending: the held-out condition's and a random share
+    /// of the others.
+    pub held_out: Vec<usize>,
+    /// The condition held out entirely, if the data have at least three.
+    pub condition: Option<String>,
+}
+
+/// The held-out runs of `data`: with ≥ 3 conditions, every run of the scenario's
+/// first `experiment.holdout_conditions` entry (if present in the data, else of the
+/// last condition to appear); in every case a random `fraction` (–) of the remaining
+/// runs, at least one when two or more remain and never all of them. Deterministic
+/// for a given `seed`.
+pub fn holdout(model: &Model, data: &Dataset, seed: u64, fraction: f64) -> Holdout {
+    let condition = held_out_condition(model, data);
+    let in_condition = |i: usize| condition.as_deref() == Some(condition_of(&data.runs[i].id));
+    let mut rest: Vec<usize> = (0..data.runs.len()).filter(|&i| !in_condition(i)).collect();
+    let (min, max) = (usize::from(rest.len() >= 2), rest.len().saturating_sub(1));
+    // NaN and negative fractions cast to 0, then the clamp keeps one held-out run.
+    let count = ((rest.len() as f64 * fraction).round() as usize).clamp(min, max);
+    // A stream of its own, so it does not repeat the S1/S2 split's draw.
+    rest.shuffle(&mut ChaCha8Rng::seed_from_u64(seed ^ 0x6A17_D1A6));
+    let mut held_out: Vec<usize> = (0..data.runs.len()).filter(|&i| in_condition(i)).collect();
+    held_out.extend_from_slice(&rest[..count]);
+    held_out.sort_unstable();
+    let mut training = rest[count..].to_vec();
+    training.sort_unstable();
+    Holdout {
+        training,
+        held_out,
+        condition,
+    }
+}
+
+/// Conditions of `data` in order of first appearance.
+fn conditions(data: &Dataset) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    for run in &data.runs {
+        if !names.contains(&condition_of(&run.id)) {
+            names.push(condition_of(&run.id));
+        }
+    }
+    names
+}
+
+/// The condition [`holdout`] holds out entirely, if any.
+fn held_out_condition(model: &Model, data: &Dataset) -> Option<String> {
+    let names = conditions(data);
+    if names.len() < 3 {
+        return None;
+    }
+    let named = model.scenario.experiment.holdout_conditions.first();
+    match named.filter(|n| names.contains(&n.as_str())) {
+        Some(name) => Some(name.clone()),
+        None => names.last().map(|n| n.to_string()),
+    }
+}
+
+/// One model scored on one group of held-out runs. NaN where its simulation failed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct GainRow {
+    /// Model label (`base`, `extended`, `HCM`).
+    pub model: String,
+    /// RMSE of the simulated against the recorded normal force over the contact
+    /// samples of every run of the group (N).
+    pub force_rmse: f64,
+    /// The part of the RMSE the noise does not explain, √max(RMSE² − σ², 0) (N).
+    pub excess_rmse: f64,
+    /// Eq 20 errors (–) of the indicators against the measured means, in the order of
+    /// [`Indicators::NAMES`]; with several conditions in the group, the run-weighted
+    /// mean of the per-condition errors, so errors of opposite sign do not cancel.
+    pub errors: [f64; 4],
+    /// The model's indicators (N, N·s, N·m, s): replayed from each condition's mean
+    /// pre-contact state, run-weighted mean over the group's conditions.
+    pub indicators: Indicators,
+}
+
+/// The models scored on one group of held-out runs.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct GainTable {
+    /// `held-out runs` (inside the fitted range) or `condition NAME`.
+    pub group: String,
+    /// Runs in the group.
+    pub runs: usize,
+    /// One row per model, in the order given.
+    pub rows: Vec<GainRow>,
+}
+
+/// Scores `models` (`(label, contact)`, each replacing contact `c` of `model`) on the
+/// held-out `runs` of `data`: one table for the runs inside the fitted range, one for
+/// the condition [`holdout`] holds out entirely (if any of its runs are given).
+/// `sigma` is the force noise σ (N). Errors only for data that cannot be replayed
+/// (a run without contact, a bad run index); a failing model gets NaN.
+pub fn gain(
+    model: &Model,
+    data: &Dataset,
+    runs: &[usize],
+    c: usize,
+    sigma: f64,
+    models: &[(&str, &Contact)],
+) -> Result<Vec<GainTable>, IdentifyError> {
+    if let Some(&r) = runs.iter().find(|&&r| r >= data.runs.len()) {
+        let n = data.runs.len();
+        return Err(IdentifyError::Setup(format!(
+            "held-out run index {r} is out of range (the data hold {n} runs)"
+        )));
+    }
+    let condition = held_out_condition(model, data);
+    let (outside, inside): (Vec<usize>, Vec<usize>) = runs
+        .iter()
+        .partition(|&&r| condition.as_deref() == Some(condition_of(&data.runs[r].id)));
+    let mut tables = Vec::new();
+    if !inside.is_empty() {
+        let group = "held-out runs".to_owned();
+        tables.push(group_table(group, model, data, &inside, c, sigma, models)?);
+    }
+    if let (Some(name), false) = (condition, outside.is_empty()) {
+        let group = format!("condition {name}");
+        tables.push(group_table(group, model, data, &outside, c, sigma, models)?);
+    }
+    Ok(tables)
+}
+
+/// One run prepared for the force comparison: its replay target and its recorded
+/// (time after touch-down (s), normal force (N)) samples inside the contact.
+struct RunForce {
+    target: Target,
+    samples: Vec<(f64, f64)>,
+}
+
+fn run_force(model: &Model, data: &Dataset, r: usize, c: usize) -> Result<RunForce, IdentifyError> {
+    let run = &data.runs[r];
+    let no_contact = |from: f64, to: f64| IdentifyError::NoContact {
+        run: run.id.clone(),
+        from,
+        to,
+    };
+    let one = Dataset {
+        runs: vec![run.clone()],
+    };
+    let target = targets(model, &one, c)?
+        .into_iter()
+        .next()
+        .ok_or(IdentifyError::NoData)?;
+    let history = contact_history(model, run, c)?;
+    let span = event_spans(&history).into_iter().next().ok_or_else(|| {
+        no_contact(
+            history.time.first().copied().unwrap_or(f64::NAN),
+            history.time.last().copied().unwrap_or(f64::NAN),
+        )
+    })?;
+    let t_in = span.touch_down.0;
+    let samples = span
+        .inside
+        .map(|i| (history.time[i] - t_in, history.force[i]))
+        .collect();
+    Ok(RunForce { target, samples })
+}
+
+/// The curve sampled at τ = j·period, linearly interpolated at `tau` (s); 0 beyond it.
+fn at(curve: &[f64], period: f64, tau: f64) -> f64 {
+    let x = (tau / period).max(0.0);
+    let j = x.floor() as usize;
+    match (curve.get(j), curve.get(j + 1)) {
+        (Some(a), Some(b)) => a + (x - j as f64) * (b - a),
+        (Some(a), None) => *a,
+        _ => 0.0,
+    }
+}
+
+fn group_table(
+    group: String,
+    model: &Model,
+    data: &Dataset,
+    runs: &[usize],
+    c: usize,
+    sigma: f64,
+    models: &[(&str, &Contact)],
+) -> Result<GainTable, IdentifyError> {
+    let singles = runs
+        .iter()
+        .map(|&r| run_force(model, data, r, c))
+        .collect::<Result<Vec<_>, _>>()?;
+    let subset = Dataset {
+        runs: runs.iter().map(|&r| data.runs[r].clone()).collect(),
+    };
+    let means = targets(model, &subset, c)?;
+    let rows = models
+        .iter()
+        .map(|&(label, contact)| {
+            let force_rmse = force_rmse(&singles, c, contact);
+            let (indicators, errors) = indicator_errors(&means, c, contact);
+            GainRow {
+                model: label.to_owned(),
+                force_rmse,
+                excess_rmse: (force_rmse.powi(2) - sigma.powi(2)).max(0.0).sqrt(),
+                errors,
+                indicators,
+            }
+        })
+        .collect();
+    Ok(GainTable {
+        group,
+        runs: runs.len(),
+        rows,
+    })
+}
+
+/// Pooled force RMSE (N) of `contact` over the runs; NaN if any replay fails.
+fn force_rmse(runs: &[RunForce], c: usize, contact: &Contact) -> f64 {
+    let (mut squares, mut count) = (0.0, 0usize);
+    for run in runs {
+        let Some((curve, _)) = simulate_target_with(&run.target, c, contact) else {
+            return f64::NAN;
+        };
+        for &(tau, measured) in &run.samples {
+            squares += (at(&curve, run.target.period, tau) - measured).powi(2);
+            count += 1;
+        }
+    }
+    if count == 0 {
+        return f64::NAN;
+    }
+    (squares / count as f64).sqrt()
+}
+
+/// The run-weighted mean indicators of `contact` replayed on each condition's mean
+/// target, and the run-weighted mean of their Eq 20 errors; NaN if any replay fails.
+fn indicator_errors(means: &[Target], c: usize, contact: &Contact) -> (Indicators, [f64; 4]) {
+    let failed = Indicators {
+        max_force: f64::NAN,
+        impulse: f64::NAN,
+        energy_loss: f64::NAN,
+        duration: f64::NAN,
+    };
+    if means.is_empty() {
+        return (failed, [f64::NAN; 4]);
+    }
+    let total = means.iter().map(|t| t.runs).sum::<usize>() as f64;
+    let (mut values, mut errors) = ([0.0; 4], [0.0; 4]);
+    for target in means {
+        let Some((_, simulated)) = simulate_target_with(target, c, contact) else {
+            return (failed, [f64::NAN; 4]);
+        };
+        let weight = target.runs as f64 / total;
+        let error = simulated.relative_error(&target.indicators);
+        for k in 0..4 {
+            values[k] += weight * simulated.values()[k];
+            errors[k] += weight * error[k];
+        }
+    }
+    let [max_force, impulse, energy_loss, duration] = values;
+    let indicators = Indicators {
+        max_force,
+        impulse,
+        energy_loss,
+        duration,
+    };
+    (indicators, errors)
+}
+
+/// The tables as markdown: one per group, a row per model.
+pub fn markdown(tables: &[GainTable]) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    for (t, table) in tables.iter().enumerate() {
+        if t > 0 {
+            out.push('\n');
+        }
+        let _ = writeln!(out, "**{}** ({} runs)\n", table.group, table.runs);
+        out.push_str(
+            "| model | force RMSE (N) | excess over noise (N) | max force error (%) \
+             | impulse error (%) | energy loss error (%) | duration error (%) |\n\
+             |---|---|---|---|---|---|---|\n",
+        );
+        for row in &table.rows {
+            let _ = write!(
+                out,
+                "| {} | {:.3} | {:.3} |",
+                row.model, row.force_rmse, row.excess_rmse
+            );
+            for e in row.errors {
+                let _ = write!(out, " {:.3} |", 100.0 * e);
+            }
+            out.push('\n');
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dataset::Run;
+    use crate::law_catalogue::map_parameters;
+    use crate::scenario::Scenario;
+    use std::path::Path;
+    use std::sync::OnceLock;
+
+    const SIGMA: f64 = 15.0; // N, the scenario's force_noise
+
+    fn ball() -> Model {
+        let path = Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../scenarios/bouncing_ball.toml"
+        ));
+        Scenario::load(path, &[]).unwrap().resolve(path).unwrap()
+    }
+
+    /// Six generated runs of the bouncing ball, made once.
+    fn generated() -> &'static (Model, Dataset) {
+        static DATA: OnceLock<(Model, Dataset)> = OnceLock::new();
+        DATA.get_or_init(|| {
+            let model = ball();
+            // Without the Eq 18 parameter noise, so a perfect model leaves only the
+            // sensor noise σ (with it, the nominal law misses each run's own
+            // parameters by ~2 % and scores ≈ 21 N).
+            let exact = model.scenario.with(&["contact.0.noise={}".into()]).unwrap();
+            let data = crate::experiment::generate(&exact, 6, 7, || {}).unwrap();
+            (model, data)
+        })
+    }
+
+    fn ids(ids: &[String]) -> Dataset {
+        let runs = ids
+            .iter()
+            .map(|id| Run {
+                id: id.clone(),
+                bodies: Vec::new(),
+            })
+            .collect();
+        Dataset { runs }
+    }
+
+    fn conditioned(names: &[&str], per: usize) -> Dataset {
+        let ids: Vec<String> = names
+            .iter()
+            .flat_map(|n| (0..per).map(move |k| format!("{n}/{k}")))
+            .collect();
+        super::tests::ids(&ids)
+    }
+
+    fn check_partition(h: &Holdout, n: usize) {
+        let mut all: Vec<usize> = h.training.iter().chain(&h.held_out).copied().collect();
+        all.sort_unstable();
+        assert_eq!(all, (0..n).collect::<Vec<_>>(), "{h:?}");
+    }
+
+    #[test]
+    fn holdout_is_deterministic_per_seed() {
+        let model = ball();
+        let data = ids(&(0..20).map(|k| format!("{k:02}")).collect::<Vec<_>>());
+        let a = holdout(&model, &data, 1, 0.25);
+        assert_eq!(a, holdout(&model, &data, 1, 0.25));
+        assert_ne!(a.held_out, holdout(&model, &data, 2, 0.25).held_out);
+        assert_eq!((a.held_out.len(), a.condition.clone()), (5, None));
+        check_partition(&a, 20);
+        // Even a zero share holds out one run, and a full share keeps one for training.
+        assert_eq!(holdout(&model, &data, 1, 0.0).held_out.len(), 1);
+        assert_eq!(holdout(&model, &data, 1, 1.0).training.len(), 1);
+    }
+
+    #[test]
+    fn holdout_takes_a_whole_condition_and_some_others() {
+        let mut model = ball();
+        let data = conditioned(&["a", "b", "c", "d"], 5);
+        let in_condition = |h: &Holdout, name: &str| {
+            h.held_out
+                .iter()
+                .filter(|&&i| condition_of(&data.runs[i].id) == name)
+                .count()
+        };
+        let last = holdout(&model, &data, 3, 0.2);
+        assert_eq!(last.condition.as_deref(), Some("d"));
+        assert_eq!(in_condition(&last, "d"), 5);
+        assert_eq!(last.held_out.len(), 5 + 3, "{last:?}"); // 20 % of the other 15
+        check_partition(&last, 20);
+        model.scenario.experiment.holdout_conditions = vec!["b".into()];
+        let named = holdout(&model, &data, 3, 0.2);
+        assert_eq!(named.condition.as_deref(), Some("b"));
+        assert_eq!(in_condition(&named, "b"), 5);
+        assert!(named.held_out.len() > 5 && !named.training.is_empty());
+        // A named condition absent from the data falls back to the last one.
+        model.scenario.experiment.holdout_conditions = vec!["v9".into()];
+        assert_eq!(
+            holdout(&model, &data, 3, 0.2).condition.as_deref(),
+            Some("d")
+        );
+        // Two conditions are no range to step out of.
+        assert_eq!(
+            holdout(&model, &conditioned(&["a", "b"], 5), 3, 0.2).condition,
+            None
+        );
+    }
+
+    #[test]
+    fn the_true_model_gains_over_a_wrong_one() {
+        let (model, data) = generated();
+        let mut truth = model.contacts[0].clone();
+        truth.noise.clear();
+        let mut wrong = truth.clone();
+        wrong.law = map_parameters(
+            &truth.law,
+            |name, a| if name == "damping" { 0.5 * a } else { a },
+        );
+        let runs: Vec<usize> = (0..data.runs.len()).collect();
+        let models = [("true", &truth), ("damping ×0.5", &wrong)];
+        let tables = gain(model, data, &runs, 0, SIGMA, &models).unwrap();
+        eprintln!("{}", markdown(&tables));
+        assert_eq!(tables.len(), 1);
+        let (t, w) = (&tables[0].rows[0], &tables[0].rows[1]);
+        assert_eq!(
+            (tables[0].group.as_str(), tables[0].runs),
+            ("held-out runs", 6)
+        );
+        assert!((t.force_rmse - SIGMA).abs() < 0.1 * SIGMA, "{t:?}");
+        assert!(t.excess_rmse < 0.5 * w.excess_rmse, "{t:?}\n{w:?}");
+        for k in 0..4 {
+            assert!(t.errors[k] < w.errors[k], "indicator {k}: {t:?}\n{w:?}");
+        }
+    }
+
+    #[test]
+    fn a_held_out_condition_gets_its_own_table() {
+        let (model, data) = generated();
+        // The same physics under three names: grouping only.
+        let mut data = data.clone();
+        for (k, run) in data.runs.iter_mut().enumerate() {
+            run.id = format!("{}/{}", ["a", "b", "c"][k / 2], k % 2);
+        }
+        let truth = &model.contacts[0];
+        let mut broken = truth.clone();
+        broken.law = map_parameters(&truth.law, |_, _| f64::NAN);
+        let models = [("true", truth), ("broken", &broken)];
+        let tables = gain(model, &data, &[1, 2, 4, 5], 0, SIGMA, &models).unwrap();
+        let groups: Vec<_> = tables.iter().map(|t| (t.group.as_str(), t.runs)).collect();
+        assert_eq!(groups, [("held-out runs", 2), ("condition c", 2)]);
+        for table in &tables {
+            assert!(table.rows[0].force_rmse.is_finite() && table.rows[0].errors[0] < 0.05);
+            assert!(table.rows[1].force_rmse.is_nan() && table.rows[1].errors[0].is_nan());
+        }
+        let text = markdown(&tables);
+        assert!(text.contains("**condition c** (2 runs)") && text.contains("| broken | NaN |"));
+        assert_eq!(text.matches("| model | force RMSE (N) |").count(), 2);
+        assert!(gain(model, &data, &[6], 0, SIGMA, &models).is_err());
+    }
+}

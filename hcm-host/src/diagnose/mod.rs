@@ -1,0 +1,17 @@
+//! Diagnosis: where a physics model departs from measured data, which physical effect
+//! is missing, the model extended with it, and what the extension gains.
+//!
+//! The data path: [`samples`] (the measured contact, sample by sample) → noise floor
+//! and residual structure (what is wrong) → catalogue of candidate effects → sparse
+//! selection → joint re-fit (the extended model) → gain on held-out runs.
+
+pub mod samples;
+
+pub use samples::{contact_samples, ContactSamples};
+pub mod catalogue;
+pub mod diagnosis;
+pub mod gain;
+pub mod noise;
+pub mod select;
+pub mod structure;
+pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};

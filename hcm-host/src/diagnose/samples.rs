@@ -1,0 +1,139 @@
+//! The measured data of one contact as the diagnosis reads it: every sample of every
+//! run, in contact or not, with the motion state a contact law needs and the force
+//! the sensor recorded.
+
+use crate::dataset::Dataset;
+use crate::identify::IdentifyError;
+use crate::indicators::{contact_history, event_spans};
+use crate::scenario::Model;
+use hcm_core::effect::{ContactMemory, ExtendedLaw};
+use hcm_core::law::Indentation;
+
+/// Column-wise samples of contact `c` over runs (one entry per recorded sample).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ContactSamples {
+    /// Index of the run in the data set.
+    pub run: Vec<usize>,
+    /// Time (s).
+    pub time: Vec<f64>,
+    /// Indentation δ from the recorded motion (m), ≤ 0 apart.
+    pub depth: Vec<f64>,
+    /// Indentation rate δ̇ (m/s), > 0 approaching.
+    pub rate: Vec<f64>,
+    /// Approach speed δ̇0 of the sample's contact event (m/s); 0 outside events.
+    pub approach_speed: Vec<f64>,
+    /// Deepest δ so far in the sample's contact event (m); 0 outside events.
+    pub max_depth: Vec<f64>,
+    /// Inside a completed contact event (between its δ = 0 crossings).
+    pub in_contact: Vec<bool>,
+    /// Recorded normal force on body 1 (N).
+    pub measured: Vec<f64>,
+}
+
+impl ContactSamples {
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.time.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.time.is_empty()
+    }
+
+    /// The contact state of sample `i` as a law reads it.
+    pub fn state(&self, i: usize) -> (Indentation<f64>, ContactMemory<f64>) {
+        (
+            Indentation {
+                depth: self.depth[i],
+                rate: self.rate[i],
+                approach_speed: self.approach_speed[i],
+            },
+            ContactMemory {
+                max_depth: self.max_depth[i],
+            },
+        )
+    }
+
+    /// The force `law` gives along the recorded motion (N): the law in contact, 0
+    /// outside contact events.
+    pub fn model_force(&self, law: &ExtendedLaw<f64>) -> Vec<f64> {
+        (0..self.len())
+            .map(|i| {
+                if self.in_contact[i] {
+                    let (state, memory) = self.state(i);
+                    law.normal_force(&state, &memory)
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    }
+
+    /// The samples of the runs for which `keep(run index)` holds.
+    pub fn select(&self, keep: impl Fn(usize) -> bool) -> ContactSamples {
+        let mut out = ContactSamples::default();
+        for i in (0..self.len()).filter(|&i| keep(self.run[i])) {
+            out.run.push(self.run[i]);
+            out.time.push(self.time[i]);
+            out.depth.push(self.depth[i]);
+            out.rate.push(self.rate[i]);
+            out.approach_speed.push(self.approach_speed[i]);
+            out.max_depth.push(self.max_depth[i]);
+            out.in_contact.push(self.in_contact[i]);
+            out.measured.push(self.measured[i]);
+        }
+        out
+    }
+}
+
+/// Every sample of contact `c` of `model` in every run of `data`. A run without a
+/// completed contact is an error naming it.
+pub fn contact_samples(
+    model: &Model,
+    data: &Dataset,
+    c: usize,
+) -> Result<ContactSamples, IdentifyError> {
+    if data.runs.is_empty() {
+        return Err(IdentifyError::NoData);
+    }
+    let mut out = ContactSamples::default();
+    for (r, run) in data.runs.iter().enumerate() {
+        let history = contact_history(model, run, c)?;
+        let spans = event_spans(&history);
+        if spans.is_empty() {
+            return Err(IdentifyError::NoContact {
+                run: run.id.clone(),
+                from: history.time.first().copied().unwrap_or(f64::NAN),
+                to: history.time.last().copied().unwrap_or(f64::NAN),
+            });
+        }
+        let mut event = vec![None; history.time.len()];
+        for (e, span) in spans.iter().enumerate() {
+            for i in span.inside.clone() {
+                event[i] = Some(e);
+            }
+        }
+        let mut deepest = 0.0_f64;
+        let mut current = None;
+        for (i, &here) in event.iter().enumerate() {
+            if here != current {
+                (current, deepest) = (here, 0.0);
+            }
+            let approach_speed = here.map_or(0.0, |e| spans[e].approach_speed());
+            if here.is_some() {
+                deepest = deepest.max(history.depth[i]);
+            }
+            out.run.push(r);
+            out.time.push(history.time[i]);
+            out.depth.push(history.depth[i]);
+            out.rate.push(history.rate[i]);
+            out.approach_speed.push(approach_speed);
+            out.max_depth
+                .push(if here.is_some() { deepest } else { 0.0 });
+            out.in_contact.push(here.is_some());
+            out.measured.push(history.force[i]);
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,507 @@
+//! Which catalogued effects are present: a sparse selection over the residual, then a
+//! joint re-fit of the chosen effects with the base law's parameters.
+//!
+//! **Selection.** The residual r = measured − base force is regressed on the columns
+//! of [`super::catalogue`] together with the base law's own sensitivities ∂f/∂θ (always
+//! in: an effect must explain what re-tuning the base cannot). Effects enter by
+//! forward stepwise selection — the group-wise form of sequentially thresholded least
+//! squares, chosen because each effect is one column (plus, for hysteresis damping, a
+//! shape p searched on a grid) and two effects must never split one signal. At each
+//! step the candidate with the lowest cross-validated residual enters if all three
+//! hold:
+//! 1. cross-validation across runs (K folds of whole runs) improves — the effect
+//!    predicts runs it was not fitted on;
+//! 2. the information criterion improves: with the noise σ known from the data,
+//!    ΔRSS/σ² > ln(n) per added parameter (BIC);
+//! 3. the effect explains at least [`MIN_SHARE`] of the structured residual (RSS of the
+//!    re-tuned base minus n·σ²), so that noise-level structure is not given a name.
+//!
+//! A backward pass then removes any chosen effect that later ones made redundant
+//! (bidirectional stepwise selection).
+//!
+//! All sums are accumulated once per fold as Gram matrices, so every candidate subset
+//! is a small linear solve (faer is not needed at this size: a Cholesky of ≤ 25
+//! columns).
+//!
+//! **Re-fit.** The chosen physical effects become core terms of an
+//! [`ExtendedLaw`]; their strengths, the hysteresis exponent and the base parameters
+//! are re-fitted jointly by Levenberg–Marquardt on the force samples, with the chosen
+//! measurement effects (offset b, delay τ) as corrections of the prediction
+//! f_sensor(t) = f(t) − τ·ḟ(t) + b. The covariance gives each parameter's 95 %
+//! interval; each cause's share of the structured residual is the RSS it leaves when
+//! removed from the re-fitted model.
+
+use super::catalogue::{reference_depth, Candidate, Kind, CATALOGUE};
+use super::ContactSamples;
+use crate::identify::bounds::Bounds;
+use crate::identify::levenberg_marquardt::{levenberg_marquardt, LmSettings};
+use crate::law_catalogue;
+use hcm_core::effect::ExtendedLaw;
+use hcm_core::law::AnyNormalLaw;
+use nalgebra::{DMatrix, DVector};
+
+/// Smallest share of the structured residual an effect must explain to be named.
+pub const MIN_SHARE: f64 = 0.02;
+/// Folds of whole runs for cross-validation.
+pub const FOLDS: usize = 5;
+
+/// One step of the forward selection, for the report.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Step {
+    /// Catalogue name of the best candidate at this step.
+    pub effect: &'static str,
+    /// Its shape parameter (hysteresis exponent p), if any.
+    pub shape: Option<f64>,
+    /// Training RSS before and with it (N²).
+    pub rss: (f64, f64),
+    /// Cross-validated RSS before and with it (N²).
+    pub cv_rss: (f64, f64),
+    /// ΔRSS/σ² against its BIC threshold ln(n)·parameters.
+    pub bic: (f64, f64),
+    /// Share of the structured residual it explains.
+    pub share: f64,
+    /// Whether it entered (for an `add` step) or was removed (for a `remove` step).
+    pub accepted: bool,
+    /// `add` (forward step) or `remove` (backward check of an effect already in).
+    pub action: &'static str,
+}
+
+/// The selection's outcome.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Selection {
+    /// Chosen (candidate, shape) in order of entry.
+    pub chosen: Vec<(Candidate, f64)>,
+    /// Every step, the last one the rejected best candidate (if any).
+    pub steps: Vec<Step>,
+    /// RSS of the re-tuned base alone (N²) and number of samples.
+    pub base_rss: f64,
+    /// Samples used.
+    pub samples: usize,
+    /// RSS with the chosen effects (linearised, N²).
+    pub final_rss: f64,
+}
+
+/// The base law's free parameters (those `identify` fits).
+pub fn free_parameters(law: &AnyNormalLaw<f64>) -> Vec<String> {
+    Bounds::for_law(law.name(), None)
+        .map(|b| b.free().iter().map(|s| s.to_string()).collect())
+        .unwrap_or_default()
+}
+
+/// ∂f/∂θ of the base law along the samples for each free parameter (relative step
+/// 1e-6), 0 outside contact.
+fn sensitivities(
+    samples: &ContactSamples,
+    base: &ExtendedLaw<f64>,
+    free: &[String],
+) -> Vec<Vec<f64>> {
+    let f0 = samples.model_force(base);
+    free.iter()
+        .map(|name| {
+            let mut step = 0.0;
+            let law = law_catalogue::map_parameters(&base.base, |n, v| {
+                if n == name {
+                    step = if v != 0.0 { 1e-6 * v.abs() } else { 1e-9 };
+                    v + step
+                } else {
+                    v
+                }
+            });
+            let mut moved = base.clone();
+            moved.base = law;
+            samples
+                .model_force(&moved)
+                .iter()
+                .zip(&f0)
+                .map(|(a, b)| (a - b) / step)
+                .collect()
+        })
+        .collect()
+}
+
+/// Per-fold Gram matrices of the (column-scaled) design and the residual.
+struct Grams {
+    gram: Vec<DMatrix<f64>>,
+    cross: Vec<DVector<f64>>,
+    yy: Vec<f64>,
+}
+
+impl Grams {
+    fn new(columns: &[Vec<f64>], y: &[f64], fold: &[usize], folds: usize) -> Grams {
+        let k = columns.len();
+        let mut g = Grams {
+            gram: vec![DMatrix::zeros(k, k); folds],
+            cross: vec![DVector::zeros(k); folds],
+            yy: vec![0.0; folds],
+        };
+        let mut row = DVector::zeros(k);
+        for i in 0..y.len() {
+            for (j, c) in columns.iter().enumerate() {
+                row[j] = c[i];
+            }
+            let f = fold[i];
+            g.gram[f].ger(1.0, &row, &row, 1.0);
+            g.cross[f].axpy(y[i], &row, 1.0);
+            g.yy[f] += y[i] * y[i];
+        }
+        g
+    }
+
+    /// Coefficients of subset `s` fitted on every fold except `skip` (None: all).
+    fn fit(&self, s: &[usize], skip: Option<usize>) -> Option<DVector<f64>> {
+        let n = s.len();
+        let (mut a, mut b) = (DMatrix::<f64>::zeros(n, n), DVector::<f64>::zeros(n));
+        for f in (0..self.yy.len()).filter(|&f| Some(f) != skip) {
+            for (p, &i) in s.iter().enumerate() {
+                b[p] += self.cross[f][i];
+                for (q, &j) in s.iter().enumerate() {
+                    a[(p, q)] += self.gram[f][(i, j)];
+                }
+            }
+        }
+        let ridge = 1e-12 * a.diagonal().max().max(f64::MIN_POSITIVE);
+        for p in 0..n {
+            a[(p, p)] += ridge;
+        }
+        a.cholesky().map(|c| c.solve(&b))
+    }
+
+    /// RSS of coefficients `b` of subset `s` on fold `f`.
+    fn rss_on(&self, s: &[usize], b: &DVector<f64>, f: usize) -> f64 {
+        let mut rss = self.yy[f];
+        for (p, &i) in s.iter().enumerate() {
+            rss -= 2.0 * b[p] * self.cross[f][i];
+            for (q, &j) in s.iter().enumerate() {
+                rss += b[p] * b[q] * self.gram[f][(i, j)];
+            }
+        }
+        rss.max(0.0)
+    }
+
+    /// (training RSS, cross-validated RSS) of subset `s`.
+    fn score(&self, s: &[usize]) -> (f64, f64) {
+        let folds = self.yy.len();
+        let train = self.fit(s, None).map_or(f64::INFINITY, |b| {
+            (0..folds).map(|f| self.rss_on(s, &b, f)).sum()
+        });
+        let cv = (0..folds)
+            .map(|f| {
+                self.fit(s, Some(f))
+                    .map_or(f64::INFINITY, |b| self.rss_on(s, &b, f))
+            })
+            .sum();
+        (train, cv)
+    }
+}
+
+/// Forward selection of catalogued effects explaining `measured − base` on `samples`
+/// (noise σ in N).
+pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Selection {
+    let base_force = samples.model_force(base);
+    let y: Vec<f64> = samples
+        .measured
+        .iter()
+        .zip(&base_force)
+        .map(|(m, f)| m - f)
+        .collect();
+    let n = y.len();
+    let fold: Vec<usize> = samples.run.iter().map(|r| r % FOLDS).collect();
+    let folds = fold.iter().copied().max().map_or(1, |m| m + 1);
+    let delta_ref = reference_depth(samples);
+    // Columns: base sensitivities first, then every (candidate, shape); scaled to unit RMS.
+    let mut columns = sensitivities(samples, base, &free_parameters(&base.base));
+    let always: Vec<usize> = (0..columns.len()).collect();
+    let mut groups: Vec<(Candidate, f64, usize)> = Vec::new();
+    for candidate in CATALOGUE {
+        for &shape in candidate.shapes() {
+            groups.push((candidate, shape, columns.len()));
+            columns.push(candidate.column(samples, base, &base_force, shape, delta_ref));
+        }
+    }
+    for c in &mut columns {
+        let rms = (c.iter().map(|v| v * v).sum::<f64>() / n.max(1) as f64).sqrt();
+        if rms > 0.0 && rms.is_finite() {
+            c.iter_mut().for_each(|v| *v /= rms);
+        }
+    }
+    let grams = Grams::new(&columns, &y, &fold, folds);
+    let mut subset = always.clone();
+    let (base_rss, mut cv) = grams.score(&subset);
+    let mut rss = base_rss;
+    let structured = (base_rss - n as f64 * sigma * sigma).max(f64::MIN_POSITIVE);
+    let threshold = (n.max(2) as f64).ln();
+    let mut chosen: Vec<(Candidate, f64)> = Vec::new();
+    let mut steps = Vec::new();
+    loop {
+        let best = groups
+            .iter()
+            .filter(|(c, _, _)| !chosen.iter().any(|(d, _)| d == c))
+            .map(|&(c, shape, column)| {
+                let mut s = subset.clone();
+                s.push(column);
+                let (train, cross) = grams.score(&s);
+                (c, shape, column, train, cross)
+            })
+            .min_by(|a, b| a.4.total_cmp(&b.4));
+        let Some((candidate, shape, column, train, cross)) = best else {
+            break;
+        };
+        let parameters = if shape.is_nan() { 1.0 } else { 2.0 };
+        let gain = (rss - train) / (sigma * sigma);
+        let share = (rss - train) / structured;
+        let accepted = cross < cv && gain > threshold * parameters && share >= MIN_SHARE;
+        steps.push(Step {
+            effect: candidate.name(),
+            shape: (!shape.is_nan()).then_some(shape),
+            rss: (rss, train),
+            cv_rss: (cv, cross),
+            bic: (gain, threshold * parameters),
+            share,
+            accepted,
+            action: "add",
+        });
+        if !accepted {
+            break;
+        }
+        subset.push(column);
+        chosen.push((candidate, shape));
+        (rss, cv) = (train, cross);
+    }
+    // Backward pass: an effect taken early can be made redundant by later ones (one
+    // effect's column can mimic the sum of two others for a while); drop the weakest
+    // that no longer passes the same three tests, until all do.
+    loop {
+        let weakest = (0..chosen.len())
+            .map(|k| {
+                let column = always.len() + k;
+                let without: Vec<usize> = subset
+                    .iter()
+                    .enumerate()
+                    .filter(|&(i, _)| i != column)
+                    .map(|(_, &c)| c)
+                    .collect();
+                let (train, cross) = grams.score(&without);
+                (k, without, train, cross)
+            })
+            .min_by(|a, b| a.2.total_cmp(&b.2));
+        let Some((k, without, train, cross)) = weakest else {
+            break;
+        };
+        let (candidate, shape) = chosen[k];
+        let parameters = if shape.is_nan() { 1.0 } else { 2.0 };
+        let gain = (train - rss) / (sigma * sigma);
+        let share = (train - rss) / structured;
+        let keep = cv < cross && gain > threshold * parameters && share >= MIN_SHARE;
+        steps.push(Step {
+            effect: candidate.name(),
+            shape: (!shape.is_nan()).then_some(shape),
+            rss: (rss, train),
+            cv_rss: (cv, cross),
+            bic: (gain, threshold * parameters),
+            share,
+            accepted: !keep,
+            action: "remove",
+        });
+        if keep {
+            break;
+        }
+        subset = without;
+        chosen.remove(k);
+        (rss, cv) = (train, cross);
+    }
+    Selection {
+        chosen,
+        steps,
+        base_rss,
+        samples: n,
+        final_rss: rss,
+    }
+}
+
+/// One fitted parameter with its 95 % interval.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Fitted {
+    /// Name, e.g. `coefficient`.
+    pub name: String,
+    /// Estimate (SI).
+    pub value: f64,
+    /// 95 % confidence interval (estimate ± 1.96 standard errors); NaN if the
+    /// covariance is singular.
+    pub ci: (f64, f64),
+}
+
+/// A named cause after the joint re-fit.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Cause {
+    /// Catalogue name.
+    pub effect: &'static str,
+    /// Physical (in the extended law) or measurement (a data correction).
+    pub kind: Kind,
+    /// Its parameters.
+    pub parameters: Vec<Fitted>,
+    /// Share of the structured residual variance it explains: the RSS increase when it
+    /// alone is removed from the re-fitted model, over the base model's structured RSS.
+    pub share: f64,
+}
+
+/// The re-fitted extended model.
+#[derive(Clone, Debug)]
+pub struct Refit {
+    /// Base law with re-fitted parameters plus the physical effects.
+    pub law: ExtendedLaw<f64>,
+    /// Every named cause.
+    pub causes: Vec<Cause>,
+    /// Base parameters after the re-fit.
+    pub base_parameters: Vec<Fitted>,
+    /// Sensor offset b (N) and delay τ (s) found (0 if not named).
+    pub measurement: (f64, f64),
+    /// RSS of the re-fitted model (N²).
+    pub rss: f64,
+    /// What the re-fitted model leaves above the noise, max(RSS − n·σ², 0), as a share
+    /// of everything structured (the causes' RSS increases plus it).
+    pub left_share: f64,
+}
+
+/// Jointly re-fits the base law's free parameters and the chosen effects on
+/// `samples` (noise σ in N, for the shares).
+///
+/// Shares: cause i's RSS increase ΔRSS_i when its strength alone is set to 0 in the
+/// re-fitted model, and what is left, L = max(RSS − n·σ², 0), are each divided by
+/// Σ ΔRSS_i + L, so the causes' shares and the unexplained share add up to 1.
+pub fn refit(
+    samples: &ContactSamples,
+    base: &ExtendedLaw<f64>,
+    chosen: &[(Candidate, f64)],
+    sigma: f64,
+) -> Refit {
+    let free = free_parameters(&base.base);
+    let delta_ref = reference_depth(samples);
+    let base_values: Vec<f64> = free
+        .iter()
+        .map(|name| {
+            law_catalogue::parameters(&base.base)
+                .iter()
+                .find(|(n, _)| n == name)
+                .map_or(0.0, |p| p.1)
+        })
+        .collect();
+    // Unknowns: base parameters, then per cause its strength (and p for hysteresis).
+    let mut initial = base_values.clone();
+    let mut scales: Vec<f64> = base_values.iter().map(|v| v.abs().max(1e-12)).collect();
+    let mut slots = Vec::new();
+    for &(candidate, shape) in chosen {
+        slots.push(initial.len());
+        let typical = match candidate {
+            Candidate::ViscousDamping => 10.0,
+            Candidate::HysteresisDamping => 1e4,
+            Candidate::StiffnessExponent => 0.01,
+            Candidate::Adhesion => 10.0,
+            Candidate::Plasticity => 0.01,
+            Candidate::ForceOffset => 10.0,
+            Candidate::SensorDelay => 1e-6,
+        };
+        initial.push(0.0);
+        scales.push(typical);
+        if !shape.is_nan() {
+            initial.push(shape);
+            scales.push(1.0);
+        }
+    }
+    let build = |p: &[f64]| -> (ExtendedLaw<f64>, f64, f64) {
+        let mut law = base.clone();
+        law.base = law_catalogue::map_parameters(&base.base, |n, v| {
+            free.iter().position(|f| f == n).map_or(v, |k| p[k])
+        });
+        let (mut offset, mut delay) = (0.0, 0.0);
+        for (&(candidate, shape), &slot) in chosen.iter().zip(&slots) {
+            let shape = if shape.is_nan() { shape } else { p[slot + 1] };
+            match candidate {
+                Candidate::ForceOffset => offset = p[slot],
+                Candidate::SensorDelay => delay = p[slot],
+                _ => {
+                    if let Some(e) = candidate.effect(p[slot], shape, delta_ref) {
+                        let _ = law.effects.push(e);
+                    }
+                }
+            }
+        }
+        (law, offset, delay)
+    };
+    let predict = |p: &[f64]| -> Vec<f64> {
+        let (law, offset, delay) = build(p);
+        let f = samples.model_force(&law);
+        let slope = Candidate::SensorDelay.column(samples, &law, &f, f64::NAN, delta_ref);
+        f.iter()
+            .zip(&slope)
+            .map(|(f, s)| f + delay * s + offset)
+            .collect()
+    };
+    let residuals = |p: &[f64], out: &mut [f64]| {
+        for (o, (pred, m)) in out.iter_mut().zip(predict(p).iter().zip(&samples.measured)) {
+            *o = pred - m;
+        }
+    };
+    let settings = LmSettings {
+        max_iterations: 60,
+        ..LmSettings::default()
+    };
+    let result = levenberg_marquardt(residuals, samples.len(), &initial, &scales, None, &settings);
+    let (p, covariance) = match result {
+        Ok(r) => (r.parameters, r.covariance),
+        Err(_) => (initial.clone(), None),
+    };
+    let rss_of = |p: &[f64]| -> f64 {
+        predict(p)
+            .iter()
+            .zip(&samples.measured)
+            .map(|(a, b)| (a - b).powi(2))
+            .sum()
+    };
+    let rss = rss_of(&p);
+    let fitted = |name: &str, k: usize| {
+        let half = covariance
+            .as_ref()
+            .map_or(f64::NAN, |c| 1.96 * c[k][k].max(0.0).sqrt());
+        Fitted {
+            name: name.to_owned(),
+            value: p[k],
+            ci: (p[k] - half, p[k] + half),
+        }
+    };
+    let mut causes = Vec::new();
+    let (_, offset, delay) = build(&p);
+    for (&(candidate, shape), &slot) in chosen.iter().zip(&slots) {
+        let mut parameters = vec![fitted(candidate.strength().0, slot)];
+        if !shape.is_nan() {
+            parameters.push(fitted("exponent", slot + 1));
+        }
+        if candidate == Candidate::StiffnessExponent {
+            parameters.push(Fitted {
+                name: "reference_depth".into(),
+                value: delta_ref,
+                ci: (delta_ref, delta_ref),
+            });
+        }
+        let mut without = p.clone();
+        without[slot] = 0.0;
+        causes.push(Cause {
+            effect: candidate.name(),
+            kind: candidate.kind(),
+            parameters,
+            share: (rss_of(&without) - rss).max(0.0),
+        });
+    }
+    let left = (rss - samples.len() as f64 * sigma * sigma).max(0.0);
+    let total = causes.iter().map(|c| c.share).sum::<f64>() + left;
+    if total > 0.0 {
+        causes.iter_mut().for_each(|c| c.share /= total);
+    }
+    Refit {
+        law: build(&p).0,
+        causes,
+        base_parameters: free.iter().enumerate().map(|(k, n)| fitted(n, k)).collect(),
+        measurement: (offset, delay),
+        rss,
+        left_share: if total > 0.0 { left / total } else { 0.0 },
+    }
+}

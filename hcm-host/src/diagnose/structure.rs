@@ -1,0 +1,569 @@
+//! What a model gets wrong: the residual r = measured − model (N) split by contact phase
+//! and binned against the motion, and a test of whether it holds more than noise.
+//!
+//! A model that lacks nothing leaves white noise of the size of the noise floor σ (N,
+//! [`super::noise`]): the same RMS in loading and unloading, bin means within σ/√n of
+//! zero. A missing effect leaves a pattern, and the pattern names the effect: a residual
+//! that follows the indentation rate δ̇ is missing damping, one that follows
+//! δ/δ_peak differently in loading and unloading is missing hysteresis, a nonzero mean
+//! in flight is a sensor offset.
+//!
+//! **Structure test.** Under pure noise of standard deviation σ, the mean of the n_b
+//! residuals in bin b is N(0, σ²/n_b), so χ² = Σ_b n_b·mean_b²/σ² over the B non-empty
+//! bins of time since touch-down is χ²-distributed with B degrees of freedom: mean B,
+//! standard deviation √(2B). The residual is called structured when χ² exceeds
+//! B + 5·√(2B), about five standard deviations above what noise gives — a threshold
+//! that pure noise crosses by chance far less often than once in a thousand records,
+//! and that leaves room for σ being an estimate.
+
+use super::ContactSamples;
+use crate::figure::{Colour, Figure, Series};
+
+/// Bins against δ/δ_peak, loading and unloading each.
+const DEPTH_BINS: usize = 10;
+/// Bins against δ̇/δ̇0.
+const RATE_BINS: usize = 10;
+/// Bins against time since touch-down / contact duration.
+const PHASE_BINS: usize = 20;
+/// Standard deviations of χ² above its degrees of freedom that make a residual structured.
+const STRUCTURE_SIGMAS: f64 = 5.0;
+
+/// The residuals whose abscissa falls in one bin.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Bin {
+    /// Middle of the bin, in the abscissa's units (–).
+    pub centre: f64,
+    /// Mean residual measured − model in the bin (N); NaN for an empty bin.
+    pub mean: f64,
+    /// Number of samples in the bin.
+    pub count: usize,
+}
+
+/// Where and how much a model's force departs from the measured force.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Structure {
+    /// Noise floor σ the residual is compared with (N).
+    pub sigma: f64,
+    /// Number of samples in contact.
+    pub contact_samples: usize,
+    /// RMS of the residual in contact (N); NaN without contact samples (as every RMS or
+    /// mean below of an empty set).
+    pub contact_rms: f64,
+    /// RMS of the residual in contact while loading, δ̇ > 0 (N).
+    pub loading_rms: f64,
+    /// RMS of the residual in contact while unloading, δ̇ < 0 (N).
+    pub unloading_rms: f64,
+    /// Number of samples outside contact.
+    pub flight_samples: usize,
+    /// Mean residual outside contact (N): the sensor's offset, as every model gives 0 there.
+    pub flight_mean: f64,
+    /// RMS of the residual outside contact (N): ≈ σ for a sensor without offset.
+    pub flight_rms: f64,
+    /// Part of the contact RMS the noise does not explain, √max(RMS² − σ², 0) (N).
+    pub excess_rms: f64,
+    /// Mean residual against δ/δ_peak while loading (δ_peak the event's deepest δ).
+    pub by_depth_loading: Vec<Bin>,
+    /// Mean residual against δ/δ_peak while unloading.
+    pub by_depth_unloading: Vec<Bin>,
+    /// Mean residual against δ̇/δ̇0 (δ̇0 the event's approach speed), over the range the
+    /// data cover.
+    pub by_rate: Vec<Bin>,
+    /// Mean residual against time since touch-down / contact duration.
+    pub by_phase: Vec<Bin>,
+    /// χ² = Σ n_b·mean_b²/σ² over the non-empty bins of `by_phase` (–).
+    pub chi_squared: f64,
+    /// Degrees of freedom of `chi_squared`: the number of non-empty bins of `by_phase`.
+    pub dof: usize,
+    /// dof + 5·√(2·dof): χ² above this is about 5 standard deviations beyond pure noise (–).
+    pub threshold: f64,
+    /// Whether χ² exceeds `threshold`: the residual holds more than noise.
+    pub structured: bool,
+}
+
+/// The residual `samples.measured − model_force` (N) summarised against the noise floor
+/// `sigma` (N, > 0; otherwise χ² is not finite and nothing is called structured).
+/// `model_force` holds one force per sample (N), e.g. from
+/// [`ContactSamples::model_force`]; the samples of a run are in time order.
+///
+/// # Panics
+/// If `model_force` and `samples` differ in length.
+pub fn residual_structure(samples: &ContactSamples, model_force: &[f64], sigma: f64) -> Structure {
+    assert_eq!(
+        model_force.len(),
+        samples.len(),
+        "one model force per sample"
+    );
+    let residual: Vec<f64> = samples
+        .measured
+        .iter()
+        .zip(model_force)
+        .map(|(m, f)| m - f)
+        .collect();
+    let (depth_fraction, phase) = event_coordinates(samples);
+    let contact = |i: &usize| samples.in_contact[*i];
+    let all = 0..samples.len();
+    let moments = |keep: &dyn Fn(usize) -> bool| {
+        Moments::of(all.clone().filter(|&i| keep(i)).map(|i| residual[i]))
+    };
+    let in_contact = moments(&|i| contact(&i));
+    let loading = moments(&|i| contact(&i) && samples.rate[i] > 0.0);
+    let unloading = moments(&|i| contact(&i) && samples.rate[i] < 0.0);
+    let flight = moments(&|i| !contact(&i));
+
+    let rate_fraction: Vec<f64> = all
+        .clone()
+        .map(|i| samples.rate[i] / samples.approach_speed[i])
+        .collect();
+    let depth_points = |sign: f64| {
+        all.clone()
+            .filter(move |&i| contact(&i) && samples.rate[i] * sign > 0.0)
+            .map(|i| (depth_fraction[i], residual[i]))
+    };
+    let in_contact_points = |x: &[f64]| {
+        all.clone()
+            .filter(contact)
+            .map(|i| (x[i], residual[i]))
+            .collect::<Vec<_>>()
+    };
+    let rate_points = in_contact_points(&rate_fraction);
+    let rate_range = finite_range(rate_points.iter().map(|p| p.0)).unwrap_or((-1.0, 1.0));
+    let by_phase = bin_means(in_contact_points(&phase), (0.0, 1.0), PHASE_BINS);
+
+    let filled = || by_phase.iter().filter(|b| b.count > 0);
+    let dof = filled().count();
+    let chi_squared = filled()
+        .map(|b| b.count as f64 * b.mean * b.mean)
+        .sum::<f64>()
+        / (sigma * sigma);
+    let threshold = dof as f64 + STRUCTURE_SIGMAS * (2.0 * dof as f64).sqrt();
+    let contact_rms = in_contact.rms();
+    Structure {
+        sigma,
+        contact_samples: in_contact.count,
+        contact_rms,
+        loading_rms: loading.rms(),
+        unloading_rms: unloading.rms(),
+        flight_samples: flight.count,
+        flight_mean: flight.mean(),
+        flight_rms: flight.rms(),
+        excess_rms: (contact_rms * contact_rms - sigma * sigma).max(0.0).sqrt(),
+        by_depth_loading: bin_means(depth_points(1.0), (0.0, 1.0), DEPTH_BINS),
+        by_depth_unloading: bin_means(depth_points(-1.0), (0.0, 1.0), DEPTH_BINS),
+        by_rate: bin_means(rate_points, rate_range, RATE_BINS),
+        by_phase,
+        chi_squared,
+        dof,
+        threshold,
+        structured: dof > 0 && chi_squared > threshold,
+    }
+}
+
+/// Per sample, δ/δ_peak and (t − t_touch-down)/duration within its contact event (both
+/// –, NaN outside contact). An event is a stretch of consecutive in-contact samples of
+/// one run; δ_peak is its deepest δ and its duration runs from its first to its last
+/// sample. The samples' own `max_depth` is the deepest δ *so far*, which equals δ all
+/// through loading, so it cannot place a loading sample along the event.
+fn event_coordinates(samples: &ContactSamples) -> (Vec<f64>, Vec<f64>) {
+    let n = samples.len();
+    let (mut depth_fraction, mut phase) = (vec![f64::NAN; n], vec![f64::NAN; n]);
+    let mut start = 0;
+    while start < n {
+        if !samples.in_contact[start] {
+            start += 1;
+            continue;
+        }
+        let run = samples.run[start];
+        let end = (start..n)
+            .find(|&i| !samples.in_contact[i] || samples.run[i] != run)
+            .unwrap_or(n);
+        let peak = samples.depth[start..end]
+            .iter()
+            .fold(f64::NEG_INFINITY, |a, &b| a.max(b));
+        let (t0, t1) = (samples.time[start], samples.time[end - 1]);
+        for i in start..end {
+            depth_fraction[i] = samples.depth[i] / peak;
+            phase[i] = (samples.time[i] - t0) / (t1 - t0);
+        }
+        start = end;
+    }
+    (depth_fraction, phase)
+}
+
+/// Count, sum and sum of squares of some residuals.
+#[derive(Clone, Copy, Default)]
+struct Moments {
+    count: usize,
+    sum: f64,
+    squares: f64,
+}
+
+impl Moments {
+    fn of(values: impl Iterator<Item = f64>) -> Moments {
+        values.fold(Moments::default(), |m, v| Moments {
+            count: m.count + 1,
+            sum: m.sum + v,
+            squares: m.squares + v * v,
+        })
+    }
+
+    /// Mean (N); NaN when empty.
+    fn mean(&self) -> f64 {
+        self.sum / self.count as f64
+    }
+
+    /// Root mean square (N); NaN when empty.
+    fn rms(&self) -> f64 {
+        (self.squares / self.count as f64).sqrt()
+    }
+}
+
+/// Smallest and largest finite value, if any.
+fn finite_range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+    values
+        .filter(|x| x.is_finite())
+        .fold(None, |range, x| match range {
+            None => Some((x, x)),
+            Some((lo, hi)) => Some((x.min(lo), x.max(hi))),
+        })
+}
+
+/// Mean of the residuals of `points` (abscissa, residual N) in `bins` equal bins
+/// spanning `range`; abscissae outside it count in the nearest end bin, non-finite
+/// ones nowhere.
+fn bin_means(
+    points: impl IntoIterator<Item = (f64, f64)>,
+    range: (f64, f64),
+    bins: usize,
+) -> Vec<Bin> {
+    let (lo, hi) = range;
+    let width = if hi > lo {
+        (hi - lo) / bins as f64
+    } else {
+        1.0
+    };
+    let mut sums = vec![Moments::default(); bins];
+    for (x, r) in points.into_iter().filter(|(x, _)| x.is_finite()) {
+        let b = (((x - lo) / width).floor().max(0.0) as usize).min(bins - 1);
+        sums[b] = Moments {
+            count: sums[b].count + 1,
+            sum: sums[b].sum + r,
+            squares: sums[b].squares + r * r,
+        };
+    }
+    sums.iter()
+        .enumerate()
+        .map(|(b, m)| Bin {
+            centre: lo + (b as f64 + 0.5) * width,
+            mean: m.mean(),
+            count: m.count,
+        })
+        .collect()
+}
+
+/// Colour of the "before" model's curves.
+const BEFORE: Colour = Colour::hex(0xd62728);
+/// Colour of the "after" model's curves.
+const AFTER: Colour = Colour::hex(0x1f77b4);
+
+/// The mean residual of `before` — and of `after`, if given — against time since
+/// touch-down, δ/δ_peak while loading, δ/δ_peak while unloading and δ̇/δ̇0, each as
+/// (file stem, figure); `labels` names the two models in the legends (e.g. the base and
+/// the extended model). Empty bins are left out of the curves.
+pub fn structure_figures<'a>(
+    before: &Structure,
+    after: Option<&Structure>,
+    labels: (&'a str, &'a str),
+) -> Vec<(&'static str, Figure<'a>)> {
+    type View = (
+        &'static str,
+        &'static str,
+        &'static str,
+        fn(&Structure) -> &[Bin],
+    );
+    let views: [View; 4] = [
+        (
+            "residual_vs_time",
+            "Mean residual over the contact",
+            "time since touch-down / contact duration (-)",
+            |s| &s.by_phase,
+        ),
+        (
+            "residual_vs_depth_loading",
+            "Mean residual while loading",
+            "indentation / peak indentation (-)",
+            |s| &s.by_depth_loading,
+        ),
+        (
+            "residual_vs_depth_unloading",
+            "Mean residual while unloading",
+            "indentation / peak indentation (-)",
+            |s| &s.by_depth_unloading,
+        ),
+        (
+            "residual_vs_rate",
+            "Mean residual against the indentation rate",
+            "indentation rate / approach speed (-)",
+            |s| &s.by_rate,
+        ),
+    ];
+    let curve = |bins: &[Bin]| -> Vec<(f64, f64)> {
+        bins.iter()
+            .filter(|b| b.count > 0)
+            .map(|b| (b.centre, b.mean))
+            .collect()
+    };
+    views
+        .into_iter()
+        .map(|(stem, title, x_label, bins)| {
+            let mut series = vec![Series {
+                label: labels.0,
+                colour: BEFORE,
+                points: curve(bins(before)),
+            }];
+            if let Some(after) = after {
+                series.push(Series {
+                    label: labels.1,
+                    colour: AFTER,
+                    points: curve(bins(after)),
+                });
+            }
+            let y_label = "mean residual, measured - model (N)";
+            (stem, Figure::new(title, x_label, y_label, series))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::noise::noise_floor;
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use rand_distr::Normal;
+    use std::f64::consts::PI;
+
+    /// Noise of the simulated sensor (N).
+    const SIGMA: f64 = 15.0;
+    /// Runs per record.
+    const RUNS: usize = 200;
+    /// Coefficient of restitution of the simulated motion (–).
+    const RESTITUTION: f64 = 0.8;
+
+    /// Appends one sample with measured force 0 (N), filled in by [`record`].
+    #[allow(clippy::too_many_arguments)]
+    fn push(
+        s: &mut ContactSamples,
+        run: usize,
+        t: f64,
+        depth: f64,
+        rate: f64,
+        v0: f64,
+        deepest: f64,
+        inside: bool,
+    ) {
+        s.run.push(run);
+        s.time.push(t);
+        s.depth.push(depth);
+        s.rate.push(rate);
+        s.approach_speed.push(v0);
+        s.max_depth.push(deepest);
+        s.in_contact.push(inside);
+        s.measured.push(0.0);
+    }
+
+    /// A record of `RUNS` impacts — 20 flight samples 1 ms apart, the contact 1 µs apart
+    /// (about 115 samples, loading a quarter sine, unloading a slower quarter sine to
+    /// δ̇ = −e·δ̇0), 20 flight samples — with a Hertz model force of about 3000 N peak,
+    /// and the measured force model + N(0, σ²) + `extra(sample index)`. Returns the
+    /// samples and the model force (N).
+    fn record(
+        seed: u64,
+        extra: impl Fn(&ContactSamples, usize) -> f64,
+    ) -> (ContactSamples, Vec<f64>) {
+        let noise = Normal::new(0.0, SIGMA).unwrap();
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let w_load = PI * (1.0 + 1.0 / RESTITUTION) / (2.0 * 115e-6);
+        let w_unload = RESTITUTION * w_load;
+        let t_peak = PI / (2.0 * w_load);
+        let t_end = t_peak + PI / (2.0 * w_unload);
+        let stiffness = 3000.0 / (1.0 / w_load).powf(1.5);
+        let mut s = ContactSamples::default();
+        for run in 0..RUNS {
+            let v0 = 0.9 + 0.2 * run as f64 / RUNS as f64;
+            let amplitude = v0 / w_load;
+            for k in (1..=20).rev() {
+                let t = -1e-3 * k as f64;
+                push(&mut s, run, t, v0 * t, v0, 0.0, 0.0, false);
+            }
+            let mut deepest = 0.0_f64;
+            let mut t = 0.5e-6;
+            while t < t_end {
+                let (depth, rate) = if t < t_peak {
+                    let p = w_load * t;
+                    (amplitude * p.sin(), v0 * p.cos())
+                } else {
+                    let p = w_unload * (t - t_peak);
+                    (amplitude * p.cos(), -amplitude * w_unload * p.sin())
+                };
+                deepest = deepest.max(depth);
+                push(&mut s, run, t, depth, rate, v0, deepest, true);
+                t += 1e-6;
+            }
+            for k in 1..=20 {
+                let dt = 1e-3 * k as f64;
+                let speed = RESTITUTION * v0;
+                push(
+                    &mut s,
+                    run,
+                    t_end + dt,
+                    -speed * dt,
+                    -speed,
+                    0.0,
+                    0.0,
+                    false,
+                );
+            }
+        }
+        let model: Vec<f64> = (0..s.len())
+            .map(|i| {
+                if s.in_contact[i] {
+                    stiffness * s.depth[i].max(0.0).powf(1.5)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        s.measured = (0..s.len())
+            .map(|i| model[i] + rng.sample(noise) + extra(&s, i))
+            .collect();
+        (s, model)
+    }
+
+    /// Damping the model lacks (N·s/m).
+    const DAMPING: f64 = 60.0;
+
+    fn damped(s: &ContactSamples, i: usize) -> f64 {
+        if s.in_contact[i] {
+            DAMPING * s.rate[i]
+        } else {
+            0.0
+        }
+    }
+
+    #[test]
+    fn pure_noise_is_not_structured() {
+        let (s, model) = record(21, |_, _| 0.0);
+        let sigma = noise_floor(&s).sigma;
+        let structure = residual_structure(&s, &model, sigma);
+        eprintln!(
+            "pure noise: σ̂ = {sigma:.3} N, contact RMS {:.3} N, excess {:.3} N, χ² = {:.1} (dof {}, threshold {:.1}), flight mean {:.3} N RMS {:.3} N",
+            structure.contact_rms, structure.excess_rms, structure.chi_squared, structure.dof,
+            structure.threshold, structure.flight_mean, structure.flight_rms
+        );
+        assert!(s.len() > 30_000 && structure.contact_samples > 20_000);
+        assert_eq!(structure.dof, PHASE_BINS);
+        assert!(!structure.structured);
+        assert!(structure.excess_rms < 0.2 * SIGMA);
+        assert!((structure.flight_rms / SIGMA - 1.0).abs() < 0.05);
+        assert!(
+            structure.flight_mean.abs() < 4.0 * SIGMA / (structure.flight_samples as f64).sqrt()
+        );
+    }
+
+    #[test]
+    fn a_missing_damping_shows_in_the_rate_bins() {
+        let (s, model) = record(22, damped);
+        let sigma = noise_floor(&s).sigma;
+        let structure = residual_structure(&s, &model, sigma);
+        eprintln!(
+            "damping {DAMPING} N·s/m: σ̂ = {sigma:.3} N, excess {:.2} N, χ² = {:.0} (threshold {:.1})",
+            structure.excess_rms, structure.chi_squared, structure.threshold
+        );
+        assert!(structure.structured);
+        assert!(structure.excess_rms > 1.0 * SIGMA);
+        // Approach speeds average 1 m/s, so a bin at δ̇/δ̇0 = x holds c·x N on average, up to
+        // the spread of x within the bin (half a bin width) and the noise of the mean.
+        let width = structure.by_rate[1].centre - structure.by_rate[0].centre;
+        let (mut xy, mut xx) = (0.0, 0.0);
+        for b in structure.by_rate.iter().filter(|b| b.count >= 100) {
+            let expected = DAMPING * b.centre;
+            let tolerance = DAMPING * width / 2.0 + 4.0 * SIGMA / (b.count as f64).sqrt();
+            eprintln!(
+                "  δ̇/δ̇0 {:+.3}: {:+7.2} N (c·δ̇ {:+7.2} N, n = {})",
+                b.centre, b.mean, expected, b.count
+            );
+            assert!((b.mean - expected).abs() < tolerance, "{b:?}");
+            (xy, xx) = (
+                xy + b.count as f64 * b.centre * b.mean,
+                xx + b.count as f64 * b.centre * b.centre,
+            );
+        }
+        let slope = xy / xx;
+        eprintln!("  fitted slope {slope:.2} N per unit δ̇/δ̇0");
+        assert!((slope / DAMPING - 1.0).abs() < 0.05);
+    }
+
+    #[test]
+    fn damping_like_residual_has_opposite_signs_in_loading_and_unloading() {
+        let (s, model) = record(23, damped);
+        let structure = residual_structure(&s, &model, SIGMA);
+        assert!(structure.loading_rms > 2.0 * SIGMA && structure.unloading_rms > 2.0 * SIGMA);
+        // Near δ_peak the rate, and so the residual, goes to zero: judge the bins below.
+        let clear = |bins: &[Bin]| -> Vec<Bin> {
+            bins.iter()
+                .filter(|b| b.count >= 100 && b.centre < 0.8)
+                .copied()
+                .collect()
+        };
+        let (loading, unloading) = (
+            clear(&structure.by_depth_loading),
+            clear(&structure.by_depth_unloading),
+        );
+        assert!(loading.len() >= 5 && unloading.len() >= 5);
+        assert!(loading.iter().all(|b| b.mean > 0.0), "{loading:?}");
+        assert!(unloading.iter().all(|b| b.mean < 0.0), "{unloading:?}");
+    }
+
+    #[test]
+    fn a_constant_offset_shows_in_the_flight_mean() {
+        let offset = 20.0;
+        let (s, model) = record(24, |_, _| offset);
+        let structure = residual_structure(&s, &model, SIGMA);
+        let standard_error = SIGMA / (structure.flight_samples as f64).sqrt();
+        eprintln!(
+            "offset {offset} N: flight mean {:.3} N (±{standard_error:.3}), flight RMS {:.3} N",
+            structure.flight_mean, structure.flight_rms
+        );
+        assert!((structure.flight_mean - offset).abs() < 4.0 * standard_error);
+        let expected_rms = (SIGMA * SIGMA + offset * offset).sqrt();
+        assert!((structure.flight_rms / expected_rms - 1.0).abs() < 0.03);
+        assert!(structure.structured);
+    }
+
+    #[test]
+    fn figures_show_both_models() {
+        let (s, model) = record(25, damped);
+        let before = residual_structure(&s, &model, SIGMA);
+        let fixed: Vec<f64> = (0..s.len()).map(|i| model[i] + damped(&s, i)).collect();
+        let after = residual_structure(&s, &fixed, SIGMA);
+        assert!(!after.structured);
+        let figures = structure_figures(&before, Some(&after), ("base law", "extended law"));
+        let stems: Vec<_> = figures.iter().map(|f| f.0).collect();
+        assert_eq!(
+            stems,
+            [
+                "residual_vs_time",
+                "residual_vs_depth_loading",
+                "residual_vs_depth_unloading",
+                "residual_vs_rate"
+            ]
+        );
+        for (_, figure) in &figures {
+            let svg = figure.svg();
+            assert!(svg.contains("base law") && svg.contains("extended law"));
+            assert!(!figure.png().unwrap().is_empty());
+        }
+        let alone = structure_figures(&before, None, ("base law", "extended law"));
+        assert!(alone.iter().all(|(_, f)| !f.svg().contains("extended law")));
+    }
+}

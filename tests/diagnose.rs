@@ -1,0 +1,189 @@
+//! `hcm diagnose`: hidden effects in generated data must be found by name, with their
+//! parameter, from the measured data alone.
+
+use hcm_host::dataset::Dataset;
+use hcm_host::diagnose::catalogue::Candidate;
+use hcm_host::diagnose::select::{refit, select};
+use hcm_host::diagnose::{contact_samples, noise::noise_floor};
+use hcm_host::experiment::generate;
+use hcm_host::scenario::{Model, Scenario};
+use std::path::{Path, PathBuf};
+
+fn scenario_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenarios")
+        .join(name)
+}
+
+fn model(name: &str, overrides: &[String]) -> Model {
+    let path = scenario_path(name);
+    Scenario::load(&path, overrides)
+        .unwrap()
+        .resolve(&path)
+        .unwrap()
+}
+
+/// `runs` noisy runs of the ball with `effect` hidden (σ = 15 N, no parameter noise),
+/// written to CSV and read back, and the base model (the scenario's own law).
+fn hidden(effect: &str, runs: usize, seed: u64) -> (Model, Dataset) {
+    let mut overrides = vec!["contact.0.noise={}".to_owned()];
+    if effect.starts_with("experiment.") {
+        overrides.push(effect.to_owned());
+    } else if !effect.is_empty() {
+        overrides.push(format!("contact.0.effects=[{effect}]"));
+    }
+    let truth = model("bouncing_ball.toml", &overrides);
+    let data = generate(&truth.scenario, runs, seed, || {}).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("measured.csv");
+    data.write(&path).unwrap();
+    let measured = Dataset::read(&path).unwrap();
+    (
+        model("bouncing_ball.toml", &["contact.0.noise={}".to_owned()]),
+        measured,
+    )
+}
+
+fn diagnose_names(effect: &str) -> Vec<(&'static str, Vec<f64>, f64)> {
+    let (base, data) = hidden(effect, 12, 3);
+    let samples = contact_samples(&base, &data, 0).unwrap();
+    let sigma = noise_floor(&samples).sigma;
+    let law = base.contacts[0].extended_law();
+    let selection = select(&samples, &law, sigma);
+    println!("{effect}: σ = {sigma:.2} N; steps {:#?}", selection.steps);
+    let fit = refit(&samples, &law, &selection.chosen, sigma);
+    for cause in &fit.causes {
+        println!(
+            "  {} {:?} share {:.3}",
+            cause.effect, cause.parameters, cause.share
+        );
+    }
+    fit.causes
+        .iter()
+        .map(|c| {
+            (
+                c.effect,
+                c.parameters.iter().map(|p| p.value).collect(),
+                c.share,
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn a_hidden_viscous_damping_is_named_with_its_coefficient() {
+    let found = diagnose_names("{ viscous_damping = { coefficient = 40.0 } }");
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].0, Candidate::ViscousDamping.name());
+    assert!((found[0].1[0] - 40.0).abs() < 0.1 * 40.0, "{found:?}");
+    assert!(found[0].2 > 0.9, "share {found:?}");
+}
+
+#[test]
+fn no_hidden_effect_names_none() {
+    let found = diagnose_names("");
+    assert!(found.is_empty(), "{found:?}");
+}
+
+/// Runs diagnose on data with `effect` hidden (scenario override) and `experiment`
+/// overrides, and checks the single named cause and its first parameter.
+fn finds(effect: &str, name: &str, value: f64, tolerance: f64) {
+    let found = diagnose_names(effect);
+    assert_eq!(found.len(), 1, "{effect}: {found:?}");
+    assert_eq!(found[0].0, name, "{found:?}");
+    assert!(
+        (found[0].1[0] - value).abs() <= tolerance * value.abs(),
+        "{effect}: {found:?}"
+    );
+}
+
+#[test]
+fn a_hidden_hysteresis_damping_is_named_with_its_exponent() {
+    // p = 0.5, away from the base law's own δ^1.25·δ̇ damping (at p ≈ 1.25 the base's
+    // λ absorbs most of it: identifiable only jointly, see the README).
+    let found = diagnose_names("{ hysteresis_damping = { coefficient = 1e4, exponent = 0.5 } }");
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].0, "hysteresis_damping");
+    assert!((found[0].1[1] - 0.5).abs() < 0.2, "exponent {found:?}");
+}
+
+#[test]
+fn a_hidden_adhesion_is_named() {
+    finds(
+        "{ adhesion = { pull_off_force = 40.0 } }",
+        "adhesion",
+        40.0,
+        0.15,
+    );
+}
+
+#[test]
+fn a_hidden_plasticity_is_named() {
+    finds(
+        "{ plasticity = { permanent_ratio = 0.03 } }",
+        "plasticity",
+        0.03,
+        0.2,
+    );
+}
+
+#[test]
+fn a_hidden_stiffness_exponent_is_named() {
+    finds(
+        "{ stiffness_exponent = { exponent_change = 0.01, reference_depth = 5e-5 } }",
+        "stiffness_exponent",
+        0.01,
+        0.3,
+    );
+}
+
+#[test]
+fn a_force_sensor_offset_is_named_as_a_measurement_effect() {
+    finds(
+        "experiment.force_offset=[0.0, 0.0, 40.0]",
+        "force_offset",
+        40.0,
+        0.1,
+    );
+}
+
+#[test]
+fn a_lagging_force_sensor_is_named_with_its_delay() {
+    // τ = 1 µs moves the force by up to 1.6 % of its peak.
+    finds("experiment.sensor_delay=1e-6", "sensor_delay", 1e-6, 0.2);
+}
+
+#[test]
+fn two_hidden_effects_are_both_named_and_nothing_else() {
+    let (base, data) = {
+        let truth = model(
+            "bouncing_ball.toml",
+            &[
+                "contact.0.noise={}".to_owned(),
+                "contact.0.effects=[{ viscous_damping = { coefficient = 40.0 } }, { adhesion = { pull_off_force = 40.0 } }]".to_owned(),
+            ],
+        );
+        let data = generate(&truth.scenario, 12, 5, || {}).unwrap();
+        (
+            model("bouncing_ball.toml", &["contact.0.noise={}".to_owned()]),
+            data,
+        )
+    };
+    let samples = contact_samples(&base, &data, 0).unwrap();
+    let sigma = noise_floor(&samples).sigma;
+    let law = base.contacts[0].extended_law();
+    let selection = select(&samples, &law, sigma);
+    let mut names: Vec<&str> = selection.chosen.iter().map(|(c, _)| c.name()).collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["adhesion", "viscous_damping"],
+        "{:#?}",
+        selection.steps
+    );
+    let fit = refit(&samples, &law, &selection.chosen, sigma);
+    for cause in &fit.causes {
+        let value = cause.parameters[0].value;
+        assert!((value - 40.0).abs() < 6.0, "{}: {value}", cause.effect);
+    }
+}
