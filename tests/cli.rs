@@ -329,3 +329,94 @@ fn reproduce_writes_the_report_blobs_and_figures() {
     let blob = std::fs::read(out.join("residual.bin")).unwrap();
     assert!(hcm_host::residual::ContactResidual::decode(&blob).is_ok());
 }
+
+#[test]
+fn diagnose_names_the_variable_stiffness_damping_missing_from_lankarani_nikravesh() {
+    // Flat shot, 10 speeds × 4 runs, data from the variable-stiffness law (PM1) without
+    // parameter noise, base = Lankarani–Nikravesh fitted by lsq. The VS damping
+    // 2λ·√(k(δ)·m_e)·δ·δ̇ grows like δ^1.25·δ̇ and does not scale with 1/δ̇0.
+    let dir = tempfile::tempdir().unwrap();
+    let (data, base, out) = (
+        dir.path().join("data.csv"),
+        dir.path().join("base.toml"),
+        dir.path().join("diagnosis"),
+    );
+    let flat = scenario("flat_shot.toml");
+    hcm_ok(&[
+        "generate",
+        "--scenario",
+        &flat,
+        "--set",
+        "contact.0.noise={}",
+        "--runs",
+        "4",
+        "--seed",
+        "3",
+        "--out",
+        data.to_str().unwrap(),
+    ]);
+    hcm_ok(&[
+        "identify",
+        "--scenario",
+        &flat,
+        "--data",
+        data.to_str().unwrap(),
+        "--law",
+        "lankarani_nikravesh",
+        "--method",
+        "lsq",
+        "--out",
+        base.to_str().unwrap(),
+    ]);
+    hcm_ok(&[
+        "diagnose",
+        "--scenario",
+        &flat,
+        "--data",
+        data.to_str().unwrap(),
+        "--physics",
+        base.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("diagnosis.json")).unwrap())
+            .unwrap();
+    let causes = json["causes"].as_array().unwrap();
+    assert_eq!(causes.len(), 1, "{causes:?}");
+    assert_eq!(causes[0]["effect"], "hysteresis_damping");
+    let p = causes[0]["parameters"]["exponent"].as_f64().unwrap();
+    assert!((1.0..1.5).contains(&p), "exponent {p}");
+    // The held-out speed (v0.95, outside the fitted range's runs): energy-loss error
+    // of the extended model well below the base model's.
+    let gain = json["gain"].as_array().unwrap();
+    let table = gain
+        .iter()
+        .find(|t| t["group"].as_str().unwrap().contains("v0.95"))
+        .expect("a held-out condition table");
+    let energy = |model: &str| {
+        table["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["model"] == model)
+            .unwrap()["errors"][2]
+            .as_f64()
+            .unwrap()
+    };
+    assert!(energy("extended") < 0.25 * energy("base"), "{table}");
+    // And the extended model is a physics file the other commands read.
+    let extended = out.join("extended.toml");
+    hcm_ok(&[
+        "evaluate",
+        "--scenario",
+        &flat,
+        "--data",
+        data.to_str().unwrap(),
+        "--physics",
+        extended.to_str().unwrap(),
+    ]);
+    for file in ["report.md", "residual_vs_time.svg", "residual_vs_time.png"] {
+        assert!(out.join(file).exists(), "{file}");
+    }
+}

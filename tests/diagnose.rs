@@ -187,3 +187,31 @@ fn two_hidden_effects_are_both_named_and_nothing_else() {
         assert!((value - 40.0).abs() < 6.0, "{}: {value}", cause.effect);
     }
 }
+
+#[test]
+fn the_extended_model_halves_the_held_out_excess_error() {
+    use hcm_host::diagnose::{diagnose, DiagnoseSettings};
+    for effect in [
+        "{ viscous_damping = { coefficient = 40.0 } }",
+        "{ plasticity = { permanent_ratio = 0.03 } }",
+    ] {
+        let (base, data) = hidden(effect, 12, 8);
+        let d = diagnose(&base, &data, &DiagnoseSettings::default()).unwrap();
+        let table = &d.gain[0];
+        let excess = |m: &str| {
+            table
+                .rows
+                .iter()
+                .find(|r| r.model == m)
+                .unwrap()
+                .excess_rmse
+        };
+        println!(
+            "{effect}: held-out excess RMSE base {:.2} N, extended {:.2} N, HCM {:.2} N",
+            excess("base"),
+            excess("extended"),
+            excess("HCM")
+        );
+        assert!(excess("extended") <= 0.5 * excess("base"), "{effect}");
+    }
+}

@@ -238,11 +238,12 @@ fn report(d: &Diagnosis, figures: &[&str]) -> String {
         "Unexplained share: {:.1} %.\n",
         100.0 * d.unexplained_share
     );
-    let _ = writeln!(md, "Selection steps:\n\n| effect | shape | RSS before → with (N²) | CV RSS before → with | ΔRSS/σ² vs BIC | share | entered |\n|---|---|---|---|---|---|---|");
+    let _ = writeln!(md, "Selection steps (add: forward step, `taken` = entered; remove: backward check, `taken` = removed):\n\n| step | effect | shape | RSS before → with (N²) | CV RSS before → with | ΔRSS/σ² vs BIC | share | taken |\n|---|---|---|---|---|---|---|---|");
     for s in &d.selection {
         let _ = writeln!(
             md,
-            "| {} | {} | {:.4e} → {:.4e} | {:.4e} → {:.4e} | {:.1} vs {:.1} | {:.3} | {} |",
+            "| {} | {} | {} | {:.4e} → {:.4e} | {:.4e} → {:.4e} | {:.1} vs {:.1} | {:.3} | {} |",
+            s.action,
             s.effect,
             s.shape.map_or("–".into(), |p| format!("{p}")),
             s.rss.0,

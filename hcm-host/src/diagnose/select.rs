@@ -228,7 +228,18 @@ pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> 
     let mut subset = always.clone();
     let (base_rss, mut cv) = grams.score(&subset);
     let mut rss = base_rss;
-    let structured = (base_rss - n as f64 * sigma * sigma).max(f64::MIN_POSITIVE);
+    // The structured residual: what the noise does not explain, and at least what all
+    // candidates together explain (σ from second differences can sit a little above
+    // the true noise, which would leave nothing "structured" to share).
+    let all: Vec<usize> = (0..columns.len()).collect();
+    let explainable = base_rss - grams.score(&all).0;
+    let structured = (base_rss - n as f64 * sigma * sigma)
+        .max(if explainable.is_finite() {
+            explainable
+        } else {
+            0.0
+        })
+        .max(f64::MIN_POSITIVE);
     let threshold = (n.max(2) as f64).ln();
     let mut chosen: Vec<(Candidate, f64)> = Vec::new();
     let mut steps = Vec::new();
@@ -388,6 +399,19 @@ pub fn refit(
     // Unknowns: base parameters, then per cause its strength (and p for hysteresis).
     let mut initial = base_values.clone();
     let mut scales: Vec<f64> = base_values.iter().map(|v| v.abs().max(1e-12)).collect();
+    // Base parameters stay in their physical domain (identify's search box, widened to
+    // include the start); effect strengths in theirs.
+    let domain = Bounds::for_law(base.base.name(), None).ok();
+    let mut bounds: Vec<(f64, f64)> = free
+        .iter()
+        .zip(&base_values)
+        .map(|(name, &v)| {
+            let (lo, hi) = domain
+                .as_ref()
+                .map_or((f64::NEG_INFINITY, f64::INFINITY), |d| d.range(name));
+            (lo.min(v), hi.max(v))
+        })
+        .collect();
     let mut slots = Vec::new();
     for &(candidate, shape) in chosen {
         slots.push(initial.len());
@@ -402,9 +426,17 @@ pub fn refit(
         };
         initial.push(0.0);
         scales.push(typical);
+        bounds.push(match candidate {
+            Candidate::ViscousDamping | Candidate::HysteresisDamping | Candidate::Adhesion => {
+                (0.0, f64::INFINITY)
+            }
+            Candidate::Plasticity => (0.0, 0.9),
+            _ => (f64::NEG_INFINITY, f64::INFINITY),
+        });
         if !shape.is_nan() {
             initial.push(shape);
             scales.push(1.0);
+            bounds.push((0.0, 4.0));
         }
     }
     let build = |p: &[f64]| -> (ExtendedLaw<f64>, f64, f64) {
@@ -445,7 +477,14 @@ pub fn refit(
         max_iterations: 60,
         ..LmSettings::default()
     };
-    let result = levenberg_marquardt(residuals, samples.len(), &initial, &scales, None, &settings);
+    let result = levenberg_marquardt(
+        residuals,
+        samples.len(),
+        &initial,
+        &scales,
+        Some(&bounds),
+        &settings,
+    );
     let (p, covariance) = match result {
         Ok(r) => (r.parameters, r.covariance),
         Err(_) => (initial.clone(), None),
