@@ -3,11 +3,13 @@
 
 use super::progress_bar;
 use anyhow::Context;
+use hcm_core::effect::AirDrag;
 use hcm_host::dataset::Dataset;
 use hcm_host::diagnose::catalogue::Kind;
 use hcm_host::diagnose::gain::markdown;
 use hcm_host::diagnose::structure::{structure_figures, Structure};
 use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
+use hcm_host::identify::physics::PhysicsBody;
 use hcm_host::identify::{FitRecord, Physics};
 use hcm_host::output::{write_atomically, write_bytes};
 use serde_json::json;
@@ -87,6 +89,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         },
     );
     extended.contacts[0].effects = diagnosis.extended.effects.iter().copied().collect();
+    if let Some(drag) = diagnosis.drag.as_ref().filter(|d| d.significant) {
+        extended.bodies.push(PhysicsBody {
+            name: diagnosis.drag_body.clone(),
+            air_drag: AirDrag {
+                coefficient: drag.coefficient,
+            },
+        });
+    }
     extended.write(
         &args.out.join("extended.toml"),
         &format!("extended model of `{}` from hcm diagnose", scenario.name),
@@ -138,6 +148,7 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
         "before": d.before,
         "after": d.after,
         "gain": d.gain,
+        "air_drag_fit": d.drag,
     })
 }
 

@@ -3,7 +3,7 @@
 
 use super::gain::{gain, holdout, GainTable, Holdout};
 use super::noise::{noise_floor, NoiseFloor};
-use super::select::{refit, select, Cause, Fitted, Step};
+use super::select::{refit, select, Cause, Fitted, Step, MIN_SHARE};
 use super::structure::{residual_structure, Structure};
 use super::{contact_samples, ContactSamples};
 use crate::dataset::Dataset;
@@ -56,6 +56,11 @@ pub struct Diagnosis {
     pub selection: Vec<Step>,
     /// Named causes with parameters, 95 % intervals and shares.
     pub causes: Vec<Cause>,
+    /// Air drag fitted from the flight motion of body 1 (its `share` is of the flight
+    /// acceleration's variance, not of the force residual).
+    pub drag: Option<super::drag::DragFit>,
+    /// The body the drag was fitted for.
+    pub drag_body: String,
     /// Share of the structured residual no catalogued effect explains (0 if what is
     /// left is indistinguishable from noise).
     pub unexplained_share: f64,
@@ -112,8 +117,36 @@ pub fn diagnose(
     } else {
         Vec::new()
     };
-    let fit = refit(&samples, &law, &chosen, sigma);
+    let mut chosen = chosen;
+    let mut fit = refit(&samples, &law, &chosen, sigma);
+    // An effect that entered on the linearised residual but explains less than the
+    // minimum share once everything is re-fitted is not named: drop the weakest, re-fit.
+    while let Some(k) = (0..fit.causes.len())
+        .filter(|&k| fit.causes[k].share < MIN_SHARE)
+        .min_by(|&a, &b| fit.causes[a].share.total_cmp(&fit.causes[b].share))
+    {
+        chosen.remove(k);
+        fit = refit(&samples, &law, &chosen, sigma);
+    }
     let after = residual_structure(&samples, &corrected_prediction(&samples, &fit), sigma);
+    let mut causes = fit.causes;
+    let body = &base.bodies[base.contacts[c].body_1];
+    let drag = super::drag::fit_drag(&samples, body.mass);
+    if let Some(d) = drag.as_ref().filter(|d| d.significant) {
+        causes.push(Cause {
+            effect: "air_drag",
+            kind: super::catalogue::Kind::Physical,
+            parameters: vec![Fitted {
+                name: "coefficient".into(),
+                value: d.coefficient,
+                ci: (
+                    d.coefficient - 1.96 * d.standard_error,
+                    d.coefficient + 1.96 * d.standard_error,
+                ),
+            }],
+            share: d.share,
+        });
+    }
     let unexplained_share = if after.structured {
         fit.left_share
     } else {
@@ -142,7 +175,9 @@ pub fn diagnose(
         before,
         after,
         selection: selection.steps,
-        causes: fit.causes,
+        causes,
+        drag,
+        drag_body: body.name.clone(),
         unexplained_share,
         base_structured,
         base_parameters: fit.base_parameters,

@@ -15,3 +15,4 @@ pub mod noise;
 pub mod select;
 pub mod structure;
 pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};
+pub mod drag;

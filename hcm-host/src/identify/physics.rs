@@ -4,7 +4,7 @@
 use crate::law_catalogue;
 use crate::output::write_atomically;
 use crate::scenario::{Model, Scenario, ScenarioError};
-use hcm_core::effect::ContactEffect;
+use hcm_core::effect::{AirDrag, ContactEffect};
 use hcm_core::law::AnyNormalLaw;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -51,6 +51,16 @@ pub struct FitRecord {
     pub notes: Vec<String>,
 }
 
+/// A body effect found from the motion (as `hcm diagnose` writes it).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PhysicsBody {
+    /// Body name, as in the scenario.
+    pub name: String,
+    /// Quadratic air drag on it.
+    pub air_drag: AirDrag<f64>,
+}
+
 /// A physics file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -58,6 +68,9 @@ pub struct Physics {
     /// Identified contacts.
     #[serde(rename = "contact")]
     pub contacts: Vec<PhysicsContact>,
+    /// Body effects (air drag); none for a plain identified law.
+    #[serde(default, rename = "body", skip_serializing_if = "Vec::is_empty")]
+    pub bodies: Vec<PhysicsBody>,
     /// How the fit went.
     #[serde(default)]
     pub fit: FitRecord,
@@ -97,6 +110,7 @@ impl Physics {
                 parameters,
                 effects: Vec::new(),
             }],
+            bodies: Vec::new(),
             fit,
         }
     }
@@ -148,6 +162,12 @@ impl Physics {
                     message: format!("effects: {e}"),
                 })?;
             assignments.push(format!("contact.{index}.effects={effects}"));
+        }
+        for body in &self.bodies {
+            assignments.push(format!(
+                "body.{}.air_drag={{ coefficient = {:?} }}",
+                body.name, body.air_drag.coefficient
+            ));
         }
         Ok(scenario.with(&assignments)?)
     }
