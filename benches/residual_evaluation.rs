@@ -29,7 +29,7 @@ use hcm_core::hybrid::{Evaluated, HybridContactModel};
 use hcm_core::law::{AnyNormalLaw, Indentation, NormalLaw};
 use hcm_core::residual::{decode, Envelope, F32Weights, Int8Weights, Layer, Mlp, Quantisation};
 use hcm_host::export::encode;
-use hcm_host::residual::{export_model, HIDDEN, INPUTS, WIDTH};
+use hcm_host::residual::{HIDDEN, INPUTS, WIDTH};
 use hcm_host::train::{train, TrainSettings};
 use std::hint::black_box;
 
@@ -68,10 +68,9 @@ fn trained_blobs() -> (Vec<u8>, Vec<u8>) {
         ..TrainSettings::default()
     };
     let (network, _) = train(&inputs, &targets, &settings, |_, _, _| {}).unwrap();
-    let model = export_model(&network);
     (
-        encode(&model, Quantisation::F32).unwrap(),
-        encode(&model, Quantisation::Int8).unwrap(),
+        encode(&network, Quantisation::F32).unwrap(),
+        encode(&network, Quantisation::Int8).unwrap(),
     )
 }
 

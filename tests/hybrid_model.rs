@@ -8,7 +8,7 @@ use hcm_host::experiment::{generate, split};
 use hcm_host::export::encode;
 use hcm_host::identify::samples::force_samples;
 use hcm_host::identify::{identify, Method, Physics};
-use hcm_host::residual::{export_model, ContactResidual, HIDDEN, WIDTH};
+use hcm_host::residual::{ContactResidual, HIDDEN, WIDTH};
 use hcm_host::scenario::Scenario;
 use hcm_host::train::{residual_pairs, train, TrainSettings};
 use std::path::Path;
@@ -45,7 +45,7 @@ fn the_hcm_beats_pm2_on_energy_loss_and_its_blob_reproduces_the_host_network() {
     let (network, _) = train(&inputs, &targets, &settings, |_, _, _| {}).unwrap();
 
     // Round trip: host network → blob → core model, same outputs.
-    let blob = encode(&export_model(&network), Quantisation::F32).unwrap();
+    let blob = encode(&network, Quantisation::F32).unwrap();
     let residual = ContactResidual::decode(&blob).unwrap();
     let scale = network.output_scale[0];
     for x in inputs.iter().step_by(7) {

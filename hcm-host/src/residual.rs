@@ -3,7 +3,6 @@
 //! training envelope it adds its force correction to the law's; outside it is
 //! switched off (the paper's strategy for conditions without data).
 
-use crate::export::ExportModel;
 use crate::train::Network;
 use hcm_core::residual::{decode, BlobError, F32Weights, Int8Weights, Mlp};
 use std::sync::Arc;
@@ -46,12 +45,6 @@ impl ContactResidual {
         };
         inside.then_some(output[0] as f64)
     }
-}
-
-/// The trained host network in the exporter's form (the same type: kept as a
-/// function so callers need not know that).
-pub fn export_model(network: &Network) -> ExportModel {
-    network.clone()
 }
 
 /// Worst |core − host| of `decoded` against the host `network` it was exported from,

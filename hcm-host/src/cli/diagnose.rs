@@ -11,11 +11,10 @@ use hcm_host::diagnose::structure::{structure_figures, Structure};
 use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
 use hcm_host::identify::physics::PhysicsBody;
 use hcm_host::identify::{FitRecord, Physics};
-use hcm_host::output::{write_atomically, write_bytes};
+use hcm_host::output::write_bytes;
 use serde_json::json;
 use std::fmt::Write as _;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Diagnose a physics model against measured data: residual structure against the
 /// noise floor, the catalogued effects that explain it (named, with parameters, 95 %
@@ -43,13 +42,6 @@ pub struct Args {
     /// Share of the runs (inside the fitted range) held out for the gain table.
     #[arg(long, default_value_t = 0.25)]
     holdout: f64,
-}
-
-fn write_text(path: &Path, text: &str) -> anyhow::Result<()> {
-    write_atomically(path, |w: &mut dyn Write| -> anyhow::Result<()> {
-        Ok(w.write_all(text.as_bytes())?)
-    })
-    .with_context(|| format!("writing {}", path.display()))
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -101,9 +93,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         &args.out.join("extended.toml"),
         &format!("extended model of `{}` from hcm diagnose", scenario.name),
     )?;
-    write_text(
+    write_bytes(
         &args.out.join("diagnosis.json"),
-        &serde_json::to_string_pretty(&json_of(&diagnosis))?,
+        serde_json::to_string_pretty(&json_of(&diagnosis))?.as_bytes(),
     )?;
     let mut figures = Vec::new();
     for (name, figure) in structure_figures(
@@ -111,12 +103,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Some(&diagnosis.after),
         ("base", "extended"),
     ) {
-        write_text(&args.out.join(format!("{name}.svg")), &figure.svg())?;
+        write_bytes(
+            &args.out.join(format!("{name}.svg")),
+            figure.svg().as_bytes(),
+        )?;
         write_bytes(&args.out.join(format!("{name}.png")), &figure.png()?)?;
         figures.push(name);
     }
     let report = report(&diagnosis, &figures);
-    write_text(&args.out.join("report.md"), &report)?;
+    write_bytes(&args.out.join("report.md"), report.as_bytes())?;
     print!("{report}");
     Ok(())
 }

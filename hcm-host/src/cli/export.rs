@@ -2,14 +2,12 @@
 //! core decodes (postcard: magic, version, shapes, quantisation, normalisation,
 //! envelope, weights, CRC-32).
 
-use anyhow::Context;
 use hcm_core::residual::Quantisation;
 use hcm_host::export::encode;
-use hcm_host::output::write_atomically;
+use hcm_host::output::write_bytes;
 use hcm_host::residual::{round_trip_error, ContactResidual};
 use hcm_host::train::TrainedResidual;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Weight storage of the blob.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -34,14 +32,6 @@ pub struct Args {
     out: PathBuf,
 }
 
-/// Writes `bytes` to `path` atomically.
-pub fn write_blob(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    write_atomically(path, |w: &mut dyn Write| -> anyhow::Result<()> {
-        Ok(w.write_all(bytes)?)
-    })
-    .with_context(|| format!("writing {}", path.display()))
-}
-
 /// The blob of `trained` in `weights` storage, checked by decoding it in the core:
 /// (bytes, worst relative |core − host| over the envelope grid).
 pub fn blob(trained: &TrainedResidual, weights: Weights) -> anyhow::Result<(Vec<u8>, f64)> {
@@ -61,7 +51,7 @@ pub fn blob(trained: &TrainedResidual, weights: Weights) -> anyhow::Result<(Vec<
 pub fn run(args: Args) -> anyhow::Result<()> {
     let trained = TrainedResidual::read(&args.residual)?;
     let (bytes, error) = blob(&trained, args.weights)?;
-    write_blob(&args.out, &bytes)?;
+    write_bytes(&args.out, &bytes)?;
     println!(
         "{} blob: {} bytes → {} (core vs host over the envelope: worst relative error {error:.2e})",
         match args.weights {

@@ -1,7 +1,7 @@
 //! `hcm reproduce`: the paper's whole method for one example — generate (PM1) →
 //! split → identify (PM2) → train → export → evaluate — with the report and figures.
 
-use super::export::{blob, write_blob, Weights};
+use super::export::{blob, Weights};
 use super::progress_bar;
 use anyhow::Context;
 use hcm_host::evaluate::{evaluate, markdown, ConditionTable};
@@ -13,12 +13,11 @@ use hcm_host::identify::replay::{simulate_target_with, targets};
 use hcm_host::identify::samples::force_samples;
 use hcm_host::identify::{identify, Method, Physics};
 use hcm_host::law_catalogue;
-use hcm_host::output::{write_atomically, write_bytes};
+use hcm_host::output::write_bytes;
 use hcm_host::residual::{ContactResidual, HIDDEN, WIDTH};
 use hcm_host::scenario::Scenario;
 use hcm_host::train::{quantisation_aware, residual_pairs, train, TrainSettings, TrainedResidual};
 use std::fmt::Write as _;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -77,13 +76,6 @@ pub struct Args {
     /// Scenario file (default: scenarios/<example>.toml of this repository).
     #[arg(long)]
     scenario: Option<PathBuf>,
-}
-
-fn write_text(path: &Path, text: &str) -> anyhow::Result<()> {
-    write_atomically(path, |w: &mut dyn Write| -> anyhow::Result<()> {
-        Ok(w.write_all(text.as_bytes())?)
-    })
-    .with_context(|| format!("writing {}", path.display()))
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -180,7 +172,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (Weights::Int8, "residual.int8.bin"),
     ] {
         let (bytes, round_trip) = blob(&trained, weights)?;
-        write_blob(&args.out.join(name), &bytes)?;
+        write_bytes(&args.out.join(name), &bytes)?;
         blobs.push((
             weights,
             bytes.len(),
@@ -243,7 +235,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let _ = writeln!(md, "| {stage} | {seconds:.2} |");
     }
     let _ = writeln!(md, "\nFigures: {}", figures.join(", "));
-    write_text(&args.out.join("report.md"), &md)?;
+    write_bytes(&args.out.join("report.md"), md.as_bytes())?;
     print!("{md}");
     Ok(())
 }
@@ -354,7 +346,7 @@ fn figures(
     let mut names = Vec::new();
     for (stem, figure) in [("contact_force", &force), ("force_error", &error)] {
         let (svg, png) = (format!("{stem}.svg"), format!("{stem}.png"));
-        write_text(&out.join(&svg), &figure.svg())?;
+        write_bytes(&out.join(&svg), figure.svg().as_bytes())?;
         let bytes = figure.png().with_context(|| format!("drawing {png}"))?;
         write_bytes(&out.join(&png), &bytes)?;
         names.extend([svg, png]);

@@ -3,7 +3,7 @@
 
 use super::gain::{gain, holdout, GainTable, Holdout};
 use super::noise::{noise_floor, NoiseFloor};
-use super::select::{refit, select, Cause, Fitted, Step, MIN_SHARE};
+use super::select::{refit, select, sensor_force, Cause, Fitted, Step, MIN_SHARE};
 use super::structure::{residual_structure, Structure};
 use super::{contact_samples, ContactSamples};
 use crate::dataset::Dataset;
@@ -64,7 +64,8 @@ pub struct Diagnosis {
     /// Share of the structured residual no catalogued effect explains (0 if what is
     /// left is indistinguishable from noise).
     pub unexplained_share: f64,
-    /// Whether the base model departs from the data beyond the noise at all.
+    /// Whether the base model departs from the data beyond the noise at all (the χ²
+    /// test of `before`, which also gates the selection).
     pub base_structured: bool,
     /// Base law parameters after the joint re-fit.
     pub base_parameters: Vec<Fitted>,
@@ -128,7 +129,11 @@ pub fn diagnose(
         chosen.remove(k);
         fit = refit(&samples, &law, &chosen, sigma);
     }
-    let after = residual_structure(&samples, &corrected_prediction(&samples, &fit), sigma);
+    let after = residual_structure(
+        &samples,
+        &sensor_force(&samples, &fit.law, fit.measurement),
+        sigma,
+    );
     let mut causes = fit.causes;
     let body = &base.bodies[base.contacts[c].body_1];
     let drag = super::drag::fit_drag(&samples, body.mass);
@@ -164,7 +169,7 @@ pub fn diagnose(
         models.push(("HCM", h));
     }
     let gain = gain(base, data, &held_out, c, sigma, &models)?;
-    let base_structured = before_structured(&selection, sigma);
+    let base_structured = before.structured;
     Ok(Diagnosis {
         noise,
         runs: RunSplit {
@@ -184,25 +189,6 @@ pub fn diagnose(
         extended: fit.law,
         gain,
     })
-}
-
-/// Whether the re-tuned base model's RSS exceeds the noise by five standard
-/// deviations of a χ² with n degrees of freedom.
-fn before_structured(selection: &super::select::Selection, sigma: f64) -> bool {
-    let n = selection.samples as f64;
-    selection.base_rss - n * sigma * sigma > 5.0 * sigma * sigma * (2.0 * n).sqrt()
-}
-
-/// The re-fitted model's prediction of the sensor signal along the samples.
-fn corrected_prediction(samples: &ContactSamples, fit: &super::select::Refit) -> Vec<f64> {
-    let f = samples.model_force(&fit.law);
-    let slope =
-        super::catalogue::Candidate::SensorDelay.column(samples, &fit.law, &f, f64::NAN, 0.0);
-    let (offset, delay) = fit.measurement;
-    f.iter()
-        .zip(&slope)
-        .map(|(f, s)| f + delay * s + offset)
-        .collect()
 }
 
 /// The HCM of the base model: a residual network trained on the training runs,

@@ -194,6 +194,61 @@ impl Grams {
     }
 }
 
+/// Whether one effect earns its place: the three tests of the module documentation,
+/// comparing the model without it against the model with it.
+struct Verdict {
+    /// (RSS, cross-validated RSS) without and with the effect (N²).
+    without: (f64, f64),
+    with: (f64, f64),
+    /// ΔRSS/σ² and its BIC threshold ln(n)·parameters.
+    bic: (f64, f64),
+    /// Share of the structured residual it explains.
+    share: f64,
+    /// All three tests pass.
+    earns: bool,
+}
+
+impl Verdict {
+    fn judge(
+        without: (f64, f64),
+        with: (f64, f64),
+        shape: f64,
+        sigma: f64,
+        structured: f64,
+        threshold: f64,
+    ) -> Verdict {
+        let parameters = if shape.is_nan() { 1.0 } else { 2.0 };
+        let gain = (without.0 - with.0) / (sigma * sigma);
+        let share = (without.0 - with.0) / structured;
+        Verdict {
+            without,
+            with,
+            bic: (gain, threshold * parameters),
+            share,
+            earns: with.1 < without.1 && gain > threshold * parameters && share >= MIN_SHARE,
+        }
+    }
+
+    /// The report's step: before → after in the order the action goes; `accepted` is
+    /// "entered" for `add` and "removed" for `remove`.
+    fn step(&self, candidate: Candidate, shape: f64, action: &'static str) -> Step {
+        let (before, after, accepted) = match action {
+            "add" => (self.without, self.with, self.earns),
+            _ => (self.with, self.without, !self.earns),
+        };
+        Step {
+            effect: candidate.name(),
+            shape: (!shape.is_nan()).then_some(shape),
+            rss: (before.0, after.0),
+            cv_rss: (before.1, after.1),
+            bic: self.bic,
+            share: self.share,
+            accepted,
+            action,
+        }
+    }
+}
+
 /// Forward selection of catalogued effects explaining `measured − base` on `samples`
 /// (noise σ in N).
 pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Selection {
@@ -257,20 +312,17 @@ pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> 
         let Some((candidate, shape, column, train, cross)) = best else {
             break;
         };
-        let parameters = if shape.is_nan() { 1.0 } else { 2.0 };
-        let gain = (rss - train) / (sigma * sigma);
-        let share = (rss - train) / structured;
-        let accepted = cross < cv && gain > threshold * parameters && share >= MIN_SHARE;
-        steps.push(Step {
-            effect: candidate.name(),
-            shape: (!shape.is_nan()).then_some(shape),
-            rss: (rss, train),
-            cv_rss: (cv, cross),
-            bic: (gain, threshold * parameters),
-            share,
-            accepted,
-            action: "add",
-        });
+        let step = Verdict::judge(
+            (rss, cv),
+            (train, cross),
+            shape,
+            sigma,
+            structured,
+            threshold,
+        )
+        .step(candidate, shape, "add");
+        let accepted = step.accepted;
+        steps.push(step);
         if !accepted {
             break;
         }
@@ -284,13 +336,8 @@ pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> 
     loop {
         let weakest = (0..chosen.len())
             .map(|k| {
-                let column = always.len() + k;
-                let without: Vec<usize> = subset
-                    .iter()
-                    .enumerate()
-                    .filter(|&(i, _)| i != column)
-                    .map(|(_, &c)| c)
-                    .collect();
+                let mut without = subset.clone();
+                without.remove(always.len() + k);
                 let (train, cross) = grams.score(&without);
                 (k, without, train, cross)
             })
@@ -299,20 +346,16 @@ pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> 
             break;
         };
         let (candidate, shape) = chosen[k];
-        let parameters = if shape.is_nan() { 1.0 } else { 2.0 };
-        let gain = (train - rss) / (sigma * sigma);
-        let share = (train - rss) / structured;
-        let keep = cv < cross && gain > threshold * parameters && share >= MIN_SHARE;
-        steps.push(Step {
-            effect: candidate.name(),
-            shape: (!shape.is_nan()).then_some(shape),
-            rss: (rss, train),
-            cv_rss: (cv, cross),
-            bic: (gain, threshold * parameters),
-            share,
-            accepted: !keep,
-            action: "remove",
-        });
+        let verdict = Verdict::judge(
+            (train, cross),
+            (rss, cv),
+            shape,
+            sigma,
+            structured,
+            threshold,
+        );
+        let keep = verdict.earns;
+        steps.push(verdict.step(candidate, shape, "remove"));
         if keep {
             break;
         }
@@ -371,6 +414,21 @@ pub struct Refit {
     /// What the re-fitted model leaves above the noise, max(RSS − n·σ², 0), as a share
     /// of everything structured (the causes' RSS increases plus it).
     pub left_share: f64,
+}
+
+/// What the force sensor reads along the samples for `law` and a sensor
+/// (offset b (N), delay τ (s)): f(t) − τ·ḟ(t) + b, to first order in τ.
+pub fn sensor_force(
+    samples: &ContactSamples,
+    law: &ExtendedLaw<f64>,
+    (offset, delay): (f64, f64),
+) -> Vec<f64> {
+    let f = samples.model_force(law);
+    let slope = Candidate::SensorDelay.column(samples, law, &f, f64::NAN, f64::NAN);
+    f.iter()
+        .zip(&slope)
+        .map(|(f, s)| f + delay * s + offset)
+        .collect()
 }
 
 /// Jointly re-fits the base law's free parameters and the chosen effects on
@@ -461,12 +519,7 @@ pub fn refit(
     };
     let predict = |p: &[f64]| -> Vec<f64> {
         let (law, offset, delay) = build(p);
-        let f = samples.model_force(&law);
-        let slope = Candidate::SensorDelay.column(samples, &law, &f, f64::NAN, delta_ref);
-        f.iter()
-            .zip(&slope)
-            .map(|(f, s)| f + delay * s + offset)
-            .collect()
+        sensor_force(samples, &law, (offset, delay))
     };
     let residuals = |p: &[f64], out: &mut [f64]| {
         for (o, (pred, m)) in out.iter_mut().zip(predict(p).iter().zip(&samples.measured)) {
