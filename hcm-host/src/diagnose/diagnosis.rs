@@ -1,9 +1,10 @@
 //! The whole diagnosis of one contact: what is wrong, the named causes, the extended
 //! model and its gain — the data behind `DIR/report.md` and `DIR/diagnosis.json`.
 
-use super::gain::{gain, holdout, GainTable, Holdout};
+use super::gain::{gain, holdout, GainTable, Holdout, Judged};
 use super::noise::{noise_floor, NoiseFloor};
-use super::select::{refit, select, sensor_force, Cause, Fitted, Step, MIN_SHARE};
+use super::select::{refit, select, Cause, Fitted, Step, MIN_SHARE};
+use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
 use super::{contact_samples, ContactSamples};
 use crate::dataset::Dataset;
@@ -13,7 +14,7 @@ use crate::identify::IdentifyError;
 use crate::residual::{ContactResidual, HIDDEN, WIDTH};
 use crate::scenario::{Contact, Model};
 use crate::train::{residual_pairs, train, TrainSettings};
-use hcm_core::effect::ExtendedLaw;
+use hcm_core::effect::{AirDrag, ExtendedLaw};
 use hcm_core::residual::Quantisation;
 use serde::Serialize;
 
@@ -129,11 +130,7 @@ pub fn diagnose(
         chosen.remove(k);
         fit = refit(&samples, &law, &chosen, sigma);
     }
-    let after = residual_structure(
-        &samples,
-        &sensor_force(&samples, &fit.law, fit.measurement),
-        sigma,
-    );
+    let after = residual_structure(&samples, &fit.sensor.reads(&samples, &fit.law), sigma);
     let mut causes = fit.causes;
     let body = &base.bodies[base.contacts[c].body_1];
     let drag = super::drag::fit_drag(&samples, body.mass);
@@ -159,16 +156,40 @@ pub fn diagnose(
     };
 
     // The gain: base, extended and HCM on the held-out runs.
-    let mut extended = base.contacts[c].clone();
-    extended.law = fit.law.base;
-    extended.effects = fit.law.effects.iter().copied().collect();
-    let hcm = hcm_contact(base, &fit_data, c, settings)?;
-    let mut models: Vec<(&str, &Contact)> =
-        vec![("base", &base.contacts[c]), ("extended", &extended)];
-    if let Some(h) = &hcm {
-        models.push(("HCM", h));
+    let mut extended = base.clone();
+    extended.contacts[c].law = fit.law.base;
+    extended.contacts[c].effects = fit.law.effects.iter().copied().collect();
+    if let Some(d) = drag.as_ref().filter(|d| d.significant) {
+        extended.bodies[base.contacts[c].body_1].air_drag = Some(AirDrag {
+            coefficient: d.coefficient,
+        });
     }
-    let gain = gain(base, data, &held_out, c, sigma, &models)?;
+    let hcm = hcm_contact(base, &fit_data, c, settings)?.map(|contact| {
+        let mut model = base.clone();
+        model.contacts[c] = contact;
+        model
+    });
+    let ideal = Sensor::default();
+    let mut judged = vec![
+        Judged {
+            label: "base",
+            physics: base,
+            sensor: ideal,
+        },
+        Judged {
+            label: "extended",
+            physics: &extended,
+            sensor: fit.sensor,
+        },
+    ];
+    if let Some(h) = &hcm {
+        judged.push(Judged {
+            label: "HCM",
+            physics: h,
+            sensor: ideal,
+        });
+    }
+    let gain = gain(base, data, &held_out, c, sigma, &judged)?;
     let base_structured = before.structured;
     Ok(Diagnosis {
         noise,

@@ -14,12 +14,17 @@
 //! perfect model scores σ, the sensor noise of Eq 19, and
 //! excess = √max(RMSE² − σ², 0) estimates the model's own error.
 
+use super::noise::white_noise;
+use super::sensor::Sensor;
 use crate::dataset::Dataset;
 use crate::experiment::condition_of;
-use crate::identify::replay::{simulate_target_with, targets, Target};
+use crate::identify::replay::{
+    pre_contact_state, simulate_target_as, targets, with_physics, Target,
+};
 use crate::identify::IdentifyError;
-use crate::indicators::{contact_history, event_spans, Indicators};
-use crate::scenario::{Contact, Model};
+use crate::indicators::{contact_history, event_spans, ContactHistory, EventSpan, Indicators};
+use crate::scenario::Model;
+use crate::simulate::simulate;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -87,13 +92,27 @@ fn held_out_condition(model: &Model, data: &Dataset) -> Option<String> {
     }
 }
 
+/// A model the gain judges.
+#[derive(Clone, Copy, Debug)]
+pub struct Judged<'a> {
+    /// Row label (`base`, `extended`, `HCM`).
+    pub label: &'a str,
+    /// Its physics: every contact (law, effects, residual) and every body's air drag
+    /// are replayed from it (see [`with_physics`]); the start states come from the data.
+    pub physics: &'a Model,
+    /// The sensor correction taken off the held-out data before this model is judged
+    /// on them (ideal: the data as recorded).
+    pub sensor: Sensor,
+}
+
 /// One model scored on one group of held-out runs. NaN where its simulation failed.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct GainRow {
     /// Model label (`base`, `extended`, `HCM`).
     pub model: String,
     /// RMSE of the simulated against the recorded normal force over the contact
-    /// samples of every run of the group (N).
+    /// samples of every run of the group (N), the recording corrected by the model's
+    /// sensor (see [`Sensor::retime`]).
     pub force_rmse: f64,
     /// The part of the RMSE the noise does not explain, √max(RMSE² − σ², 0) (N).
     pub excess_rmse: f64,
@@ -104,6 +123,13 @@ pub struct GainRow {
     /// The model's indicators (N, N·s, N·m, s): replayed from each condition's mean
     /// pre-contact state, run-weighted mean over the group's conditions.
     pub indicators: Indicators,
+    /// RMSE of the simulated against the recorded indentation rate δ̇ over the flight
+    /// before the first touch-down (m/s) — the recorded one and the replay's own — each
+    /// run replayed from its first recorded sample; NaN when the runs record no flight
+    /// before their contact.
+    pub flight_rmse: f64,
+    /// √max(flight RMSE² − σ_v², 0) (m/s), σ_v the white noise of the recorded δ̇.
+    pub flight_excess: f64,
 }
 
 /// The models scored on one group of held-out runs.
@@ -113,22 +139,26 @@ pub struct GainTable {
     pub group: String,
     /// Runs in the group.
     pub runs: usize,
+    /// White noise σ_v of the recorded indentation rate in flight (m/s), from its
+    /// second differences; NaN without flight samples.
+    pub flight_noise: f64,
     /// One row per model, in the order given.
     pub rows: Vec<GainRow>,
 }
 
-/// Scores `models` (`(label, contact)`, each replacing contact `c` of `model`) on the
-/// held-out `runs` of `data`: one table for the runs inside the fitted range, one for
-/// the condition [`holdout`] holds out entirely (if any of its runs are given).
-/// `sigma` is the force noise σ (N). Errors only for data that cannot be replayed
-/// (a run without contact, a bad run index); a failing model gets NaN.
+/// Scores the `judged` models on the held-out `runs` of `data` (contact `c` of
+/// `model`, which gives the geometry and the recording's reading): one table for the
+/// runs inside the fitted range, one for the condition [`holdout`] holds out entirely
+/// (if any of its runs are given). `sigma` is the force noise σ (N). Errors only for
+/// data that cannot be replayed (a run without contact, a bad run index); a failing
+/// model gets NaN.
 pub fn gain(
     model: &Model,
     data: &Dataset,
     runs: &[usize],
     c: usize,
     sigma: f64,
-    models: &[(&str, &Contact)],
+    judged: &[Judged],
 ) -> Result<Vec<GainTable>, IdentifyError> {
     if let Some(&r) = runs.iter().find(|&&r| r >= data.runs.len()) {
         let n = data.runs.len();
@@ -143,29 +173,25 @@ pub fn gain(
     let mut tables = Vec::new();
     if !inside.is_empty() {
         let group = "held-out runs".to_owned();
-        tables.push(group_table(group, model, data, &inside, c, sigma, models)?);
+        tables.push(group_table(group, model, data, &inside, c, sigma, judged)?);
     }
     if let (Some(name), false) = (condition, outside.is_empty()) {
         let group = format!("condition {name}");
-        tables.push(group_table(group, model, data, &outside, c, sigma, models)?);
+        tables.push(group_table(group, model, data, &outside, c, sigma, judged)?);
     }
     Ok(tables)
 }
 
-/// One run prepared for the force comparison: its replay target and its recorded
-/// (time after touch-down (s), normal force (N)) samples inside the contact.
-struct RunForce {
+/// One held-out run as recorded: its replay target, its contact history and the span
+/// of its first contact event.
+struct Recorded {
     target: Target,
-    samples: Vec<(f64, f64)>,
+    history: ContactHistory,
+    span: EventSpan,
 }
 
-fn run_force(model: &Model, data: &Dataset, r: usize, c: usize) -> Result<RunForce, IdentifyError> {
+fn recorded(model: &Model, data: &Dataset, r: usize, c: usize) -> Result<Recorded, IdentifyError> {
     let run = &data.runs[r];
-    let no_contact = |from: f64, to: f64| IdentifyError::NoContact {
-        run: run.id.clone(),
-        from,
-        to,
-    };
     let one = Dataset {
         runs: vec![run.clone()],
     };
@@ -174,18 +200,38 @@ fn run_force(model: &Model, data: &Dataset, r: usize, c: usize) -> Result<RunFor
         .next()
         .ok_or(IdentifyError::NoData)?;
     let history = contact_history(model, run, c)?;
-    let span = event_spans(&history).into_iter().next().ok_or_else(|| {
-        no_contact(
-            history.time.first().copied().unwrap_or(f64::NAN),
-            history.time.last().copied().unwrap_or(f64::NAN),
-        )
-    })?;
-    let t_in = span.touch_down.0;
-    let samples = span
-        .inside
-        .map(|i| (history.time[i] - t_in, history.force[i]))
-        .collect();
-    Ok(RunForce { target, samples })
+    let span =
+        event_spans(&history)
+            .into_iter()
+            .next()
+            .ok_or_else(|| IdentifyError::NoContact {
+                run: run.id.clone(),
+                from: history.time.first().copied().unwrap_or(f64::NAN),
+                to: history.time.last().copied().unwrap_or(f64::NAN),
+            })?;
+    Ok(Recorded {
+        target,
+        history,
+        span,
+    })
+}
+
+impl Recorded {
+    /// The recorded (time after touch-down (s), normal force (N)) samples inside the
+    /// contact, corrected by `sensor`.
+    fn force_samples(&self, sensor: &Sensor) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let t_in = self.span.touch_down.0;
+        let sensor = *sensor;
+        self.span.inside.clone().map(move |i| {
+            let (t, f) = sensor.retime(&self.history, i);
+            (t - t_in, f)
+        })
+    }
+
+    /// Indices of the flight samples before the first touch-down.
+    fn flight(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.span.inside.start).filter(|&i| self.history.depth[i] <= 0.0)
+    }
 }
 
 /// The curve sampled at τ = j·period, linearly interpolated at `tau` (s); 0 beyond it.
@@ -206,46 +252,53 @@ fn group_table(
     runs: &[usize],
     c: usize,
     sigma: f64,
-    models: &[(&str, &Contact)],
+    judged: &[Judged],
 ) -> Result<GainTable, IdentifyError> {
-    let singles = runs
+    let records = runs
         .iter()
-        .map(|&r| run_force(model, data, r, c))
+        .map(|&r| recorded(model, data, r, c))
         .collect::<Result<Vec<_>, _>>()?;
-    let subset = Dataset {
-        runs: runs.iter().map(|&r| data.runs[r].clone()).collect(),
-    };
-    let means = targets(model, &subset, c)?;
-    let rows = models
-        .iter()
-        .map(|&(label, contact)| {
-            let force_rmse = force_rmse(&singles, c, contact);
-            let (indicators, errors) = indicator_errors(&means, c, contact);
-            GainRow {
-                model: label.to_owned(),
-                force_rmse,
-                excess_rmse: (force_rmse.powi(2) - sigma.powi(2)).max(0.0).sqrt(),
-                errors,
-                indicators,
-            }
-        })
-        .collect();
+    let flight_noise = flight_noise(&records);
+    let mut rows = Vec::with_capacity(judged.len());
+    for j in judged {
+        let corrected = Dataset {
+            runs: runs
+                .iter()
+                .map(|&r| j.sensor.correct(model, &data.runs[r], c))
+                .collect::<Result<_, _>>()?,
+        };
+        let means = targets(model, &corrected, c)?;
+        let force_rmse = force_rmse(&records, c, j);
+        let (indicators, errors) = indicator_errors(&means, c, j.physics);
+        let flight_rmse = flight_rmse(model, data, runs, &records, c, j.physics);
+        let excess = |rmse: f64, noise: f64| (rmse.powi(2) - noise.powi(2)).max(0.0).sqrt();
+        rows.push(GainRow {
+            model: j.label.to_owned(),
+            force_rmse,
+            excess_rmse: excess(force_rmse, sigma),
+            errors,
+            indicators,
+            flight_rmse,
+            flight_excess: excess(flight_rmse, flight_noise.max(0.0)),
+        });
+    }
     Ok(GainTable {
         group,
         runs: runs.len(),
+        flight_noise,
         rows,
     })
 }
 
-/// Pooled force RMSE (N) of `contact` over the runs; NaN if any replay fails.
-fn force_rmse(runs: &[RunForce], c: usize, contact: &Contact) -> f64 {
+/// Pooled force RMSE (N) of the judged model over the runs; NaN if any replay fails.
+fn force_rmse(records: &[Recorded], c: usize, judged: &Judged) -> f64 {
     let (mut squares, mut count) = (0.0, 0usize);
-    for run in runs {
-        let Some((curve, _)) = simulate_target_with(&run.target, c, contact) else {
+    for record in records {
+        let Some((curve, _)) = simulate_target_as(&record.target, c, judged.physics) else {
             return f64::NAN;
         };
-        for &(tau, measured) in &run.samples {
-            squares += (at(&curve, run.target.period, tau) - measured).powi(2);
+        for (tau, measured) in record.force_samples(&judged.sensor) {
+            squares += (at(&curve, record.target.period, tau) - measured).powi(2);
             count += 1;
         }
     }
@@ -255,9 +308,102 @@ fn force_rmse(runs: &[RunForce], c: usize, contact: &Contact) -> f64 {
     (squares / count as f64).sqrt()
 }
 
-/// The run-weighted mean indicators of `contact` replayed on each condition's mean
+/// White noise of the recorded δ̇ over the flight samples before the first touch-down
+/// (m/s); NaN without three flight samples on one clock.
+fn flight_noise(records: &[Recorded]) -> f64 {
+    let (mut run, mut time, mut rate) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, record) in records.iter().enumerate() {
+        for i in record.flight() {
+            run.push(k);
+            time.push(record.history.time[i]);
+            rate.push(record.history.rate[i]);
+        }
+    }
+    white_noise(&run, &time, &rate).sigma
+}
+
+/// Pooled RMSE (m/s) of δ̇ in flight before the first touch-down, each run replayed
+/// under `physics` from its first recorded sample; NaN without flight samples or if a
+/// replay fails.
+fn flight_rmse(
+    model: &Model,
+    data: &Dataset,
+    runs: &[usize],
+    records: &[Recorded],
+    c: usize,
+    physics: &Model,
+) -> f64 {
+    let (mut squares, mut count) = (0.0, 0usize);
+    for (&r, record) in runs.iter().zip(records) {
+        let flight: Vec<usize> = record.flight().collect();
+        if flight.is_empty() {
+            continue;
+        }
+        let mut start = with_physics(model, physics);
+        for ((body, spec), state) in start
+            .bodies
+            .iter_mut()
+            .zip(&model.bodies)
+            .zip(pre_contact_state(model, &data.runs[r], 0))
+        {
+            if !spec.fixed {
+                (body.position, body.velocity) = state;
+            }
+        }
+        // Simulated up to the last flight sample, however early this model's own
+        // contact comes.
+        let t0 = record.history.time[0];
+        let last = flight.last().map_or(t0, |&i| record.history.time[i]);
+        start.scenario.simulation.stop_after_contacts = 0;
+        start.scenario.simulation.end_time = last - t0 + start.scenario.record.flight_sample_period;
+        let Some(simulated) = simulate(&start)
+            .ok()
+            .and_then(|s| contact_history(&start, &s.run, c).ok())
+        else {
+            return f64::NAN;
+        };
+        // Only while the replay is in flight too: past its own touch-down a model's δ̇
+        // turns with the bounce, an error of the contact timing, not of the flight.
+        let touch = simulated
+            .depth
+            .iter()
+            .position(|&d| d > 0.0)
+            .map_or(f64::INFINITY, |k| simulated.time[k]);
+        for i in flight
+            .into_iter()
+            .filter(|&i| record.history.time[i] - t0 < touch)
+        {
+            let rate = interpolate(
+                &simulated.time,
+                &simulated.rate,
+                record.history.time[i] - t0,
+            );
+            squares += (rate - record.history.rate[i]).powi(2);
+            count += 1;
+        }
+    }
+    if count == 0 {
+        return f64::NAN;
+    }
+    (squares / count as f64).sqrt()
+}
+
+/// `values` sampled at ascending `times`, linearly interpolated at `t`; NaN outside.
+fn interpolate(times: &[f64], values: &[f64], t: f64) -> f64 {
+    let j = times.partition_point(|&x| x < t);
+    match times.get(j) {
+        Some(&x) if x == t => values[j],
+        Some(&x) if j > 0 => {
+            let a = j - 1;
+            values[a] + (t - times[a]) / (x - times[a]) * (values[j] - values[a])
+        }
+        _ => f64::NAN,
+    }
+}
+
+/// The run-weighted mean indicators of `physics` replayed on each condition's mean
 /// target, and the run-weighted mean of their Eq 20 errors; NaN if any replay fails.
-fn indicator_errors(means: &[Target], c: usize, contact: &Contact) -> (Indicators, [f64; 4]) {
+fn indicator_errors(means: &[Target], c: usize, physics: &Model) -> (Indicators, [f64; 4]) {
     let failed = Indicators {
         max_force: f64::NAN,
         impulse: f64::NAN,
@@ -270,7 +416,7 @@ fn indicator_errors(means: &[Target], c: usize, contact: &Contact) -> (Indicator
     let total = means.iter().map(|t| t.runs).sum::<usize>() as f64;
     let (mut values, mut errors) = ([0.0; 4], [0.0; 4]);
     for target in means {
-        let Some((_, simulated)) = simulate_target_with(target, c, contact) else {
+        let Some((_, simulated)) = simulate_target_as(target, c, physics) else {
             return (failed, [f64::NAN; 4]);
         };
         let weight = target.runs as f64 / total;
@@ -290,7 +436,8 @@ fn indicator_errors(means: &[Target], c: usize, contact: &Contact) -> (Indicator
     (indicators, errors)
 }
 
-/// The tables as markdown: one per group, a row per model.
+/// The tables as markdown: one per group, a row per model; the flight columns only
+/// where the runs record a flight before their contact.
 pub fn markdown(tables: &[GainTable]) -> String {
     use std::fmt::Write;
     let mut out = String::new();
@@ -298,12 +445,20 @@ pub fn markdown(tables: &[GainTable]) -> String {
         if t > 0 {
             out.push('\n');
         }
+        let flight = table.rows.iter().any(|r| r.flight_rmse.is_finite());
         let _ = writeln!(out, "**{}** ({} runs)\n", table.group, table.runs);
         out.push_str(
             "| model | force RMSE (N) | excess over noise (N) | max force error (%) \
-             | impulse error (%) | energy loss error (%) | duration error (%) |\n\
-             |---|---|---|---|---|---|---|\n",
+             | impulse error (%) | energy loss error (%) | duration error (%) |",
         );
+        if flight {
+            out.push_str(" flight δ̇ RMSE (mm/s) | excess over noise (mm/s) |");
+        }
+        out.push_str("\n|---|---|---|---|---|---|---|");
+        if flight {
+            out.push_str("---|---|");
+        }
+        out.push('\n');
         for row in &table.rows {
             let _ = write!(
                 out,
@@ -313,7 +468,22 @@ pub fn markdown(tables: &[GainTable]) -> String {
             for e in row.errors {
                 let _ = write!(out, " {:.3} |", 100.0 * e);
             }
+            if flight {
+                let _ = write!(
+                    out,
+                    " {:.4} | {:.4} |",
+                    1e3 * row.flight_rmse,
+                    1e3 * row.flight_excess
+                );
+            }
             out.push('\n');
+        }
+        if flight {
+            let _ = writeln!(
+                out,
+                "\nNoise of the recorded δ̇ in flight: {:.4} mm/s.",
+                1e3 * table.flight_noise
+            );
         }
     }
     out
@@ -350,6 +520,14 @@ mod tests {
             let data = crate::experiment::generate(&exact, 6, 7, || {}).unwrap();
             (model, data)
         })
+    }
+
+    fn judged<'a>(label: &'a str, physics: &'a Model) -> Judged<'a> {
+        Judged {
+            label,
+            physics,
+            sensor: Sensor::default(),
+        }
     }
 
     fn ids(ids: &[String]) -> Dataset {
@@ -427,15 +605,16 @@ mod tests {
     #[test]
     fn the_true_model_gains_over_a_wrong_one() {
         let (model, data) = generated();
-        let mut truth = model.contacts[0].clone();
-        truth.noise.clear();
-        let mut wrong = truth.clone();
-        wrong.law = map_parameters(
-            &truth.law,
-            |name, a| if name == "damping" { 0.5 * a } else { a },
-        );
+        let mut wrong = model.clone();
+        wrong.contacts[0].law = map_parameters(&model.contacts[0].law, |name, a| {
+            if name == "damping" {
+                0.5 * a
+            } else {
+                a
+            }
+        });
         let runs: Vec<usize> = (0..data.runs.len()).collect();
-        let models = [("true", &truth), ("damping ×0.5", &wrong)];
+        let models = [judged("true", model), judged("damping ×0.5", &wrong)];
         let tables = gain(model, data, &runs, 0, SIGMA, &models).unwrap();
         eprintln!("{}", markdown(&tables));
         assert_eq!(tables.len(), 1);
@@ -451,6 +630,65 @@ mod tests {
         }
     }
 
+    /// Four runs of the ball generated with `overrides`, without parameter noise.
+    fn generated_with(overrides: &[&str]) -> (Model, Dataset) {
+        let mut all = vec!["contact.0.noise={}".to_owned()];
+        all.extend(overrides.iter().map(|o| o.to_string()));
+        let truth = ball().scenario.with(&all).unwrap();
+        let data = crate::experiment::generate(&truth, 4, 11, || {}).unwrap();
+        let path = Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../scenarios/bouncing_ball.toml"
+        ));
+        (truth.resolve(path).unwrap(), data)
+    }
+
+    #[test]
+    fn a_model_with_the_sensor_found_is_judged_on_corrected_data() {
+        let (truth, data) = generated_with(&[
+            "experiment.force_offset=[0.0, 0.0, 40.0]",
+            "experiment.sensor_delay=1e-6",
+        ]);
+        let corrected = Judged {
+            sensor: Sensor {
+                offset: 40.0,
+                delay: 1e-6,
+            },
+            ..judged("sensor corrected", &truth)
+        };
+        let models = [judged("as recorded", &truth), corrected];
+        let tables = gain(&truth, &data, &[0, 1, 2, 3], 0, SIGMA, &models).unwrap();
+        eprintln!("{}", markdown(&tables));
+        let (raw, fixed) = (&tables[0].rows[0], &tables[0].rows[1]);
+        // The same physics: only the correction of the data differs. Re-timed, the
+        // corrected samples keep the noise σ, so the true model scores σ.
+        assert!((fixed.force_rmse - SIGMA).abs() < 0.1 * SIGMA, "{fixed:?}");
+        assert!(raw.excess_rmse > 30.0 && fixed.excess_rmse < 0.2 * raw.excess_rmse);
+        assert!(fixed.errors[0] < 0.3 * raw.errors[0], "{raw:?}\n{fixed:?}");
+        assert!(fixed.errors[1] < 0.3 * raw.errors[1], "{raw:?}\n{fixed:?}");
+    }
+
+    #[test]
+    fn air_drag_is_judged_on_the_flight() {
+        let (truth, data) = generated_with(&[
+            "body.ball.air_drag={ coefficient = 0.02 }",
+            "experiment.velocity_noise=1e-4",
+        ]);
+        let mut without = truth.clone();
+        without.bodies[0].air_drag = None;
+        let models = [judged("no drag", &without), judged("drag", &truth)];
+        let tables = gain(&truth, &data, &[0, 1, 2, 3], 0, SIGMA, &models).unwrap();
+        let table = &tables[0];
+        eprintln!("σ_v = {:e} m/s\n{}", table.flight_noise, markdown(&tables));
+        assert!((table.flight_noise - 1e-4).abs() < 0.2e-4, "{table:?}");
+        let (none, drag) = (&table.rows[0], &table.rows[1]);
+        // Over the 0.14 s fall the drag takes up to ≈ 12 mm/s off δ̇; the noise is 0.1 mm/s.
+        assert!(none.flight_excess > 3e-3, "{none:?}");
+        assert!(drag.flight_excess < 0.1 * none.flight_excess, "{drag:?}");
+        // Replayed from the state just before contact, the contact force is the same.
+        assert!((none.force_rmse - drag.force_rmse).abs() < 0.01 * SIGMA);
+    }
+
     #[test]
     fn a_held_out_condition_gets_its_own_table() {
         let (model, data) = generated();
@@ -459,10 +697,9 @@ mod tests {
         for (k, run) in data.runs.iter_mut().enumerate() {
             run.id = format!("{}/{}", ["a", "b", "c"][k / 2], k % 2);
         }
-        let truth = &model.contacts[0];
-        let mut broken = truth.clone();
-        broken.law = map_parameters(&truth.law, |_, _| f64::NAN);
-        let models = [("true", truth), ("broken", &broken)];
+        let mut broken = model.clone();
+        broken.contacts[0].law = map_parameters(&model.contacts[0].law, |_, _| f64::NAN);
+        let models = [judged("true", model), judged("broken", &broken)];
         let tables = gain(model, &data, &[1, 2, 4, 5], 0, SIGMA, &models).unwrap();
         let groups: Vec<_> = tables.iter().map(|t| (t.group.as_str(), t.runs)).collect();
         assert_eq!(groups, [("held-out runs", 2), ("condition c", 2)]);

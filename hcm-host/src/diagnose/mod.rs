@@ -13,6 +13,7 @@ pub mod diagnosis;
 pub mod gain;
 pub mod noise;
 pub mod select;
+pub mod sensor;
 pub mod structure;
 pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};
 pub mod drag;

@@ -39,7 +39,8 @@ const MAD_TO_SIGMA: f64 = 1.482_6;
 /// The estimated force noise of a record.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct NoiseFloor {
-    /// Standard deviation σ of the white force noise (N); NaN when no triple qualified.
+    /// Standard deviation σ of the white noise (the signal's unit: N for the force);
+    /// NaN when no triple qualified.
     pub sigma: f64,
     /// Number of second differences the estimate rests on (–).
     pub samples: usize,
@@ -52,10 +53,18 @@ pub struct NoiseFloor {
 /// three times equally spaced within 1 %). The samples of one run must be in time order,
 /// as [`super::contact_samples`] records them.
 pub fn noise_floor(samples: &ContactSamples) -> NoiseFloor {
-    let f = &samples.measured;
-    let mut magnitudes: Vec<f64> = (1..samples.len().saturating_sub(1))
-        .filter(|&i| same_run(samples, i) && uniform_clock(&samples.time[i - 1..=i + 1]))
-        .map(|i| (f[i + 1] - 2.0 * f[i] + f[i - 1]).abs())
+    white_noise(&samples.run, &samples.time, &samples.measured)
+}
+
+/// The standard deviation of white noise on any recorded signal (its unit), by the same
+/// second differences: `values[i]` of run `run[i]` at time `time[i]` (s), each run's
+/// samples in time order. Triples that straddle two runs or a change of clock are
+/// skipped, as are non-finite values.
+pub fn white_noise(run: &[usize], time: &[f64], values: &[f64]) -> NoiseFloor {
+    let same_run = |i: usize| run[i - 1] == run[i] && run[i] == run[i + 1];
+    let mut magnitudes: Vec<f64> = (1..values.len().saturating_sub(1))
+        .filter(|&i| same_run(i) && uniform_clock(&time[i - 1..=i + 1]))
+        .map(|i| (values[i + 1] - 2.0 * values[i] + values[i - 1]).abs())
         .filter(|d| d.is_finite())
         .collect();
     let count = magnitudes.len();
@@ -63,13 +72,8 @@ pub fn noise_floor(samples: &ContactSamples) -> NoiseFloor {
         sigma: MAD_TO_SIGMA * median(&mut magnitudes) / 6.0_f64.sqrt(),
         samples: count,
         method:
-            "1.4826·median|f[i+1] − 2f[i] + f[i−1]|/√6 over triples of one run on a uniform clock",
+            "1.4826·median|x[i+1] − 2x[i] + x[i−1]|/√6 over triples of one run on a uniform clock",
     }
-}
-
-/// Whether samples i − 1, i and i + 1 belong to one run.
-fn same_run(samples: &ContactSamples, i: usize) -> bool {
-    samples.run[i - 1] == samples.run[i] && samples.run[i] == samples.run[i + 1]
 }
 
 /// Whether the three times `t` (s) advance by two positive intervals equal within

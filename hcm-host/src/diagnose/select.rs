@@ -32,6 +32,7 @@
 //! removed from the re-fitted model.
 
 use super::catalogue::{reference_depth, Candidate, Kind, CATALOGUE};
+use super::sensor::Sensor;
 use super::ContactSamples;
 use crate::identify::bounds::Bounds;
 use crate::identify::levenberg_marquardt::{levenberg_marquardt, LmSettings};
@@ -407,28 +408,13 @@ pub struct Refit {
     pub causes: Vec<Cause>,
     /// Base parameters after the re-fit.
     pub base_parameters: Vec<Fitted>,
-    /// Sensor offset b (N) and delay τ (s) found (0 if not named).
-    pub measurement: (f64, f64),
+    /// The sensor's offset and delay as found (0 where not named).
+    pub sensor: Sensor,
     /// RSS of the re-fitted model (N²).
     pub rss: f64,
     /// What the re-fitted model leaves above the noise, max(RSS − n·σ², 0), as a share
     /// of everything structured (the causes' RSS increases plus it).
     pub left_share: f64,
-}
-
-/// What the force sensor reads along the samples for `law` and a sensor
-/// (offset b (N), delay τ (s)): f(t) − τ·ḟ(t) + b, to first order in τ.
-pub fn sensor_force(
-    samples: &ContactSamples,
-    law: &ExtendedLaw<f64>,
-    (offset, delay): (f64, f64),
-) -> Vec<f64> {
-    let f = samples.model_force(law);
-    let slope = Candidate::SensorDelay.column(samples, law, &f, f64::NAN, f64::NAN);
-    f.iter()
-        .zip(&slope)
-        .map(|(f, s)| f + delay * s + offset)
-        .collect()
 }
 
 /// Jointly re-fits the base law's free parameters and the chosen effects on
@@ -519,7 +505,7 @@ pub fn refit(
     };
     let predict = |p: &[f64]| -> Vec<f64> {
         let (law, offset, delay) = build(p);
-        sensor_force(samples, &law, (offset, delay))
+        Sensor { offset, delay }.reads(samples, &law)
     };
     let residuals = |p: &[f64], out: &mut [f64]| {
         for (o, (pred, m)) in out.iter_mut().zip(predict(p).iter().zip(&samples.measured)) {
@@ -592,7 +578,7 @@ pub fn refit(
         law: build(&p).0,
         causes,
         base_parameters: free.iter().enumerate().map(|(k, n)| fitted(n, k)).collect(),
-        measurement: (offset, delay),
+        sensor: Sensor { offset, delay },
         rss,
         left_share: if total > 0.0 { left / total } else { 0.0 },
     }

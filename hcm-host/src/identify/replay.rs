@@ -158,7 +158,11 @@ pub fn targets(model: &Model, data: &Dataset, c: usize) -> Result<Vec<Target>, I
 
 /// Every body's recorded (position, velocity) at sample `i` of `run` (bodies not
 /// in the data keep the scenario's state).
-fn pre_contact_state(model: &Model, run: &Run, i: usize) -> Vec<(Vector3<f64>, Vector3<f64>)> {
+pub(crate) fn pre_contact_state(
+    model: &Model,
+    run: &Run,
+    i: usize,
+) -> Vec<(Vector3<f64>, Vector3<f64>)> {
     model
         .bodies
         .iter()
@@ -181,6 +185,32 @@ pub fn simulate_target(
     let mut contact = target.model.contacts[c].clone();
     contact.law = *law;
     simulate_target_with(target, c, &contact)
+}
+
+/// `model` (its bodies, their state and the settings) under the physics of `physics`:
+/// every contact (law, effects, residual) and every body's air drag taken from it.
+/// The two must come from one scenario (same bodies and contacts, in order).
+pub fn with_physics(model: &Model, physics: &Model) -> Model {
+    let mut out = model.clone();
+    out.contacts.clone_from(&physics.contacts);
+    for (body, source) in out.bodies.iter_mut().zip(&physics.bodies) {
+        body.air_drag = source.air_drag;
+    }
+    out
+}
+
+/// Simulates `target` under the physics of `physics` (see [`with_physics`]): its
+/// force curve on contact `c` and indicators, or None as [`simulate_target`].
+pub fn simulate_target_as(
+    target: &Target,
+    c: usize,
+    physics: &Model,
+) -> Option<(Vec<f64>, Indicators)> {
+    let model = with_physics(&target.model, physics);
+    let run = simulate(&model).ok()?.run;
+    curve(&model, &run, c, target.period, target.curve.len())
+        .ok()
+        .flatten()
 }
 
 /// Simulates `target` with contact `c` replaced by `contact` (law and residual).

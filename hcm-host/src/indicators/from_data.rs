@@ -59,6 +59,13 @@ pub struct ContactHistory {
     pub rate: Vec<f64>,
     /// Recorded normal force f_n on body 1 along the normal (N).
     pub force: Vec<f64>,
+    /// Unit contact normal n at each sample, world frame, from body 2 towards body 1
+    /// (–).
+    pub normal: Vec<Vector3<f64>>,
+    /// The body (index in the model) whose recorded force `force` was read from: body
+    /// 1, or body 2's reaction (sign flipped) when only body 2 was measured; None when
+    /// neither track holds a force for every sample (`force` is then 0).
+    pub force_body: Option<usize>,
 }
 
 /// One completed contact event located in a [`ContactHistory`].
@@ -170,11 +177,19 @@ pub fn contact_history(
         _ => (model.bodies[body].position, Vector3::zeros()),
     };
     let n = clock.samples.len();
+    // The force on body 1; body 2's reaction if only it was measured.
+    let source = match (t1, t2) {
+        (Some(a), _) if a.samples.len() == n => Some((a, contact.body_1, 1.0)),
+        (_, Some(b)) if b.samples.len() == n => Some((b, contact.body_2, -1.0)),
+        _ => None,
+    };
     let mut history = ContactHistory {
         time: Vec::with_capacity(n),
         depth: Vec::with_capacity(n),
         rate: Vec::with_capacity(n),
         force: Vec::with_capacity(n),
+        normal: Vec::with_capacity(n),
+        force_body: source.map(|(_, body, _)| body),
     };
     for i in 0..n {
         let k = pair_kinematics(
@@ -183,20 +198,14 @@ pub fn contact_history(
             motion(t1, contact.body_1, i),
             motion(t2, contact.body_2, i),
         );
-        // Force on body 1 along the normal; from body 2's reaction if only it was measured.
-        let force = match (t1, t2) {
-            (Some(a), _) if a.samples.len() == n => {
-                Vector3::from(a.samples[i].force).dot(&k.normal)
-            }
-            (_, Some(b)) if b.samples.len() == n => {
-                -Vector3::from(b.samples[i].force).dot(&k.normal)
-            }
-            _ => 0.0,
-        };
+        let force = source.map_or(0.0, |(track, _, sign)| {
+            sign * Vector3::from(track.samples[i].force).dot(&k.normal)
+        });
         history.time.push(clock.samples[i].time);
         history.depth.push(k.depth);
         history.rate.push(k.rate);
         history.force.push(force);
+        history.normal.push(k.normal);
     }
     Ok(history)
 }
