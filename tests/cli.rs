@@ -404,6 +404,15 @@ fn diagnose_names_the_variable_stiffness_damping_missing_from_lankarani_nikraves
             .as_f64()
             .unwrap()
     };
+    println!(
+        "v0.95 energy-loss error: base {:.2} %, extended {:.2} %, HCM {:.2} %",
+        100.0 * energy("base"),
+        100.0 * energy("extended"),
+        100.0 * energy("HCM")
+    );
+    // The paper's LN fit misses it by 33 %; ours (lsq on the force curves of the other
+    // nine speeds) by about half that, still far outside the noise.
+    assert!(energy("base") > 0.1, "{table}");
     assert!(energy("extended") < 0.25 * energy("base"), "{table}");
     // And the extended model is a physics file the other commands read.
     let extended = out.join("extended.toml");
