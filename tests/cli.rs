@@ -414,6 +414,20 @@ fn diagnose_names_the_variable_stiffness_damping_missing_from_lankarani_nikraves
     // nine speeds) by about half that, still far outside the noise.
     assert!(energy("base") > 0.1, "{table}");
     assert!(energy("extended") < 0.25 * energy("base"), "{table}");
+    // Where it was fitted, too, the extension removes most of the base's force error.
+    let fitted = &json["in_sample"];
+    assert_eq!(fitted["group"], "training runs");
+    let excess = |model: &str| {
+        fitted["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["model"] == model)
+            .unwrap()["excess_rmse"]
+            .as_f64()
+            .unwrap()
+    };
+    assert!(excess("extended") < 0.5 * excess("base"), "{fitted}");
     // And the extended model is a physics file the other commands read.
     let extended = out.join("extended.toml");
     hcm_ok(&[

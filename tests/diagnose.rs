@@ -243,7 +243,10 @@ fn air_drag_is_read_from_the_flight_motion() {
     let names: Vec<&str> = d.causes.iter().map(|c| c.effect).collect();
     assert_eq!(names, ["air_drag"], "{:?}", d.causes);
     let c = d.causes[0].parameters[0].value;
-    println!("drag coefficient {c:.5} kg/m, 95 % {:?}", d.causes[0].parameters[0].ci);
+    println!(
+        "drag coefficient {c:.5} kg/m, 95 % {:?}",
+        d.causes[0].parameters[0].ci
+    );
     assert!((c - 0.02).abs() < 0.002, "drag coefficient {c}");
     // The gain lives in the flight: the held-out runs replayed from their first sample.
     // (Replayed from just before contact, the contact force cannot tell the two apart.)

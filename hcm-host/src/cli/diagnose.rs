@@ -143,6 +143,7 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
         "before": d.before,
         "after": d.after,
         "gain": d.gain,
+        "in_sample": d.in_sample,
         "air_drag_fit": d.drag,
     })
 }
@@ -197,6 +198,12 @@ fn report(d: &Diagnosis, figures: &[&str]) -> String {
         "| structured beyond the noise | {} | {} |\n",
         d.before.structured, d.after.structured
     );
+    let _ = writeln!(
+        md,
+        "The models replayed on the training runs (force against the recorded samples, indicators against the runs' means):\n"
+    );
+    md.push_str(&markdown(std::slice::from_ref(&d.in_sample)));
+    md.push('\n');
     let _ = writeln!(
         md,
         "Figures (base vs extended): {}.\n",

@@ -1,7 +1,7 @@
 //! The whole diagnosis of one contact: what is wrong, the named causes, the extended
 //! model and its gain — the data behind `DIR/report.md` and `DIR/diagnosis.json`.
 
-use super::gain::{gain, holdout, GainTable, Holdout, Judged};
+use super::gain::{gain, group_table, holdout, GainTable, Holdout, Judged};
 use super::noise::{noise_floor, NoiseFloor};
 use super::select::{refit, select, Cause, Fitted, Step, MIN_SHARE};
 use super::sensor::Sensor;
@@ -75,6 +75,9 @@ pub struct Diagnosis {
     pub extended: ExtendedLaw<f64>,
     /// Held-out comparison of base, extended and HCM.
     pub gain: Vec<GainTable>,
+    /// The same comparison on the training runs: what is wrong with the base model's
+    /// force and indicators where it was fitted, and what the extension leaves.
+    pub in_sample: GainTable,
 }
 
 /// Run indices used for fitting and for the gain.
@@ -190,6 +193,15 @@ pub fn diagnose(
         });
     }
     let gain = gain(base, data, &held_out, c, sigma, &judged)?;
+    let in_sample = group_table(
+        "training runs".into(),
+        base,
+        data,
+        &training,
+        c,
+        sigma,
+        &judged,
+    )?;
     let base_structured = before.structured;
     Ok(Diagnosis {
         noise,
@@ -209,6 +221,7 @@ pub fn diagnose(
         base_parameters: fit.base_parameters,
         extended: fit.law,
         gain,
+        in_sample,
     })
 }
 

@@ -245,7 +245,9 @@ fn at(curve: &[f64], period: f64, tau: f64) -> f64 {
     }
 }
 
-fn group_table(
+/// Scores the `judged` models on `runs` of `data` as one group named `group`, whatever
+/// their conditions (see [`gain`] for the rest).
+pub fn group_table(
     group: String,
     model: &Model,
     data: &Dataset,
