@@ -1,48 +1,17 @@
 //! `hcm diagnose`: hidden effects in generated data must be found by name, with their
 //! parameter, from the measured data alone.
 
-use hcm_host::dataset::Dataset;
+// Only `common/hidden.rs`: `common/mod.rs` is shared with hcm-core's tests, which cannot
+// see `hcm_host`.
+mod common {
+    pub mod hidden;
+}
+
+use common::hidden::{hidden, model};
 use hcm_host::diagnose::catalogue::Candidate;
 use hcm_host::diagnose::select::{refit, select};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
-use hcm_host::scenario::{Model, Scenario};
-use std::path::{Path, PathBuf};
-
-fn scenario_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
-        .join(name)
-}
-
-fn model(name: &str, overrides: &[String]) -> Model {
-    let path = scenario_path(name);
-    Scenario::load(&path, overrides)
-        .unwrap()
-        .resolve(&path)
-        .unwrap()
-}
-
-/// `runs` noisy runs of the ball with `effect` hidden (σ = 15 N, no parameter noise),
-/// written to CSV and read back, and the base model (the scenario's own law).
-fn hidden(effect: &str, runs: usize, seed: u64) -> (Model, Dataset) {
-    let mut overrides = vec!["contact.0.noise={}".to_owned()];
-    if effect.starts_with("experiment.") || effect.starts_with("body.") {
-        overrides.push(effect.to_owned());
-    } else if !effect.is_empty() {
-        overrides.push(format!("contact.0.effects=[{effect}]"));
-    }
-    let truth = model("bouncing_ball.toml", &overrides);
-    let data = generate(&truth.scenario, runs, seed, || {}).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("measured.csv");
-    data.write(&path).unwrap();
-    let measured = Dataset::read(&path).unwrap();
-    (
-        model("bouncing_ball.toml", &["contact.0.noise={}".to_owned()]),
-        measured,
-    )
-}
 
 fn diagnose_names(effect: &str) -> Vec<(&'static str, Vec<f64>, f64)> {
     let (base, data) = hidden(effect, 12, 3);

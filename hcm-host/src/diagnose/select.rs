@@ -27,7 +27,7 @@
 //! [`ExtendedLaw`]; their strengths, the hysteresis exponent and the base parameters
 //! are re-fitted jointly by Levenberg–Marquardt on the force samples, with the chosen
 //! measurement effects (offset b, delay τ) as corrections of the prediction
-//! f_sensor(t) = f(t) − τ·ḟ(t) + b. The covariance gives each parameter's 95 %
+//! f_sensor(t) = f(t − τ) + b (see [`Sensor::reads`]). The covariance gives each parameter's 95 %
 //! interval; each cause's share of the structured residual is the RSS it leaves when
 //! removed from the re-fitted model.
 

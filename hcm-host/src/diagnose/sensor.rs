@@ -8,7 +8,6 @@
 //! data the data are corrected ([`Sensor::correct`], [`Sensor::retime`]), so that the
 //! extended model stays a contact law a controller can run.
 
-use super::catalogue::Candidate;
 use super::ContactSamples;
 use crate::dataset::Run;
 use crate::indicators::{contact_history, ContactHistory, IndicatorError};
@@ -33,16 +32,32 @@ impl Sensor {
         self.offset == 0.0 && self.delay == 0.0
     }
 
-    /// What it reads along `samples` when the contact follows `law` (N):
-    /// f(t) − τ·ḟ(t) + b, first order in τ, ḟ by central differences within a run.
+    /// What it reads along `samples` when the contact follows `law` (N): the law's
+    /// force along the recorded motion (0 outside contact) taken τ earlier, plus b.
+    /// The force between samples is a cubic Hermite curve through the samples of the
+    /// same run with central-difference slopes, so the reading is smooth in τ (a fit
+    /// can move τ by less than a sample) and off by O(h³·f⃛) only; before a run's first
+    /// sample and after its last the end value is held.
     pub fn reads(&self, samples: &ContactSamples, law: &ExtendedLaw<f64>) -> Vec<f64> {
         let f = samples.model_force(law);
-        // The delay column is −ḟ: the sensitivity of the reading to τ.
-        let slope = Candidate::SensorDelay.column(samples, law, &f, f64::NAN, f64::NAN);
-        f.iter()
-            .zip(&slope)
-            .map(|(f, s)| f + self.delay * s + self.offset)
-            .collect()
+        if self.delay == 0.0 {
+            return f.iter().map(|f| f + self.offset).collect();
+        }
+        let mut out = Vec::with_capacity(f.len());
+        let mut start = 0;
+        while start < f.len() {
+            let run = samples.run[start];
+            let end = (start..f.len())
+                .find(|&i| samples.run[i] != run)
+                .unwrap_or(f.len());
+            let (t, v) = (&samples.time[start..end], &f[start..end]);
+            out.extend(
+                t.iter()
+                    .map(|&ti| hermite(t, v, ti - self.delay) + self.offset),
+            );
+            start = end;
+        }
+        out
     }
 
     /// The recorded normal-force samples of `history` as the contact produced them:
@@ -107,6 +122,39 @@ impl Sensor {
     }
 }
 
+/// `v` sampled at ascending times `t`, at time `s`: cubic Hermite between the two
+/// neighbouring samples with central-difference slopes (one-sided at the ends); the
+/// end value outside.
+fn hermite(t: &[f64], v: &[f64], s: f64) -> f64 {
+    let n = t.len();
+    let j = t.partition_point(|&x| x <= s);
+    if j == 0 {
+        return v.first().copied().unwrap_or(0.0);
+    }
+    if j == n {
+        return v[n - 1];
+    }
+    let (a, b) = (j - 1, j);
+    let slope = |i: usize| {
+        let (l, r) = (i.saturating_sub(1), (i + 1).min(n - 1));
+        if t[r] > t[l] {
+            (v[r] - v[l]) / (t[r] - t[l])
+        } else {
+            0.0
+        }
+    };
+    let h = t[b] - t[a];
+    if h <= 0.0 {
+        return v[b];
+    }
+    let x = (s - t[a]) / h;
+    let (x2, x3) = (x * x, x * x * x);
+    (2.0 * x3 - 3.0 * x2 + 1.0) * v[a]
+        + (x3 - 2.0 * x2 + x) * h * slope(a)
+        + (-2.0 * x3 + 3.0 * x2) * v[b]
+        + (x3 - x2) * h * slope(b)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -122,6 +170,18 @@ mod tests {
             .unwrap()
             .resolve(path)
             .unwrap()
+    }
+
+    #[test]
+    fn hermite_is_exact_for_a_quadratic_and_holds_the_ends() {
+        let t: Vec<f64> = (0..8).map(|k| 0.5 * k as f64).collect();
+        let v: Vec<f64> = t.iter().map(|x| 3.0 * x * x - x + 2.0).collect();
+        for s in [0.6, 1.25, 2.0, 2.9] {
+            let exact = 3.0 * s * s - s + 2.0;
+            assert!((hermite(&t, &v, s) - exact).abs() < 1e-12, "{s}");
+        }
+        assert_eq!(hermite(&t, &v, -1.0), v[0]);
+        assert_eq!(hermite(&t, &v, 9.0), v[7]);
     }
 
     #[test]

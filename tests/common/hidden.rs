@@ -1,0 +1,71 @@
+//! Noisy runs of the bouncing ball with one hidden effect, and what `hcm diagnose`'s
+//! stepwise selection and joint re-fit name from them, shared by the diagnose tests.
+#![allow(dead_code)]
+
+use hcm_host::dataset::Dataset;
+use hcm_host::diagnose::select::{refit, select};
+use hcm_host::diagnose::{contact_samples, noise::noise_floor};
+use hcm_host::experiment::generate;
+use hcm_host::scenario::{Model, Scenario};
+use std::path::{Path, PathBuf};
+
+/// The path of a scenario file in the workspace's `scenarios/`.
+pub fn scenario_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenarios")
+        .join(name)
+}
+
+/// The scenario `name` with `overrides`, resolved to a model.
+pub fn model(name: &str, overrides: &[String]) -> Model {
+    let path = scenario_path(name);
+    Scenario::load(&path, overrides)
+        .unwrap()
+        .resolve(&path)
+        .unwrap()
+}
+
+/// `runs` noisy runs of the ball with `effect` hidden (σ = 15 N, no parameter noise),
+/// written to CSV and read back, and the base model (the scenario's own law).
+///
+/// `effect` is either an `experiment.`/`body.` override or a contact effect table
+/// (`{ viscous_damping = { coefficient = 40.0 } }`); empty hides nothing.
+pub fn hidden(effect: &str, runs: usize, seed: u64) -> (Model, Dataset) {
+    let mut overrides = vec!["contact.0.noise={}".to_owned()];
+    if effect.starts_with("experiment.") || effect.starts_with("body.") {
+        overrides.push(effect.to_owned());
+    } else if !effect.is_empty() {
+        overrides.push(format!("contact.0.effects=[{effect}]"));
+    }
+    let truth = model("bouncing_ball.toml", &overrides);
+    let data = generate(&truth.scenario, runs, seed, || {}).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("measured.csv");
+    data.write(&path).unwrap();
+    let measured = Dataset::read(&path).unwrap();
+    (
+        model("bouncing_ball.toml", &["contact.0.noise={}".to_owned()]),
+        measured,
+    )
+}
+
+/// The causes the stepwise selection and joint re-fit name in `runs` runs with `effect`
+/// hidden (see [`hidden`]): each as (effect name, parameter values, share).
+pub fn named(effect: &str, runs: usize, seed: u64) -> Vec<(&'static str, Vec<f64>, f64)> {
+    let (base, data) = hidden(effect, runs, seed);
+    let samples = contact_samples(&base, &data, 0).unwrap();
+    let sigma = noise_floor(&samples).sigma;
+    let law = base.contacts[0].extended_law();
+    let selection = select(&samples, &law, sigma);
+    let fit = refit(&samples, &law, &selection.chosen, sigma);
+    fit.causes
+        .iter()
+        .map(|c| {
+            (
+                c.effect,
+                c.parameters.iter().map(|p| p.value).collect(),
+                c.share,
+            )
+        })
+        .collect()
+}

@@ -1,0 +1,199 @@
+//! The statistical power of the `hcm diagnose` end-to-end tests (tests/diagnose.rs): each
+//! hidden effect there is checked on one seed; here every case is repeated over seeds
+//! 1..=10 and must be named — exactly, and nothing else — with its parameter within the
+//! single-seed test's tolerance, in at least 8 of the 10.
+
+// Only `common/hidden.rs`: `common/mod.rs` is shared with hcm-core's tests, which cannot
+// see `hcm_host`.
+mod common {
+    pub mod hidden;
+}
+
+use common::hidden::named;
+use rayon::prelude::*;
+
+/// Noisy runs per data set, as in tests/diagnose.rs.
+const RUNS: usize = 12;
+/// Seeds per case.
+const SEEDS: std::ops::RangeInclusive<u64> = 1..=10;
+
+/// One hidden effect of tests/diagnose.rs, with the check its single-seed test makes.
+struct Case {
+    label: &'static str,
+    /// The scenario override (empty: nothing hidden).
+    effect: &'static str,
+    /// The names diagnose must give, sorted; empty: it must name nothing.
+    names: &'static [&'static str],
+    /// The index of the checked parameter in each cause's parameters.
+    index: usize,
+    /// Whether the checked parameter lies within the single-seed test's tolerance.
+    within: fn(f64) -> bool,
+    /// The least number of the 10 seeds in which the effect must be named exactly.
+    min_detected: usize,
+}
+
+const CASES: [Case; 9] = [
+    Case {
+        label: "viscous_damping 40",
+        effect: "{ viscous_damping = { coefficient = 40.0 } }",
+        names: &["viscous_damping"],
+        index: 0,
+        within: |c| (c - 40.0).abs() < 0.1 * 40.0,
+        min_detected: 8,
+    },
+    Case {
+        label: "hysteresis_damping 1e4, p = 0.5",
+        effect: "{ hysteresis_damping = { coefficient = 1e4, exponent = 0.5 } }",
+        names: &["hysteresis_damping"],
+        index: 1,
+        within: |p| (p - 0.5).abs() < 0.2,
+        min_detected: 8,
+    },
+    Case {
+        label: "adhesion 40",
+        effect: "{ adhesion = { pull_off_force = 40.0 } }",
+        names: &["adhesion"],
+        index: 0,
+        within: |f| (f - 40.0).abs() <= 0.15 * 40.0,
+        min_detected: 8,
+    },
+    Case {
+        label: "plasticity 0.03",
+        effect: "{ plasticity = { permanent_ratio = 0.03 } }",
+        names: &["plasticity"],
+        index: 0,
+        within: |r| (r - 0.03).abs() <= 0.2 * 0.03,
+        min_detected: 8,
+    },
+    Case {
+        label: "stiffness_exponent 0.01",
+        effect: "{ stiffness_exponent = { exponent_change = 0.01, reference_depth = 5e-5 } }",
+        names: &["stiffness_exponent"],
+        index: 0,
+        within: |e| (e - 0.01).abs() <= 0.3 * 0.01,
+        min_detected: 8,
+    },
+    Case {
+        label: "force_offset 40 N",
+        effect: "experiment.force_offset=[0.0, 0.0, 40.0]",
+        names: &["force_offset"],
+        index: 0,
+        within: |f| (f - 40.0).abs() <= 0.1 * 40.0,
+        min_detected: 8,
+    },
+    Case {
+        label: "sensor_delay 1 µs",
+        effect: "experiment.sensor_delay=1e-6",
+        names: &["sensor_delay"],
+        index: 0,
+        within: |t| (t - 1e-6).abs() <= 0.2 * 1e-6,
+        min_detected: 8,
+    },
+    Case {
+        label: "viscous_damping 40 + adhesion 40",
+        effect:
+            "{ viscous_damping = { coefficient = 40.0 } }, { adhesion = { pull_off_force = 40.0 } }",
+        names: &["adhesion", "viscous_damping"],
+        index: 0,
+        within: |v| (v - 40.0).abs() < 6.0,
+        min_detected: 8,
+    },
+    Case {
+        label: "none",
+        effect: "",
+        names: &[],
+        index: 0,
+        within: |_| true,
+        min_detected: 8,
+    },
+];
+
+/// A parameter value for the table: scientific notation for small magnitudes.
+fn show(x: f64) -> String {
+    if x != 0.0 && x.abs() < 1e-2 {
+        format!("{x:.3e}")
+    } else {
+        format!("{x:.4}")
+    }
+}
+
+#[test]
+fn every_hidden_effect_is_named_with_its_parameter_in_at_least_8_of_10_seeds() {
+    let jobs: Vec<(usize, u64)> = (0..CASES.len())
+        .flat_map(|c| SEEDS.map(move |s| (c, s)))
+        .collect();
+    let found: Vec<Vec<(&'static str, Vec<f64>, f64)>> = jobs
+        .par_iter()
+        .map(|&(c, seed)| named(CASES[c].effect, RUNS, seed))
+        .collect();
+
+    let seeds = SEEDS.count();
+    let mut failures = Vec::new();
+    println!("| case | detected | parameter in tolerance | parameter mean | parameter std |");
+    println!("|---|---|---|---|---|");
+    for (c, case) in CASES.iter().enumerate() {
+        let mut detected = 0;
+        let mut within = 0;
+        let mut values = Vec::new();
+        for ((_, seed), causes) in jobs.iter().zip(&found).filter(|((j, _), _)| *j == c) {
+            let mut names: Vec<&str> = causes.iter().map(|c| c.0).collect();
+            names.sort_unstable();
+            let exact = names == case.names;
+            if !exact {
+                println!("  {} seed {seed}: named {causes:?}", case.label);
+                continue;
+            }
+            detected += 1;
+            let outside: Vec<f64> = causes
+                .iter()
+                .map(|c| c.1[case.index])
+                .filter(|&v| !(case.within)(v))
+                .collect();
+            values.extend(causes.iter().map(|c| c.1[case.index]));
+            if outside.is_empty() {
+                within += 1;
+            } else {
+                println!(
+                    "  {} seed {seed}: parameter {} outside tolerance",
+                    case.label,
+                    show(outside[0])
+                );
+            }
+        }
+        let (mean, std) = if values.is_empty() {
+            ("—".to_owned(), "—".to_owned())
+        } else {
+            let n = values.len() as f64;
+            let mean = values.iter().sum::<f64>() / n;
+            let var = if values.len() > 1 {
+                values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)
+            } else {
+                0.0
+            };
+            (show(mean), show(var.sqrt()))
+        };
+        let within_count = within;
+        let within = if !case.names.is_empty() {
+            format!("{within}/{seeds}")
+        } else {
+            "—".to_owned()
+        };
+        println!(
+            "| {} | {detected}/{seeds} | {within} | {mean} | {std} |",
+            case.label
+        );
+        if detected < case.min_detected {
+            failures.push(format!(
+                "{}: named in {detected}/{seeds}, need {}",
+                case.label, case.min_detected
+            ));
+        }
+        if within_count < case.min_detected {
+            failures.push(format!(
+                "{}: parameter within tolerance in {within_count}/{seeds}, need {}",
+                case.label, case.min_detected
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
