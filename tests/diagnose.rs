@@ -7,36 +7,22 @@ mod common {
     pub mod hidden;
 }
 
-use common::hidden::{hidden, model};
+use common::hidden::{causes, hidden, model, selected};
 use hcm_host::diagnose::catalogue::Candidate;
 use hcm_host::diagnose::select::{refit, select};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
 
 fn diagnose_names(effect: &str) -> Vec<(&'static str, Vec<f64>, f64)> {
-    let (base, data) = hidden(effect, 12, 3);
-    let samples = contact_samples(&base, &data, 0).unwrap();
-    let sigma = noise_floor(&samples).sigma;
-    let law = base.contacts[0].extended_law();
-    let selection = select(&samples, &law, sigma);
-    println!("{effect}: σ = {sigma:.2} N; steps {:#?}", selection.steps);
-    let fit = refit(&samples, &law, &selection.chosen, sigma);
+    let (selection, fit) = selected(effect, 12, 3);
+    println!("{effect}: steps {:#?}", selection.steps);
     for cause in &fit.causes {
         println!(
             "  {} {:?} share {:.3}",
             cause.effect, cause.parameters, cause.share
         );
     }
-    fit.causes
-        .iter()
-        .map(|c| {
-            (
-                c.effect,
-                c.parameters.iter().map(|p| p.value).collect(),
-                c.share,
-            )
-        })
-        .collect()
+    causes(&fit)
 }
 
 #[test]

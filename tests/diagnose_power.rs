@@ -10,6 +10,7 @@ mod common {
 }
 
 use common::hidden::named;
+use hcm_host::indicators::Statistic;
 use rayon::prelude::*;
 
 /// Noisy runs per data set, as in tests/diagnose.rs.
@@ -163,14 +164,8 @@ fn every_hidden_effect_is_named_with_its_parameter_in_at_least_8_of_10_seeds() {
         let (mean, std) = if values.is_empty() {
             ("—".to_owned(), "—".to_owned())
         } else {
-            let n = values.len() as f64;
-            let mean = values.iter().sum::<f64>() / n;
-            let var = if values.len() > 1 {
-                values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)
-            } else {
-                0.0
-            };
-            (show(mean), show(var.sqrt()))
+            let s = Statistic::of(&values);
+            (show(s.mean), show(s.std))
         };
         let within_count = within;
         let within = if !case.names.is_empty() {

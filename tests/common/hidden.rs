@@ -3,7 +3,7 @@
 #![allow(dead_code)]
 
 use hcm_host::dataset::Dataset;
-use hcm_host::diagnose::select::{refit, select};
+use hcm_host::diagnose::select::{refit, select, Refit, Selection};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
 use hcm_host::scenario::{Model, Scenario};
@@ -49,15 +49,20 @@ pub fn hidden(effect: &str, runs: usize, seed: u64) -> (Model, Dataset) {
     )
 }
 
-/// The causes the stepwise selection and joint re-fit name in `runs` runs with `effect`
-/// hidden (see [`hidden`]): each as (effect name, parameter values, share).
-pub fn named(effect: &str, runs: usize, seed: u64) -> Vec<(&'static str, Vec<f64>, f64)> {
+/// What the stepwise selection and joint re-fit make of `runs` runs with `effect`
+/// hidden (see [`hidden`]).
+pub fn selected(effect: &str, runs: usize, seed: u64) -> (Selection, Refit) {
     let (base, data) = hidden(effect, runs, seed);
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
     let law = base.contacts[0].extended_law();
     let selection = select(&samples, &law, sigma);
     let fit = refit(&samples, &law, &selection.chosen, sigma);
+    (selection, fit)
+}
+
+/// The named causes of a re-fit, each as (effect name, parameter values, share).
+pub fn causes(fit: &Refit) -> Vec<(&'static str, Vec<f64>, f64)> {
     fit.causes
         .iter()
         .map(|c| {
@@ -68,4 +73,9 @@ pub fn named(effect: &str, runs: usize, seed: u64) -> Vec<(&'static str, Vec<f64
             )
         })
         .collect()
+}
+
+/// The causes named in `runs` runs with `effect` hidden (see [`selected`], [`causes`]).
+pub fn named(effect: &str, runs: usize, seed: u64) -> Vec<(&'static str, Vec<f64>, f64)> {
+    causes(&selected(effect, runs, seed).1)
 }

@@ -13,7 +13,8 @@ pub struct Statistic {
 }
 
 impl Statistic {
-    fn of(values: &[f64]) -> Statistic {
+    /// Of `values` (their unit); the mean is NaN for none, the std 0 for fewer than two.
+    pub fn of(values: &[f64]) -> Statistic {
         let n = values.len() as f64;
         let mean = values.iter().sum::<f64>() / n;
         let var = if values.len() > 1 {
