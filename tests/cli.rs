@@ -442,4 +442,50 @@ fn diagnose_names_the_variable_stiffness_damping_missing_from_lankarani_nikraves
     for file in ["report.md", "residual_vs_time.svg", "residual_vs_time.png"] {
         assert!(out.join(file).exists(), "{file}");
     }
+    // Outside the fitted range: the fastest speed held out instead. The HCM's network
+    // is off outside its training envelope (it is the base there); the named physics
+    // carries over.
+    let beyond = dir.path().join("beyond");
+    hcm_ok(&[
+        "diagnose",
+        "--scenario",
+        &flat,
+        "--set",
+        "experiment.holdout_conditions=[\"v1.0\"]",
+        "--data",
+        data.to_str().unwrap(),
+        "--physics",
+        base.to_str().unwrap(),
+        "--out",
+        beyond.to_str().unwrap(),
+    ]);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(beyond.join("diagnosis.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["answer"], "hysteresis_damping");
+    let table = json["gain"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|t| t["group"] == "condition v1.0")
+        .expect("a table for the fastest speed")
+        .clone();
+    let energy = |model: &str| {
+        table["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["model"] == model)
+            .unwrap()["errors"][2]
+            .as_f64()
+            .unwrap()
+    };
+    println!(
+        "v1.0 energy-loss error: base {:.2} %, extended {:.2} %, HCM {:.2} %",
+        100.0 * energy("base"),
+        100.0 * energy("extended"),
+        100.0 * energy("HCM")
+    );
+    assert!(energy("base") > 0.1, "{table}");
+    assert!(energy("extended") < 0.25 * energy("base"), "{table}");
 }
