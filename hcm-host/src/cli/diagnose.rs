@@ -39,7 +39,9 @@ pub struct Args {
     /// Seed of the hold-out draw and of the HCM's training.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Share of the runs (inside the fitted range) held out for the gain table.
+    /// Share of the runs (inside the fitted range) held out for the gain table. The
+    /// condition held out whole is the scenario's first `experiment.holdout_conditions`
+    /// entry (else the last condition), e.g. `--set 'experiment.holdout_conditions=["v1.0"]'`.
     #[arg(long, default_value_t = 0.25)]
     holdout: f64,
 }
