@@ -3,7 +3,6 @@
 
 use super::progress_bar;
 use anyhow::Context;
-use hcm_core::effect::AirDrag;
 use hcm_host::dataset::Dataset;
 use hcm_host::diagnose::catalogue::Kind;
 use hcm_host::diagnose::gain::markdown;
@@ -83,12 +82,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         },
     );
     extended.contacts[0].effects = diagnosis.extended.effects.iter().copied().collect();
-    if let Some(drag) = diagnosis.drag.as_ref().filter(|d| d.significant) {
+    if let Some(air_drag) = diagnosis.drag.as_ref().and_then(|d| d.air_drag()) {
         extended.bodies.push(PhysicsBody {
             name: diagnosis.drag_body.clone(),
-            air_drag: AirDrag {
-                coefficient: drag.coefficient,
-            },
+            air_drag,
         });
     }
     extended.write(

@@ -14,7 +14,7 @@ use crate::identify::IdentifyError;
 use crate::residual::{ContactResidual, HIDDEN, WIDTH};
 use crate::scenario::{Contact, Model};
 use crate::train::{residual_pairs, train, TrainSettings};
-use hcm_core::effect::{AirDrag, ExtendedLaw};
+use hcm_core::effect::ExtendedLaw;
 use hcm_core::residual::Quantisation;
 use serde::Serialize;
 
@@ -162,10 +162,8 @@ pub fn diagnose(
     let mut extended = base.clone();
     extended.contacts[c].law = fit.law.base;
     extended.contacts[c].effects = fit.law.effects.iter().copied().collect();
-    if let Some(d) = drag.as_ref().filter(|d| d.significant) {
-        extended.bodies[base.contacts[c].body_1].air_drag = Some(AirDrag {
-            coefficient: d.coefficient,
-        });
+    if let Some(air_drag) = drag.as_ref().and_then(|d| d.air_drag()) {
+        extended.bodies[base.contacts[c].body_1].air_drag = Some(air_drag);
     }
     let hcm = hcm_contact(base, &fit_data, c, settings)?.map(|contact| {
         let mut model = base.clone();

@@ -12,6 +12,7 @@
 
 use super::noise::white_noise;
 use super::ContactSamples;
+use hcm_core::effect::AirDrag;
 use nalgebra::{Matrix2, Vector2};
 
 /// Smallest |c / standard error| for air drag to be named.
@@ -35,6 +36,15 @@ pub struct DragFit {
     pub samples: usize,
     /// Whether it passes the tests.
     pub significant: bool,
+}
+
+impl DragFit {
+    /// The drag as a core body term when it passed the tests.
+    pub fn air_drag(&self) -> Option<AirDrag<f64>> {
+        self.significant.then_some(AirDrag {
+            coefficient: self.coefficient,
+        })
+    }
 }
 
 /// Fits the drag of a body of mass `mass` (kg) from the flight samples; None with
