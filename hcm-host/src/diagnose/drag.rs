@@ -2,18 +2,25 @@
 //! acceleration δ̈ is gravity's component alone; quadratic drag −c·|v|·v on body 1
 //! adds −(c/m)·|δ̇|·δ̇ to it when the motion is along the normal (the 1D examples).
 //!
-//! δ̈ is taken by central differences of the recorded δ̇ over flight samples of one run
-//! (the three on a uniform clock), and regressed on [1, −|δ̇|·δ̇/m] by least squares
-//! weighted for the differences' noise (∝ 1/h²): the intercept is gravity's component
-//! (fitted, so a tilted normal needs no special case), the slope is c (kg/m). The drag
-//! is named when its t-statistic exceeds [`T_MIN`], it explains at least 2 % of what
-//! gravity alone leaves above the velocity noise, and at the fastest recorded speed it
-//! exceeds 0.1 % of the gravity component.
+//! The recorded δ̇ itself is fitted, not a differentiated one: over each flight segment
+//! (consecutive flight samples of one run, starting at t_s),
+//!
+//! δ̇(t) = δ̇_s + g·(t − t_s) + c·D(t),  D(t) = −∫_{t_s}^{t} |δ̇|·δ̇/m dt′  (trapezoid over
+//! the recorded δ̇),
+//!
+//! linear in one start rate δ̇_s per segment, gravity's component g (fitted, so a tilted
+//! normal needs no special case) and c (kg/m). The residual is then the recorded δ̇'s
+//! own white noise, so ordinary least squares gives c's standard error directly
+//! (differentiating first would make neighbouring rows' noise correlated and the
+//! error bars wrong). The drag is named when its t-statistic exceeds [`T_MIN`], it
+//! explains at least 2 % of what gravity alone leaves above the velocity noise σ_v
+//! (from δ̇'s second differences), and at the fastest recorded speed it exceeds 0.1 %
+//! of the gravity component.
 
 use super::noise::white_noise;
 use super::ContactSamples;
 use hcm_core::effect::AirDrag;
-use nalgebra::{Matrix2, Vector2};
+use nalgebra::{DMatrix, DVector};
 
 /// Smallest |c / standard error| for air drag to be named.
 pub const T_MIN: f64 = 5.0;
@@ -48,86 +55,102 @@ impl DragFit {
 }
 
 /// Fits the drag of a body of mass `mass` (kg) from the flight samples; None with
-/// fewer than 10 usable samples.
+/// fewer than 10 usable samples or a singular fit.
 pub fn fit_drag(samples: &ContactSamples, mass: f64) -> Option<DragFit> {
-    let mut rows = Vec::new();
-    for i in 1..samples.len().saturating_sub(1) {
-        let (a, b) = (i - 1, i + 1);
-        let flight = |j: usize| !samples.in_contact[j] && samples.depth[j] < 0.0;
-        if samples.run[a] != samples.run[i] || samples.run[b] != samples.run[i] {
+    let flight = |j: usize| !samples.in_contact[j] && samples.depth[j] < 0.0;
+    // Segments of consecutive flight samples of one run, at least three long.
+    let mut segments: Vec<std::ops::Range<usize>> = Vec::new();
+    let mut i = 0;
+    while i < samples.len() {
+        if !flight(i) {
+            i += 1;
             continue;
         }
-        if !(flight(a) && flight(i) && flight(b)) {
-            continue;
+        let start = i;
+        while i + 1 < samples.len() && flight(i + 1) && samples.run[i + 1] == samples.run[start] {
+            i += 1;
         }
-        let (h1, h2) = (
-            samples.time[i] - samples.time[a],
-            samples.time[b] - samples.time[i],
-        );
-        if !(h1 > 0.0 && (h2 - h1).abs() <= 0.01 * h1) {
-            continue;
+        if i + 1 - start >= 3 {
+            segments.push(start..i + 1);
         }
-        let acceleration = (samples.rate[b] - samples.rate[a]) / (h1 + h2);
-        let rate = samples.rate[i];
-        rows.push((
-            acceleration,
-            -rate.abs() * rate / mass,
-            (h1 + h2).powi(2) / 2.0,
-        ));
+        i += 1;
     }
-    if rows.len() < 10 {
+    // Rows: (segment, t − t_s, D, δ̇).
+    let mut rows = Vec::new();
+    for (k, segment) in segments.iter().enumerate() {
+        let t_s = samples.time[segment.start];
+        let mut integral = 0.0;
+        for j in segment.clone() {
+            if j > segment.start {
+                let q = |j: usize| samples.rate[j].abs() * samples.rate[j] / mass;
+                integral -= 0.5 * (q(j) + q(j - 1)) * (samples.time[j] - samples.time[j - 1]);
+            }
+            rows.push((k, samples.time[j] - t_s, integral, samples.rate[j]));
+        }
+    }
+    if rows.len() < 10
+        || rows
+            .iter()
+            .any(|r| !(r.1.is_finite() && r.2.is_finite() && r.3.is_finite()))
+    {
         return None;
     }
+    let p = segments.len() + 2;
+    let n = rows.len();
+    let design = |with_drag: bool| {
+        let columns = if with_drag { p } else { p - 1 };
+        DMatrix::from_fn(n, columns, |r, col| {
+            let (k, t, d, _) = rows[r];
+            match col {
+                col if col < segments.len() => f64::from(u8::from(col == k)),
+                col if col == segments.len() => t,
+                _ => d,
+            }
+        })
+    };
+    let y = DVector::from_iterator(n, rows.iter().map(|r| r.3));
+    let fit = |x: &DMatrix<f64>| -> Option<(DVector<f64>, f64, DMatrix<f64>)> {
+        let gram = x.transpose() * x;
+        let inverse = gram.try_inverse()?;
+        let beta = &inverse * (x.transpose() * &y);
+        let rss = (&y - x * &beta).norm_squared();
+        Some((beta, rss, inverse))
+    };
+    let (beta, rss, inverse) = fit(&design(true))?;
+    let (_, gravity_only, _) = fit(&design(false))?;
+    let (coefficient, gravity) = (beta[p - 1], beta[p - 2]);
+    let variance = rss / (n - p).max(1) as f64;
+    let standard_error = (variance * inverse[(p - 1, p - 1)]).max(0.0).sqrt();
     // The recorded δ̇'s own white noise σ_v, from flight triples on one clock.
     let (mut run, mut time, mut rate) = (Vec::new(), Vec::new(), Vec::new());
-    for i in (0..samples.len()).filter(|&i| !samples.in_contact[i] && samples.depth[i] < 0.0) {
-        run.push(samples.run[i]);
-        time.push(samples.time[i]);
-        rate.push(samples.rate[i]);
+    for j in segments.iter().flat_map(|s| s.clone()) {
+        run.push(samples.run[j]);
+        time.push(samples.time[j]);
+        rate.push(samples.rate[j]);
     }
     let sigma_v = white_noise(&run, &time, &rate).sigma;
     let sigma_v = if sigma_v.is_finite() { sigma_v } else { 0.0 };
-    // A central difference over h1 + h2 has noise variance 2σ_v²/(h1 + h2)²: weighting
-    // each row by (h1 + h2)²/2 gives every row the noise σ_v², so the few rows recorded
-    // at the contact rate around an impact do not drown the flight at the flight rate.
-    let (mut gram, mut cross) = (Matrix2::<f64>::zeros(), Vector2::<f64>::zeros());
-    for &(y, x, w) in &rows {
-        let v = Vector2::new(1.0, x);
-        gram += w * v * v.transpose();
-        cross += w * v * y;
-    }
-    let inverse = gram.try_inverse()?;
-    let beta = inverse * cross;
-    let rss: f64 = rows
-        .iter()
-        .map(|&(y, x, w)| w * (y - beta[0] - beta[1] * x).powi(2))
-        .sum();
-    let weight: f64 = rows.iter().map(|r| r.2).sum();
-    let mean = rows.iter().map(|r| r.2 * r.0).sum::<f64>() / weight;
-    let gravity_only: f64 = rows.iter().map(|r| r.2 * (r.0 - mean).powi(2)).sum();
-    let n = rows.len() as f64;
-    let variance = rss / (n - 2.0).max(1.0);
-    let standard_error = (variance * inverse[(1, 1)]).max(0.0).sqrt();
     // Of what gravity alone leaves above the noise, the part the drag explains.
-    let structured = (gravity_only - n * sigma_v * sigma_v).max(gravity_only - rss);
+    let explained = gravity_only - rss;
+    let structured = (gravity_only - n as f64 * sigma_v * sigma_v).max(explained);
     let share = if structured > 0.0 {
-        ((gravity_only - rss) / structured).clamp(0.0, 1.0)
+        (explained / structured).clamp(0.0, 1.0)
     } else {
         0.0
     };
-    let t = beta[1].abs() / standard_error.max(f64::MIN_POSITIVE);
+    let t = coefficient.abs() / standard_error.max(f64::MIN_POSITIVE);
     // With noise-free motion both variances are rounding-level and t and the share are
     // meaningless; the drag must also matter: at the fastest recorded speed more than
     // 0.1 % of the gravity component.
-    let fastest = rows.iter().map(|r| r.1.abs()).fold(0.0, f64::max);
-    let matters = beta[1] * fastest > 1e-3 * beta[0].abs();
+    let fastest = rows.iter().map(|r| r.3 * r.3 / mass).fold(0.0, f64::max);
+    let matters = coefficient * fastest > 1e-3 * gravity.abs();
     Some(DragFit {
-        coefficient: beta[1],
+        coefficient,
         standard_error,
-        gravity: beta[0],
+        gravity,
         share,
         velocity_noise: sigma_v,
-        samples: rows.len(),
-        significant: beta[1] > 0.0 && t > T_MIN && share >= 0.02 && matters,
+        samples: n,
+        significant: coefficient > 0.0 && t > T_MIN && share >= 0.02 && matters,
     })
 }
