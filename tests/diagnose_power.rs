@@ -1,7 +1,8 @@
 //! The statistical power of the `hcm diagnose` end-to-end tests (tests/diagnose.rs): each
 //! hidden effect there is checked on one seed; here every case is repeated over seeds
 //! 1..=10 and must be named — exactly, and nothing else — with its parameter within the
-//! single-seed test's tolerance, in at least 8 of the 10.
+//! single-seed test's tolerance, in at least 8 of the 10 — and the standard error the re-fit
+//! reports must agree with the parameter's spread over the seeds.
 
 // Only `common/hidden.rs`: `common/mod.rs` is shared with hcm-core's tests, which cannot
 // see `hcm_host`.
@@ -9,7 +10,8 @@ mod common {
     pub mod hidden;
 }
 
-use common::hidden::named;
+use common::hidden::selected;
+use hcm_host::diagnose::select::Cause;
 use hcm_host::indicators::Statistic;
 use rayon::prelude::*;
 
@@ -123,21 +125,24 @@ fn every_hidden_effect_is_named_with_its_parameter_in_at_least_8_of_10_seeds() {
     let jobs: Vec<(usize, u64)> = (0..CASES.len())
         .flat_map(|c| SEEDS.map(move |s| (c, s)))
         .collect();
-    let found: Vec<Vec<(&'static str, Vec<f64>, f64)>> = jobs
+    let found: Vec<Vec<Cause>> = jobs
         .par_iter()
-        .map(|&(c, seed)| named(CASES[c].effect, RUNS, seed))
+        .map(|&(c, seed)| selected(CASES[c].effect, RUNS, seed).1.causes)
         .collect();
 
     let seeds = SEEDS.count();
     let mut failures = Vec::new();
-    println!("| case | detected | parameter in tolerance | parameter mean | parameter std |");
-    println!("|---|---|---|---|---|");
+    println!(
+        "| case | detected | parameter in tolerance | parameter mean | std over seeds | \
+         reported standard error |"
+    );
+    println!("|---|---|---|---|---|---|");
     for (c, case) in CASES.iter().enumerate() {
         let mut detected = 0;
         let mut within = 0;
-        let mut values = Vec::new();
+        let (mut values, mut errors) = (Vec::new(), Vec::new());
         for ((_, seed), causes) in jobs.iter().zip(&found).filter(|((j, _), _)| *j == c) {
-            let mut names: Vec<&str> = causes.iter().map(|c| c.0).collect();
+            let mut names: Vec<&str> = causes.iter().map(|c| c.effect).collect();
             names.sort_unstable();
             let exact = names == case.names;
             if !exact {
@@ -145,12 +150,15 @@ fn every_hidden_effect_is_named_with_its_parameter_in_at_least_8_of_10_seeds() {
                 continue;
             }
             detected += 1;
-            let outside: Vec<f64> = causes
-                .iter()
-                .map(|c| c.1[case.index])
+            let checked = causes.iter().map(|c| &c.parameters[case.index]);
+            let outside: Vec<f64> = checked
+                .clone()
+                .map(|p| p.value)
                 .filter(|&v| !(case.within)(v))
                 .collect();
-            values.extend(causes.iter().map(|c| c.1[case.index]));
+            values.extend(checked.clone().map(|p| p.value));
+            // The 95 % interval is the estimate ± 1.96 standard errors.
+            errors.extend(checked.map(|p| (p.ci.1 - p.ci.0) / (2.0 * 1.96)));
             if outside.is_empty() {
                 within += 1;
             } else {
@@ -161,11 +169,21 @@ fn every_hidden_effect_is_named_with_its_parameter_in_at_least_8_of_10_seeds() {
                 );
             }
         }
-        let (mean, std) = if values.is_empty() {
-            ("—".to_owned(), "—".to_owned())
+        let (mean, std, error) = if values.is_empty() {
+            ("—".to_owned(), "—".to_owned(), "—".to_owned())
         } else {
-            let s = Statistic::of(&values);
-            (show(s.mean), show(s.std))
+            let (s, e) = (Statistic::of(&values), Statistic::of(&errors).mean);
+            // The intervals must be honest: the reported standard error agrees with the
+            // spread over seeds (a std of 10 values is itself uncertain by ~25 %).
+            if !(0.4..2.5).contains(&(s.std / e)) {
+                failures.push(format!(
+                    "{}: std over seeds {} against a reported standard error {}",
+                    case.label,
+                    show(s.std),
+                    show(e)
+                ));
+            }
+            (show(s.mean), show(s.std), show(e))
         };
         let within_count = within;
         let within = if !case.names.is_empty() {
@@ -174,7 +192,7 @@ fn every_hidden_effect_is_named_with_its_parameter_in_at_least_8_of_10_seeds() {
             "—".to_owned()
         };
         println!(
-            "| {} | {detected}/{seeds} | {within} | {mean} | {std} |",
+            "| {} | {detected}/{seeds} | {within} | {mean} | {std} | {error} |",
             case.label
         );
         if detected < case.min_detected {

@@ -74,8 +74,3 @@ pub fn causes(fit: &Refit) -> Vec<(&'static str, Vec<f64>, f64)> {
         })
         .collect()
 }
-
-/// The causes named in `runs` runs with `effect` hidden (see [`selected`], [`causes`]).
-pub fn named(effect: &str, runs: usize, seed: u64) -> Vec<(&'static str, Vec<f64>, f64)> {
-    causes(&selected(effect, runs, seed).1)
-}
