@@ -160,12 +160,7 @@ pub fn gain(
     sigma: f64,
     judged: &[Judged],
 ) -> Result<Vec<GainTable>, IdentifyError> {
-    if let Some(&r) = runs.iter().find(|&&r| r >= data.runs.len()) {
-        let n = data.runs.len();
-        return Err(IdentifyError::Setup(format!(
-            "held-out run index {r} is out of range (the data hold {n} runs)"
-        )));
-    }
+    check_runs(data, runs)?;
     let condition = held_out_condition(model, data);
     let (outside, inside): (Vec<usize>, Vec<usize>) = runs
         .iter()
@@ -245,6 +240,17 @@ fn at(curve: &[f64], period: f64, tau: f64) -> f64 {
     }
 }
 
+/// An error naming the first of `runs` that is no run of `data`.
+fn check_runs(data: &Dataset, runs: &[usize]) -> Result<(), IdentifyError> {
+    match runs.iter().find(|&&r| r >= data.runs.len()) {
+        Some(r) => Err(IdentifyError::Setup(format!(
+            "run index {r} is out of range (the data hold {} runs)",
+            data.runs.len()
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// Scores the `judged` models on `runs` of `data` as one group named `group`, whatever
 /// their conditions (see [`gain`] for the rest).
 pub fn group_table(
@@ -256,6 +262,7 @@ pub fn group_table(
     sigma: f64,
     judged: &[Judged],
 ) -> Result<GainTable, IdentifyError> {
+    check_runs(data, runs)?;
     let records = runs
         .iter()
         .map(|&r| recorded(model, data, r, c))
