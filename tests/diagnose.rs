@@ -9,6 +9,7 @@ mod common {
 
 use common::hidden::{causes, hidden, model, selected};
 use hcm_host::diagnose::catalogue::Candidate;
+use hcm_host::diagnose::gain::{GainRow, GainTable};
 use hcm_host::diagnose::select::{refit, select};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
@@ -143,6 +144,11 @@ fn two_hidden_effects_are_both_named_and_nothing_else() {
     }
 }
 
+/// The row of `model` in a gain table.
+fn row<'a>(table: &'a GainTable, model: &str) -> &'a GainRow {
+    table.rows.iter().find(|r| r.model == model).unwrap()
+}
+
 #[test]
 fn the_extended_model_halves_the_held_out_excess_error() {
     use hcm_host::diagnose::{diagnose, DiagnoseSettings};
@@ -159,15 +165,7 @@ fn the_extended_model_halves_the_held_out_excess_error() {
     ] {
         let (base, data) = hidden(effect, 12, 8);
         let d = diagnose(&base, &data, &DiagnoseSettings::default()).unwrap();
-        let table = &d.gain[0];
-        let excess = |m: &str| {
-            table
-                .rows
-                .iter()
-                .find(|r| r.model == m)
-                .unwrap()
-                .excess_rmse
-        };
+        let excess = |m: &str| row(&d.gain[0], m).excess_rmse;
         println!(
             "{effect}: held-out excess RMSE base {:.2} N, extended {:.2} N, HCM {:.2} N",
             excess("base"),
@@ -206,14 +204,7 @@ fn air_drag_is_read_from_the_flight_motion() {
     // The gain lives in the flight: the held-out runs replayed from their first sample.
     // (Replayed from just before contact, the contact force cannot tell the two apart.)
     let table = &d.gain[0];
-    let flight = |m: &str| {
-        table
-            .rows
-            .iter()
-            .find(|r| r.model == m)
-            .unwrap()
-            .flight_excess
-    };
+    let flight = |m: &str| row(table, m).flight_excess;
     println!(
         "held-out flight δ̇ excess RMSE: base {:.3} mm/s, extended {:.3} mm/s (noise {:.3} mm/s)",
         1e3 * flight("base"),
