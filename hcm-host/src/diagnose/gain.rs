@@ -268,17 +268,27 @@ pub fn group_table(
         .map(|&r| recorded(model, data, r, c))
         .collect::<Result<Vec<_>, _>>()?;
     let flight_noise = flight_noise(&records);
+    // The measured means as recorded, shared by every model judged with an ideal sensor;
+    // a model with a sensor correction gets the means of the corrected runs.
+    let means_of = |sensor: &Sensor| -> Result<Vec<Target>, IdentifyError> {
+        let runs = runs
+            .iter()
+            .map(|&r| sensor.correct(model, &data.runs[r], c))
+            .collect::<Result<_, _>>()?;
+        targets(model, &Dataset { runs }, c)
+    };
+    let recorded_means = means_of(&Sensor::default())?;
     let mut rows = Vec::with_capacity(judged.len());
     for j in judged {
-        let corrected = Dataset {
-            runs: runs
-                .iter()
-                .map(|&r| j.sensor.correct(model, &data.runs[r], c))
-                .collect::<Result<_, _>>()?,
+        let corrected_means;
+        let means = if j.sensor.is_ideal() {
+            &recorded_means
+        } else {
+            corrected_means = means_of(&j.sensor)?;
+            &corrected_means
         };
-        let means = targets(model, &corrected, c)?;
         let force_rmse = force_rmse(&records, c, j);
-        let (indicators, errors) = indicator_errors(&means, c, j.physics);
+        let (indicators, errors) = indicator_errors(means, c, j.physics);
         let flight_rmse = flight_rmse(model, data, runs, &records, c, j.physics);
         let excess = |rmse: f64, noise: f64| (rmse.powi(2) - noise.powi(2)).max(0.0).sqrt();
         rows.push(GainRow {
