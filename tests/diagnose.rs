@@ -127,7 +127,7 @@ fn two_hidden_effects_are_both_named_and_nothing_else() {
     };
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
-    let law = base.contacts[0].extended_law();
+    let law = base.contacts[0].model.normal.clone();
     let selection = select(&samples, &law, sigma);
     let mut names: Vec<&str> = selection.chosen.iter().map(|(c, _)| c.name()).collect();
     names.sort();

@@ -48,7 +48,7 @@ fn noise_free_data_of_each_law_give_back_its_parameters() {
     for (law, parameters) in cases {
         let scenario = noise_free_ball(law, parameters);
         let model = scenario.model().unwrap();
-        let truth = model.contacts[0].law;
+        let truth = *model.contacts[0].law();
         let data = generate(&scenario, 2, 7, || {}).unwrap();
         let found = identify(&scenario, &model, &data, 0, law, Method::Lsq, |_, _, _| {}).unwrap();
         for ((name, expected), (_, value)) in law_catalogue::parameters(&truth)

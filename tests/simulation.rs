@@ -93,7 +93,7 @@ fn hertz_ball_matches_the_closed_forms() {
             &format!("body.ball.velocity=[0.0, 0.0, {}]", -speed),
         ],
     );
-    let hcm_core::law::AnyNormalLaw::Hertz(law) = m.contacts[0].law else {
+    let hcm_core::law::AnyNormalLaw::Hertz(law) = *m.contacts[0].law() else {
         panic!("not hertz")
     };
     let (k, mass) = (law.stiffness, m.bodies[0].mass);

@@ -55,7 +55,7 @@ pub fn selected(effect: &str, runs: usize, seed: u64) -> (Selection, Refit) {
     let (base, data) = hidden(effect, runs, seed);
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
-    let law = base.contacts[0].extended_law();
+    let law = base.contacts[0].model.normal.clone();
     let selection = select(&samples, &law, sigma);
     let fit = refit(&samples, &law, &selection.chosen, sigma);
     (selection, fit)

@@ -144,7 +144,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
     let clock = Instant::now();
     let (samples, _) = force_samples(&pm2, &sets.training, 0)?;
-    let (inputs, outputs) = residual_pairs(&samples, &pm2.contacts[0].law);
+    let (inputs, outputs) = residual_pairs(&samples, &pm2.contacts[0].model);
     let settings = TrainSettings {
         hidden_layers: HIDDEN,
         width: WIDTH,
@@ -187,7 +187,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let mut models = vec![("PM2".to_owned(), pm2.clone())];
     for (weights, _, _, residual) in &blobs {
         let mut hcm = pm2.clone();
-        hcm.contacts[0].residual = Some(residual.clone());
+        hcm.contacts[0].model.residual = Some(residual.clone());
         models.push((
             if *weights == Weights::F32 {
                 "HCM".into()

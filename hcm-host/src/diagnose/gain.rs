@@ -625,7 +625,7 @@ mod tests {
     fn the_true_model_gains_over_a_wrong_one() {
         let (model, data) = generated();
         let mut wrong = model.clone();
-        wrong.contacts[0].law = map_parameters(&model.contacts[0].law, |name, a| {
+        wrong.contacts[0].model.normal.base = map_parameters(model.contacts[0].law(), |name, a| {
             if name == "damping" {
                 0.5 * a
             } else {
@@ -717,7 +717,8 @@ mod tests {
             run.id = format!("{}/{}", ["a", "b", "c"][k / 2], k % 2);
         }
         let mut broken = model.clone();
-        broken.contacts[0].law = map_parameters(&model.contacts[0].law, |_, _| f64::NAN);
+        broken.contacts[0].model.normal.base =
+            map_parameters(model.contacts[0].law(), |_, _| f64::NAN);
         let models = [judged("true", model), judged("broken", &broken)];
         let tables = gain(model, &data, &[1, 2, 4, 5], 0, SIGMA, &models).unwrap();
         let groups: Vec<_> = tables.iter().map(|t| (t.group.as_str(), t.runs)).collect();

@@ -122,7 +122,7 @@ pub fn noisy_run(model: &Model, rng: &mut ChaCha8Rng) -> Result<Run, SimulationE
     let mut model = model.clone();
     for contact in &mut model.contacts {
         let noise = contact.noise.clone();
-        contact.law = law_catalogue::map_parameters(&contact.law, |name, a| {
+        contact.model.normal.base = law_catalogue::map_parameters(contact.law(), |name, a| {
             match noise.iter().find(|(n, _)| n == name) {
                 Some((_, b)) => a + a * b * normal(rng),
                 None => a,

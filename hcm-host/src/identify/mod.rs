@@ -17,7 +17,8 @@ use crate::dataset::Dataset;
 use crate::indicators::IndicatorError;
 use crate::scenario::{Model, Scenario, ScenarioError};
 use bounds::Bounds;
-use hcm_core::law::{AnyNormalLaw, Indentation, NormalLaw};
+use hcm_core::law::AnyNormalLaw;
+use hcm_core::model::ContactModel;
 use samples::ForceSample;
 use std::time::Instant;
 
@@ -96,20 +97,17 @@ pub fn template(
         format!("contact.{c}.noise={{}}"),
     ];
     let model = scenario.with(&assignments)?.model()?;
-    Ok((model.contacts[c].law, bounds))
+    Ok((*model.contacts[c].law(), bounds))
 }
 
 /// RMS of modelled − measured force over `samples` (N).
 pub fn force_rms(law: &AnyNormalLaw<f64>, samples: &[ForceSample]) -> f64 {
+    let physics = ContactModel::physics(*law);
     let sum: f64 = samples
         .iter()
         .map(|s| {
-            let state = Indentation {
-                depth: s.depth,
-                rate: s.rate,
-                approach_speed: s.approach_speed,
-            };
-            (law.normal_force(&state) - s.force).powi(2)
+            let (state, memory) = s.state();
+            (physics.physics_normal_force(&state, &memory) - s.force).powi(2)
         })
         .sum();
     (sum / samples.len().max(1) as f64).sqrt()

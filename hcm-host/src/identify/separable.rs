@@ -19,7 +19,8 @@ use super::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use super::samples::ForceSample;
 use super::IdentifyError;
 use crate::law_catalogue;
-use hcm_core::law::{step, AnyNormalLaw, Indentation, NormalLaw};
+use hcm_core::law::{step, AnyNormalLaw};
+use hcm_core::model::ContactModel;
 
 /// The result of a least-squares fit.
 #[derive(Clone, Debug)]
@@ -205,14 +206,10 @@ fn refine(
         })
     };
     let residuals = |p: &[f64], out: &mut [f64]| {
-        let candidate = with(p);
+        let candidate = ContactModel::physics(with(p));
         for (r, s) in out.iter_mut().zip(samples) {
-            let state = Indentation {
-                depth: s.depth,
-                rate: s.rate,
-                approach_speed: s.approach_speed,
-            };
-            *r = candidate.normal_force(&state) - s.force;
+            let (state, memory) = s.state();
+            *r = candidate.physics_normal_force(&state, &memory) - s.force;
         }
     };
     let result = levenberg_marquardt(
