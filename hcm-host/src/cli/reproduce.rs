@@ -12,7 +12,6 @@ use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::replay::{simulate_target_with, targets};
 use hcm_host::identify::samples::force_samples;
 use hcm_host::identify::{identify, Method, Physics};
-use hcm_host::law_catalogue;
 use hcm_host::output::write_bytes;
 use hcm_host::residual::{ContactResidual, HIDDEN, WIDTH};
 use hcm_host::scenario::Scenario;
@@ -214,7 +213,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         args.example, args.seed
     );
     let _ = writeln!(md, "Scenario `{}` (a reconstruction of the paper's lost parameters). PM2 = Lankarani–Nikravesh by {}: {}.\n", path.display(), found.fit.method,
-        law_catalogue::parameters(&found.law).iter().map(|(n, v)| format!("{n} = {v:.6e}")).collect::<Vec<_>>().join(", "));
+        found.law.named().map(|(n, v)| format!("{n} = {v:.6e}")).collect::<Vec<_>>().join(", "));
     let _ = writeln!(
         md,
         "## Table (S2 = {} runs{})\n",

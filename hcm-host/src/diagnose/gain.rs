@@ -512,7 +512,6 @@ pub fn markdown(tables: &[GainTable]) -> String {
 mod tests {
     use super::*;
     use crate::dataset::Run;
-    use crate::law_catalogue::map_parameters;
     use crate::scenario::Scenario;
     use std::path::Path;
     use std::sync::OnceLock;
@@ -625,13 +624,9 @@ mod tests {
     fn the_true_model_gains_over_a_wrong_one() {
         let (model, data) = generated();
         let mut wrong = model.clone();
-        wrong.contacts[0].model.normal.base = map_parameters(model.contacts[0].law(), |name, a| {
-            if name == "damping" {
-                0.5 * a
-            } else {
-                a
-            }
-        });
+        let law = &mut wrong.contacts[0].model.normal.base;
+        law.set("damping", 0.5 * law.get("damping").unwrap())
+            .unwrap();
         let runs: Vec<usize> = (0..data.runs.len()).collect();
         let models = [judged("true", model), judged("damping ×0.5", &wrong)];
         let tables = gain(model, data, &runs, 0, SIGMA, &models).unwrap();
@@ -717,8 +712,7 @@ mod tests {
             run.id = format!("{}/{}", ["a", "b", "c"][k / 2], k % 2);
         }
         let mut broken = model.clone();
-        broken.contacts[0].model.normal.base =
-            map_parameters(model.contacts[0].law(), |_, _| f64::NAN);
+        broken.contacts[0].model.normal.base = model.contacts[0].law().map_named(|_, _| f64::NAN);
         let models = [judged("true", model), judged("broken", &broken)];
         let tables = gain(model, &data, &[1, 2, 4, 5], 0, SIGMA, &models).unwrap();
         let groups: Vec<_> = tables.iter().map(|t| (t.group.as_str(), t.runs)).collect();

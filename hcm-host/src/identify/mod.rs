@@ -81,6 +81,7 @@ pub fn template(
     c: usize,
     law_name: &str,
 ) -> Result<(AnyNormalLaw<f64>, Bounds), IdentifyError> {
+    Bounds::check_scenario(&scenario.identify.bounds).map_err(IdentifyError::Setup)?;
     let bounds = Bounds::for_law(law_name, scenario.identify.bounds.get(law_name))
         .map_err(IdentifyError::Setup)?;
     if bounds.parameters.is_empty() {

@@ -18,7 +18,6 @@ use super::least_squares::{linear_least_squares, minimize_box2, minimize_scalar}
 use super::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use super::samples::ForceSample;
 use super::IdentifyError;
-use crate::law_catalogue;
 use hcm_core::law::{step, AnyNormalLaw};
 use hcm_core::model::ContactModel;
 
@@ -197,14 +196,10 @@ fn refine(
     notes: Vec<String>,
 ) -> Result<LsqFit, IdentifyError> {
     let free = bounds.free();
-    let start: Vec<f64> = free.iter().map(|name| lookup(&law, name)).collect();
+    let start = bounds.values(&law)?;
     let scales: Vec<f64> = start.iter().map(|v| v.abs().max(1e-12)).collect();
     let box_bounds: Vec<(f64, f64)> = free.iter().map(|name| bounds.range(name)).collect();
-    let with = |p: &[f64]| {
-        law_catalogue::map_parameters(&law, |name, v| {
-            free.iter().position(|f| *f == name).map_or(v, |i| p[i])
-        })
-    };
+    let with = |p: &[f64]| bounds.with(&law, p);
     let residuals = |p: &[f64], out: &mut [f64]| {
         let candidate = ContactModel::physics(with(p));
         for (r, s) in out.iter_mut().zip(samples) {
@@ -235,12 +230,4 @@ fn refine(
         notes,
         standard_errors,
     })
-}
-
-/// The value of parameter `name` of `law`.
-pub fn lookup(law: &AnyNormalLaw<f64>, name: &str) -> f64 {
-    law_catalogue::parameters(law)
-        .into_iter()
-        .find(|(n, _)| *n == name)
-        .map_or(f64::NAN, |(_, v)| v)
 }
