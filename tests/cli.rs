@@ -21,6 +21,9 @@ fn hcm_ok(args: &[&str]) -> std::process::Output {
     run
 }
 
+/// The keys of a model row's indicators and errors (`evaluate --json`, diagnosis.json).
+const INDICATORS: [&str; 4] = ["max_force", "impulse", "energy_loss", "duration"];
+
 fn scenario(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../scenarios")
@@ -197,10 +200,12 @@ fn generate_identify_evaluate_through_the_binary() {
         "--json",
     ]);
     let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
-    let errors = json[0]["models"][0]["errors"].as_array().unwrap();
+    let errors = json[0]["models"][0]["errors"].as_object().unwrap();
     assert_eq!(errors.len(), 4);
     assert!(
-        errors.iter().all(|e| e.as_f64().unwrap() < 0.2),
+        INDICATORS
+            .iter()
+            .all(|&k| errors[k].as_f64().unwrap() < 0.2),
         "{errors:?}"
     );
 
@@ -247,7 +252,8 @@ fn generate_identify_evaluate_through_the_binary() {
         let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
         let models = json[0]["models"].as_array().unwrap();
         assert_eq!(models.len(), 2, "{weights}: PM2 and HCM columns");
-        assert_eq!(models[1]["errors"].as_array().unwrap().len(), 4);
+        assert_eq!(models[1]["model"], "HCM");
+        assert_eq!(models[1]["errors"].as_object().unwrap().len(), 4);
     }
     // A missing or foreign trained-residual file is named, and no blob appears.
     let blob = dir.path().join("never.bin");
@@ -428,7 +434,7 @@ fn diagnose_names_the_variable_stiffness_damping_missing_from_lankarani_nikraves
     assert_eq!(beyond["answer"], "hysteresis_damping");
     for (json, speed) in [(&json, "v0.95"), (&beyond, "v1.0")] {
         let table = group(json, &format!("condition {speed}"));
-        let energy = |model: &str| row(table, model, "errors")[2].as_f64().unwrap();
+        let energy = |model: &str| row(table, model, "errors")["energy_loss"].as_f64().unwrap();
         println!(
             "{speed} energy-loss error: base {:.2} %, extended {:.2} %, HCM {:.2} %",
             100.0 * energy("base"),

@@ -146,7 +146,7 @@ fn two_hidden_effects_are_both_named_and_nothing_else() {
 
 /// The row of `model` in a gain table.
 fn row<'a>(table: &'a GainTable, model: &str) -> &'a GainRow {
-    table.rows.iter().find(|r| r.model == model).unwrap()
+    table.rows.iter().find(|r| r.judged.model == model).unwrap()
 }
 
 #[test]

@@ -66,8 +66,8 @@ fn the_hcm_beats_pm2_on_energy_loss_and_its_blob_reproduces_the_host_network() {
     hcm.contacts[0].model.residual = Some(residual);
     let table = &evaluate(&[("PM2", &pm2), ("HCM", &hcm)], &sets.validation, 0).unwrap()[0];
     let (pm2_errors, hcm_errors) = (
-        table.models[0].errors.unwrap(),
-        table.models[1].errors.unwrap(),
+        table.models[0].errors.unwrap().values(),
+        table.models[1].errors.unwrap().values(),
     );
     assert!(
         hcm_errors[2] < 0.5 * pm2_errors[2],

@@ -123,7 +123,7 @@ fn pm2_errors(name: &str, runs: usize) -> [f64; 4] {
         .unwrap();
     let tables = evaluate(&[("PM2", &pm2)], &sets.validation, 0).unwrap();
     assert_eq!(tables.len(), 1, "one validation condition");
-    tables[0].models[0].errors.unwrap()
+    tables[0].models[0].errors.unwrap().values()
 }
 
 #[test]

@@ -12,6 +12,7 @@ pub mod identify;
 pub mod indicators;
 pub mod law_catalogue;
 pub mod output;
+pub mod pipeline;
 pub mod residual;
 pub mod scenario;
 pub mod simulate;
