@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn hcm(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_hcm"))
+    Command::new(hcm_tests::cli::hcm_exe())
         .args(args)
         .output()
         .expect("hcm runs")
@@ -23,7 +23,7 @@ fn hcm_ok(args: &[&str]) -> std::process::Output {
 
 fn scenario(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
+        .join("scenarios")
         .join(name)
         .display()
         .to_string()

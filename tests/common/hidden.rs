@@ -1,6 +1,5 @@
 //! Noisy runs of the bouncing ball with one hidden effect, and what `hcm diagnose`'s
 //! stepwise selection and joint re-fit name from them, shared by the diagnose tests.
-#![allow(dead_code)]
 
 use hcm_host::dataset::Dataset;
 use hcm_host::diagnose::select::{refit, select, Refit, Selection};
@@ -12,7 +11,7 @@ use std::path::{Path, PathBuf};
 /// The path of a scenario file in the workspace's `scenarios/`.
 pub fn scenario_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
+        .join("scenarios")
         .join(name)
 }
 
