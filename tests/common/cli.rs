@@ -13,13 +13,6 @@ use std::process::{Command, Output};
 use std::sync::OnceLock;
 use tempfile::TempDir;
 
-/// The path of a scenario file in the workspace's `scenarios/`.
-pub fn scenario(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenarios")
-        .join(name)
-}
-
 /// The `hcm` executable of this build, built once per test process.
 pub fn hcm_exe() -> &'static Path {
     static EXE: OnceLock<PathBuf> = OnceLock::new();

@@ -6,18 +6,10 @@ use hcm_host::diagnose::select::{refit, select, Refit, Selection};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
 use hcm_host::scenario::{Model, Scenario};
-use std::path::{Path, PathBuf};
-
-/// The path of a scenario file in the workspace's `scenarios/`.
-pub fn scenario_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenarios")
-        .join(name)
-}
 
 /// The scenario `name` with `overrides`, resolved to a model.
 pub fn model(name: &str, overrides: &[String]) -> Model {
-    let path = scenario_path(name);
+    let path = crate::scenario(name);
     Scenario::load(&path, overrides)
         .unwrap()
         .resolve(&path)

@@ -8,3 +8,12 @@
 pub mod cli;
 pub mod hidden;
 pub mod reference;
+
+use std::path::{Path, PathBuf};
+
+/// The path of a scenario file in the workspace's `scenarios/`.
+pub fn scenario(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenarios")
+        .join(name)
+}
