@@ -18,10 +18,7 @@
 //! envelope check). Before timing, the candle path is checked against `hcm_f32` on a few
 //! inputs (the same function within 1e-5 relative) and the comparison is printed.
 //!
-//! Run: `cargo bench -p hcm-host --features candle --bench residual_evaluation`
-
-#[path = "../tests/common/reference.rs"]
-mod reference;
+//! Run: `cargo bench -p hcm-tests --features candle --bench residual_evaluation`
 
 use candle_core::{Device, Tensor};
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -32,6 +29,7 @@ use hcm_core::residual::{decode, Envelope, F32Weights, Int8Weights, Layer, Mlp, 
 use hcm_host::export::encode;
 use hcm_host::residual::{HIDDEN, INPUTS, WIDTH};
 use hcm_host::train::{train, TrainSettings};
+use hcm_tests::reference;
 use std::hint::black_box;
 
 type CoreMlp<Q> = Mlp<INPUTS, WIDTH, 1, HIDDEN, Q>;

@@ -1,18 +1,12 @@
 //! `hcm diagnose`: hidden effects in generated data must be found by name, with their
 //! parameter, from the measured data alone.
 
-// Only `common/hidden.rs`: `common/mod.rs` is shared with hcm-core's tests, which cannot
-// see `hcm_host`.
-mod common {
-    pub mod hidden;
-}
-
-use common::hidden::{causes, hidden, model, selected};
 use hcm_host::diagnose::catalogue::Candidate;
 use hcm_host::diagnose::gain::{GainRow, GainTable};
 use hcm_host::diagnose::select::{refit, select};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
+use hcm_tests::hidden::{causes, hidden, model, selected};
 
 fn diagnose_names(effect: &str) -> Vec<(&'static str, Vec<f64>, f64)> {
     let (selection, fit) = selected(effect, 12, 3);

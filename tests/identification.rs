@@ -12,7 +12,7 @@ use std::path::Path;
 
 fn scenario(name: &str, overrides: &[String]) -> Scenario {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
+        .join("scenarios")
         .join(name);
     Scenario::load(&path, overrides).unwrap()
 }

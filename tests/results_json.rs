@@ -1,6 +1,7 @@
 //! `hcm reproduce` writes `results.json` beside `report.md`: every table of the report
 //! for programs. On the ball, the HCM's error is below PM2's on each indicator.
 
+use hcm_tests::cli::hcm_exe;
 use serde_json::Value;
 use std::path::Path;
 use std::process::Command;
@@ -10,7 +11,7 @@ const INDICATORS: [&str; 4] = ["max_force", "impulse", "energy_loss", "duration"
 
 /// `hcm reproduce bouncing-ball` with `args`, into `out`: its results.json and report.md.
 fn reproduce(out: &Path, args: &[&str]) -> (Value, String) {
-    let run = Command::new(env!("CARGO_BIN_EXE_hcm"))
+    let run = Command::new(hcm_exe())
         .args(["reproduce", "bouncing-ball", "--out", out.to_str().unwrap()])
         .args(args)
         .output()

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 fn scenario_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
+        .join("scenarios")
         .join(name)
 }
 
