@@ -120,16 +120,8 @@ impl<T: Copy> ContactEffect<T> {
     }
 }
 
-macro_rules! into_effect {
-    ($($effect:ident),*) => {$(
-        impl<T> From<$effect<T>> for ContactEffect<T> {
-            fn from(effect: $effect<T>) -> Self {
-                ContactEffect::$effect(effect)
-            }
-        }
-    )*};
-}
-into_effect!(
+crate::law::into_variants!(
+    ContactEffect:
     ViscousDamping,
     HysteresisDamping,
     StiffnessExponent,

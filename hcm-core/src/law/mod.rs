@@ -168,16 +168,21 @@ macro_rules! map_fields {
 }
 pub(crate) use map_fields;
 
-macro_rules! into_any {
-    ($($law:ident),*) => {$(
-        impl<T> From<$law<T>> for AnyNormalLaw<T> {
-            fn from(law: $law<T>) -> Self {
-                AnyNormalLaw::$law(law)
+/// `From<Variant<T>>` for a run-time enum whose variants are named after the structs
+/// they hold (laws into [`AnyNormalLaw`], effects into `ContactEffect`).
+macro_rules! into_variants {
+    ($enum:ident: $($variant:ident),*) => {$(
+        impl<T> From<$variant<T>> for $enum<T> {
+            fn from(value: $variant<T>) -> Self {
+                $enum::$variant(value)
             }
         }
     )*};
 }
-into_any!(
+pub(crate) use into_variants;
+
+into_variants!(
+    AnyNormalLaw:
     Hertz,
     LankaraniNikravesh,
     VariableStiffness,

@@ -146,3 +146,30 @@ impl fmt::Display for Quantisation {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Activation;
+
+    #[test]
+    fn one_activation_for_f32_inference_and_f64_training() {
+        for activation in [Activation::Tanh, Activation::Relu] {
+            for z in [-3.0_f64, -0.5, 0.25, 2.0] {
+                let wide = activation.apply(z);
+                let narrow = activation.apply(z as f32);
+                assert!((wide - narrow as f64).abs() < 1e-6, "{activation:?}({z})");
+                // The slope through the output matches a central difference.
+                let h = 1e-6;
+                let numeric = (activation.apply(z + h) - activation.apply(z - h)) / (2.0 * h);
+                assert!(
+                    (activation.slope(wide) - numeric).abs() < 1e-6,
+                    "{activation:?}'({z})"
+                );
+            }
+            // NaN stays NaN in both types (a ReLU written as max(z, 0) would make it 0).
+            assert!(activation.apply(f64::NAN).is_nan());
+            assert!(activation.apply(f32::NAN).is_nan());
+            assert!(activation.slope(f64::NAN).is_nan());
+        }
+    }
+}

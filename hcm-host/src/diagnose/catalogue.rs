@@ -25,6 +25,7 @@ use hcm_core::effect::{
     Adhesion, ContactEffect, ExtendedLaw, HysteresisDamping, Plasticity, StiffnessExponent,
     ViscousDamping,
 };
+use hcm_core::model::ContactModel;
 
 /// Physical (a law term) or measurement (a data correction).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -154,22 +155,25 @@ impl Candidate {
             Candidate::Adhesion => (0..n)
                 .map(|i| if contact(i) { -1.0 } else { 0.0 })
                 .collect(),
-            Candidate::Plasticity => (0..n)
-                .map(|i| {
-                    if !(contact(i) && samples.rate[i] < 0.0) {
-                        return 0.0;
-                    }
-                    let (mut state, memory) = samples.state(i);
-                    let h = 1e-4 * memory.max_depth.max(samples.depth[i]);
-                    let depth = state.depth;
-                    state.depth = depth + h;
-                    let up = base.normal_force(&state, &memory);
-                    state.depth = (depth - h).max(0.0);
-                    let down = base.normal_force(&state, &memory);
-                    let slope = (up - down) / (depth + h - state.depth);
-                    -(memory.max_depth - depth) * slope
-                })
-                .collect(),
+            Candidate::Plasticity => {
+                let physics = ContactModel::physics(base.clone());
+                (0..n)
+                    .map(|i| {
+                        if !(contact(i) && samples.rate[i] < 0.0) {
+                            return 0.0;
+                        }
+                        let (mut state, memory) = samples.state(i);
+                        let h = 1e-4 * memory.max_depth.max(samples.depth[i]);
+                        let depth = state.depth;
+                        state.depth = depth + h;
+                        let up = physics.physics_normal_force(&state, &memory);
+                        state.depth = (depth - h).max(0.0);
+                        let down = physics.physics_normal_force(&state, &memory);
+                        let slope = (up - down) / (depth + h - state.depth);
+                        -(memory.max_depth - depth) * slope
+                    })
+                    .collect()
+            }
             Candidate::ForceOffset => vec![1.0; n],
             Candidate::SensorDelay => (0..n)
                 .map(|i| {
