@@ -119,9 +119,21 @@ fn refit_output(
         features[width] = 1.0;
         targets.copy_from_slice(t);
     });
-    // Two coinciding features (e.g. two dead units, both 0) are rank deficiency: the
-    // routine gives the dependent one 0 instead of a huge weight.
-    let solved = reduction.and_then(|r| (0..n_out).map(|o| r.solve(o, None)).collect());
+    // A whisker of ridge, μ = 1e-9·(largest Σ feature²): the output layer is stored in
+    // f32, so nearly coinciding features must not get the large weights of opposite
+    // sign that an exact least-squares fit gives them (their f32 rounding would not
+    // cancel; measured on the ball, the int8 blob then read 2 % off the host network).
+    let solved = reduction.and_then(|r| {
+        let largest = (0..=width)
+            .map(|j| {
+                (0..r.triangle_rows())
+                    .map(|i| r.triangle(i, j).powi(2))
+                    .sum()
+            })
+            .fold(0.0, f64::max);
+        let ridge = 1e-9 * largest.max(1.0);
+        (0..n_out).map(|o| r.solve_ridge(o, ridge)).collect()
+    });
     let Ok(solution) = solved as Result<Vec<LinearFit>, _> else {
         return parameters.to_vec();
     };

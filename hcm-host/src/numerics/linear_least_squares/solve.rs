@@ -68,6 +68,51 @@ impl Reduction {
     }
 }
 
+impl Reduction {
+    /// Solves min ‖A·x − b‖² + μ·‖x‖² for target `target` (Tikhonov regularisation,
+    /// "ridge", μ = `ridge` ≥ 0 in the target's unit over the columns' unit, squared)
+    /// as the least-squares problem [R; √μ·I]·x ≈ [(Qᵀb)₁; 0] through the same solve:
+    /// for a caller that needs small coefficients more than the exact minimum, e.g. near
+    /// collinear columns whose exact coefficients are large and cancel. The fit's RSS is
+    /// ‖A·x − b‖² (without the penalty), its rank that of the stacked matrix, and it has
+    /// no covariance. Needs no more rows than columns when μ > 0.
+    pub fn solve_ridge(
+        &self,
+        target: usize,
+        ridge: f64,
+    ) -> Result<LinearFit, LinearLeastSquaresError> {
+        if target >= self.targets() {
+            return Err(LinearLeastSquaresError::NoSuchTarget {
+                target,
+                targets: self.targets(),
+            });
+        }
+        let (triangle, columns) = (self.triangle_rows(), self.columns());
+        let root = ridge.sqrt();
+        let penalised = Reduction::from_rows(triangle + columns, columns, 1, |i, row, value| {
+            if i < triangle {
+                for (j, entry) in row.iter_mut().enumerate() {
+                    *entry = self.triangle(i, j);
+                }
+                value[0] = self.projected_target(i, target);
+            } else {
+                row[i - triangle] = root;
+            }
+        })?;
+        let mut fit = penalised.solve(0, None)?;
+        let misfit: f64 = (0..triangle)
+            .map(|i| {
+                let fitted: f64 = (i..columns)
+                    .map(|j| self.triangle(i, j) * fit.coefficients[j])
+                    .sum();
+                (fitted - self.projected_target(i, target)).powi(2)
+            })
+            .sum();
+        fit.residual_sum_of_squares = misfit + self.orthogonal_sum_of_squares(target);
+        Ok(fit)
+    }
+}
+
 impl Pivoted {
     /// Scales the triangle's columns to unit norm (pivoting and the rank threshold then
     /// compare directions, not units) and factorises it with column pivoting.

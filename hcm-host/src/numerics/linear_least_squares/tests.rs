@@ -311,3 +311,46 @@ fn too_few_rows_or_none_are_errors() {
         })
     ));
 }
+
+#[test]
+fn ridge_is_the_penalised_normal_equations() {
+    // (XᵀX + μI)·x = Xᵀy for the straight line: XᵀX = [[5, 10], [10, 30]], Xᵀy = [10.5,
+    // 30.8]; with μ = 2: [[7, 10], [10, 32]]·x = [10.5, 30.8], det 124.
+    let reduction = Reduction::from_rows(LINE.len(), 2, 1, |i, row, target| {
+        row[0] = 1.0;
+        row[1] = LINE[i].0;
+        target[0] = LINE[i].1;
+    })
+    .unwrap();
+    let fit = reduction.solve_ridge(0, 2.0).unwrap();
+    let expected = [
+        (32.0 * 10.5 - 10.0 * 30.8) / 124.0,
+        (7.0 * 30.8 - 10.0 * 10.5) / 124.0,
+    ];
+    for (a, b) in fit.coefficients.iter().zip(expected) {
+        assert!(relative(*a, b) < 1e-13, "{fit:?} vs {expected:?}");
+    }
+    let rss: f64 = LINE
+        .iter()
+        .map(|(t, y)| (expected[0] + expected[1] * t - y).powi(2))
+        .sum();
+    assert!(
+        relative(fit.residual_sum_of_squares, rss) < 1e-12,
+        "{fit:?}"
+    );
+    // μ = 0 is the plain solve; two identical columns share the weight under a ridge.
+    let plain = reduction.solve_ridge(0, 0.0).unwrap();
+    let exact = reduction.solve(0, None).unwrap();
+    for (a, b) in plain.coefficients.iter().zip(&exact.coefficients) {
+        assert!((a - b).abs() < 1e-13);
+    }
+    let twins = Reduction::from_rows(10, 2, 1, |i, row, target| {
+        (row[0], row[1]) = (i as f64, i as f64);
+        target[0] = 2.0 * i as f64;
+    })
+    .unwrap()
+    .solve_ridge(0, 1e-9)
+    .unwrap();
+    assert!((twins.coefficients[0] - 1.0).abs() < 1e-9, "{twins:?}");
+    assert!((twins.coefficients[1] - 1.0).abs() < 1e-9, "{twins:?}");
+}
