@@ -3,7 +3,7 @@
 //!
 //! Data: 20 noisy runs of the shipped bouncing ball (seed 1), PM2 = Lankarani–Nikravesh,
 //! GA with the CLI defaults (population 60, 150 generations, curve fitness).
-//! Run: `cargo bench -p hcm-host --bench identification`
+//! Run: `cargo bench -p hcm-tests --bench identification`
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use hcm_host::experiment::generate;
@@ -15,7 +15,7 @@ use std::path::Path;
 use std::time::Duration;
 
 fn bench_identification(c: &mut Criterion) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/bouncing_ball.toml");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/bouncing_ball.toml");
     let scenario = Scenario::load(&path, &[]).unwrap();
     let model = scenario.model().unwrap();
     let data = generate(&scenario, 20, 1, || {}).unwrap();

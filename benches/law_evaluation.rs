@@ -1,15 +1,13 @@
 //! Per-contact evaluation time: one f32 evaluation of each law at the reference
 //! parameters, mid-contact (δ = 10 µm, δ̇ = 1 m/s, δ̇0 = 1.4 m/s).
 //!
-//! Run: `cargo bench -p hcm-core --bench law_evaluation`
-
-#[path = "../tests/common/reference.rs"]
-mod reference;
+//! Run: `cargo bench -p hcm-tests --bench law_evaluation`
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use hcm_core::friction::VelocityStepFriction;
 use hcm_core::law::{Indentation, NormalLaw};
 use hcm_core::wrench::ContactWrench;
+use hcm_tests::reference;
 use nalgebra::Vector3;
 use std::hint::black_box;
 

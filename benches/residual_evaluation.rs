@@ -3,7 +3,7 @@
 //! δ̇ = 1 m/s, δ̇0 = 1.4 m/s, the state of `law_evaluation`):
 //!
 //! - `physics_only`: the Lankarani–Nikravesh law at the reference parameters;
-//! - `hcm_f32`: `HybridContactModel` = that law + the shipped 3-16-16-1 tanh residual
+//! - `hcm_f32`: `ContactModel` = that law + the shipped 3-16-16-1 tanh residual
 //!   (`hcm_core::residual::Mlp`, f32 weights), envelope check included;
 //! - `hcm_int8`: the same with the int8 weights of the same network;
 //! - `hcm_candle`: the same law and envelope check, the residual (same f32 weights, same
@@ -18,23 +18,22 @@
 //! envelope check). Before timing, the candle path is checked against `hcm_f32` on a few
 //! inputs (the same function within 1e-5 relative) and the comparison is printed.
 //!
-//! Run: `cargo bench -p hcm-host --features candle --bench residual_evaluation`
-
-#[path = "../tests/common/reference.rs"]
-mod reference;
+//! Run: `cargo bench -p hcm-tests --features candle --bench residual_evaluation`
 
 use candle_core::{Device, Tensor};
 use criterion::{criterion_group, criterion_main, Criterion};
-use hcm_core::hybrid::{Evaluated, HybridContactModel};
+use hcm_core::effect::ContactMemory;
 use hcm_core::law::{AnyNormalLaw, Indentation, NormalLaw};
+use hcm_core::model::{ContactModel, Evaluated};
 use hcm_core::residual::{decode, Envelope, F32Weights, Int8Weights, Layer, Mlp, Quantisation};
 use hcm_host::export::encode;
 use hcm_host::residual::{HIDDEN, INPUTS, WIDTH};
 use hcm_host::train::{train, TrainSettings};
+use hcm_tests::reference;
 use std::hint::black_box;
 
 type CoreMlp<Q> = Mlp<INPUTS, WIDTH, 1, HIDDEN, Q>;
-type Hybrid<Q> = HybridContactModel<INPUTS, WIDTH, 1, HIDDEN, Q>;
+type Hybrid<Q> = ContactModel<f32, CoreMlp<Q>>;
 
 /// δ̇0 of every synthetic row (m/s): the ball's impact speed.
 const APPROACH_SPEED: f64 = 1.4;
@@ -141,7 +140,7 @@ fn layer<const IN: usize, const OUT: usize>(
     ))
 }
 
-/// `HybridContactModel::normal_force` with the residual evaluated by candle.
+/// `ContactModel::normal_force` with the residual evaluated by candle.
 fn hybrid_candle(
     law: &AnyNormalLaw<f32>,
     residual: &CandleResidual,
@@ -189,7 +188,7 @@ fn check_same_function(
         (58e-6, 1.35),
     ] {
         let (contact, input) = state(depth, rate);
-        let (force, evaluated) = core.normal_force(&contact, &input);
+        let (force, evaluated) = core.normal_force(&contact, &ContactMemory::touch_down(), &input);
         let (force_candle, evaluated_candle) = hybrid_candle(law, candle, &contact, &input);
         assert_eq!(evaluated, Evaluated::PhysicsAndResidual);
         assert_eq!(evaluated_candle, Evaluated::PhysicsAndResidual);
@@ -213,14 +212,8 @@ fn bench_per_contact(c: &mut Criterion) {
     let residual_f32: CoreMlp<F32Weights> = decode(&f32_blob).unwrap();
     let residual_int8: CoreMlp<Int8Weights> = decode(&int8_blob).unwrap();
     let law: AnyNormalLaw<f32> = reference::lankarani_nikravesh::<f32>().into();
-    let hcm_f32 = Hybrid {
-        law,
-        residual: residual_f32,
-    };
-    let hcm_int8 = Hybrid {
-        law,
-        residual: residual_int8,
-    };
+    let hcm_f32: Hybrid<F32Weights> = ContactModel::physics(law).with_residual(residual_f32);
+    let hcm_int8: Hybrid<Int8Weights> = ContactModel::physics(law).with_residual(residual_int8);
     let candle = CandleResidual::from_core(&residual_f32).unwrap();
     check_same_function(&law, &hcm_f32, &candle);
     println!(
@@ -229,9 +222,10 @@ fn bench_per_contact(c: &mut Criterion) {
     );
 
     let (contact, input) = state(10e-6, 1.0);
+    let memory = ContactMemory::touch_down();
     for evaluated in [
-        hcm_f32.normal_force(&contact, &input).1,
-        hcm_int8.normal_force(&contact, &input).1,
+        hcm_f32.normal_force(&contact, &memory, &input).1,
+        hcm_int8.normal_force(&contact, &memory, &input).1,
         hybrid_candle(&law, &candle, &contact, &input).1,
     ] {
         assert_eq!(
@@ -246,10 +240,12 @@ fn bench_per_contact(c: &mut Criterion) {
         b.iter(|| black_box(&law).normal_force(black_box(&contact)))
     });
     group.bench_function("hcm_f32", |b| {
-        b.iter(|| black_box(&hcm_f32).normal_force(black_box(&contact), black_box(&input)))
+        b.iter(|| black_box(&hcm_f32).normal_force(black_box(&contact), &memory, black_box(&input)))
     });
     group.bench_function("hcm_int8", |b| {
-        b.iter(|| black_box(&hcm_int8).normal_force(black_box(&contact), black_box(&input)))
+        b.iter(|| {
+            black_box(&hcm_int8).normal_force(black_box(&contact), &memory, black_box(&input))
+        })
     });
     let candle_hcm = |b: &mut criterion::Bencher| {
         b.iter(|| {

@@ -1,13 +1,11 @@
 //! The contact laws against analytic results, by integrating them in a one-body
 //! impact: a ball of mass m meets a fixed plane at speed v, no gravity, m·δ̈ = −f_n.
 
-mod common;
-
-use common::reference::{self, BALL_MASS, IMPACT_SPEED};
 use hcm_core::friction::VelocityStepFriction;
 use hcm_core::integrate::hermite_zero;
 use hcm_core::law::{step, AnyNormalLaw, Indentation, LankaraniNikravesh, NormalLaw};
 use hcm_core::wrench::ContactWrench;
+use hcm_tests::reference::{self, BALL_MASS, IMPACT_SPEED};
 use nalgebra::Vector3;
 
 /// What one integrated impact produced.

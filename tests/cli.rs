@@ -1,57 +1,30 @@
 //! The `hcm` binary end to end: simulate → CSV → indicators, and bad input.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use hcm_tests::cli::Hcm;
+use hcm_tests::scenario;
+use std::path::Path;
 
-fn hcm(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_hcm"))
-        .args(args)
-        .output()
-        .expect("hcm runs")
-}
-
-/// Runs `hcm` and asserts it succeeded, showing its standard error otherwise.
-fn hcm_ok(args: &[&str]) -> std::process::Output {
-    let run = hcm(args);
-    assert!(
-        run.status.success(),
-        "hcm {args:?} failed:\n{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    run
-}
-
-fn scenario(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
-        .join(name)
-        .display()
-        .to_string()
-}
+/// The keys of a model row's indicators and errors (`evaluate --json`, diagnosis.json).
+const INDICATORS: [&str; 4] = ["max_force", "impulse", "energy_loss", "duration"];
 
 #[test]
 fn simulate_then_indicators_json_round_trip() {
-    let dir = tempfile::tempdir().unwrap();
-    let out: PathBuf = dir.path().join("ball.csv");
+    let hcm = Hcm::new();
+    let out = hcm.path("ball.csv");
     let ball = scenario("bouncing_ball.toml");
-    let run = hcm_ok(&[
-        "simulate",
-        "--scenario",
-        &ball,
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let stdout = String::from_utf8_lossy(&run.stdout);
+    let stdout = hcm
+        .run("simulate")
+        .opt("--scenario", &ball)
+        .opt("--out", &out)
+        .ok();
     assert!(stdout.contains("ball–ground"), "{stdout}");
-    let run = hcm_ok(&[
-        "indicators",
-        "--data",
-        out.to_str().unwrap(),
-        "--scenario",
-        &ball,
-        "--json",
-    ]);
-    let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    let stdout = hcm
+        .run("indicators")
+        .opt("--data", &out)
+        .opt("--scenario", &ball)
+        .arg("--json")
+        .ok();
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     let summary = &json["summary"][0];
     assert_eq!(summary["runs"], 1);
     let max_force = summary["max_force"]["mean"].as_f64().unwrap();
@@ -61,27 +34,21 @@ fn simulate_then_indicators_json_round_trip() {
 
 #[test]
 fn a_bad_override_names_the_field_and_writes_nothing() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("never.csv");
-    let ball = scenario("bouncing_ball.toml");
-    let run = hcm(&[
-        "simulate",
-        "--scenario",
-        &ball,
-        "--set",
-        "body.ball.mass=-1",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(!run.status.success());
-    let stderr = String::from_utf8_lossy(&run.stderr);
+    let hcm = Hcm::new();
+    let out = hcm.path("never.csv");
+    let stderr = hcm
+        .run("simulate")
+        .opt("--scenario", scenario("bouncing_ball.toml"))
+        .opt("--set", "body.ball.mass=-1")
+        .opt("--out", &out)
+        .fails();
     assert!(
         stderr.contains("ball") && stderr.contains("mass"),
         "{stderr}"
     );
     assert!(!out.exists());
     assert_eq!(
-        std::fs::read_dir(dir.path()).unwrap().count(),
+        std::fs::read_dir(hcm.dir()).unwrap().count(),
         0,
         "something was left behind"
     );
@@ -89,22 +56,18 @@ fn a_bad_override_names_the_field_and_writes_nothing() {
 
 #[test]
 fn an_unknown_scenario_key_is_an_error_with_its_line() {
-    let dir = tempfile::tempdir().unwrap();
+    let hcm = Hcm::new();
     let text = std::fs::read_to_string(scenario("bouncing_ball.toml"))
         .unwrap()
         .replace("end_time", "end_tme");
-    let path = dir.path().join("typo.toml");
+    let path = hcm.path("typo.toml");
     std::fs::write(&path, text).unwrap();
-    let out = dir.path().join("x.csv");
-    let run = hcm(&[
-        "simulate",
-        "--scenario",
-        path.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(!run.status.success());
-    let stderr = String::from_utf8_lossy(&run.stderr);
+    let out = hcm.path("x.csv");
+    let stderr = hcm
+        .run("simulate")
+        .opt("--scenario", &path)
+        .opt("--out", &out)
+        .fails();
     assert!(
         stderr.contains("end_tme") && stderr.contains("typo.toml") && stderr.contains("line"),
         "{stderr}"
@@ -114,29 +77,22 @@ fn an_unknown_scenario_key_is_an_error_with_its_line() {
 
 #[test]
 fn indicators_name_the_bad_line_of_a_data_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("ball.csv");
+    let hcm = Hcm::new();
+    let out = hcm.path("ball.csv");
     let ball = scenario("bouncing_ball.toml");
-    hcm_ok(&[
-        "simulate",
-        "--scenario",
-        &ball,
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    hcm.run("simulate")
+        .opt("--scenario", &ball)
+        .opt("--out", &out)
+        .ok();
     let text = std::fs::read_to_string(&out).unwrap();
     let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
     lines[5] = lines[5].replacen("0.0,", "NaN,", 1);
     std::fs::write(&out, lines.join("\n")).unwrap();
-    let run = hcm(&[
-        "indicators",
-        "--data",
-        out.to_str().unwrap(),
-        "--scenario",
-        &ball,
-    ]);
-    assert!(!run.status.success());
-    let stderr = String::from_utf8_lossy(&run.stderr);
+    let stderr = hcm
+        .run("indicators")
+        .opt("--data", &out)
+        .opt("--scenario", &ball)
+        .fails();
     assert!(
         stderr.contains("line 6") && stderr.contains("NaN"),
         "{stderr}"
@@ -145,39 +101,25 @@ fn indicators_name_the_bad_line_of_a_data_file() {
 
 #[test]
 fn generate_identify_evaluate_through_the_binary() {
-    let dir = tempfile::tempdir().unwrap();
-    let data = dir.path().join("data.csv");
-    let pm2 = dir.path().join("pm2.toml");
+    let hcm = Hcm::new();
+    let data = hcm.path("data.csv");
+    let pm2 = hcm.path("pm2.toml");
     let ball = scenario("bouncing_ball.toml");
-    hcm_ok(&[
-        "generate",
-        "--scenario",
-        &ball,
-        "--runs",
-        "10",
-        "--seed",
-        "3",
-        "--out",
-        data.to_str().unwrap(),
-    ]);
-    let (s1, s2) = (
-        dir.path().join("data.s1.csv"),
-        dir.path().join("data.s2.csv"),
-    );
+    hcm.run("generate")
+        .opt("--scenario", &ball)
+        .opt("--runs", "10")
+        .opt("--seed", "3")
+        .opt("--out", &data)
+        .ok();
+    let (s1, s2) = (hcm.path("data.s1.csv"), hcm.path("data.s2.csv"));
     assert!(s1.exists() && s2.exists());
-    hcm_ok(&[
-        "identify",
-        "--scenario",
-        &ball,
-        "--data",
-        s1.to_str().unwrap(),
-        "--law",
-        "lankarani_nikravesh",
-        "--method",
-        "lsq",
-        "--out",
-        pm2.to_str().unwrap(),
-    ]);
+    hcm.run("identify")
+        .opt("--scenario", &ball)
+        .opt("--data", &s1)
+        .opt("--law", "lankarani_nikravesh")
+        .opt("--method", "lsq")
+        .opt("--out", &pm2)
+        .ok();
     let physics: toml::Table = std::fs::read_to_string(&pm2).unwrap().parse().unwrap();
     let k = physics["contact"][0]["parameters"]["stiffness"]
         .as_float()
@@ -186,129 +128,94 @@ fn generate_identify_evaluate_through_the_binary() {
         (1e9..1e10).contains(&k),
         "stiffness {k} outside the scenario's bounds"
     );
-    let run = hcm_ok(&[
-        "evaluate",
-        "--scenario",
-        &ball,
-        "--data",
-        s2.to_str().unwrap(),
-        "--physics",
-        pm2.to_str().unwrap(),
-        "--json",
-    ]);
-    let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
-    let errors = json[0]["models"][0]["errors"].as_array().unwrap();
+    let stdout = hcm
+        .run("evaluate")
+        .opt("--scenario", &ball)
+        .opt("--data", &s2)
+        .opt("--physics", &pm2)
+        .arg("--json")
+        .ok();
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let errors = json[0]["models"][0]["errors"].as_object().unwrap();
     assert_eq!(errors.len(), 4);
     assert!(
-        errors.iter().all(|e| e.as_f64().unwrap() < 0.2),
+        INDICATORS
+            .iter()
+            .all(|&k| errors[k].as_f64().unwrap() < 0.2),
         "{errors:?}"
     );
 
     // train → export (f32 and int8) → evaluate with the residual: the HCM column.
-    let trained = dir.path().join("residual.json");
-    hcm_ok(&[
-        "train",
-        "--scenario",
-        &ball,
-        "--data",
-        s1.to_str().unwrap(),
-        "--physics",
-        pm2.to_str().unwrap(),
-        "--epochs",
-        "20",
-        "--int8-epochs",
-        "2",
-        "--out",
-        trained.to_str().unwrap(),
-    ]);
+    let trained = hcm.path("residual.json");
+    hcm.run("train")
+        .opt("--scenario", &ball)
+        .opt("--data", &s1)
+        .opt("--physics", &pm2)
+        .opt("--epochs", "20")
+        .opt("--int8-epochs", "2")
+        .opt("--out", &trained)
+        .ok();
     for weights in ["f32", "int8"] {
-        let blob = dir.path().join(format!("residual.{weights}.bin"));
-        hcm_ok(&[
-            "export",
-            "--residual",
-            trained.to_str().unwrap(),
-            "--weights",
-            weights,
-            "--out",
-            blob.to_str().unwrap(),
-        ]);
-        let run = hcm_ok(&[
-            "evaluate",
-            "--scenario",
-            &ball,
-            "--data",
-            s2.to_str().unwrap(),
-            "--physics",
-            pm2.to_str().unwrap(),
-            "--residual",
-            blob.to_str().unwrap(),
-            "--json",
-        ]);
-        let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+        let blob = hcm.path(&format!("residual.{weights}.bin"));
+        hcm.run("export")
+            .opt("--residual", &trained)
+            .opt("--weights", weights)
+            .opt("--out", &blob)
+            .ok();
+        let stdout = hcm
+            .run("evaluate")
+            .opt("--scenario", &ball)
+            .opt("--data", &s2)
+            .opt("--physics", &pm2)
+            .opt("--residual", &blob)
+            .arg("--json")
+            .ok();
+        let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
         let models = json[0]["models"].as_array().unwrap();
         assert_eq!(models.len(), 2, "{weights}: PM2 and HCM columns");
-        assert_eq!(models[1]["errors"].as_array().unwrap().len(), 4);
+        assert_eq!(models[1]["model"], "HCM");
+        assert_eq!(models[1]["errors"].as_object().unwrap().len(), 4);
     }
     // A missing or foreign trained-residual file is named, and no blob appears.
-    let blob = dir.path().join("never.bin");
-    let run = hcm(&[
-        "export",
-        "--residual",
-        pm2.to_str().unwrap(),
-        "--out",
-        blob.to_str().unwrap(),
-    ]);
-    assert!(!run.status.success());
-    assert!(String::from_utf8_lossy(&run.stderr).contains("pm2.toml"));
+    let blob = hcm.path("never.bin");
+    let stderr = hcm
+        .run("export")
+        .opt("--residual", &pm2)
+        .opt("--out", &blob)
+        .fails();
+    assert!(stderr.contains("pm2.toml"));
     assert!(!blob.exists());
 }
 
 #[test]
 fn identify_names_an_empty_data_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let empty = dir.path().join("empty.csv");
+    let hcm = Hcm::new();
+    let empty = hcm.path("empty.csv");
     std::fs::write(&empty, "").unwrap();
-    let out = dir.path().join("pm2.toml");
-    let ball = scenario("bouncing_ball.toml");
-    let run = hcm(&[
-        "identify",
-        "--scenario",
-        &ball,
-        "--data",
-        empty.to_str().unwrap(),
-        "--law",
-        "hertz",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(!run.status.success());
-    assert!(
-        String::from_utf8_lossy(&run.stderr).contains("empty.csv"),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let out = hcm.path("pm2.toml");
+    let stderr = hcm
+        .run("identify")
+        .opt("--scenario", scenario("bouncing_ball.toml"))
+        .opt("--data", &empty)
+        .opt("--law", "hertz")
+        .opt("--out", &out)
+        .fails();
+    assert!(stderr.contains("empty.csv"), "{stderr}");
     assert!(!out.exists());
 }
 
 #[test]
 fn reproduce_writes_the_report_blobs_and_figures() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("ball");
-    let ball = scenario("bouncing_ball.toml");
-    hcm_ok(&[
-        "reproduce",
-        "bouncing-ball",
-        "--runs",
-        "12",
-        "--method",
-        "lsq",
-        "--seed",
-        "4",
-        "--scenario",
-        &ball,
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let hcm = Hcm::new();
+    let out = hcm.path("ball");
+    hcm.run("reproduce")
+        .arg("bouncing-ball")
+        .opt("--runs", "12")
+        .opt("--method", "lsq")
+        .opt("--seed", "4")
+        .opt("--scenario", scenario("bouncing_ball.toml"))
+        .opt("--out", &out)
+        .ok();
     let report = std::fs::read_to_string(out.join("report.md")).unwrap();
     for needle in [
         "error of PM2",
@@ -332,21 +239,24 @@ fn reproduce_writes_the_report_blobs_and_figures() {
 
 /// `hcm diagnose` of the flat shot on `data` against the physics file `base`, writing
 /// `out`, with extra scenario overrides; its diagnosis.json.
-fn diagnose_flat(data: &Path, base: &Path, out: &Path, set: &[&str]) -> serde_json::Value {
-    let flat = scenario("flat_shot.toml");
-    let mut args = vec!["diagnose", "--scenario", &flat];
+fn diagnose_flat(
+    hcm: &Hcm,
+    data: &Path,
+    base: &Path,
+    out: &Path,
+    set: &[&str],
+) -> serde_json::Value {
+    let mut diagnose = hcm
+        .run("diagnose")
+        .opt("--scenario", scenario("flat_shot.toml"));
     for s in set {
-        args.extend(["--set", s]);
+        diagnose = diagnose.opt("--set", s);
     }
-    args.extend([
-        "--data",
-        data.to_str().unwrap(),
-        "--physics",
-        base.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    hcm_ok(&args);
+    diagnose
+        .opt("--data", data)
+        .opt("--physics", base)
+        .opt("--out", out)
+        .ok();
     serde_json::from_str(&std::fs::read_to_string(out.join("diagnosis.json")).unwrap()).unwrap()
 }
 
@@ -375,40 +285,28 @@ fn diagnose_names_the_variable_stiffness_damping_missing_from_lankarani_nikraves
     // Flat shot, 10 speeds × 4 runs, data from the variable-stiffness law (PM1) without
     // parameter noise, base = Lankarani–Nikravesh fitted by lsq. The VS damping
     // 2λ·√(k(δ)·m_e)·δ·δ̇ grows like δ^1.25·δ̇ and does not scale with 1/δ̇0.
-    let dir = tempfile::tempdir().unwrap();
+    let hcm = Hcm::new();
     let (data, base, out) = (
-        dir.path().join("data.csv"),
-        dir.path().join("base.toml"),
-        dir.path().join("diagnosis"),
+        hcm.path("data.csv"),
+        hcm.path("base.toml"),
+        hcm.path("diagnosis"),
     );
     let flat = scenario("flat_shot.toml");
-    hcm_ok(&[
-        "generate",
-        "--scenario",
-        &flat,
-        "--set",
-        "contact.0.noise={}",
-        "--runs",
-        "4",
-        "--seed",
-        "3",
-        "--out",
-        data.to_str().unwrap(),
-    ]);
-    hcm_ok(&[
-        "identify",
-        "--scenario",
-        &flat,
-        "--data",
-        data.to_str().unwrap(),
-        "--law",
-        "lankarani_nikravesh",
-        "--method",
-        "lsq",
-        "--out",
-        base.to_str().unwrap(),
-    ]);
-    let json = diagnose_flat(&data, &base, &out, &[]);
+    hcm.run("generate")
+        .opt("--scenario", &flat)
+        .opt("--set", "contact.0.noise={}")
+        .opt("--runs", "4")
+        .opt("--seed", "3")
+        .opt("--out", &data)
+        .ok();
+    hcm.run("identify")
+        .opt("--scenario", &flat)
+        .opt("--data", &data)
+        .opt("--law", "lankarani_nikravesh")
+        .opt("--method", "lsq")
+        .opt("--out", &base)
+        .ok();
+    let json = diagnose_flat(&hcm, &data, &base, &out, &[]);
     let causes = json["causes"].as_array().unwrap();
     assert_eq!(causes.len(), 1, "{causes:?}");
     assert_eq!(causes[0]["effect"], "hysteresis_damping");
@@ -420,15 +318,16 @@ fn diagnose_names_the_variable_stiffness_damping_missing_from_lankarani_nikraves
     // The HCM's network is off outside its training envelope (it is the base there);
     // the named physics carries over.
     let beyond = diagnose_flat(
+        &hcm,
         &data,
         &base,
-        &dir.path().join("beyond"),
+        &hcm.path("beyond"),
         &["experiment.holdout_conditions=[\"v1.0\"]"],
     );
     assert_eq!(beyond["answer"], "hysteresis_damping");
     for (json, speed) in [(&json, "v0.95"), (&beyond, "v1.0")] {
         let table = group(json, &format!("condition {speed}"));
-        let energy = |model: &str| row(table, model, "errors")[2].as_f64().unwrap();
+        let energy = |model: &str| row(table, model, "errors")["energy_loss"].as_f64().unwrap();
         println!(
             "{speed} energy-loss error: base {:.2} %, extended {:.2} %, HCM {:.2} %",
             100.0 * energy("base"),
@@ -445,15 +344,11 @@ fn diagnose_names_the_variable_stiffness_damping_missing_from_lankarani_nikraves
     assert!(excess("extended") < 0.5 * excess("base"), "{fitted}");
     // And the extended model is a physics file the other commands read.
     let extended = out.join("extended.toml");
-    hcm_ok(&[
-        "evaluate",
-        "--scenario",
-        &flat,
-        "--data",
-        data.to_str().unwrap(),
-        "--physics",
-        extended.to_str().unwrap(),
-    ]);
+    hcm.run("evaluate")
+        .opt("--scenario", &flat)
+        .opt("--data", &data)
+        .opt("--physics", &extended)
+        .ok();
     for file in ["report.md", "residual_vs_time.svg", "residual_vs_time.png"] {
         assert!(out.join(file).exists(), "{file}");
     }

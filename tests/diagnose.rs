@@ -1,18 +1,12 @@
 //! `hcm diagnose`: hidden effects in generated data must be found by name, with their
 //! parameter, from the measured data alone.
 
-// Only `common/hidden.rs`: `common/mod.rs` is shared with hcm-core's tests, which cannot
-// see `hcm_host`.
-mod common {
-    pub mod hidden;
-}
-
-use common::hidden::{causes, hidden, model, selected};
 use hcm_host::diagnose::catalogue::Candidate;
 use hcm_host::diagnose::gain::{GainRow, GainTable};
 use hcm_host::diagnose::select::{refit, select};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
+use hcm_tests::hidden::{causes, hidden, model, selected};
 
 fn diagnose_names(effect: &str) -> Vec<(&'static str, Vec<f64>, f64)> {
     let (selection, fit) = selected(effect, 12, 3);
@@ -127,7 +121,7 @@ fn two_hidden_effects_are_both_named_and_nothing_else() {
     };
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
-    let law = base.contacts[0].extended_law();
+    let law = base.contacts[0].model.normal.clone();
     let selection = select(&samples, &law, sigma);
     let mut names: Vec<&str> = selection.chosen.iter().map(|(c, _)| c.name()).collect();
     names.sort();
@@ -146,7 +140,7 @@ fn two_hidden_effects_are_both_named_and_nothing_else() {
 
 /// The row of `model` in a gain table.
 fn row<'a>(table: &'a GainTable, model: &str) -> &'a GainRow {
-    table.rows.iter().find(|r| r.model == model).unwrap()
+    table.rows.iter().find(|r| r.judged.model == model).unwrap()
 }
 
 #[test]

@@ -4,15 +4,9 @@
 //! single-seed test's tolerance, in at least 8 of the 10 — and the standard error the re-fit
 //! reports must agree with the parameter's spread over the seeds.
 
-// Only `common/hidden.rs`: `common/mod.rs` is shared with hcm-core's tests, which cannot
-// see `hcm_host`.
-mod common {
-    pub mod hidden;
-}
-
-use common::hidden::selected;
 use hcm_host::diagnose::select::Cause;
 use hcm_host::indicators::Statistic;
+use hcm_tests::hidden::selected;
 use rayon::prelude::*;
 
 /// Noisy runs per data set, as in tests/diagnose.rs.
@@ -232,7 +226,7 @@ fn drag_found(drag: f64, seed: u64) -> DragTrial {
     if drag > 0.0 {
         overrides.push(format!("body.ball.air_drag={{ coefficient = {drag} }}"));
     }
-    let truth = common::hidden::model("bouncing_ball.toml", &overrides);
+    let truth = hcm_tests::hidden::model("bouncing_ball.toml", &overrides);
     let data = hcm_host::experiment::generate(&truth.scenario, RUNS, seed, || {}).unwrap();
     let samples = hcm_host::diagnose::contact_samples(&truth, &data, 0).unwrap();
     let fit = hcm_host::diagnose::drag::fit_drag(&samples, truth.bodies[0].mass).unwrap();

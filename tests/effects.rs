@@ -4,9 +4,6 @@
 //! Hand values use round parameters so that each expected force can be checked on
 //! paper; the extended-law tests use the reference steel ball on concrete.
 
-mod common;
-
-use common::reference;
 use hcm_core::effect::{
     Adhesion, AirDrag, ContactEffect, ContactMemory, ExtendedLaw, HysteresisDamping, Plasticity,
     StiffnessExponent, ViscousDamping, MAX_EFFECTS,
@@ -16,6 +13,7 @@ use hcm_core::law::{
     VariableStiffness,
 };
 use hcm_core::{LawError, Real};
+use hcm_tests::reference;
 use nalgebra::Vector3;
 use proptest::prelude::*;
 

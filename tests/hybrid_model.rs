@@ -15,7 +15,7 @@ use std::path::Path;
 
 #[test]
 fn the_hcm_beats_pm2_on_energy_loss_and_its_blob_reproduces_the_host_network() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/bouncing_ball.toml");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/bouncing_ball.toml");
     let scenario = Scenario::load(&path, &[]).unwrap();
     let model = scenario.model().unwrap();
     let sets = split(&scenario, generate(&scenario, 30, 5, || {}).unwrap(), 5);
@@ -35,7 +35,7 @@ fn the_hcm_beats_pm2_on_energy_loss_and_its_blob_reproduces_the_host_network() {
         .model()
         .unwrap();
     let (samples, _) = force_samples(&pm2, &sets.training, 0).unwrap();
-    let (inputs, targets) = residual_pairs(&samples, &pm2.contacts[0].law);
+    let (inputs, targets) = residual_pairs(&samples, &pm2.contacts[0].model);
     let settings = TrainSettings {
         hidden_layers: HIDDEN,
         width: WIDTH,
@@ -63,11 +63,11 @@ fn the_hcm_beats_pm2_on_energy_loss_and_its_blob_reproduces_the_host_network() {
 
     // The HCM, simulated with the residual inside the force, on S2.
     let mut hcm = pm2.clone();
-    hcm.contacts[0].residual = Some(residual);
+    hcm.contacts[0].model.residual = Some(residual);
     let table = &evaluate(&[("PM2", &pm2), ("HCM", &hcm)], &sets.validation, 0).unwrap()[0];
     let (pm2_errors, hcm_errors) = (
-        table.models[0].errors.unwrap(),
-        table.models[1].errors.unwrap(),
+        table.models[0].errors.unwrap().values(),
+        table.models[1].errors.unwrap().values(),
     );
     assert!(
         hcm_errors[2] < 0.5 * pm2_errors[2],

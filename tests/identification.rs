@@ -7,13 +7,12 @@ use hcm_host::experiment::{generate, split};
 use hcm_host::identify::evolve::Fitness;
 use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::{identify, IdentifyError, Method, Physics};
-use hcm_host::law_catalogue;
 use hcm_host::scenario::Scenario;
 use std::path::Path;
 
 fn scenario(name: &str, overrides: &[String]) -> Scenario {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
+        .join("scenarios")
         .join(name);
     Scenario::load(&path, overrides).unwrap()
 }
@@ -48,13 +47,10 @@ fn noise_free_data_of_each_law_give_back_its_parameters() {
     for (law, parameters) in cases {
         let scenario = noise_free_ball(law, parameters);
         let model = scenario.model().unwrap();
-        let truth = model.contacts[0].law;
+        let truth = *model.contacts[0].law();
         let data = generate(&scenario, 2, 7, || {}).unwrap();
         let found = identify(&scenario, &model, &data, 0, law, Method::Lsq, |_, _, _| {}).unwrap();
-        for ((name, expected), (_, value)) in law_catalogue::parameters(&truth)
-            .into_iter()
-            .zip(law_catalogue::parameters(&found.law))
-        {
+        for ((name, expected), (_, value)) in truth.named().zip(found.law.named()) {
             assert!(
                 relative(value, expected) < 5e-3,
                 "{law}.{name}: {value:e} vs {expected:e}"
@@ -94,10 +90,7 @@ fn the_genetic_algorithm_also_recovers_lankarani_nikravesh() {
     )
     .unwrap();
     let expected = [6.86e9, 1.489, 0.929];
-    for ((name, value), expected) in law_catalogue::parameters(&found.law)
-        .into_iter()
-        .zip(expected)
-    {
+    for ((name, value), expected) in found.law.named().zip(expected) {
         assert!(
             relative(value, expected) < 5e-3,
             "{name}: {value:e} vs {expected:e}"
@@ -130,7 +123,7 @@ fn pm2_errors(name: &str, runs: usize) -> [f64; 4] {
         .unwrap();
     let tables = evaluate(&[("PM2", &pm2)], &sets.validation, 0).unwrap();
     assert_eq!(tables.len(), 1, "one validation condition");
-    tables[0].models[0].errors.unwrap()
+    tables[0].models[0].errors.unwrap().values()
 }
 
 #[test]

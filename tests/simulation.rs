@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 fn scenario_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
+        .join("scenarios")
         .join(name)
 }
 
@@ -93,7 +93,7 @@ fn hertz_ball_matches_the_closed_forms() {
             &format!("body.ball.velocity=[0.0, 0.0, {}]", -speed),
         ],
     );
-    let hcm_core::law::AnyNormalLaw::Hertz(law) = m.contacts[0].law else {
+    let hcm_core::law::AnyNormalLaw::Hertz(law) = *m.contacts[0].law() else {
         panic!("not hertz")
     };
     let (k, mass) = (law.stiffness, m.bodies[0].mass);
@@ -334,4 +334,32 @@ fn an_offset_and_a_lagging_force_sensor_are_simulated_as_stated() {
         b[shifted].time - a[peak].time
     );
     assert!((b[shifted].force[2] - offset - a[peak].force[2]).abs() < 1e-6);
+}
+
+#[test]
+fn parameter_noise_on_a_parameter_the_law_does_not_have_is_an_error() {
+    use hcm_host::experiment::noisy_run;
+    use rand::SeedableRng;
+    // In the scenario file: rejected where the contact is resolved, naming the key.
+    let path = scenario_path("bouncing_ball.toml");
+    let overrides = ["contact.0.noise={ stifness = 0.1 }".to_owned()];
+    let error = Scenario::load(&path, &overrides)
+        .unwrap()
+        .resolve(&path)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("noise") && error.contains("stifness") && error.contains("damping"),
+        "{error}"
+    );
+    // In a model built by a program: the run fails instead of ignoring the name.
+    let mut model = model("bouncing_ball.toml", &["contact.0.noise={}"]);
+    model.contacts[0].noise = vec![("stifness".into(), 0.1)];
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+    let error = noisy_run(&model, &mut rng).unwrap_err().to_string();
+    assert_eq!(
+        error,
+        "contact 0: parameter noise: `variable_stiffness` has no parameter `stifness`; its \
+         parameters are: surface_loading, effective_modulus, radius, damping, effective_mass"
+    );
 }

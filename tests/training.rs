@@ -2,6 +2,7 @@
 //! lacks from noisy samples, determinism, early stopping, bad data, and speed.
 
 use hcm_core::law::{AnyNormalLaw, Indentation, LankaraniNikravesh, NormalLaw};
+use hcm_core::model::ContactModel;
 use hcm_host::identify::samples::ForceSample;
 use hcm_host::train::{residual_pairs, train, Network, TrainError, TrainReport, TrainSettings};
 use rand::{RngExt, SeedableRng};
@@ -116,6 +117,7 @@ fn impact_samples(
                 depth: state.depth,
                 rate: state.rate,
                 approach_speed,
+                max_depth,
                 force,
             });
         }
@@ -127,7 +129,7 @@ fn impact_samples(
 fn learns_a_damping_the_law_lacks_well_below_the_noise() {
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     let samples = impact_samples(&mut rng, 1000, 20, 15.0);
-    let (inputs, targets) = residual_pairs(&samples, &pm2());
+    let (inputs, targets) = residual_pairs(&samples, &ContactModel::physics(pm2()));
     let (network, report) = quiet(&inputs, &targets, &TrainSettings::default()).unwrap();
 
     let held_out = impact_samples(&mut rng, 200, 20, 0.0);
@@ -286,7 +288,7 @@ fn bad_data_and_settings_are_errors() {
 fn speed_of_100_000_residual_pairs_with_the_defaults() {
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     let samples = impact_samples(&mut rng, 5000, 20, 15.0);
-    let (inputs, targets) = residual_pairs(&samples, &pm2());
+    let (inputs, targets) = residual_pairs(&samples, &ContactModel::physics(pm2()));
     let (_, report) = quiet(&inputs, &targets, &TrainSettings::default()).unwrap();
     println!(
         "speed: {} pairs, {} epochs (best {}), {:.2} s, {:.2} ms per epoch, validation RMS {:.2} N",
@@ -306,7 +308,7 @@ fn the_int8_twin_beats_plain_rounding_and_exports_exactly() {
     use hcm_host::train::quantisation_aware;
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     let samples = impact_samples(&mut rng, 300, 20, 0.0);
-    let (inputs, targets) = residual_pairs(&samples, &pm2());
+    let (inputs, targets) = residual_pairs(&samples, &ContactModel::physics(pm2()));
     let settings = TrainSettings {
         max_epochs: 60,
         ..TrainSettings::default()

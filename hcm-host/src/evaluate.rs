@@ -1,6 +1,8 @@
 //! The paper's evaluation tables (Tables 5 and 10): for each condition of the
 //! validation data S2, the measured mean indicators beside those of a physics model
-//! replayed from the same pre-contact state, and the Eq 20 error of each.
+//! replayed from the same pre-contact state, and the Eq 20 error of each — as a
+//! [`ModelRow`], the shape every judged model takes (`evaluate --json`,
+//! `results.json`, `diagnosis.json`).
 
 use crate::dataset::Dataset;
 use crate::identify::replay::{simulate_target_with, targets};
@@ -9,15 +11,71 @@ use crate::indicators::Indicators;
 use crate::scenario::Model;
 use serde::Serialize;
 
-/// One model's indicators and their errors against the S2 mean.
+/// The Eq 20 errors of a model's four indicators against the measured means (–, a
+/// fraction: 0.01 = 1 %).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct IndicatorErrors {
+    /// Of the maximum normal contact force.
+    pub max_force: f64,
+    /// Of the normal contact impulse.
+    pub impulse: f64,
+    /// Of the contact energy loss.
+    pub energy_loss: f64,
+    /// Of the contact duration.
+    pub duration: f64,
+}
+
+impl IndicatorErrors {
+    /// The Eq 20 errors of `model`'s indicators against the `measured` ones.
+    pub fn between(model: &Indicators, measured: &Indicators) -> Self {
+        Self::from_values(model.relative_error(measured))
+    }
+
+    /// The errors given in [`Indicators::NAMES`] order.
+    pub fn from_values([max_force, impulse, energy_loss, duration]: [f64; 4]) -> Self {
+        Self {
+            max_force,
+            impulse,
+            energy_loss,
+            duration,
+        }
+    }
+
+    /// The four errors in [`Indicators::NAMES`] order.
+    pub fn values(&self) -> [f64; 4] {
+        [
+            self.max_force,
+            self.impulse,
+            self.energy_loss,
+            self.duration,
+        ]
+    }
+}
+
+/// One model judged against measured means: its indicators and their errors. The row
+/// `hcm evaluate --json`, `results.json` and `diagnosis.json` share (README, "Model
+/// rows").
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct ModelColumn {
-    /// Column label (`PM2`, `HCM`).
-    pub label: String,
-    /// The model's indicators (None if its simulation failed).
+pub struct ModelRow {
+    /// Model label (`PM2`, `HCM`, `HCM int8`; `base`, `extended`, `HCM` in a diagnosis).
+    pub model: String,
+    /// The model's indicators (N, N·s, N·m, s); None (JSON `null`) where its
+    /// simulation failed.
     pub indicators: Option<Indicators>,
-    /// Eq 20 errors, in the order of [`Indicators::NAMES`].
-    pub errors: Option<[f64; 4]>,
+    /// Their Eq 20 errors against the measured means; None where its simulation failed.
+    pub errors: Option<IndicatorErrors>,
+}
+
+impl ModelRow {
+    /// The row of `model` whose replay gave `simulated` (None if it failed), judged
+    /// against the `measured` indicators.
+    pub fn judged(model: &str, simulated: Option<Indicators>, measured: &Indicators) -> Self {
+        ModelRow {
+            model: model.to_owned(),
+            indicators: simulated,
+            errors: simulated.map(|i| IndicatorErrors::between(&i, measured)),
+        }
+    }
 }
 
 /// The table of one condition.
@@ -32,8 +90,8 @@ pub struct ConditionTable {
     /// Standard error of each S2 mean (s/√n, same units): errors below about twice
     /// this, relative to the mean, are within the sampling noise of S2.
     pub standard_error: Indicators,
-    /// The models compared.
-    pub models: Vec<ModelColumn>,
+    /// The models compared, one row each.
+    pub models: Vec<ModelRow>,
 }
 
 /// Evaluates the models (`(label, model)`, each a scenario with its physics applied)
@@ -57,13 +115,9 @@ pub fn evaluate(
             models: models
                 .iter()
                 .map(|(label, model)| {
-                    let indicators =
+                    let simulated =
                         simulate_target_with(target, c, &model.contacts[c]).map(|(_, i)| i);
-                    ModelColumn {
-                        label: label.to_string(),
-                        indicators,
-                        errors: indicators.map(|i| i.relative_error(&target.indicators)),
-                    }
+                    ModelRow::judged(label, simulated, &target.indicators)
                 })
                 .collect(),
         })
@@ -77,11 +131,11 @@ pub fn markdown(table: &ConditionTable) -> String {
     let mut header = String::from("| indicator | S2 (mean) | S2 standard error |");
     let mut rule = String::from("|---|---|---|");
     for m in &table.models {
-        let _ = write!(header, " {} |", m.label);
+        let _ = write!(header, " {} |", m.model);
         rule.push_str("---|");
     }
     for m in &table.models {
-        let _ = write!(header, " error of {} |", m.label);
+        let _ = write!(header, " error of {} |", m.model);
         rule.push_str("---|");
     }
     let _ = writeln!(out, "{header}\n{rule}");
@@ -109,7 +163,7 @@ pub fn markdown(table: &ConditionTable) -> String {
         for m in &table.models {
             match m.errors {
                 Some(e) => {
-                    let _ = write!(out, " {:.2} % |", 100.0 * e[i]);
+                    let _ = write!(out, " {:.2} % |", 100.0 * e.values()[i]);
                 }
                 None => out.push_str(" – |"),
             }

@@ -1,103 +1,51 @@
-//! The normal laws by name: what each one is, its parameters with units, and how
-//! to build one from `key=value` pairs.
+//! The normal laws by name, for users: the core's one list of laws ([`LawKind`]),
+//! looked up by a name a person typed, and a law built from `key = value` pairs with
+//! errors that name the law, the parameter and the parameters it has.
+//!
+//! Nothing here serialises a law: the parameters are read and written through the
+//! core's typed access ([`AnyNormalLaw::get`], [`AnyNormalLaw::map_named`], …).
 
-use hcm_core::law::{AnyNormalLaw, NormalLaw};
+use hcm_core::law::{AnyNormalLaw, LawKind, NormalLaw, ParameterInfo, MAX_PARAMETERS};
 use hcm_core::LawError;
 
 /// One parameter of a law: its field name, unit and meaning.
-#[derive(Clone, Copy, Debug)]
-pub struct Parameter {
-    /// Field name, as in scenario files and `--set`.
-    pub name: &'static str,
-    /// SI unit.
-    pub unit: &'static str,
-    /// Symbol and meaning.
-    pub meaning: &'static str,
-}
+pub type Parameter = ParameterInfo;
 
-/// One normal law as described to users.
+/// One normal law as described to users (the core's description of a [`LawKind`]).
 #[derive(Clone, Copy, Debug)]
 pub struct LawEntry {
+    /// Which law.
+    pub kind: LawKind,
     /// Name used in files and on the command line.
     pub name: &'static str,
     /// Where the formula comes from.
     pub source: &'static str,
     /// The formula, f_n for δ > 0.
     pub formula: &'static str,
-    /// Its parameters.
+    /// Its parameters, in field order.
     pub parameters: &'static [Parameter],
 }
 
-const fn p(name: &'static str, unit: &'static str, meaning: &'static str) -> Parameter {
-    Parameter {
-        name,
-        unit,
-        meaning,
+const fn describe(kind: LawKind) -> LawEntry {
+    LawEntry {
+        kind,
+        name: kind.name(),
+        source: kind.source(),
+        formula: kind.formula(),
+        parameters: kind.parameters(),
     }
 }
 
-const STIFFNESS: Parameter = p("stiffness", "N/m^n", "k, contact stiffness");
-const EXPONENT: Parameter = p("exponent", "-", "n, force exponent");
-const RESTITUTION: Parameter = p("restitution", "-", "ce, coefficient of restitution");
-
-/// Every normal law of the core.
-pub const LAWS: &[LawEntry] = &[
-    LawEntry {
-        name: "hertz",
-        source: "Eq 2 (k from Eq 3)",
-        formula: "k·δ^n",
-        parameters: &[STIFFNESS, EXPONENT],
-    },
-    LawEntry {
-        name: "lankarani_nikravesh",
-        source: "Eq 4–5",
-        formula: "k·δ^n + 3k(1−ce²)δ^n/(4δ̇0)·δ̇",
-        parameters: &[STIFFNESS, EXPONENT, RESTITUTION],
-    },
-    LawEntry {
-        name: "variable_stiffness",
-        source: "Eq 6–7 (as printed)",
-        formula: "k(δ)·δ + 2λ·√(k(δ)·m_e)·δ·δ̇, k(δ) = c·E*·√(2rδ−δ²)",
-        parameters: &[
-            p(
-                "surface_loading",
-                "-",
-                "c, surface loading coefficient (4/3…2π)",
-            ),
-            p("effective_modulus", "Pa", "E*, effective modulus"),
-            p("radius", "m", "r, sphere radius"),
-            p("damping", "1/m", "λ, damping (literal Eq 6)"),
-            p("effective_mass", "kg", "m_e, effective mass"),
-        ],
-    },
-    LawEntry {
-        name: "impact",
-        source: "Eq 8–9 (MSC ADAMS)",
-        formula: "max(0, k·δ^e + step(δ, 0, 0, δ_max, d_max)·δ̇)",
-        parameters: &[
-            STIFFNESS,
-            p("exponent", "-", "e, force exponent"),
-            p("max_damping", "N·s/m", "d_max, maximum damping"),
-            p("full_damping_depth", "m", "δ_max, depth of full damping"),
-        ],
-    },
-    LawEntry {
-        name: "hunt_crossley",
-        source: "Hunt & Crossley 1975",
-        formula: "k·δ^n·(1 + χ·δ̇)",
-        parameters: &[
-            STIFFNESS,
-            EXPONENT,
-            p("damping", "s/m", "χ, damping factor"),
-        ],
-    },
-    LawEntry {
-        name: "flores",
-        source: "Flores et al. 2011",
-        formula: "k·δ^n·(1 + 8(1−ce)/(5·ce·δ̇0)·δ̇)",
-        parameters: &[STIFFNESS, EXPONENT, RESTITUTION],
-    },
-];
+/// Every normal law of the core, in the core's order ([`LawKind::ALL`]).
+pub const LAWS: &[LawEntry] = &{
+    let mut laws = [describe(LawKind::Hertz); LawKind::ALL.len()];
+    let mut i = 0;
+    while i < laws.len() {
+        laws[i] = describe(LawKind::ALL[i]);
+        i += 1;
+    }
+    laws
+};
 
 /// Why a law could not be built from user input.
 #[derive(Debug, thiserror::Error)]
@@ -105,11 +53,26 @@ pub enum LawInputError {
     /// No law has that name.
     #[error("unknown law `{0}`; the laws are: {1}")]
     UnknownLaw(String, String),
-    /// A parameter is missing or has the wrong type.
-    #[error("law `{law}`: {message}; its parameters are: {expected}")]
-    Parameters {
+    /// A parameter the law does not have.
+    #[error("law `{law}`: no parameter `{parameter}`; its parameters are: {expected}")]
+    UnknownParameter {
         law: String,
-        message: String,
+        parameter: String,
+        expected: String,
+    },
+    /// A parameter of the law that was not given.
+    #[error("law `{law}`: missing parameter `{parameter}`; its parameters are: {expected}")]
+    MissingParameter {
+        law: String,
+        parameter: String,
+        expected: String,
+    },
+    /// A parameter given as something other than a number.
+    #[error("law `{law}`: `{parameter}` must be a number, found {found}; its parameters are: {expected}")]
+    NotANumber {
+        law: String,
+        parameter: String,
+        found: String,
         expected: String,
     },
     /// The parameters parse but are outside their physical domain.
@@ -125,83 +88,85 @@ pub fn entry(name: &str) -> Result<&'static LawEntry, LawInputError> {
     })
 }
 
-/// Builds and validates a law from its name and `(parameter, value)` pairs.
-pub fn build(name: &str, values: &[(String, f64)]) -> Result<AnyNormalLaw<f64>, LawInputError> {
-    let table = values
-        .iter()
-        .map(|(key, value)| (key.clone(), toml::Value::Float(*value)))
-        .collect();
-    build_from_table(name, &table)
+/// The law called `name`.
+pub fn kind(name: &str) -> Result<LawKind, LawInputError> {
+    entry(name).map(|law| law.kind)
 }
 
-/// Builds and validates a law from its name and a TOML table of its parameters.
+/// `stiffness, exponent, …`: the names of `parameters`.
+pub fn names(parameters: &[Parameter]) -> String {
+    let names: Vec<_> = parameters.iter().map(|p| p.name).collect();
+    names.join(", ")
+}
+
+/// Builds and validates a law from its name and `(parameter, value)` pairs (a
+/// parameter given twice takes its last value).
+pub fn build(name: &str, values: &[(String, f64)]) -> Result<AnyNormalLaw<f64>, LawInputError> {
+    build_named(
+        name,
+        values.iter().map(|(key, value)| (key.as_str(), Ok(*value))),
+    )
+}
+
+/// Builds and validates a law from its name and a TOML table of its parameters
+/// (floats or integers).
 pub fn build_from_table(
     name: &str,
     parameters: &toml::Table,
 ) -> Result<AnyNormalLaw<f64>, LawInputError> {
+    let number = |value: &toml::Value| match value {
+        toml::Value::Float(x) => Ok(*x),
+        toml::Value::Integer(i) => Ok(*i as f64),
+        other => Err(format!("{} {other}", other.type_str())),
+    };
+    build_named(
+        name,
+        parameters.iter().map(|(k, v)| (k.as_str(), number(v))),
+    )
+}
+
+/// Builds and validates law `name` from `(parameter, value or what was found
+/// instead)` pairs: every parameter exactly once, no other.
+fn build_named<'a>(
+    name: &str,
+    pairs: impl IntoIterator<Item = (&'a str, Result<f64, String>)>,
+) -> Result<AnyNormalLaw<f64>, LawInputError> {
     let law = entry(name)?;
-    let mut outer = toml::Table::new();
-    outer.insert(name.to_owned(), toml::Value::Table(parameters.clone()));
-    let built: AnyNormalLaw<f64> =
-        toml::Value::Table(outer)
-            .try_into()
-            .map_err(|e: toml::de::Error| LawInputError::Parameters {
+    let expected = || names(law.parameters);
+    let mut given = [None; MAX_PARAMETERS];
+    for (parameter, value) in pairs {
+        let slot = law
+            .kind
+            .parameter_index(parameter)
+            .and_then(|index| given.get_mut(index))
+            .ok_or_else(|| LawInputError::UnknownParameter {
                 law: name.to_owned(),
-                message: e.message().trim().to_owned(),
-                expected: law
-                    .parameters
-                    .iter()
-                    .map(|p| p.name)
-                    .collect::<Vec<_>>()
-                    .join(", "),
+                parameter: parameter.to_owned(),
+                expected: expected(),
             })?;
-    built
-        .validate()
-        .map_err(|e| LawInputError::Domain(name.to_owned(), e))?;
-    Ok(built)
-}
-
-/// A law's parameters by name, in catalogue order, with their values.
-pub fn parameters(law: &AnyNormalLaw<f64>) -> Vec<(&'static str, f64)> {
-    let table = parameter_table(law);
-    entry(law.name())
-        .map(|e| e.parameters)
-        .unwrap_or(&[])
+        *slot = Some(value.map_err(|found| LawInputError::NotANumber {
+            law: name.to_owned(),
+            parameter: parameter.to_owned(),
+            found,
+            expected: expected(),
+        })?);
+    }
+    let values = law
+        .parameters
         .iter()
-        .filter_map(|p| {
-            table
-                .get(p.name)
-                .and_then(toml::Value::as_float)
-                .map(|v| (p.name, v))
+        .zip(given)
+        .map(|(parameter, value)| {
+            value.ok_or_else(|| LawInputError::MissingParameter {
+                law: name.to_owned(),
+                parameter: parameter.name.to_owned(),
+                expected: expected(),
+            })
         })
-        .collect()
-}
-
-/// The same law with every parameter passed through `f(name, value)`.
-pub fn map_parameters(
-    law: &AnyNormalLaw<f64>,
-    mut f: impl FnMut(&str, f64) -> f64,
-) -> AnyNormalLaw<f64> {
-    let mut table = parameter_table(law);
-    for (name, value) in table.iter_mut() {
-        if let Some(v) = value.as_float() {
-            *value = toml::Value::Float(f(name, v));
-        }
-    }
-    let mut outer = toml::Table::new();
-    outer.insert(law.name().to_owned(), toml::Value::Table(table));
-    toml::Value::Table(outer).try_into().unwrap_or(*law)
-}
-
-/// The law's fields as a TOML table (the externally tagged serde form, unwrapped).
-pub fn parameter_table(law: &AnyNormalLaw<f64>) -> toml::Table {
-    match toml::Value::try_from(law) {
-        Ok(toml::Value::Table(mut outer)) => match outer.remove(law.name()) {
-            Some(toml::Value::Table(inner)) => inner,
-            _ => toml::Table::new(),
-        },
-        _ => toml::Table::new(),
-    }
+        .collect::<Result<Vec<f64>, _>>()?;
+    let domain = |e| LawInputError::Domain(name.to_owned(), e);
+    let built = AnyNormalLaw::from_values(law.kind, &values).map_err(domain)?;
+    built.validate().map_err(domain)?;
+    Ok(built)
 }
 
 #[cfg(test)]
@@ -219,12 +184,9 @@ mod tests {
             ],
         )
         .unwrap();
-        let doubled = map_parameters(
-            &law,
-            |name, v| if name == "stiffness" { 2.0 * v } else { v },
-        );
+        let doubled = law.map_named(|name, v| if name == "stiffness" { 2.0 * v } else { v });
         assert_eq!(
-            parameters(&doubled),
+            doubled.named().collect::<Vec<_>>(),
             vec![
                 ("stiffness", 13.72e9),
                 ("exponent", 1.489),
@@ -244,12 +206,74 @@ mod tests {
             let built = build(law.name, &values).expect(law.name);
             assert_eq!(built.name(), law.name);
         }
+        let names: Vec<_> = LAWS.iter().map(|law| law.kind).collect();
+        assert_eq!(names, LawKind::ALL);
+    }
+
+    #[test]
+    fn a_table_builds_the_law_serde_decodes() {
+        for law in LAWS {
+            let mut table = toml::Table::new();
+            for (i, p) in law.parameters.iter().enumerate() {
+                table.insert(
+                    p.name.to_owned(),
+                    toml::Value::Float(0.25 + 0.125 * i as f64),
+                );
+            }
+            let built = build_from_table(law.name, &table).expect(law.name);
+            let mut tagged = toml::Table::new();
+            tagged.insert(law.name.to_owned(), toml::Value::Table(table));
+            let decoded: AnyNormalLaw<f64> = toml::Value::Table(tagged).try_into().unwrap();
+            assert_eq!(built, decoded, "{}", law.name);
+        }
+    }
+
+    #[test]
+    fn integers_are_numbers() {
+        let table: toml::Table = toml::from_str("stiffness = 3\nexponent = 1.5").unwrap();
+        let law = build_from_table("hertz", &table).unwrap();
+        assert_eq!(law.get("stiffness"), Ok(3.0));
     }
 
     #[test]
     fn a_missing_parameter_is_named() {
         let err = build("lankarani_nikravesh", &[("stiffness".into(), 1e9)]).unwrap_err();
         assert!(err.to_string().contains("exponent"), "{err}");
+    }
+
+    #[test]
+    fn a_parameter_the_law_does_not_have_is_an_error() {
+        let values = [
+            ("stifness".into(), 1e9),
+            ("stiffness".into(), 1e9),
+            ("exponent".into(), 1.5),
+        ];
+        let err = build("hertz", &values).unwrap_err().to_string();
+        assert_eq!(
+            err,
+            "law `hertz`: no parameter `stifness`; its parameters are: stiffness, exponent"
+        );
+    }
+
+    #[test]
+    fn a_parameter_that_is_not_a_number_is_an_error() {
+        let table: toml::Table = toml::from_str("stiffness = \"big\"\nexponent = 1.5").unwrap();
+        let err = build_from_table("hertz", &table).unwrap_err().to_string();
+        assert!(
+            err.contains("`stiffness` must be a number")
+                && err.contains("\"big\"")
+                && err.contains("stiffness, exponent"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn an_unknown_law_lists_the_laws() {
+        let err = build("hertzian", &[]).unwrap_err().to_string();
+        assert!(
+            err.contains("`hertzian`") && err.contains("lankarani_nikravesh"),
+            "{err}"
+        );
     }
 
     #[test]

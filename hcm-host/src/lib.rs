@@ -13,6 +13,7 @@ pub mod indicators;
 pub mod law_catalogue;
 pub mod numerics;
 pub mod output;
+pub mod pipeline;
 pub mod residual;
 pub mod scenario;
 pub mod simulate;

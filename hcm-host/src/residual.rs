@@ -4,6 +4,7 @@
 //! switched off (the paper's strategy for conditions without data).
 
 use crate::train::Network;
+use hcm_core::model::{ContactModel, Correction, Residual};
 use hcm_core::residual::{decode, BlobError, F32Weights, Int8Weights, Mlp};
 use std::sync::Arc;
 
@@ -38,14 +39,27 @@ impl ContactResidual {
 
     /// The force correction (N) at (δ, δ̇, δ̇0), or None outside the envelope.
     pub fn correction(&self, depth: f64, rate: f64, approach_speed: f64) -> Option<f64> {
-        let input = [depth as f32, rate as f32, approach_speed as f32];
-        let (inside, output) = match self {
-            ContactResidual::F32(m) => (m.inside_envelope(&input), m.evaluate(&input)),
-            ContactResidual::Int8(m) => (m.inside_envelope(&input), m.evaluate(&input)),
-        };
-        inside.then_some(output[0] as f64)
+        match Residual::<f64>::correction(self, &[depth, rate, approach_speed]) {
+            Some(Correction::NormalForce(force)) => Some(force),
+            _ => None,
+        }
     }
 }
+
+/// The core evaluates the decoded network as the contact model's learned part, the
+/// same code path as in a controller.
+impl Residual<f64> for ContactResidual {
+    fn correction(&self, input: &[f64]) -> Option<Correction<f64>> {
+        match self {
+            ContactResidual::F32(m) => m.as_ref().correction(input),
+            ContactResidual::Int8(m) => m.as_ref().correction(input),
+        }
+    }
+}
+
+/// A scenario's contact model on the host: physics (f64) with, once attached, the
+/// decoded residual network.
+pub type HostContactModel = ContactModel<f64, Option<ContactResidual>>;
 
 /// Worst |core − host| of `decoded` against the host `network` it was exported from,
 /// relative to the largest |host output|, over a 9×9×9 grid spanning the training

@@ -1,24 +1,15 @@
 //! Noisy runs of the bouncing ball with one hidden effect, and what `hcm diagnose`'s
 //! stepwise selection and joint re-fit name from them, shared by the diagnose tests.
-#![allow(dead_code)]
 
 use hcm_host::dataset::Dataset;
 use hcm_host::diagnose::select::{refit, select, Refit, Selection};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
 use hcm_host::scenario::{Model, Scenario};
-use std::path::{Path, PathBuf};
-
-/// The path of a scenario file in the workspace's `scenarios/`.
-pub fn scenario_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
-        .join(name)
-}
 
 /// The scenario `name` with `overrides`, resolved to a model.
 pub fn model(name: &str, overrides: &[String]) -> Model {
-    let path = scenario_path(name);
+    let path = crate::scenario(name);
     Scenario::load(&path, overrides)
         .unwrap()
         .resolve(&path)
@@ -55,7 +46,7 @@ pub fn selected(effect: &str, runs: usize, seed: u64) -> (Selection, Refit) {
     let (base, data) = hidden(effect, runs, seed);
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
-    let law = base.contacts[0].extended_law();
+    let law = base.contacts[0].model.normal.clone();
     let selection = select(&samples, &law, sigma);
     let fit = refit(&samples, &law, &selection.chosen, sigma);
     (selection, fit)

@@ -1,7 +1,6 @@
 //! The reference setup of shared/reference/parameters.md (steel ball on concrete),
 //! shared by the law tests and benchmarks so that every law is exercised at the
 //! parameters the paper's examples use.
-#![allow(dead_code)]
 
 use hcm_core::geometry::{effective_modulus, sphere_plane, Material};
 use hcm_core::law::{

@@ -19,7 +19,9 @@ pub struct Adhesion<T> {
     pub pull_off_force: T,
 }
 
-crate::law::map_fields!(Adhesion { pull_off_force });
+crate::law::law_parameters!(Adhesion {
+    pull_off_force: "N", "a, pull-off force";
+});
 
 impl<T: Real> Adhesion<T> {
     /// Catalogue name, as a diagnosis spells it.

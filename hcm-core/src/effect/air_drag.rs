@@ -17,7 +17,9 @@ pub struct AirDrag<T> {
     pub coefficient: T,
 }
 
-crate::law::map_fields!(AirDrag { coefficient });
+crate::law::law_parameters!(AirDrag {
+    coefficient: "kg/m", "c = ½·ρ_air·C_d·A, drag coefficient";
+});
 
 impl<T: Real> AirDrag<T> {
     /// Catalogue name, as a diagnosis spells it.

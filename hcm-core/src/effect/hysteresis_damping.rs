@@ -20,9 +20,9 @@ pub struct HysteresisDamping<T> {
     pub exponent: T,
 }
 
-crate::law::map_fields!(HysteresisDamping {
-    coefficient,
-    exponent
+crate::law::law_parameters!(HysteresisDamping {
+    coefficient: "N·s/m^(1+p)", "c, damping coefficient";
+    exponent: "-", "p, depth exponent";
 });
 
 impl<T: Real> HysteresisDamping<T> {

@@ -3,9 +3,10 @@
 //! A fitted base law (Hertz, Lankarani–Nikravesh, …) may miss an effect the measured
 //! forces show: damping of another form, a different elastic exponent, adhesion,
 //! permanent indentation. Each effect here is one small `Copy` value with its
-//! parameters, a `name` (the catalogue name a diagnosis prints), a `validate` and
-//! its force. [`ExtendedLaw`] is a base law plus up to [`MAX_EFFECTS`] of them; it
-//! needs no allocator, so the extended model runs in the controller as well.
+//! parameters, a `name` (the catalogue name a diagnosis prints), a `validate`, its
+//! force, and its parameters by name (`PARAMETERS`, [`ContactEffect::get`], …).
+//! [`ExtendedLaw`] is a base law plus up to [`MAX_EFFECTS`] of them; it needs no
+//! allocator, so the extended model runs in the controller as well.
 //!
 //! All but one effect add a term to the base force (N), exactly 0 for δ ≤ 0:
 //!
@@ -23,6 +24,7 @@
 mod adhesion;
 mod air_drag;
 mod hysteresis_damping;
+mod named;
 mod plasticity;
 mod stiffness_exponent;
 mod viscous_damping;

@@ -24,7 +24,9 @@ pub struct Plasticity<T> {
     pub permanent_ratio: T,
 }
 
-crate::law::map_fields!(Plasticity { permanent_ratio });
+crate::law::law_parameters!(Plasticity {
+    permanent_ratio: "-", "ρ = δ_p/δ_max, permanent share of the deepest indentation";
+});
 
 impl<T: Real> Plasticity<T> {
     /// Catalogue name, as a diagnosis spells it.

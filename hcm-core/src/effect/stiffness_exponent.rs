@@ -21,9 +21,9 @@ pub struct StiffnessExponent<T> {
     pub reference_depth: T,
 }
 
-crate::law::map_fields!(StiffnessExponent {
-    exponent_change,
-    reference_depth
+crate::law::law_parameters!(StiffnessExponent {
+    exponent_change: "-", "Δ, change of the elastic exponent";
+    reference_depth: "m", "δ_ref, depth where the force is unchanged";
 });
 
 impl<T: Real> StiffnessExponent<T> {

@@ -18,7 +18,9 @@ pub struct ViscousDamping<T> {
     pub coefficient: T,
 }
 
-crate::law::map_fields!(ViscousDamping { coefficient });
+crate::law::law_parameters!(ViscousDamping {
+    coefficient: "N·s/m", "c, damping coefficient";
+});
 
 impl<T: Real> ViscousDamping<T> {
     /// Catalogue name, as a diagnosis spells it.

@@ -27,6 +27,13 @@ pub struct VelocityStepFriction<T> {
     pub dynamic_speed: T,
 }
 
+crate::law::map_fields!(VelocityStepFriction {
+    static_coefficient,
+    dynamic_coefficient,
+    stiction_speed,
+    dynamic_speed
+});
+
 impl<T: Real> VelocityStepFriction<T> {
     /// Friction coefficient μ(v) of Eq 11 at slip speed v (m/s), dimensionless.
     ///

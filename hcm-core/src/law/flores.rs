@@ -21,10 +21,10 @@ pub struct Flores<T> {
     pub restitution: T,
 }
 
-super::map_fields!(Flores {
-    stiffness,
-    exponent,
-    restitution
+super::law_parameters!(Flores {
+    stiffness: "N/m^n", "k, contact stiffness";
+    exponent: "-", "n, force exponent";
+    restitution: "-", "ce, coefficient of restitution";
 });
 
 impl<T: Real> Flores<T> {

@@ -18,9 +18,9 @@ pub struct Hertz<T> {
     pub exponent: T,
 }
 
-super::map_fields!(Hertz {
-    stiffness,
-    exponent
+super::law_parameters!(Hertz {
+    stiffness: "N/m^n", "k, contact stiffness";
+    exponent: "-", "n, force exponent";
 });
 
 impl<T: Real> Hertz<T> {

@@ -21,10 +21,10 @@ pub struct HuntCrossley<T> {
     pub damping: T,
 }
 
-super::map_fields!(HuntCrossley {
-    stiffness,
-    exponent,
-    damping
+super::law_parameters!(HuntCrossley {
+    stiffness: "N/m^n", "k, contact stiffness";
+    exponent: "-", "n, force exponent";
+    damping: "s/m", "χ, damping factor";
 });
 
 impl<T: Real> HuntCrossley<T> {

@@ -22,11 +22,11 @@ pub struct Impact<T> {
     pub full_damping_depth: T,
 }
 
-super::map_fields!(Impact {
-    stiffness,
-    exponent,
-    max_damping,
-    full_damping_depth
+super::law_parameters!(Impact {
+    stiffness: "N/m^e", "k, contact stiffness";
+    exponent: "-", "e, force exponent";
+    max_damping: "N·s/m", "d_max, maximum damping";
+    full_damping_depth: "m", "δ_max, depth of full damping";
 });
 
 impl<T: Real> Impact<T> {

@@ -21,10 +21,10 @@ pub struct LankaraniNikravesh<T> {
     pub restitution: T,
 }
 
-super::map_fields!(LankaraniNikravesh {
-    stiffness,
-    exponent,
-    restitution
+super::law_parameters!(LankaraniNikravesh {
+    stiffness: "N/m^n", "k, contact stiffness";
+    exponent: "-", "n, force exponent";
+    restitution: "-", "ce, coefficient of restitution";
 });
 
 impl<T: Real> LankaraniNikravesh<T> {

@@ -2,6 +2,9 @@
 //!
 //! One law per file. Each is a small `Copy` value holding its parameters, implements
 //! [`NormalLaw`], and has a `validate` that says which parameter is out of its domain.
+//! Each lists its parameters (`PARAMETERS`: name, unit, meaning) and reads and
+//! writes them by name or as a fixed-size array, with no serialisation;
+//! [`LawKind`] is the one list of the laws' names.
 //!
 //! ## Holding "some law"
 //!
@@ -20,7 +23,10 @@ mod flores;
 mod hertz;
 mod hunt_crossley;
 mod impact;
+mod kind;
 mod lankarani_nikravesh;
+mod named;
+mod parameters;
 mod step;
 mod variable_stiffness;
 
@@ -28,7 +34,10 @@ pub use flores::Flores;
 pub use hertz::Hertz;
 pub use hunt_crossley::HuntCrossley;
 pub use impact::Impact;
+pub use kind::LawKind;
 pub use lankarani_nikravesh::LankaraniNikravesh;
+pub(crate) use parameters::law_parameters;
+pub use parameters::{ParameterInfo, ParameterValues, MAX_PARAMETERS};
 pub use step::step;
 pub use variable_stiffness::VariableStiffness;
 
@@ -83,18 +92,6 @@ pub enum AnyNormalLaw<T> {
 }
 
 impl<T: Real> AnyNormalLaw<T> {
-    /// The law's name as used in scenario files and on the command line.
-    pub fn name(&self) -> &'static str {
-        match self {
-            AnyNormalLaw::Hertz(_) => "hertz",
-            AnyNormalLaw::LankaraniNikravesh(_) => "lankarani_nikravesh",
-            AnyNormalLaw::VariableStiffness(_) => "variable_stiffness",
-            AnyNormalLaw::Impact(_) => "impact",
-            AnyNormalLaw::HuntCrossley(_) => "hunt_crossley",
-            AnyNormalLaw::Flores(_) => "flores",
-        }
-    }
-
     /// Elastic (non-dissipative) part of the force (N) at indentation δ (m): the
     /// force at δ̇ = 0 — k·δ^n (Hertz, Lankarani–Nikravesh, Hunt–Crossley, Flores),
     /// k(δ)·δ (variable stiffness, Eq 6–7), k·δ^e (IMPACT). Exactly 0 for δ ≤ 0;

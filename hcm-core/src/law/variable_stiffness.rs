@@ -28,12 +28,12 @@ pub struct VariableStiffness<T> {
     pub effective_mass: T,
 }
 
-super::map_fields!(VariableStiffness {
-    surface_loading,
-    effective_modulus,
-    radius,
-    damping,
-    effective_mass
+super::law_parameters!(VariableStiffness {
+    surface_loading: "-", "c, surface loading coefficient (4/3…2π)";
+    effective_modulus: "Pa", "E*, effective modulus";
+    radius: "m", "r, sphere radius";
+    damping: "1/m", "λ, damping (literal Eq 6)";
+    effective_mass: "kg", "m_e, effective mass";
 });
 
 impl<T: Real> VariableStiffness<T> {

@@ -39,6 +39,7 @@ pub use crc::crc32;
 pub use mlp::WeightFormat;
 pub use mlp::{Envelope, F32Weights, Hidden, HiddenDepth, Int8Weights, Layer, Mlp, Normalisation};
 
+use crate::Real;
 use core::fmt;
 
 /// The nonlinearity applied after every hidden layer; the output layer is linear.
@@ -70,16 +71,38 @@ impl Activation {
     }
 
     /// The activation applied to one pre-activation z; NaN stays NaN.
+    ///
+    /// The one implementation: the core's inference (`f32`) and the host's training
+    /// (`f64`) both call it, so the trained and the exported network cannot disagree.
     #[inline]
-    pub fn apply(self, z: f32) -> f32 {
+    pub fn apply<T: Real>(self, z: T) -> T {
         match self {
-            Activation::Tanh => nalgebra::ComplexField::tanh(z),
-            // `f32::max(0.0, NaN)` is 0.0: test explicitly so that NaN propagates.
+            Activation::Tanh => z.tanh(),
+            // `max(0, NaN)` would be 0: test explicitly so that NaN propagates.
             Activation::Relu => {
-                if z < 0.0 {
-                    0.0
+                if z < T::zero() {
+                    T::zero()
                 } else {
                     z
+                }
+            }
+        }
+    }
+
+    /// The slope σ'(z), written through the activation's output a = σ(z), which is
+    /// what backpropagation has at hand: tanh' = 1 − a², relu' = 1 for a > 0 else 0
+    /// (NaN for a NaN a).
+    #[inline]
+    pub fn slope<T: Real>(self, a: T) -> T {
+        match self {
+            Activation::Tanh => T::one() - a * a,
+            Activation::Relu => {
+                if a > T::zero() {
+                    T::one()
+                } else if a.is_nan() {
+                    a
+                } else {
+                    T::zero()
                 }
             }
         }

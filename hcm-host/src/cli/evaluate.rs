@@ -44,7 +44,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let residual = ContactResidual::decode(&bytes)
             .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
         let mut hcm = pm2.clone();
-        hcm.contacts[args.contact].residual = Some(residual);
+        hcm.contacts[args.contact].model.residual = Some(residual);
         models.push(("HCM", hcm));
     }
     let columns: Vec<(&str, &hcm_host::scenario::Model)> =
@@ -65,7 +65,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             scenario.name,
             name,
             table.runs,
-            pm2.contacts[args.contact].law.name()
+            pm2.contacts[args.contact].law().name()
         );
         print!("{}", markdown(table));
         println!();

@@ -3,9 +3,7 @@
 //! envelope, weights, CRC-32).
 
 use hcm_core::residual::Quantisation;
-use hcm_host::export::encode;
 use hcm_host::output::write_bytes;
-use hcm_host::residual::{round_trip_error, ContactResidual};
 use hcm_host::train::TrainedResidual;
 use std::path::PathBuf;
 
@@ -34,18 +32,13 @@ pub struct Args {
 
 /// The blob of `trained` in `weights` storage, checked by decoding it in the core:
 /// (bytes, worst relative |core − host| over the envelope grid).
-pub fn blob(trained: &TrainedResidual, weights: Weights) -> anyhow::Result<(Vec<u8>, f64)> {
-    let (network, quantisation) = match weights {
-        Weights::F32 => (&trained.network, Quantisation::F32),
-        Weights::Int8 => (&trained.int8_network, Quantisation::Int8),
+fn blob(trained: &TrainedResidual, weights: Weights) -> anyhow::Result<(Vec<u8>, f64)> {
+    let quantisation = match weights {
+        Weights::F32 => Quantisation::F32,
+        Weights::Int8 => Quantisation::Int8,
     };
-    let bytes = encode(network, quantisation)?;
-    let decoded = ContactResidual::decode(&bytes).map_err(|e| {
-        anyhow::anyhow!(
-            "the exported blob does not decode in the core: {e} (shape not the shipped 3-16-16-1?)"
-        )
-    })?;
-    Ok((bytes, round_trip_error(network, &decoded)))
+    let blob = hcm_host::pipeline::blob(trained, quantisation)?;
+    Ok((blob.bytes, blob.round_trip_error))
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {

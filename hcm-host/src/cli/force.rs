@@ -1,6 +1,8 @@
 //! `hcm force`: one law at one contact state, in f64 and in the controller's f32.
 
-use hcm_core::law::{Indentation, NormalLaw};
+use hcm_core::effect::ContactMemory;
+use hcm_core::law::Indentation;
+use hcm_core::model::ContactModel;
 use hcm_host::law_catalogue;
 
 /// Evaluate a normal law: `hcm force --law hertz --set stiffness=3.6e9 --set exponent=1.5 --depth 1e-5`.
@@ -30,13 +32,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         rate: args.rate,
         approach_speed: args.approach_speed,
     };
-    let force = law.normal_force(&state);
+    // Through the contact model, as a controller evaluates it (one fresh contact).
+    let model = ContactModel::physics(law);
+    let force = model.physics_normal_force(&state, &ContactMemory::touch_down());
     let state_32 = Indentation {
         depth: state.depth as f32,
         rate: state.rate as f32,
         approach_speed: state.approach_speed as f32,
     };
-    let force_32 = law.cast::<f32>().normal_force(&state_32);
+    let force_32 = model
+        .cast::<f32>()
+        .physics_normal_force(&state_32, &ContactMemory::touch_down());
     println!(
         "{}: f_n = {force:.6e} N (f64), {force_32:.6e} N (f32)",
         law.name()

@@ -6,7 +6,6 @@ use hcm_host::dataset::Dataset;
 use hcm_host::identify::evolve::Fitness;
 use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::{identify, Method, Physics};
-use hcm_host::law_catalogue;
 use std::path::PathBuf;
 
 /// Identify a physics model (PM2) from data:
@@ -85,7 +84,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "{} by {} on {} runs ({} events, {} force samples) in {:.3} s",
         args.law, fit.method, fit.runs, fit.events, fit.samples, fit.seconds
     );
-    for (name, value) in law_catalogue::parameters(&result.law) {
+    for (name, value) in result.law.named() {
         let error = result
             .standard_errors
             .iter()

@@ -46,7 +46,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
     let (samples, _) = force_samples(&pm2, &data, args.contact)?;
-    let (inputs, targets) = residual_pairs(&samples, &pm2.contacts[args.contact].law);
+    let (inputs, targets) = residual_pairs(&samples, &pm2.contacts[args.contact].model);
     let settings = TrainSettings {
         hidden_layers: HIDDEN,
         width: WIDTH,

@@ -235,3 +235,30 @@ pub fn reference_depth(samples: &ContactSamples) -> f64 {
     deepest.sort_by(f64::total_cmp);
     deepest.get(deepest.len() / 2).copied().unwrap_or(f64::NAN)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The names a diagnosis reports for a cause's parameters are the core effect's
+    /// own parameter names, and its catalogue name the effect's name.
+    #[test]
+    fn reported_names_are_the_core_effects_names() {
+        for candidate in CATALOGUE {
+            let shape = candidate.shapes()[0];
+            let Some(effect) = candidate.effect(0.5, shape, 1e-5) else {
+                assert_eq!(candidate.kind(), Kind::Measurement);
+                continue;
+            };
+            assert_eq!(effect.name(), candidate.name());
+            let (strength, _) = candidate.strength();
+            assert_eq!(effect.get(strength), Ok(0.5), "{}", candidate.name());
+            if !shape.is_nan() {
+                assert_eq!(effect.get("exponent"), Ok(shape));
+            }
+            if candidate == Candidate::StiffnessExponent {
+                assert_eq!(effect.get("reference_depth"), Ok(1e-5));
+            }
+        }
+    }
+}

@@ -114,7 +114,7 @@ pub fn diagnose(
     let samples: ContactSamples = contact_samples(base, &fit_data, c)?;
     let noise = noise_floor(&samples);
     let sigma = noise.sigma;
-    let law = base.contacts[c].extended_law();
+    let law = base.contacts[c].model.normal.clone();
     let before = residual_structure(&samples, &samples.model_force(&law), sigma);
     let selection = select(&samples, &law, sigma);
     let chosen = if before.structured {
@@ -160,8 +160,7 @@ pub fn diagnose(
 
     // The gain: base, extended and HCM on the held-out runs.
     let mut extended = base.clone();
-    extended.contacts[c].law = fit.law.base;
-    extended.contacts[c].effects = fit.law.effects.iter().copied().collect();
+    extended.contacts[c].model.normal = fit.law.clone();
     if let Some(air_drag) = drag.as_ref().and_then(|d| d.air_drag()) {
         extended.bodies[base.contacts[c].body_1].air_drag = Some(air_drag);
     }
@@ -233,7 +232,7 @@ fn hcm_contact(
     settings: &DiagnoseSettings,
 ) -> Result<Option<Contact>, IdentifyError> {
     let (samples, _) = force_samples(base, data, c)?;
-    let (inputs, targets) = residual_pairs(&samples, &base.contacts[c].law);
+    let (inputs, targets) = residual_pairs(&samples, &base.contacts[c].model);
     let train_settings = TrainSettings {
         hidden_layers: HIDDEN,
         width: WIDTH,
@@ -251,6 +250,6 @@ fn hcm_contact(
         return Ok(None);
     };
     let mut contact = base.contacts[c].clone();
-    contact.residual = Some(residual);
+    contact.model.residual = Some(residual);
     Ok(Some(contact))
 }

@@ -17,6 +17,7 @@
 use super::noise::white_noise;
 use super::sensor::Sensor;
 use crate::dataset::Dataset;
+use crate::evaluate::{IndicatorErrors, ModelRow};
 use crate::experiment::condition_of;
 use crate::identify::replay::{
     pre_contact_state, simulate_target_as, targets, with_physics, Target,
@@ -105,24 +106,23 @@ pub struct Judged<'a> {
     pub sensor: Sensor,
 }
 
-/// One model scored on one group of held-out runs. NaN where its simulation failed.
+/// One model scored on one group of held-out runs. NaN (indicators and errors: None)
+/// where its simulation failed.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct GainRow {
-    /// Model label (`base`, `extended`, `HCM`).
-    pub model: String,
+    /// The model (`base`, `extended`, `HCM`), its indicators (N, N·s, N·m, s) replayed
+    /// from each condition's mean pre-contact state and their Eq 20 errors against the
+    /// measured means, each a run-weighted mean over the group's conditions (so errors
+    /// of opposite sign do not cancel): the row `evaluate` writes too, its keys inline
+    /// in the JSON row.
+    #[serde(flatten)]
+    pub judged: ModelRow,
     /// RMSE of the simulated against the recorded normal force over the contact
     /// samples of every run of the group (N), the recording corrected by the model's
     /// sensor (see [`Sensor::retime`]).
     pub force_rmse: f64,
     /// The part of the RMSE the noise does not explain, √max(RMSE² − σ², 0) (N).
     pub excess_rmse: f64,
-    /// Eq 20 errors (–) of the indicators against the measured means, in the order of
-    /// [`Indicators::NAMES`]; with several conditions in the group, the run-weighted
-    /// mean of the per-condition errors, so errors of opposite sign do not cancel.
-    pub errors: [f64; 4],
-    /// The model's indicators (N, N·s, N·m, s): replayed from each condition's mean
-    /// pre-contact state, run-weighted mean over the group's conditions.
-    pub indicators: Indicators,
     /// RMSE of the simulated against the recorded indentation rate δ̇ over the flight
     /// before the first touch-down (m/s) — the recorded one and the replay's own — each
     /// run replayed from its first recorded sample; NaN when the runs record no flight
@@ -288,15 +288,17 @@ pub fn group_table(
             &corrected_means
         };
         let force_rmse = force_rmse(&records, c, j);
-        let (indicators, errors) = indicator_errors(means, c, j.physics);
+        let (indicators, errors) = indicator_errors(means, c, j.physics).unzip();
         let flight_rmse = flight_rmse(model, data, runs, &records, c, j.physics);
         let excess = |rmse: f64, noise: f64| (rmse.powi(2) - noise.powi(2)).max(0.0).sqrt();
         rows.push(GainRow {
-            model: j.label.to_owned(),
+            judged: ModelRow {
+                model: j.label.to_owned(),
+                indicators,
+                errors,
+            },
             force_rmse,
             excess_rmse: excess(force_rmse, sigma),
-            errors,
-            indicators,
             flight_rmse,
             flight_excess: excess(flight_rmse, flight_noise.max(0.0)),
         });
@@ -421,23 +423,20 @@ fn interpolate(times: &[f64], values: &[f64], t: f64) -> f64 {
 }
 
 /// The run-weighted mean indicators of `physics` replayed on each condition's mean
-/// target, and the run-weighted mean of their Eq 20 errors; NaN if any replay fails.
-fn indicator_errors(means: &[Target], c: usize, physics: &Model) -> (Indicators, [f64; 4]) {
-    let failed = Indicators {
-        max_force: f64::NAN,
-        impulse: f64::NAN,
-        energy_loss: f64::NAN,
-        duration: f64::NAN,
-    };
+/// target, and the run-weighted mean of their Eq 20 errors; None without conditions or
+/// if any replay fails.
+fn indicator_errors(
+    means: &[Target],
+    c: usize,
+    physics: &Model,
+) -> Option<(Indicators, IndicatorErrors)> {
     if means.is_empty() {
-        return (failed, [f64::NAN; 4]);
+        return None;
     }
     let total = means.iter().map(|t| t.runs).sum::<usize>() as f64;
     let (mut values, mut errors) = ([0.0; 4], [0.0; 4]);
     for target in means {
-        let Some((_, simulated)) = simulate_target_as(target, c, physics) else {
-            return (failed, [f64::NAN; 4]);
-        };
+        let (_, simulated) = simulate_target_as(target, c, physics)?;
         let weight = target.runs as f64 / total;
         let error = simulated.relative_error(&target.indicators);
         for k in 0..4 {
@@ -452,7 +451,7 @@ fn indicator_errors(means: &[Target], c: usize, physics: &Model) -> (Indicators,
         energy_loss,
         duration,
     };
-    (indicators, errors)
+    Some((indicators, IndicatorErrors::from_values(errors)))
 }
 
 /// The tables as markdown: one per group, a row per model; the flight columns only
@@ -482,9 +481,11 @@ pub fn markdown(tables: &[GainTable]) -> String {
             let _ = write!(
                 out,
                 "| {} | {:.3} | {:.3} |",
-                row.model, row.force_rmse, row.excess_rmse
+                row.judged.model, row.force_rmse, row.excess_rmse
             );
-            for e in row.errors {
+            // A failed replay prints NaN, as its force RMSE does.
+            let errors = row.judged.errors.map_or([f64::NAN; 4], |e| e.values());
+            for e in errors {
                 let _ = write!(out, " {:.3} |", 100.0 * e);
             }
             if flight {
@@ -512,7 +513,6 @@ pub fn markdown(tables: &[GainTable]) -> String {
 mod tests {
     use super::*;
     use crate::dataset::Run;
-    use crate::law_catalogue::map_parameters;
     use crate::scenario::Scenario;
     use std::path::Path;
     use std::sync::OnceLock;
@@ -547,6 +547,12 @@ mod tests {
             physics,
             sensor: Sensor::default(),
         }
+    }
+
+    /// The Eq 20 errors of `row`, in [`Indicators::NAMES`] order; panics if its replay
+    /// failed.
+    fn errors(row: &GainRow) -> [f64; 4] {
+        row.judged.errors.expect("the replay succeeds").values()
     }
 
     fn ids(ids: &[String]) -> Dataset {
@@ -625,13 +631,9 @@ mod tests {
     fn the_true_model_gains_over_a_wrong_one() {
         let (model, data) = generated();
         let mut wrong = model.clone();
-        wrong.contacts[0].law = map_parameters(&model.contacts[0].law, |name, a| {
-            if name == "damping" {
-                0.5 * a
-            } else {
-                a
-            }
-        });
+        let law = &mut wrong.contacts[0].model.normal.base;
+        law.set("damping", 0.5 * law.get("damping").unwrap())
+            .unwrap();
         let runs: Vec<usize> = (0..data.runs.len()).collect();
         let models = [judged("true", model), judged("damping ×0.5", &wrong)];
         let tables = gain(model, data, &runs, 0, SIGMA, &models).unwrap();
@@ -645,7 +647,7 @@ mod tests {
         assert!((t.force_rmse - SIGMA).abs() < 0.1 * SIGMA, "{t:?}");
         assert!(t.excess_rmse < 0.5 * w.excess_rmse, "{t:?}\n{w:?}");
         for k in 0..4 {
-            assert!(t.errors[k] < w.errors[k], "indicator {k}: {t:?}\n{w:?}");
+            assert!(errors(t)[k] < errors(w)[k], "indicator {k}: {t:?}\n{w:?}");
         }
     }
 
@@ -683,8 +685,14 @@ mod tests {
         // corrected samples keep the noise σ, so the true model scores σ.
         assert!((fixed.force_rmse - SIGMA).abs() < 0.1 * SIGMA, "{fixed:?}");
         assert!(raw.excess_rmse > 30.0 && fixed.excess_rmse < 0.2 * raw.excess_rmse);
-        assert!(fixed.errors[0] < 0.3 * raw.errors[0], "{raw:?}\n{fixed:?}");
-        assert!(fixed.errors[1] < 0.3 * raw.errors[1], "{raw:?}\n{fixed:?}");
+        assert!(
+            errors(fixed)[0] < 0.3 * errors(raw)[0],
+            "{raw:?}\n{fixed:?}"
+        );
+        assert!(
+            errors(fixed)[1] < 0.3 * errors(raw)[1],
+            "{raw:?}\n{fixed:?}"
+        );
     }
 
     #[test]
@@ -717,14 +725,14 @@ mod tests {
             run.id = format!("{}/{}", ["a", "b", "c"][k / 2], k % 2);
         }
         let mut broken = model.clone();
-        broken.contacts[0].law = map_parameters(&model.contacts[0].law, |_, _| f64::NAN);
+        broken.contacts[0].model.normal.base = model.contacts[0].law().map_named(|_, _| f64::NAN);
         let models = [judged("true", model), judged("broken", &broken)];
         let tables = gain(model, &data, &[1, 2, 4, 5], 0, SIGMA, &models).unwrap();
         let groups: Vec<_> = tables.iter().map(|t| (t.group.as_str(), t.runs)).collect();
         assert_eq!(groups, [("held-out runs", 2), ("condition c", 2)]);
         for table in &tables {
-            assert!(table.rows[0].force_rmse.is_finite() && table.rows[0].errors[0] < 0.05);
-            assert!(table.rows[1].force_rmse.is_nan() && table.rows[1].errors[0].is_nan());
+            assert!(table.rows[0].force_rmse.is_finite() && errors(&table.rows[0])[0] < 0.05);
+            assert!(table.rows[1].force_rmse.is_nan() && table.rows[1].judged.errors.is_none());
         }
         let text = markdown(&tables);
         assert!(text.contains("**condition c** (2 runs)") && text.contains("| broken | NaN |"));

@@ -8,6 +8,7 @@ use crate::indicators::{contact_history, event_spans};
 use crate::scenario::Model;
 use hcm_core::effect::{ContactMemory, ExtendedLaw};
 use hcm_core::law::Indentation;
+use hcm_core::model::ContactModel;
 
 /// Column-wise samples of contact `c` over runs (one entry per recorded sample).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -58,11 +59,12 @@ impl ContactSamples {
     /// The force `law` gives along the recorded motion (N): the law in contact, 0
     /// outside contact events.
     pub fn model_force(&self, law: &ExtendedLaw<f64>) -> Vec<f64> {
+        let physics = ContactModel::physics(law.clone());
         (0..self.len())
             .map(|i| {
                 if self.in_contact[i] {
                     let (state, memory) = self.state(i);
-                    law.normal_force(&state, &memory)
+                    physics.physics_normal_force(&state, &memory)
                 } else {
                     0.0
                 }

@@ -35,7 +35,6 @@ use super::sensor::Sensor;
 use super::ContactSamples;
 use crate::identify::bounds::Bounds;
 use crate::identify::levenberg_marquardt::{levenberg_marquardt, LmSettings};
-use crate::law_catalogue;
 use crate::numerics::{linear_least_squares, Reduction};
 use hcm_core::effect::ExtendedLaw;
 use hcm_core::law::AnyNormalLaw;
@@ -99,7 +98,7 @@ fn sensitivities(
     free.iter()
         .map(|name| {
             let mut step = 0.0;
-            let law = law_catalogue::map_parameters(&base.base, |n, v| {
+            let law = base.base.map_named(|n, v| {
                 if n == name {
                     step = if v != 0.0 { 1e-6 * v.abs() } else { 1e-9 };
                     v + step
@@ -448,12 +447,8 @@ pub fn refit(
     let delta_ref = reference_depth(samples);
     let base_values: Vec<f64> = free
         .iter()
-        .map(|name| {
-            law_catalogue::parameters(&base.base)
-                .iter()
-                .find(|(n, _)| n == name)
-                .map_or(0.0, |p| p.1)
-        })
+        // The free parameters are the law's own (`Bounds::for_law`): NaN never shows.
+        .map(|name| base.base.get(name).unwrap_or(f64::NAN))
         .collect();
     let unknowns = Unknowns::new(base, &free, &base_values, chosen);
     let model = RefitModel {
@@ -573,9 +568,9 @@ impl RefitModel<'_> {
     fn build(&self, p: &[f64]) -> (ExtendedLaw<f64>, f64, f64) {
         let (base, free) = (self.base, &self.free);
         let mut law = base.clone();
-        law.base = law_catalogue::map_parameters(&base.base, |n, v| {
-            free.iter().position(|f| f == n).map_or(v, |k| p[k])
-        });
+        law.base = base
+            .base
+            .map_named(|n, v| free.iter().position(|f| f == n).map_or(v, |k| p[k]));
         let (mut offset, mut delay) = (0.0, 0.0);
         for (&(candidate, shape), &slot) in self.chosen.iter().zip(&self.slots) {
             let shape = if shape.is_nan() { shape } else { p[slot + 1] };

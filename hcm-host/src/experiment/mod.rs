@@ -10,7 +10,6 @@ mod split;
 pub use split::{condition_of, split, Split};
 
 use crate::dataset::{Dataset, Run};
-use crate::law_catalogue;
 use crate::scenario::{Model, Scenario, ScenarioError};
 use crate::simulate::{simulate, SimulationError};
 use rand::SeedableRng;
@@ -120,14 +119,18 @@ pub fn generate(
 /// γ = γ0 + σ·ζ on every recorded sample (Eq 19).
 pub fn noisy_run(model: &Model, rng: &mut ChaCha8Rng) -> Result<Run, SimulationError> {
     let mut model = model.clone();
-    for contact in &mut model.contacts {
-        let noise = contact.noise.clone();
-        contact.law = law_catalogue::map_parameters(&contact.law, |name, a| {
-            match noise.iter().find(|(n, _)| n == name) {
-                Some((_, b)) => a + a * b * normal(rng),
-                None => a,
-            }
-        });
+    for (index, contact) in model.contacts.iter_mut().enumerate() {
+        // Drawn in the order of `noise` (by name, as the scenario's table is sorted),
+        // one draw per noisy parameter.
+        for (name, b) in &contact.noise {
+            let noisy = |source| SimulationError::Noise {
+                contact: index,
+                source,
+            };
+            let law = &mut contact.model.normal.base;
+            let a = law.get(name).map_err(noisy)?;
+            law.set(name, a + a * b * normal(rng)).map_err(noisy)?;
+        }
     }
     let mut run = simulate(&model)?.run;
     let e = &model.scenario.experiment;

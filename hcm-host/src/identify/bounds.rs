@@ -1,17 +1,24 @@
 //! Which parameters of a law are identified, and the box they are searched in.
 
 use super::genetic::Bound;
+use super::IdentifyError;
 use crate::law_catalogue;
-use hcm_core::law::AnyNormalLaw;
+use hcm_core::law::{AnyNormalLaw, LawKind};
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 
 /// The free parameters of one law with their search intervals.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bounds {
-    /// (name, lower, upper, log-scaled) per free parameter, in catalogue order.
+    /// (name, lower, upper, log-scaled) per free parameter, in catalogue order;
+    /// every name is a parameter of the law.
     pub parameters: Vec<(String, f64, f64, bool)>,
+    /// The law they are parameters of.
+    kind: LawKind,
 }
+
+/// The scenario's `[identify.bounds.<law>]` tables: parameter name → [lower, upper].
+pub type BoundsOverrides = BTreeMap<String, BTreeMap<String, [f64; 2]>>;
 
 /// Default search box of a law's free parameters: (name, lower, upper, log scale).
 /// Geometric and mass parameters (radius, effective modulus, effective mass) are not
@@ -45,17 +52,22 @@ impl Bounds {
         law: &str,
         overrides: Option<&BTreeMap<String, [f64; 2]>>,
     ) -> Result<Bounds, String> {
-        let entry = law_catalogue::entry(law).map_err(|e| e.to_string())?;
+        let kind = law_catalogue::kind(law).map_err(|e| e.to_string())?;
         let mut parameters: Vec<(String, f64, f64, bool)> = defaults(law)
             .iter()
             .map(|&(n, lo, hi, log)| (n.to_owned(), lo, hi, log))
             .collect();
+        let free = parameters.iter().map(|p| p.0.clone()).collect::<Vec<_>>();
         for (name, [lower, upper]) in overrides.into_iter().flatten() {
             let Some(slot) = parameters.iter_mut().find(|p| &p.0 == name) else {
-                let known: Vec<_> = entry.parameters.iter().map(|p| p.name).collect();
+                let what = if kind.parameter_index(name).is_some() {
+                    "is fixed by the scenario, not a free parameter"
+                } else {
+                    "is not a parameter"
+                };
                 return Err(format!(
-                    "identify.bounds.{law}.{name}: not a free parameter of `{law}` ({})",
-                    known.join(", ")
+                    "identify.bounds.{law}.{name}: `{name}` {what} of `{law}` (its free parameters: {})",
+                    free.join(", ")
                 ));
             };
             if !(lower < upper && lower.is_finite() && upper.is_finite())
@@ -65,7 +77,48 @@ impl Bounds {
             }
             (slot.1, slot.2) = (*lower, *upper);
         }
-        Ok(Bounds { parameters })
+        Ok(Bounds { parameters, kind })
+    }
+
+    /// Checks every `[identify.bounds.<law>]` table of a scenario, not only the one
+    /// of the law being identified: a law or a parameter name it does not know is an
+    /// error naming its key, never ignored.
+    pub fn check_scenario(all: &BoundsOverrides) -> Result<(), String> {
+        for (law, overrides) in all {
+            law_catalogue::kind(law).map_err(|e| format!("identify.bounds.{law}: {e}"))?;
+            Bounds::for_law(law, Some(overrides))?;
+        }
+        Ok(())
+    }
+
+    /// `Ok` if these are the bounds of `law`'s kind of law.
+    pub fn check(&self, law: &AnyNormalLaw<f64>) -> Result<(), IdentifyError> {
+        if law.kind() == self.kind {
+            Ok(())
+        } else {
+            Err(IdentifyError::Setup(format!(
+                "the search box of `{}` cannot fit law `{}`",
+                self.kind,
+                law.name()
+            )))
+        }
+    }
+
+    /// The values of the free parameters in `law`, in [`Bounds::free`] order.
+    pub fn values(&self, law: &AnyNormalLaw<f64>) -> Result<Vec<f64>, IdentifyError> {
+        self.check(law)?;
+        let value = |p: &(String, f64, f64, bool)| law.get(&p.0);
+        let values = self.parameters.iter().map(value).collect::<Result<_, _>>();
+        values.map_err(|e| IdentifyError::Setup(e.to_string()))
+    }
+
+    /// `law` with the free parameters set to `values` (in [`Bounds::free`] order) and
+    /// the others unchanged: the model a fitness or a residual evaluates.
+    pub fn with(&self, law: &AnyNormalLaw<f64>, values: &[f64]) -> AnyNormalLaw<f64> {
+        law.map_named(|name, v| {
+            let free = self.parameters.iter().position(|p| p.0 == name);
+            free.map_or(v, |i| values[i])
+        })
     }
 
     /// Names of the free parameters.
@@ -83,7 +136,7 @@ impl Bounds {
 
     /// `law` with each free parameter clamped into its interval.
     pub fn clamp(&self, law: &AnyNormalLaw<f64>) -> AnyNormalLaw<f64> {
-        law_catalogue::map_parameters(law, |name, v| {
+        law.map_named(|name, v| {
             let (lo, hi) = self.range(name);
             if v.is_nan() {
                 0.5 * (lo + hi)
@@ -121,5 +174,78 @@ impl Bounds {
                 )
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_free_parameter_is_a_parameter_of_its_law() {
+        for kind in LawKind::ALL {
+            let bounds = Bounds::for_law(kind.name(), None).unwrap();
+            assert!(!bounds.free().is_empty(), "{kind}");
+            for name in bounds.free() {
+                assert!(kind.parameter_index(name).is_some(), "{kind}.{name}");
+            }
+        }
+    }
+
+    #[test]
+    fn with_sets_the_free_parameters_and_keeps_the_others() {
+        let law = law_catalogue::build(
+            "variable_stiffness",
+            &[
+                ("surface_loading".into(), 2.0),
+                ("effective_modulus".into(), 1e10),
+                ("radius".into(), 0.01),
+                ("damping".into(), 100.0),
+                ("effective_mass".into(), 0.06),
+            ],
+        )
+        .unwrap();
+        let bounds = Bounds::for_law("variable_stiffness", None).unwrap();
+        assert_eq!(bounds.values(&law).unwrap(), [2.0, 100.0]);
+        let moved = bounds.with(&law, &[3.0, 50.0]);
+        let values: Vec<f64> = moved.values().to_vec();
+        assert_eq!(values, [3.0, 1e10, 0.01, 50.0, 0.06]);
+        let hertz = law_catalogue::build(
+            "hertz",
+            &[("stiffness".into(), 1e9), ("exponent".into(), 1.5)],
+        );
+        assert!(bounds.values(&hertz.unwrap()).is_err());
+    }
+
+    #[test]
+    fn a_bound_on_a_parameter_the_law_does_not_have_is_an_error_naming_its_key() {
+        let overrides = BTreeMap::from([("stifness".to_owned(), [1e9, 1e10])]);
+        let err = Bounds::for_law("hertz", Some(&overrides)).unwrap_err();
+        assert!(err.starts_with("identify.bounds.hertz.stifness: "), "{err}");
+        assert!(
+            err.contains("not a parameter") && err.contains("stiffness, exponent"),
+            "{err}"
+        );
+        let fixed = BTreeMap::from([("radius".to_owned(), [0.01, 0.02])]);
+        let err = Bounds::for_law("variable_stiffness", Some(&fixed)).unwrap_err();
+        assert!(err.contains("fixed by the scenario"), "{err}");
+    }
+
+    #[test]
+    fn every_law_table_of_a_scenario_is_checked() {
+        let table = BTreeMap::from([("exponent".to_owned(), [1.2, 1.8])]);
+        let good = BoundsOverrides::from([("flores".to_owned(), table.clone())]);
+        assert_eq!(Bounds::check_scenario(&good), Ok(()));
+        let typo = BoundsOverrides::from([("lankarani".to_owned(), table)]);
+        let err = Bounds::check_scenario(&typo).unwrap_err();
+        assert!(
+            err.starts_with("identify.bounds.lankarani: unknown law"),
+            "{err}"
+        );
+        let wrong = BTreeMap::from([("restitution".to_owned(), [0.5, 1.0])]);
+        let err = Bounds::check_scenario(&BoundsOverrides::from([("hertz".to_owned(), wrong)]));
+        assert!(err
+            .unwrap_err()
+            .starts_with("identify.bounds.hertz.restitution: "));
     }
 }

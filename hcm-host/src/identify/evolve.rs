@@ -6,7 +6,6 @@ use super::genetic::{minimize, GeneticSettings};
 use super::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use super::replay::{simulate_target, Target};
 use super::IdentifyError;
-use crate::law_catalogue;
 use hcm_core::law::AnyNormalLaw;
 
 /// What the genetic algorithm minimises.
@@ -100,12 +99,9 @@ pub fn fit(
     settings: &GeneticSettings,
     mut progress: impl FnMut(usize, usize, f64),
 ) -> Result<GaOutcome, IdentifyError> {
+    bounds.check(template)?;
     let free = bounds.free();
-    let with = |p: &[f64]| {
-        law_catalogue::map_parameters(template, |name, v| {
-            free.iter().position(|f| *f == name).map_or(v, |i| p[i])
-        })
-    };
+    let with = |p: &[f64]| bounds.with(template, p);
     let generations = settings.generations;
     let result = minimize(
         &bounds.genetic(),

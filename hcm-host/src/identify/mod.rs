@@ -17,7 +17,8 @@ use crate::dataset::Dataset;
 use crate::indicators::IndicatorError;
 use crate::scenario::{Model, Scenario, ScenarioError};
 use bounds::Bounds;
-use hcm_core::law::{AnyNormalLaw, Indentation, NormalLaw};
+use hcm_core::law::AnyNormalLaw;
+use hcm_core::model::ContactModel;
 use samples::ForceSample;
 use std::time::Instant;
 
@@ -80,6 +81,7 @@ pub fn template(
     c: usize,
     law_name: &str,
 ) -> Result<(AnyNormalLaw<f64>, Bounds), IdentifyError> {
+    Bounds::check_scenario(&scenario.identify.bounds).map_err(IdentifyError::Setup)?;
     let bounds = Bounds::for_law(law_name, scenario.identify.bounds.get(law_name))
         .map_err(IdentifyError::Setup)?;
     if bounds.parameters.is_empty() {
@@ -96,20 +98,17 @@ pub fn template(
         format!("contact.{c}.noise={{}}"),
     ];
     let model = scenario.with(&assignments)?.model()?;
-    Ok((model.contacts[c].law, bounds))
+    Ok((*model.contacts[c].law(), bounds))
 }
 
 /// RMS of modelled − measured force over `samples` (N).
 pub fn force_rms(law: &AnyNormalLaw<f64>, samples: &[ForceSample]) -> f64 {
+    let physics = ContactModel::physics(*law);
     let sum: f64 = samples
         .iter()
         .map(|s| {
-            let state = Indentation {
-                depth: s.depth,
-                rate: s.rate,
-                approach_speed: s.approach_speed,
-            };
-            (law.normal_force(&state) - s.force).powi(2)
+            let (state, memory) = s.state();
+            (physics.physics_normal_force(&state, &memory) - s.force).powi(2)
         })
         .sum();
     (sum / samples.len().max(1) as f64).sqrt()

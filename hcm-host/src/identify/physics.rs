@@ -1,7 +1,6 @@
 //! The physics file: what `identify` writes and `simulate`, `evaluate` and later
 //! stages read — the identified law of each contact, and how it was fitted.
 
-use crate::law_catalogue;
 use crate::output::write_atomically;
 use crate::scenario::{Model, Scenario, ScenarioError};
 use hcm_core::effect::{AirDrag, ContactEffect};
@@ -99,7 +98,10 @@ impl Physics {
         fit: FitRecord,
     ) -> Physics {
         let contact = &model.contacts[c];
-        let parameters = law_catalogue::parameter_table(law);
+        let parameters = law
+            .named()
+            .map(|(name, value)| (name.to_owned(), toml::Value::Float(value)))
+            .collect();
         Physics {
             contacts: vec![PhysicsContact {
                 bodies: [

@@ -183,7 +183,7 @@ pub fn simulate_target(
     law: &AnyNormalLaw<f64>,
 ) -> Option<(Vec<f64>, Indicators)> {
     let mut contact = target.model.contacts[c].clone();
-    contact.law = *law;
+    contact.model.normal.base = *law;
     simulate_target_with(target, c, &contact)
 }
 

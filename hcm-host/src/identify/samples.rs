@@ -5,6 +5,8 @@ use super::IdentifyError;
 use crate::dataset::Dataset;
 use crate::indicators::{contact_history, event_spans};
 use crate::scenario::Model;
+use hcm_core::effect::ContactMemory;
+use hcm_core::law::Indentation;
 
 /// One in-contact sample: the state a normal law reads and the force it should give.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -15,8 +17,26 @@ pub struct ForceSample {
     pub rate: f64,
     /// Approach speed δ̇0 of the sample's impact (m/s).
     pub approach_speed: f64,
+    /// Deepest indentation δ_max (m) of the sample's impact so far.
+    pub max_depth: f64,
     /// Measured normal force f_n (N).
     pub force: f64,
+}
+
+impl ForceSample {
+    /// The sample's state as the contact model reads it: (δ, δ̇, δ̇0) and δ_max.
+    pub fn state(&self) -> (Indentation<f64>, ContactMemory<f64>) {
+        (
+            Indentation {
+                depth: self.depth,
+                rate: self.rate,
+                approach_speed: self.approach_speed,
+            },
+            ContactMemory {
+                max_depth: self.max_depth,
+            },
+        )
+    }
 }
 
 /// Every in-contact sample of contact `c` in every run, and how many runs and
@@ -49,11 +69,16 @@ pub fn force_samples(
         for span in spans {
             events += 1;
             let approach_speed = span.approach_speed();
-            samples.extend(span.inside.clone().map(|i| ForceSample {
-                depth: history.depth[i],
-                rate: history.rate[i],
-                approach_speed,
-                force: history.force[i],
+            let mut max_depth = 0.0_f64;
+            samples.extend(span.inside.clone().map(|i| {
+                max_depth = max_depth.max(history.depth[i]);
+                ForceSample {
+                    depth: history.depth[i],
+                    rate: history.rate[i],
+                    approach_speed,
+                    max_depth,
+                    force: history.force[i],
+                }
             }));
         }
     }

@@ -18,9 +18,9 @@ use super::least_squares::{minimize_box2, minimize_scalar, LeastSquaresError};
 use super::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use super::samples::ForceSample;
 use super::IdentifyError;
-use crate::law_catalogue;
 use crate::numerics::linear_least_squares;
-use hcm_core::law::{step, AnyNormalLaw, Indentation, NormalLaw};
+use hcm_core::law::{step, AnyNormalLaw};
+use hcm_core::model::ContactModel;
 
 /// The result of a least-squares fit.
 #[derive(Clone, Debug)]
@@ -198,23 +198,15 @@ fn refine(
     mut notes: Vec<String>,
 ) -> Result<LsqFit, IdentifyError> {
     let free = bounds.free();
-    let start: Vec<f64> = free.iter().map(|name| lookup(&law, name)).collect();
+    let start = bounds.values(&law)?;
     let scales: Vec<f64> = start.iter().map(|v| v.abs().max(1e-12)).collect();
     let box_bounds: Vec<(f64, f64)> = free.iter().map(|name| bounds.range(name)).collect();
-    let with = |p: &[f64]| {
-        law_catalogue::map_parameters(&law, |name, v| {
-            free.iter().position(|f| *f == name).map_or(v, |i| p[i])
-        })
-    };
+    let with = |p: &[f64]| bounds.with(&law, p);
     let residuals = |p: &[f64], out: &mut [f64]| {
-        let candidate = with(p);
+        let candidate = ContactModel::physics(with(p));
         for (r, s) in out.iter_mut().zip(samples) {
-            let state = Indentation {
-                depth: s.depth,
-                rate: s.rate,
-                approach_speed: s.approach_speed,
-            };
-            *r = candidate.normal_force(&state) - s.force;
+            let (state, memory) = s.state();
+            *r = candidate.physics_normal_force(&state, &memory) - s.force;
         }
     };
     let result = levenberg_marquardt(
@@ -246,12 +238,4 @@ fn refine(
         notes,
         standard_errors,
     })
-}
-
-/// The value of parameter `name` of `law`.
-pub fn lookup(law: &AnyNormalLaw<f64>, name: &str) -> f64 {
-    law_catalogue::parameters(law)
-        .into_iter()
-        .find(|(n, _)| *n == name)
-        .map_or(f64::NAN, |(_, v)| v)
 }

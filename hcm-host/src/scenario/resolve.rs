@@ -3,9 +3,11 @@
 
 use super::{Scenario, ScenarioError, ShapeSpec};
 use crate::law_catalogue;
-use hcm_core::effect::{AirDrag, ContactEffect, ExtendedLaw, MAX_EFFECTS};
+use crate::residual::HostContactModel;
+use hcm_core::effect::{AirDrag, ExtendedLaw, MAX_EFFECTS};
 use hcm_core::geometry::{effective_modulus, sphere_sphere, Material};
 use hcm_core::law::AnyNormalLaw;
+use hcm_core::model::ContactModel;
 use nalgebra::Vector3;
 use std::path::Path;
 
@@ -54,27 +56,20 @@ pub struct Contact {
     pub body_1: usize,
     /// Index of body 2.
     pub body_2: usize,
-    /// The normal law with every parameter resolved.
-    pub law: AnyNormalLaw<f64>,
+    /// The contact model — normal law with every parameter resolved, its effects,
+    /// and the residual network (the HCM) once attached: the core type a controller
+    /// ships, evaluated by every host stage.
+    pub model: HostContactModel,
     /// Effective mass m_e = m1·m2/(m1 + m2) (kg) of the pair.
     pub effective_mass: f64,
     /// Parameter noise b per law parameter (Eq 18), for generated experiments.
     pub noise: Vec<(String, f64)>,
-    /// Residual network added to the law's force (the HCM), if attached.
-    pub residual: Option<crate::residual::ContactResidual>,
-    /// Physical effects added to the law (validated; at most one of each kind).
-    pub effects: Vec<ContactEffect<f64>>,
 }
 
 impl Contact {
-    /// The law with its effects, as the core evaluates it.
-    pub fn extended_law(&self) -> ExtendedLaw<f64> {
-        let mut law = ExtendedLaw::new(self.law);
-        for effect in &self.effects {
-            // resolve() allows at most MAX_EFFECTS, so this never drops one.
-            let _ = law.effects.push(*effect);
-        }
-        law
+    /// The base normal law (without effects).
+    pub fn law(&self) -> &AnyNormalLaw<f64> {
+        self.model.law()
     }
 }
 
@@ -209,23 +204,26 @@ impl Scenario {
             .map_err(|e| invalid.error(field("law"), e.to_string()))?;
         check_noise(spec).map_err(|m| invalid.error(field("noise"), m))?;
         let noise = spec.noise.iter().map(|(k, v)| (k.clone(), *v)).collect();
-        let contact = Contact {
-            body_1,
-            body_2,
-            law,
-            effective_mass,
-            noise,
-            residual: None,
-            effects: spec.effects.clone(),
-        };
         if spec.effects.len() > MAX_EFFECTS {
             return Err(invalid.error(
                 field("effects"),
                 format!("{} effects; at most {MAX_EFFECTS}", spec.effects.len()),
             ));
         }
+        let mut normal = ExtendedLaw::new(law);
+        for effect in &spec.effects {
+            // Checked above: at most MAX_EFFECTS, so no push fails.
+            let _ = normal.effects.push(*effect);
+        }
+        let contact = Contact {
+            body_1,
+            body_2,
+            model: ContactModel::physics(normal).with_residual(None),
+            effective_mass,
+            noise,
+        };
         contact
-            .extended_law()
+            .model
             .validate()
             .map_err(|e| invalid.error(field("effects"), e.to_string()))?;
         Ok(contact)

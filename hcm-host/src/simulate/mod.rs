@@ -85,6 +85,12 @@ pub enum SimulationError {
         scenario: String,
         source: IntegrationError,
     },
+    /// A contact's parameter noise names a parameter its law does not have.
+    #[error("contact {contact}: parameter noise: {source}")]
+    Noise {
+        contact: usize,
+        source: hcm_core::LawError,
+    },
 }
 
 /// One stretch of solver output with constant contact modes.

@@ -5,7 +5,6 @@
 use super::state::StateVector;
 use super::system::ContactSystem;
 use hcm_core::integrate::Dopri5;
-use hcm_core::law::{Indentation, NormalLaw};
 
 /// Grid intervals per step.
 const GRID: usize = 6;
@@ -35,12 +34,7 @@ fn force_at(
 ) -> f64 {
     stepper.dense_output(time, y);
     let k = system.kinematics(&y.0, c);
-    let state = Indentation {
-        depth: k.depth,
-        rate: k.rate,
-        approach_speed: system.modes.approach_speed[c],
-    };
-    system.model.contacts[c].law.normal_force(&state)
+    system.contact_load(&y.0, c, &k).normal_force
 }
 
 /// The largest f_n of contact `c` on a grid over [start, end] of the last step.

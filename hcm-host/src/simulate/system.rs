@@ -7,8 +7,8 @@ use super::state::{Layout, StateVector};
 use crate::scenario::Model;
 use hcm_core::effect::ContactMemory;
 use hcm_core::integrate::OdeSystem;
-use hcm_core::law::{Indentation, NormalLaw};
-use hcm_core::wrench::ContactWrench;
+use hcm_core::law::Indentation;
+use hcm_core::model::{ContactPoint, PairLoad};
 use nalgebra::Vector3;
 
 /// Per-contact discrete state: whether the pair is in contact and the approach
@@ -62,7 +62,6 @@ impl ContactSystem<'_> {
         )
     }
 
-    /// Contact loads in state `y` under the current modes.
     /// A system for `model` in the given contact `modes`.
     pub fn new<'m>(model: &'m Model, layout: &'m Layout, modes: ContactModes) -> ContactSystem<'m> {
         ContactSystem {
@@ -73,6 +72,7 @@ impl ContactSystem<'_> {
         }
     }
 
+    /// Contact loads in state `y` under the current modes.
     pub fn loads(&self, y: &[f64]) -> Loads {
         let mut loads = Loads::default();
         self.fill_loads(y, &mut loads);
@@ -95,39 +95,43 @@ impl ContactSystem<'_> {
             if !self.modes.touching[c] {
                 continue;
             }
-            let state = Indentation {
-                depth: k.depth,
-                rate: k.rate,
-                approach_speed: self.modes.approach_speed[c],
-            };
-            let correction = contact
-                .residual
-                .as_ref()
-                .and_then(|r| r.correction(k.depth, k.rate, state.approach_speed));
-            let f_n = if k.depth > 0.0 {
-                let law_force = if contact.effects.is_empty() {
-                    contact.law.normal_force(&state)
-                } else {
-                    let deepest = y[self.layout.deepest_index(c)].max(k.depth);
-                    let memory = ContactMemory { max_depth: deepest };
-                    contact.extended_law().normal_force(&state, &memory)
-                };
-                law_force + correction.unwrap_or(0.0)
-            } else {
-                0.0
-            };
-            let origin = |b| self.layout.motion(self.model, y, b).0;
-            let (arm_1, arm_2) = (
-                k.point - origin(contact.body_1),
-                k.point - origin(contact.body_2),
-            );
-            let w = ContactWrench::assemble(f_n, &k.normal, &Vector3::zeros(), &arm_1, &arm_2);
-            loads.normal_force[c] = f_n;
+            let load = self.contact_load(y, c, &k);
+            loads.normal_force[c] = load.normal_force;
+            let w = load.wrench;
             loads.force[contact.body_1] += w.force_1;
             loads.torque[contact.body_1] += w.torque_1;
             loads.force[contact.body_2] += w.force_2;
             loads.torque[contact.body_2] += w.torque_2;
         }
+    }
+
+    /// The loads of contact `c` (kinematics `k`) in state `y`, in contact mode:
+    /// evaluated by the contact's core model (law + effects + residual, Eq 1) at its
+    /// one point, the residual fed [δ (m), δ̇ (m/s), δ̇0 (m/s)].
+    pub fn contact_load(&self, y: &[f64], c: usize, k: &PairKinematics) -> PairLoad<f64> {
+        let contact = &self.model.contacts[c];
+        let indentation = Indentation {
+            depth: k.depth,
+            rate: k.rate,
+            approach_speed: self.modes.approach_speed[c],
+        };
+        let point = ContactPoint {
+            indentation,
+            memory: ContactMemory {
+                max_depth: y[self.layout.deepest_index(c)].max(k.depth),
+            },
+            normal: k.normal,
+            position: k.point,
+            relative_velocity: k.relative_velocity,
+        };
+        let origin = |b| self.layout.motion(self.model, y, b).0;
+        let input = [k.depth, k.rate, indentation.approach_speed];
+        contact.model.pair_load(
+            &[point],
+            &origin(contact.body_1),
+            &origin(contact.body_2),
+            &input,
+        )
     }
 }
 

@@ -16,39 +16,6 @@ use rand_chacha::ChaCha8Rng;
 /// trained network and the exported one cannot disagree on it.
 pub use hcm_core::residual::Activation;
 
-/// The activation in f64 for training.
-pub(super) trait Training {
-    /// σ(z).
-    fn apply_f64(self, z: f64) -> f64;
-    /// σ'(z) written through a = σ(z), which is what backpropagation has at hand:
-    /// tanh' = 1 − a², relu' = 1 for a > 0 else 0.
-    fn slope(self, a: f64) -> f64;
-}
-
-impl Training for Activation {
-    #[inline]
-    fn apply_f64(self, z: f64) -> f64 {
-        match self {
-            Activation::Tanh => z.tanh(),
-            Activation::Relu => z.max(0.0),
-        }
-    }
-
-    #[inline]
-    fn slope(self, a: f64) -> f64 {
-        match self {
-            Activation::Tanh => 1.0 - a * a,
-            Activation::Relu => {
-                if a > 0.0 {
-                    1.0
-                } else {
-                    0.0
-                }
-            }
-        }
-    }
-}
-
 /// A trained network with its normalisation and training envelope, ready to export.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -121,7 +88,7 @@ fn affine(weights: &[f64], biases: &[f64], a: &[f64], activation: Option<Activat
         .zip(weights.chunks_exact(a.len()))
         .map(|(b, row)| {
             let z = b + dot(row, a);
-            activation.map_or(z, |s| s.apply_f64(z))
+            activation.map_or(z, |s| s.apply(z))
         })
         .collect()
 }
@@ -263,7 +230,7 @@ impl Layout {
             for ((z, b), row) in out.iter_mut().zip(biases).zip(weights.chunks_exact(n_in)) {
                 let sum = b + dot(row, a);
                 *z = if l < last {
-                    self.activation.apply_f64(sum)
+                    self.activation.apply(sum)
                 } else {
                     sum
                 };

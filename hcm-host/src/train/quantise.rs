@@ -30,7 +30,7 @@
 //! like [`super::train`].
 
 use super::adam::Adam;
-use super::network::{Layout, Training};
+use super::network::Layout;
 use super::{shuffle, Network, Normalised, TrainError, CHUNK_ROWS};
 use crate::export::int8_row;
 use crate::numerics::{LinearFit, Reduction};
@@ -114,7 +114,7 @@ fn refit_output(
         // The trunk's "output layer" is the last hidden layer without its activation.
         let z = hidden.forward(&trunk, x, &mut scratch);
         for (f, &z) in features.iter_mut().zip(z) {
-            *f = layout.activation.apply_f64(z);
+            *f = layout.activation.apply(z);
         }
         features[width] = 1.0;
         targets.copy_from_slice(t);

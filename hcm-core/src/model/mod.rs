@@ -1,0 +1,271 @@
+//! The contact model: the one type a controller ships and every host stage —
+//! simulation, identification, training, evaluation, diagnosis — evaluates.
+//!
+//! For one body pair touching at the points p_1 … p_k (a [`Manifold`]):
+//!
+//! - at each point, the normal force f_n = f_law(δ_eff, δ̇, δ̇0) + Σ effects
+//!   ([`ExtendedLaw`]: a law of Eq 2–9 with the catalogued effects), exactly 0 for
+//!   δ ≤ 0, and the friction force **f_f** of Eq 10–11 from the slip velocity and f_n;
+//! - the pair's wrench by Eq 1, summed over the points: F1 = Σ (f_n·**n** + **f_f**),
+//!   T1 = Σ l1 × (f_n·**n** + **f_f**), and the opposite on body 2;
+//! - plus the learned residual r(x) (Section 3.2, Eq 12), added only while at least
+//!   one point touches and the residual's input lies inside its training envelope
+//!   ([`Residual`]); elsewhere the physics alone, and [`Evaluated`] says which.
+//!
+//! Generic over [`Real`]: `f32` in the controller, `f64` in the host's stiff
+//! simulation, the same formulas in both.
+
+mod point;
+mod residual;
+
+pub use point::{ContactPoint, Manifold, PointForce, MAX_POINTS};
+pub use residual::{Correction, NoResidual, Residual};
+
+use crate::effect::{ContactMemory, ExtendedLaw};
+use crate::friction::VelocityStepFriction;
+use crate::law::{touching, AnyNormalLaw, Indentation};
+use crate::wrench::ContactWrench;
+use crate::{LawError, Real};
+use nalgebra::Vector3;
+
+/// Which parts of the contact model produced a force.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Evaluated {
+    /// In contact, with the residual's input inside its training envelope: physics +
+    /// residual.
+    PhysicsAndResidual,
+    /// Out of contact, no residual, or its input outside the envelope (or NaN): the
+    /// physics alone.
+    PhysicsOnly,
+}
+
+/// Physics (normal law + effects + friction) plus a learned residual `R`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactModel<T, R = NoResidual> {
+    /// The normal law with its effects, identified parameters.
+    pub normal: ExtendedLaw<T>,
+    /// The tangential law (Eq 10–11); `None`: frictionless.
+    pub friction: Option<VelocityStepFriction<T>>,
+    /// The learned correction ([`NoResidual`] for physics alone).
+    pub residual: R,
+}
+
+/// The loads one body pair's contact applies: what [`ContactModel::pair_load`] returns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairLoad<T: Real> {
+    /// Forces and torques on both bodies about their reference points (N, N·m).
+    pub wrench: ContactWrench<T>,
+    /// Σ f_n over the points, a normal-force correction included (N).
+    pub normal_force: T,
+    /// Whether the residual took part.
+    pub evaluated: Evaluated,
+}
+
+impl<T: Real> ContactModel<T, NoResidual> {
+    /// The physics alone: `law` (with or without effects), frictionless.
+    pub fn physics(law: impl Into<ExtendedLaw<T>>) -> Self {
+        ContactModel {
+            normal: law.into(),
+            friction: None,
+            residual: NoResidual,
+        }
+    }
+}
+
+impl<T: Real, R> ContactModel<T, R> {
+    /// The same physics with `residual` as its learned part.
+    pub fn with_residual<S>(self, residual: S) -> ContactModel<T, S> {
+        ContactModel {
+            normal: self.normal,
+            friction: self.friction,
+            residual,
+        }
+    }
+
+    /// The same model with friction law `friction`.
+    pub fn with_friction(mut self, friction: VelocityStepFriction<T>) -> Self {
+        self.friction = Some(friction);
+        self
+    }
+
+    /// The base normal law (without effects).
+    pub fn law(&self) -> &AnyNormalLaw<T> {
+        &self.normal.base
+    }
+
+    /// Physics normal force f_n (N, > 0 repulsive) at one point: the law with its
+    /// effects; exactly 0 for δ ≤ 0, NaN propagates, saturates at ±[`Real::MAX`].
+    #[inline]
+    pub fn physics_normal_force(
+        &self,
+        indentation: &Indentation<T>,
+        memory: &ContactMemory<T>,
+    ) -> T {
+        if !touching(indentation.depth) {
+            return T::zero();
+        }
+        self.normal.normal_force(indentation, memory)
+    }
+
+    /// Physics force at one point: f_n, and the friction from the point's slip.
+    pub fn point_force(&self, point: &ContactPoint<T>) -> PointForce<T> {
+        let normal_force = self.physics_normal_force(&point.indentation, &point.memory);
+        let friction = match &self.friction {
+            Some(law) if normal_force != T::zero() => {
+                law.force(&point.relative_velocity, &point.normal, normal_force)
+            }
+            _ => Vector3::zeros(),
+        };
+        PointForce {
+            normal_force,
+            friction,
+        }
+    }
+
+    /// `Ok` if the normal law, its effects and the friction law are in their
+    /// physical domains; otherwise the first problem.
+    pub fn validate(&self) -> Result<(), LawError> {
+        self.normal.validate()?;
+        self.friction.as_ref().map_or(Ok(()), |f| f.validate())
+    }
+
+    /// The same model in another float type (f64 → f32 rounds each parameter); the
+    /// residual is kept as it is.
+    pub fn cast<U: Real>(&self) -> ContactModel<U, R>
+    where
+        R: Clone,
+    {
+        ContactModel {
+            normal: self.normal.cast(),
+            friction: self.friction.map(|f| f.map(Real::cast)),
+            residual: self.residual.clone(),
+        }
+    }
+}
+
+impl<T: Real, R: Residual<T>> ContactModel<T, R> {
+    /// Normal force magnitude f_n (N, > 0 repulsive) of a single-point, frictionless
+    /// contact (the 1D examples), and what produced it.
+    ///
+    /// Exactly (0, `PhysicsOnly`) for δ ≤ 0. In contact, the physics plus the
+    /// residual's [`Correction::NormalForce`], saturated at ±[`Real::MAX`] (not
+    /// clamped at zero: a correction may leave the force slightly tensile, as the data
+    /// said). A residual switched off, or one that returns a wrench (which needs the
+    /// geometry of [`ContactModel::pair_load`]), leaves the physics alone.
+    pub fn normal_force(
+        &self,
+        indentation: &Indentation<T>,
+        memory: &ContactMemory<T>,
+        residual_input: &[T],
+    ) -> (T, Evaluated) {
+        if !touching(indentation.depth) {
+            return (T::zero(), Evaluated::PhysicsOnly);
+        }
+        let physics = self.normal.normal_force(indentation, memory);
+        match self.residual.correction(residual_input) {
+            Some(Correction::NormalForce(correction)) => (
+                (physics + correction).saturate(),
+                Evaluated::PhysicsAndResidual,
+            ),
+            _ => (physics, Evaluated::PhysicsOnly),
+        }
+    }
+
+    /// The loads of a body pair touching at `points`: Eq 1 at every point, summed,
+    /// plus the residual's correction while any point touches.
+    ///
+    /// `reference_1`, `reference_2` (m) are the bodies' reference points (centres of
+    /// mass), about which torques are taken; every vector in one frame. A
+    /// [`Correction::NormalForce`] acts along the first point's normal at that
+    /// point; a [`Correction::Wrench`] on body 1 about `reference_1`, with the
+    /// opposite force on body 2 (its torque taken about `reference_2`). No points,
+    /// or none touching: zero loads, physics only.
+    pub fn pair_load(
+        &self,
+        points: &[ContactPoint<T>],
+        reference_1: &Vector3<T>,
+        reference_2: &Vector3<T>,
+        residual_input: &[T],
+    ) -> PairLoad<T> {
+        let mut load = PairLoad {
+            wrench: zero_wrench(),
+            normal_force: T::zero(),
+            evaluated: Evaluated::PhysicsOnly,
+        };
+        let Some(first) = points.iter().position(|p| touching(p.indentation.depth)) else {
+            return load;
+        };
+        // The residual was trained on (measured − physics): it adds to the physics'
+        // result and does not feed back into the friction law.
+        let correction = self.residual.correction(residual_input);
+        if correction.is_some() {
+            load.evaluated = Evaluated::PhysicsAndResidual;
+        }
+        for (i, point) in points.iter().enumerate().skip(first) {
+            if !touching(point.indentation.depth) {
+                continue;
+            }
+            let mut force = self.point_force(point);
+            if let (true, Some(Correction::NormalForce(extra))) = (i == first, correction) {
+                force.normal_force = (force.normal_force + extra).saturate();
+            }
+            load.normal_force = (load.normal_force + force.normal_force).saturate();
+            add_point_wrench(&mut load.wrench, point, &force, reference_1, reference_2);
+        }
+        let w = &mut load.wrench;
+        match correction {
+            Some(Correction::Wrench { force, torque }) => {
+                w.force_1 += force;
+                w.torque_1 += torque;
+                w.force_2 -= force;
+                w.torque_2 -= torque + (reference_1 - reference_2).cross(&force);
+            }
+            Some(Correction::PairWrench {
+                force_1,
+                torque_1,
+                force_2,
+                torque_2,
+            }) => {
+                w.force_1 += force_1;
+                w.torque_1 += torque_1;
+                w.force_2 += force_2;
+                w.torque_2 += torque_2;
+            }
+            Some(Correction::NormalForce(_)) | None => {}
+        }
+        load
+    }
+}
+
+fn zero_wrench<T: Real>() -> ContactWrench<T> {
+    ContactWrench {
+        force_1: Vector3::zeros(),
+        torque_1: Vector3::zeros(),
+        force_2: Vector3::zeros(),
+        torque_2: Vector3::zeros(),
+    }
+}
+
+/// Adds one point's force to the pair's wrench by Eq 1.
+fn add_point_wrench<T: Real>(
+    wrench: &mut ContactWrench<T>,
+    point: &ContactPoint<T>,
+    force: &PointForce<T>,
+    reference_1: &Vector3<T>,
+    reference_2: &Vector3<T>,
+) {
+    let w = ContactWrench::assemble(
+        force.normal_force,
+        &point.normal,
+        &force.friction,
+        &(point.position - reference_1),
+        &(point.position - reference_2),
+    );
+    wrench.force_1 += w.force_1;
+    wrench.torque_1 += w.torque_1;
+    wrench.force_2 += w.force_2;
+    wrench.torque_2 += w.torque_2;
+}
+
+#[cfg(test)]
+mod tests;

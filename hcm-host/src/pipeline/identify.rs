@@ -1,0 +1,58 @@
+//! Stage 2: PM2, the physics law identified on S1.
+
+use super::{PipelineError, Pm2Method, Progress, Stage, CONTACT};
+use crate::dataset::Dataset;
+use crate::identify::{identify, Identification, Physics};
+use crate::scenario::{Model, Scenario};
+use std::path::Path;
+
+/// The law PM2 uses, as in the paper.
+pub const PM2_LAW: &str = "lankarani_nikravesh";
+
+/// PM2 in its three forms.
+#[derive(Clone, Debug)]
+pub struct Pm2 {
+    /// The identified law and how the fit went.
+    pub identification: Identification,
+    /// The physics file's content (`pm2.toml`).
+    pub physics: Physics,
+    /// The scenario with PM2 in place of its contact law: the model every later
+    /// stage simulates.
+    pub model: Model,
+}
+
+/// Identifies [`PM2_LAW`] on the training set of `scenario` (read from `path`) by
+/// `method` (seeded with `seed`).
+pub fn identify_pm2(
+    scenario: &Scenario,
+    path: &Path,
+    training: &Dataset,
+    method: Pm2Method,
+    seed: u64,
+    progress: &dyn Progress,
+) -> Result<Pm2, PipelineError> {
+    let model = scenario.model()?;
+    progress.begin(Stage::Identify, 1);
+    let identification = identify(
+        scenario,
+        &model,
+        training,
+        CONTACT,
+        PM2_LAW,
+        method.method(seed),
+        |generation, generations, _| progress.advance(generation as u64, generations as u64),
+    )?;
+    progress.end(Stage::Identify);
+    let physics = Physics::for_contact(
+        &model,
+        CONTACT,
+        &identification.law,
+        identification.fit.clone(),
+    );
+    let model = physics.apply(scenario, path)?.model()?;
+    Ok(Pm2 {
+        identification,
+        physics,
+        model,
+    })
+}

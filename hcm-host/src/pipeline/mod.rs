@@ -1,0 +1,252 @@
+//! The paper's method as a library: the stages `hcm reproduce` strings together, each
+//! a function from one typed value to the next, in this order:
+//!
+//! 1. [`experiment`] — PM1's noisy runs of every condition (Eq 18–19), split into the
+//!    training set S1 and the validation set S2 ([`Split`]).
+//! 2. [`identify_pm2`] — PM2: Lankarani–Nikravesh identified on S1 ([`Pm2`]).
+//! 3. [`train_residual`] — the residual network on S1's measured − PM2 force, and its
+//!    quantisation-aware int8 twin ([`Trained`]).
+//! 4. [`export_blobs`] — both networks as the core's weights blobs, decoded back by the
+//!    core ([`Blobs`]).
+//! 5. [`evaluate_on_s2`] — PM2, HCM and HCM int8 replayed on S2: the paper's table and
+//!    its figures ([`Evaluation`]).
+//!
+//! [`reproduce`] runs them in that order, timing each, and gathers the
+//! [`ReproduceResults`], which render to the report's markdown
+//! ([`ReproduceResults::markdown`]) and serialise to `results.json`. Nothing here
+//! prints or writes a file: progress goes to the caller's [`Progress`], and the
+//! intermediate values come back in the [`Reproduction`] for the caller to write.
+
+mod evaluate;
+mod example;
+mod export;
+mod generate;
+mod identify;
+mod progress;
+mod report;
+mod results;
+mod train;
+
+pub use evaluate::{evaluate_on_s2, Evaluation, NamedFigure};
+pub use example::{Example, Pm2Method, ReproduceSettings};
+pub use export::{blob, export_blobs, Blob, Blobs};
+pub use generate::experiment;
+pub use identify::{identify_pm2, Pm2};
+pub use progress::{Progress, Silent, Stage};
+pub use results::{
+    BlobSummary, NamedValue, PaperErrors, Pm2Summary, ReproduceResults, ResidualSummary,
+    StageTiming,
+};
+pub use train::{train_residual, Trained};
+
+use crate::experiment::{ExperimentError, Split};
+use crate::export::ExportError;
+use crate::identify::physics::PhysicsError;
+use crate::identify::IdentifyError;
+use crate::scenario::{Scenario, ScenarioError};
+use crate::train::TrainError;
+use hcm_core::residual::BlobError;
+use std::time::Instant;
+
+/// The contact of the paper's examples that PM2 and the residual model: they have one.
+pub const CONTACT: usize = 0;
+
+/// Why a stage of the pipeline failed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PipelineError {
+    /// The scenario does not resolve to a model.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// Stage 1: a run could not be generated.
+    #[error(transparent)]
+    Experiment(#[from] ExperimentError),
+    /// Stage 2: PM2 could not be identified.
+    #[error(transparent)]
+    Identify(#[from] IdentifyError),
+    /// Stage 2: the identified law does not fit back into the scenario.
+    #[error(transparent)]
+    Physics(#[from] PhysicsError),
+    /// Stage 3: the residual network could not be trained.
+    #[error(transparent)]
+    Train(#[from] TrainError),
+    /// Stage 4: a network could not be encoded as a blob.
+    #[error(transparent)]
+    Export(#[from] ExportError),
+    /// Stage 4: the core rejects the blob just encoded.
+    #[error(
+        "the exported blob does not decode in the core: {0} (shape not the shipped 3-16-16-1?)"
+    )]
+    Decode(BlobError),
+    /// Stage 5: S2 holds no condition to evaluate.
+    #[error("the validation data hold no condition")]
+    NoValidation,
+}
+
+/// Everything [`reproduce`] made: each stage's value, for the caller to write, and
+/// the results.
+pub struct Reproduction {
+    /// The scenario as read, overrides applied.
+    pub scenario: Scenario,
+    /// S1 and S2.
+    pub sets: Split,
+    /// PM2.
+    pub pm2: Pm2,
+    /// The residual network and its int8 twin.
+    pub trained: Trained,
+    /// Their blobs.
+    pub blobs: Blobs,
+    /// Fig 9/12 and 10/13.
+    pub figures: Vec<NamedFigure>,
+    /// Every table of the report.
+    pub results: ReproduceResults,
+}
+
+/// Reads the scenario of `settings` and runs stages 1–5 on it, timing each (wall
+/// clock, s). Bit-identical results (but for the timings) for the same settings.
+pub fn reproduce(
+    settings: &ReproduceSettings,
+    progress: &dyn Progress,
+) -> Result<Reproduction, PipelineError> {
+    let path = settings.scenario.as_path();
+    let scenario = Scenario::load(path, &settings.overrides)?;
+    // A scenario that does not resolve fails here, before minutes of generation.
+    scenario.model()?;
+    let mut timings = Vec::new();
+    let mut timed = |stage: &str, clock: Instant| {
+        timings.push(StageTiming {
+            stage: stage.to_owned(),
+            seconds: clock.elapsed().as_secs_f64(),
+        })
+    };
+    let seed = settings.seed;
+
+    let clock = Instant::now();
+    let sets = experiment(&scenario, settings.runs, seed, progress)?;
+    timed("generate + split", clock);
+
+    let clock = Instant::now();
+    let pm2 = identify_pm2(
+        &scenario,
+        path,
+        &sets.training,
+        settings.method,
+        seed,
+        progress,
+    )?;
+    timed("identify PM2", clock);
+
+    let clock = Instant::now();
+    let trained = train_residual(&pm2.model, &sets.training, seed, progress)?;
+    timed("train (+ int8 twin)", clock);
+
+    let clock = Instant::now();
+    let blobs = export_blobs(&trained.residual)?;
+    timed("export", clock);
+
+    let clock = Instant::now();
+    let evaluation = evaluate_on_s2(&pm2.model, &blobs, &sets.validation, progress)?;
+    timed("evaluate + figures", clock);
+
+    let results = ReproduceResults::gather(settings, &pm2, &trained, &blobs, &evaluation, timings);
+    Ok(Reproduction {
+        scenario,
+        sets,
+        pm2,
+        trained,
+        blobs,
+        figures: evaluation.figures,
+        results,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+    use std::sync::Mutex;
+
+    /// Progress that keeps what it is told.
+    #[derive(Default)]
+    struct Log {
+        /// (stage, true at its begin / false at its end, steps).
+        stages: Mutex<Vec<(Stage, bool, u64)>>,
+        /// Every (done, steps) with done > steps.
+        overruns: Mutex<Vec<(u64, u64)>>,
+        /// The largest `done` of the generation.
+        generated: Mutex<u64>,
+    }
+
+    impl Progress for Log {
+        fn begin(&self, stage: Stage, steps: u64) {
+            self.stages.lock().unwrap().push((stage, true, steps));
+        }
+        fn advance(&self, done: u64, steps: u64) {
+            if done > steps {
+                self.overruns.lock().unwrap().push((done, steps));
+            }
+            let stages = self.stages.lock().unwrap();
+            if stages.last().map(|s| s.0) == Some(Stage::Generate) {
+                let mut generated = self.generated.lock().unwrap();
+                *generated = (*generated).max(done);
+            }
+        }
+        fn end(&self, stage: Stage) {
+            self.stages.lock().unwrap().push((stage, false, 0));
+        }
+    }
+
+    fn settings() -> ReproduceSettings {
+        let scenario =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/bouncing_ball.toml");
+        ReproduceSettings {
+            runs: 12,
+            method: Pm2Method::Lsq,
+            seed: 4,
+            ..ReproduceSettings::paper(Example::BouncingBall, scenario)
+        }
+    }
+
+    #[test]
+    fn the_stages_report_in_order_and_repeat_bit_for_bit() {
+        let log = Log::default();
+        let first = reproduce(&settings(), &log).unwrap();
+        let stages = log.stages.into_inner().unwrap();
+        let order = [
+            Stage::Generate,
+            Stage::Identify,
+            Stage::Train,
+            Stage::Int8Twin,
+            Stage::Evaluate,
+        ];
+        let expected: Vec<(Stage, bool)> = order
+            .iter()
+            .flat_map(|&s| [(s, true), (s, false)])
+            .collect();
+        let told: Vec<(Stage, bool)> = stages.iter().map(|&(s, b, _)| (s, b)).collect();
+        assert_eq!(told, expected);
+        assert_eq!(stages[0].2, 12, "12 runs of the ball's one condition");
+        assert_eq!(log.generated.into_inner().unwrap(), 12);
+        assert!(log.overruns.into_inner().unwrap().is_empty());
+
+        let again = reproduce(&settings(), &Silent).unwrap();
+        let (a, b) = (&first.results, &again.results);
+        assert_eq!(
+            (&a.validation, &a.pm2, &a.residual, &a.blobs),
+            (&b.validation, &b.pm2, &b.residual, &b.blobs)
+        );
+        assert_eq!(first.blobs.f32.bytes, again.blobs.f32.bytes);
+        assert_eq!(first.sets, again.sets);
+        // The library times its five stages; writing is the caller's.
+        assert_eq!(a.timings.len(), 5);
+        assert_eq!(
+            a.figures,
+            [
+                "contact_force.svg",
+                "contact_force.png",
+                "force_error.svg",
+                "force_error.png"
+            ]
+        );
+    }
+}

@@ -1,0 +1,166 @@
+//! The results of a reproduction: every table of the report as typed values, the
+//! content of `results.json` (keys documented in the README, "results.json").
+
+use super::{Blobs, Evaluation, Example, Pm2, ReproduceSettings, Trained};
+use crate::evaluate::{ConditionTable, IndicatorErrors};
+use serde::Serialize;
+
+/// Every table of the report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReproduceResults {
+    /// Which example.
+    pub example: Example,
+    /// Seed of the experiment, the split, the GA and the training.
+    pub seed: u64,
+    /// Runs per condition generated.
+    pub runs_per_condition: usize,
+    /// The scenario file, as given.
+    pub scenario: String,
+    /// Overrides applied to it (`key=value`).
+    pub overrides: Vec<String>,
+    /// PM2: the law and its identified parameters.
+    pub pm2: Pm2Summary,
+    /// The paper's table on S2: the S2 means, their standard errors, and the rows of
+    /// PM2, HCM and HCM int8 (indicators and Eq 20 errors).
+    pub validation: ConditionTable,
+    /// The paper's own errors, Tables 5 and 10.
+    pub paper: PaperErrors,
+    /// How the residual network trained.
+    pub residual: ResidualSummary,
+    /// The exported blobs, f32 then int8.
+    pub blobs: Vec<BlobSummary>,
+    /// Wall-clock time per stage, in order.
+    pub timings: Vec<StageTiming>,
+    /// The figure files, SVG and PNG.
+    pub figures: Vec<String>,
+}
+
+/// PM2 as identified.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Pm2Summary {
+    /// Catalogue name of the law (`lankarani_nikravesh`).
+    pub law: String,
+    /// How it was identified (`lsq`, `ga (curve) + LM`, … as the fit record says).
+    pub method: String,
+    /// Its parameters in the catalogue's order and units (SI: k in N/m^n, n –, ce –).
+    pub parameters: Vec<NamedValue>,
+}
+
+/// A named number.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NamedValue {
+    /// Its name.
+    pub name: String,
+    /// Its value (SI).
+    pub value: f64,
+}
+
+/// The paper's errors (–, fractions: 0.0158 = 1.58 %).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PaperErrors {
+    /// PM2's.
+    pub pm2: IndicatorErrors,
+    /// The HCM's.
+    pub hcm: IndicatorErrors,
+}
+
+/// The residual network's training and its int8 twin's fine-tuning.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ResidualSummary {
+    /// Training rows (S1's force samples inside the contact).
+    pub training_samples: usize,
+    /// Epochs run.
+    pub epochs: usize,
+    /// Epoch (1-based) whose weights were kept.
+    pub best_epoch: usize,
+    /// RMS error of the network on its validation rows (N).
+    pub validation_rms: f64,
+    /// RMS of the plainly rounded int8 network against the f32 one (N).
+    pub int8_rounded_rms: f64,
+    /// RMS of the fine-tuned int8 twin against the f32 network (N).
+    pub int8_tuned_rms: f64,
+    /// Fine-tuning epochs of the twin.
+    pub int8_epochs: usize,
+}
+
+/// One exported blob.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BlobSummary {
+    /// Weight storage, `f32` or `int8`.
+    pub weights: String,
+    /// Size of the blob (bytes).
+    pub bytes: usize,
+    /// Worst relative |core − host| over the envelope grid (–).
+    pub round_trip_error: f64,
+}
+
+/// The time one stage took.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StageTiming {
+    /// Stage, e.g. `identify PM2`.
+    pub stage: String,
+    /// Wall-clock time (s).
+    pub seconds: f64,
+}
+
+impl ReproduceResults {
+    /// The results of the stages' values.
+    pub fn gather(
+        settings: &ReproduceSettings,
+        pm2: &Pm2,
+        trained: &Trained,
+        blobs: &Blobs,
+        evaluation: &Evaluation,
+        timings: Vec<StageTiming>,
+    ) -> Self {
+        let found = &pm2.identification;
+        let parameters = found
+            .law
+            .named()
+            .map(|(n, v)| NamedValue {
+                name: n.to_string(),
+                value: v,
+            })
+            .collect();
+        let blobs = [&blobs.f32, &blobs.int8].map(|b| BlobSummary {
+            weights: format!("{:?}", b.quantisation).to_lowercase(),
+            bytes: b.bytes.len(),
+            round_trip_error: b.round_trip_error,
+        });
+        ReproduceResults {
+            example: settings.example,
+            seed: settings.seed,
+            runs_per_condition: settings.runs,
+            scenario: settings.scenario.display().to_string(),
+            overrides: settings.overrides.clone(),
+            pm2: Pm2Summary {
+                law: found.law.name().to_owned(),
+                method: found.fit.method.clone(),
+                parameters,
+            },
+            validation: evaluation.table.clone(),
+            paper: settings.example.paper(),
+            residual: ResidualSummary {
+                training_samples: trained.samples,
+                epochs: trained.report.epochs,
+                best_epoch: trained.report.best_epoch,
+                validation_rms: trained.report.validation_loss.sqrt(),
+                int8_rounded_rms: trained.int8.rounded_rms,
+                int8_tuned_rms: trained.int8.tuned_rms,
+                int8_epochs: trained.int8.epochs,
+            },
+            blobs: blobs.into(),
+            timings,
+            figures: evaluation
+                .figures
+                .iter()
+                .flat_map(|f| [format!("{}.svg", f.stem), format!("{}.png", f.stem)])
+                .collect(),
+        }
+    }
+
+    /// The content of `results.json` (NaN, where a model failed, as `null`).
+    pub fn json(&self) -> Result<String, serde_json::Error> {
+        serde_json::to_string_pretty(self)
+    }
+}
