@@ -11,6 +11,7 @@ pub mod figure;
 pub mod identify;
 pub mod indicators;
 pub mod law_catalogue;
+pub mod numerics;
 pub mod output;
 pub mod pipeline;
 pub mod residual;

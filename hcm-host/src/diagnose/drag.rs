@@ -19,8 +19,8 @@
 
 use super::noise::white_noise;
 use super::ContactSamples;
+use crate::numerics::{Covariance, LinearFit, Reduction};
 use hcm_core::effect::AirDrag;
-use nalgebra::{DMatrix, DVector};
 
 /// Smallest |c / standard error| for air drag to be named.
 pub const T_MIN: f64 = 5.0;
@@ -57,37 +57,8 @@ impl DragFit {
 /// Fits the drag of a body of mass `mass` (kg) from the flight samples; None with
 /// fewer than 10 usable samples or a singular fit.
 pub fn fit_drag(samples: &ContactSamples, mass: f64) -> Option<DragFit> {
-    let flight = |j: usize| !samples.in_contact[j] && samples.depth[j] < 0.0;
-    // Segments of consecutive flight samples of one run, at least three long.
-    let mut segments: Vec<std::ops::Range<usize>> = Vec::new();
-    let mut i = 0;
-    while i < samples.len() {
-        if !flight(i) {
-            i += 1;
-            continue;
-        }
-        let start = i;
-        while i + 1 < samples.len() && flight(i + 1) && samples.run[i + 1] == samples.run[start] {
-            i += 1;
-        }
-        if i + 1 - start >= 3 {
-            segments.push(start..i + 1);
-        }
-        i += 1;
-    }
-    // Rows: (segment, t − t_s, D, δ̇).
-    let mut rows = Vec::new();
-    for (k, segment) in segments.iter().enumerate() {
-        let t_s = samples.time[segment.start];
-        let mut integral = 0.0;
-        for j in segment.clone() {
-            if j > segment.start {
-                let q = |j: usize| samples.rate[j].abs() * samples.rate[j] / mass;
-                integral -= 0.5 * (q(j) + q(j - 1)) * (samples.time[j] - samples.time[j - 1]);
-            }
-            rows.push((k, samples.time[j] - t_s, integral, samples.rate[j]));
-        }
-    }
+    let segments = flight_segments(samples);
+    let rows = flight_rows(samples, &segments, mass);
     if rows.len() < 10
         || rows
             .iter()
@@ -97,30 +68,14 @@ pub fn fit_drag(samples: &ContactSamples, mass: f64) -> Option<DragFit> {
     }
     let p = segments.len() + 2;
     let n = rows.len();
-    let design = |with_drag: bool| {
-        let columns = if with_drag { p } else { p - 1 };
-        DMatrix::from_fn(n, columns, |r, col| {
-            let (k, t, d, _) = rows[r];
-            match col {
-                col if col < segments.len() => f64::from(u8::from(col == k)),
-                col if col == segments.len() => t,
-                _ => d,
-            }
-        })
-    };
-    let y = DVector::from_iterator(n, rows.iter().map(|r| r.3));
-    let fit = |x: &DMatrix<f64>| -> Option<(DVector<f64>, f64, DMatrix<f64>)> {
-        let gram = x.transpose() * x;
-        let inverse = gram.try_inverse()?;
-        let beta = &inverse * (x.transpose() * &y);
-        let rss = (&y - x * &beta).norm_squared();
-        Some((beta, rss, inverse))
-    };
-    let (beta, rss, inverse) = fit(&design(true))?;
-    let (_, gravity_only, _) = fit(&design(false))?;
-    let (coefficient, gravity) = (beta[p - 1], beta[p - 2]);
-    let variance = rss / (n - p).max(1) as f64;
-    let standard_error = (variance * inverse[(p - 1, p - 1)]).max(0.0).sqrt();
+    let (with_drag, gravity_only) = (fit(&rows, p, true)?, fit(&rows, p - 1, false)?);
+    let rss = with_drag.residual_sum_of_squares;
+    let gravity_only = gravity_only.residual_sum_of_squares;
+    let (coefficient, gravity) = (with_drag.coefficients[p - 1], with_drag.coefficients[p - 2]);
+    // σ̂²·(XᵀX)⁻¹ with σ̂² = RSS/(n − p): the rows' residuals are the recorded δ̇'s white
+    // noise (see the module documentation).
+    let covariance = with_drag.covariance?;
+    let standard_error = covariance[p - 1][p - 1].max(0.0).sqrt();
     // The recorded δ̇'s own white noise σ_v, from flight triples on one clock.
     let (mut run, mut time, mut rate) = (Vec::new(), Vec::new(), Vec::new());
     for j in segments.iter().flat_map(|s| s.clone()) {
@@ -153,4 +108,68 @@ pub fn fit_drag(samples: &ContactSamples, mass: f64) -> Option<DragFit> {
         samples: n,
         significant: coefficient > 0.0 && t > T_MIN && share >= 0.02 && matters,
     })
+}
+
+/// Segments of consecutive flight samples of one run, at least three long.
+fn flight_segments(samples: &ContactSamples) -> Vec<std::ops::Range<usize>> {
+    let flight = |j: usize| !samples.in_contact[j] && samples.depth[j] < 0.0;
+    let mut segments = Vec::new();
+    let mut i = 0;
+    while i < samples.len() {
+        if !flight(i) {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i + 1 < samples.len() && flight(i + 1) && samples.run[i + 1] == samples.run[start] {
+            i += 1;
+        }
+        if i + 1 - start >= 3 {
+            segments.push(start..i + 1);
+        }
+        i += 1;
+    }
+    segments
+}
+
+/// The fit's rows: (segment, t − t_s (s), D (m²/(kg·s), so that c·D is in m/s), δ̇
+/// (m/s)), D by the trapezoid rule over the recorded δ̇.
+fn flight_rows(
+    samples: &ContactSamples,
+    segments: &[std::ops::Range<usize>],
+    mass: f64,
+) -> Vec<(usize, f64, f64, f64)> {
+    let mut rows = Vec::new();
+    for (k, segment) in segments.iter().enumerate() {
+        let t_s = samples.time[segment.start];
+        let mut integral = 0.0;
+        for j in segment.clone() {
+            if j > segment.start {
+                let q = |j: usize| samples.rate[j].abs() * samples.rate[j] / mass;
+                integral -= 0.5 * (q(j) + q(j - 1)) * (samples.time[j] - samples.time[j - 1]);
+            }
+            rows.push((k, samples.time[j] - t_s, integral, samples.rate[j]));
+        }
+    }
+    rows
+}
+
+/// The least-squares fit of δ̇ on the segments' start rates, t − t_s and, `with_drag`,
+/// D (`columns` in all; with D also its covariance σ̂²·(XᵀX)⁻¹); `None` when the design
+/// is rank-deficient or, with D, has no degree of freedom left.
+fn fit(rows: &[(usize, f64, f64, f64)], columns: usize, with_drag: bool) -> Option<LinearFit> {
+    let segments = if with_drag { columns - 2 } else { columns - 1 };
+    let reduction = Reduction::from_rows(rows.len(), columns, 1, |r, regressors, target| {
+        let (k, t, d, rate) = rows[r];
+        regressors[k] = 1.0;
+        regressors[segments] = t;
+        if with_drag {
+            regressors[segments + 1] = d;
+        }
+        target[0] = rate;
+    })
+    .ok()?;
+    let covariance = with_drag.then_some(Covariance::ResidualVariance);
+    let fit = reduction.solve(0, covariance).ok()?;
+    (fit.rank == columns && fit.covariance.is_some() == with_drag).then_some(fit)
 }

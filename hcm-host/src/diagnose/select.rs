@@ -19,9 +19,8 @@
 //! A backward pass then removes any chosen effect that later ones made redundant
 //! (bidirectional stepwise selection).
 //!
-//! All sums are accumulated once per fold as Gram matrices, so every candidate subset
-//! is a small linear solve (faer is not needed at this size: a Cholesky of ≤ 25
-//! columns).
+//! The samples are reduced once per fold to a QR triangle, so every candidate subset
+//! is a small linear least-squares solve on the stacked triangles.
 //!
 //! **Re-fit.** The chosen physical effects become core terms of an
 //! [`ExtendedLaw`]; their strengths, the hysteresis exponent and the base parameters
@@ -36,9 +35,9 @@ use super::sensor::Sensor;
 use super::ContactSamples;
 use crate::identify::bounds::Bounds;
 use crate::identify::levenberg_marquardt::{levenberg_marquardt, LmSettings};
+use crate::numerics::{linear_least_squares, Reduction};
 use hcm_core::effect::ExtendedLaw;
 use hcm_core::law::AnyNormalLaw;
-use nalgebra::{DMatrix, DVector};
 
 /// Smallest share of the structured residual an effect must explain to be named.
 pub const MIN_SHARE: f64 = 0.02;
@@ -119,72 +118,88 @@ fn sensitivities(
         .collect()
 }
 
-/// Per-fold Gram matrices of the (column-scaled) design and the residual.
-struct Grams {
-    gram: Vec<DMatrix<f64>>,
-    cross: Vec<DVector<f64>>,
-    yy: Vec<f64>,
+/// Per-fold QR reductions of the (column-scaled) design and the residual (see
+/// [`Reduction`]): fitting any subset of the columns on any set of folds is then a
+/// least-squares problem on the stacked triangles — at most folds × columns rows —
+/// instead of a pass over the samples. This is the speed per-fold Gram matrices gave,
+/// through the same QR routine as every other fit, without squaring the condition
+/// number and without the cancellation of yᵀy − 2bᵀXᵀy + bᵀXᵀXb in the fold's RSS
+/// (Miller 2002, *Subset Selection in Regression*, ch. 2, selects on the QR triangle for
+/// the same reasons).
+struct FoldReductions {
+    /// One per fold; empty (every fit fails) if a column or the residual is not finite.
+    reductions: Vec<Reduction>,
+    folds: usize,
 }
 
-impl Grams {
-    fn new(columns: &[Vec<f64>], y: &[f64], fold: &[usize], folds: usize) -> Grams {
-        let k = columns.len();
-        let mut g = Grams {
-            gram: vec![DMatrix::zeros(k, k); folds],
-            cross: vec![DVector::zeros(k); folds],
-            yy: vec![0.0; folds],
-        };
-        let mut row = DVector::zeros(k);
-        for i in 0..y.len() {
-            for (j, c) in columns.iter().enumerate() {
-                row[j] = c[i];
-            }
-            let f = fold[i];
-            g.gram[f].ger(1.0, &row, &row, 1.0);
-            g.cross[f].axpy(y[i], &row, 1.0);
-            g.yy[f] += y[i] * y[i];
+impl FoldReductions {
+    fn new(columns: &[Vec<f64>], y: &[f64], fold: &[usize], folds: usize) -> FoldReductions {
+        let mut members = vec![Vec::new(); folds];
+        for (i, &f) in fold.iter().enumerate() {
+            members[f].push(i);
         }
-        g
+        let reductions = members
+            .iter()
+            .map(|rows| {
+                Reduction::from_rows(rows.len(), columns.len(), 1, |r, row, target| {
+                    for (value, c) in row.iter_mut().zip(columns) {
+                        *value = c[rows[r]];
+                    }
+                    target[0] = y[rows[r]];
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()
+            .unwrap_or_default();
+        FoldReductions { reductions, folds }
     }
 
-    /// Coefficients of subset `s` fitted on every fold except `skip` (None: all).
-    fn fit(&self, s: &[usize], skip: Option<usize>) -> Option<DVector<f64>> {
-        let n = s.len();
-        let (mut a, mut b) = (DMatrix::<f64>::zeros(n, n), DVector::<f64>::zeros(n));
-        for f in (0..self.yy.len()).filter(|&f| Some(f) != skip) {
-            for (p, &i) in s.iter().enumerate() {
-                b[p] += self.cross[f][i];
-                for (q, &j) in s.iter().enumerate() {
-                    a[(p, q)] += self.gram[f][(i, j)];
-                }
+    /// Coefficients of subset `s` fitted on every fold except `skip` (None: all): the
+    /// least-squares fit of the stacked triangles' columns `s`, the dependent columns of
+    /// a rank-deficient subset at 0.
+    fn fit(&self, s: &[usize], skip: Option<usize>) -> Option<Vec<f64>> {
+        let rows: Vec<(&Reduction, usize)> = self
+            .reductions
+            .iter()
+            .enumerate()
+            .filter(|&(f, _)| Some(f) != skip)
+            .flat_map(|(_, r)| (0..r.triangle_rows()).map(move |i| (r, i)))
+            .collect();
+        let fit = linear_least_squares(rows.len(), s.len(), |k, row| {
+            let (reduction, i) = rows[k];
+            for (value, &j) in row.iter_mut().zip(s) {
+                *value = reduction.triangle(i, j);
             }
-        }
-        let ridge = 1e-12 * a.diagonal().max().max(f64::MIN_POSITIVE);
-        for p in 0..n {
-            a[(p, p)] += ridge;
-        }
-        a.cholesky().map(|c| c.solve(&b))
+            reduction.projected_target(i, 0)
+        });
+        fit.ok().map(|fit| fit.coefficients)
     }
 
-    /// RSS of coefficients `b` of subset `s` on fold `f`.
-    fn rss_on(&self, s: &[usize], b: &DVector<f64>, f: usize) -> f64 {
-        let mut rss = self.yy[f];
-        for (p, &i) in s.iter().enumerate() {
-            rss -= 2.0 * b[p] * self.cross[f][i];
-            for (q, &j) in s.iter().enumerate() {
-                rss += b[p] * b[q] * self.gram[f][(i, j)];
-            }
-        }
-        rss.max(0.0)
+    /// RSS of coefficients `b` of subset `s` on fold `f`:
+    /// ‖R_f[:, s]·b − (Qᵀy)_f‖² plus what no column of the fold fits.
+    fn rss_on(&self, s: &[usize], b: &[f64], f: usize) -> f64 {
+        let reduction = &self.reductions[f];
+        let fitted: f64 = (0..reduction.triangle_rows())
+            .map(|i| {
+                let prediction: f64 = s
+                    .iter()
+                    .zip(b)
+                    .map(|(&j, b)| reduction.triangle(i, j) * b)
+                    .sum();
+                (prediction - reduction.projected_target(i, 0)).powi(2)
+            })
+            .sum();
+        fitted + reduction.orthogonal_sum_of_squares(0)
     }
 
     /// (training RSS, cross-validated RSS) of subset `s`.
     fn score(&self, s: &[usize]) -> (f64, f64) {
-        let folds = self.yy.len();
+        if self.reductions.len() != self.folds {
+            return (f64::INFINITY, f64::INFINITY);
+        }
         let train = self.fit(s, None).map_or(f64::INFINITY, |b| {
-            (0..folds).map(|f| self.rss_on(s, &b, f)).sum()
+            (0..self.folds).map(|f| self.rss_on(s, &b, f)).sum()
         });
-        let cv = (0..folds)
+        let cv = (0..self.folds)
             .map(|f| {
                 self.fit(s, Some(f))
                     .map_or(f64::INFINITY, |b| self.rss_on(s, &b, f))
@@ -279,15 +294,15 @@ pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> 
             c.iter_mut().for_each(|v| *v /= rms);
         }
     }
-    let grams = Grams::new(&columns, &y, &fold, folds);
+    let reduced = FoldReductions::new(&columns, &y, &fold, folds);
     let mut subset = always.clone();
-    let (base_rss, mut cv) = grams.score(&subset);
+    let (base_rss, mut cv) = reduced.score(&subset);
     let mut rss = base_rss;
     // The structured residual: what the noise does not explain, and at least what all
     // candidates together explain (σ from second differences can sit a little above
     // the true noise, which would leave nothing "structured" to share).
     let all: Vec<usize> = (0..columns.len()).collect();
-    let explainable = base_rss - grams.score(&all).0;
+    let explainable = base_rss - reduced.score(&all).0;
     let structured = (base_rss - n as f64 * sigma * sigma)
         .max(if explainable.is_finite() {
             explainable
@@ -305,7 +320,7 @@ pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> 
             .map(|&(c, shape, column)| {
                 let mut s = subset.clone();
                 s.push(column);
-                let (train, cross) = grams.score(&s);
+                let (train, cross) = reduced.score(&s);
                 (c, shape, column, train, cross)
             })
             .min_by(|a, b| a.4.total_cmp(&b.4));
@@ -338,7 +353,7 @@ pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> 
             .map(|k| {
                 let mut without = subset.clone();
                 without.remove(always.len() + k);
-                let (train, cross) = grams.score(&without);
+                let (train, cross) = reduced.score(&without);
                 (k, without, train, cross)
             })
             .min_by(|a, b| a.2.total_cmp(&b.2));
@@ -435,146 +450,223 @@ pub fn refit(
         // The free parameters are the law's own (`Bounds::for_law`): NaN never shows.
         .map(|name| base.base.get(name).unwrap_or(f64::NAN))
         .collect();
-    // Unknowns: base parameters, then per cause its strength (and p for hysteresis).
-    let mut initial = base_values.clone();
-    let mut scales: Vec<f64> = base_values.iter().map(|v| v.abs().max(1e-12)).collect();
-    // Base parameters stay in their physical domain (identify's search box, widened to
-    // include the start); effect strengths in theirs.
-    let domain = Bounds::for_law(base.base.name(), None).ok();
-    let mut bounds: Vec<(f64, f64)> = free
-        .iter()
-        .zip(&base_values)
-        .map(|(name, &v)| {
-            let (lo, hi) = domain
-                .as_ref()
-                .map_or((f64::NEG_INFINITY, f64::INFINITY), |d| d.range(name));
-            (lo.min(v), hi.max(v))
-        })
-        .collect();
-    let mut slots = Vec::new();
-    for &(candidate, shape) in chosen {
-        slots.push(initial.len());
-        let typical = match candidate {
-            Candidate::ViscousDamping => 10.0,
-            Candidate::HysteresisDamping => 1e4,
-            Candidate::StiffnessExponent => 0.01,
-            Candidate::Adhesion => 10.0,
-            Candidate::Plasticity => 0.01,
-            Candidate::ForceOffset => 10.0,
-            Candidate::SensorDelay => 1e-6,
+    let unknowns = Unknowns::new(base, &free, &base_values, chosen);
+    let model = RefitModel {
+        samples,
+        base,
+        free,
+        chosen,
+        slots: unknowns.slots.clone(),
+        delta_ref,
+    };
+    let (p, covariance) = model.fit(&unknowns);
+    let rss = model.rss(&p);
+    let fitted = |name: &str, k: usize| fitted(&p, covariance.as_deref(), name, k);
+    let mut causes = model.causes(&p, rss, &fitted);
+    let left = (rss - samples.len() as f64 * sigma * sigma).max(0.0);
+    let total = causes.iter().map(|c| c.share).sum::<f64>() + left;
+    if total > 0.0 {
+        causes.iter_mut().for_each(|c| c.share /= total);
+    }
+    let (law, offset, delay) = model.build(&p);
+    Refit {
+        law,
+        causes,
+        base_parameters: model
+            .free
+            .iter()
+            .enumerate()
+            .map(|(k, n)| fitted(n, k))
+            .collect(),
+        sensor: Sensor { offset, delay },
+        rss,
+        left_share: if total > 0.0 { left / total } else { 0.0 },
+    }
+}
+
+/// The re-fit's unknowns — the base parameters, then per cause its strength (and p
+/// for hysteresis) — with their start, scale and bounds.
+struct Unknowns {
+    initial: Vec<f64>,
+    scales: Vec<f64>,
+    bounds: Vec<(f64, f64)>,
+    /// Index of each chosen cause's strength (its shape, if any, follows it).
+    slots: Vec<usize>,
+}
+
+impl Unknowns {
+    /// Base parameters start at `base_values` and stay in their physical domain
+    /// (identify's search box, widened to include the start); effect strengths start at
+    /// 0 (the base model) inside theirs.
+    fn new(
+        base: &ExtendedLaw<f64>,
+        free: &[String],
+        base_values: &[f64],
+        chosen: &[(Candidate, f64)],
+    ) -> Unknowns {
+        let domain = Bounds::for_law(base.base.name(), None).ok();
+        let bounds = free
+            .iter()
+            .zip(base_values)
+            .map(|(name, &v)| {
+                let (lo, hi) = domain
+                    .as_ref()
+                    .map_or((f64::NEG_INFINITY, f64::INFINITY), |d| d.range(name));
+                (lo.min(v), hi.max(v))
+            })
+            .collect();
+        let mut unknowns = Unknowns {
+            initial: base_values.to_vec(),
+            scales: base_values.iter().map(|v| v.abs().max(1e-12)).collect(),
+            bounds,
+            slots: Vec::new(),
         };
-        initial.push(0.0);
-        scales.push(typical);
-        bounds.push(match candidate {
-            Candidate::ViscousDamping | Candidate::HysteresisDamping | Candidate::Adhesion => {
-                (0.0, f64::INFINITY)
-            }
-            Candidate::Plasticity => (0.0, 0.9),
-            _ => (f64::NEG_INFINITY, f64::INFINITY),
-        });
+        for &(candidate, shape) in chosen {
+            unknowns.push_cause(candidate, shape);
+        }
+        unknowns
+    }
+
+    /// Appends a cause's strength (at 0, its typical magnitude as scale) and its shape.
+    fn push_cause(&mut self, candidate: Candidate, shape: f64) {
+        self.slots.push(self.initial.len());
+        let (typical, bounds) = match candidate {
+            Candidate::ViscousDamping => (10.0, (0.0, f64::INFINITY)),
+            Candidate::HysteresisDamping => (1e4, (0.0, f64::INFINITY)),
+            Candidate::StiffnessExponent => (0.01, (f64::NEG_INFINITY, f64::INFINITY)),
+            Candidate::Adhesion => (10.0, (0.0, f64::INFINITY)),
+            Candidate::Plasticity => (0.01, (0.0, 0.9)),
+            Candidate::ForceOffset => (10.0, (f64::NEG_INFINITY, f64::INFINITY)),
+            Candidate::SensorDelay => (1e-6, (f64::NEG_INFINITY, f64::INFINITY)),
+        };
+        self.initial.push(0.0);
+        self.scales.push(typical);
+        self.bounds.push(bounds);
         if !shape.is_nan() {
-            initial.push(shape);
-            scales.push(1.0);
-            bounds.push((0.0, 4.0));
+            self.initial.push(shape);
+            self.scales.push(1.0);
+            self.bounds.push((0.0, 4.0));
         }
     }
-    let build = |p: &[f64]| -> (ExtendedLaw<f64>, f64, f64) {
+}
+
+/// The extended model as a function of the re-fit's unknowns.
+struct RefitModel<'a> {
+    samples: &'a ContactSamples,
+    base: &'a ExtendedLaw<f64>,
+    /// The base law's free parameters (the first unknowns).
+    free: Vec<String>,
+    chosen: &'a [(Candidate, f64)],
+    /// Index of each chosen cause's strength among the unknowns.
+    slots: Vec<usize>,
+    /// δ_ref of the stiffness-exponent effect (m).
+    delta_ref: f64,
+}
+
+impl RefitModel<'_> {
+    /// The extended law and the sensor's offset (N) and delay (s) at unknowns `p`.
+    fn build(&self, p: &[f64]) -> (ExtendedLaw<f64>, f64, f64) {
+        let (base, free) = (self.base, &self.free);
         let mut law = base.clone();
         law.base = base
             .base
             .map_named(|n, v| free.iter().position(|f| f == n).map_or(v, |k| p[k]));
         let (mut offset, mut delay) = (0.0, 0.0);
-        for (&(candidate, shape), &slot) in chosen.iter().zip(&slots) {
+        for (&(candidate, shape), &slot) in self.chosen.iter().zip(&self.slots) {
             let shape = if shape.is_nan() { shape } else { p[slot + 1] };
             match candidate {
                 Candidate::ForceOffset => offset = p[slot],
                 Candidate::SensorDelay => delay = p[slot],
                 _ => {
-                    if let Some(e) = candidate.effect(p[slot], shape, delta_ref) {
+                    if let Some(e) = candidate.effect(p[slot], shape, self.delta_ref) {
                         let _ = law.effects.push(e);
                     }
                 }
             }
         }
         (law, offset, delay)
-    };
-    let predict = |p: &[f64]| -> Vec<f64> {
-        let (law, offset, delay) = build(p);
-        Sensor { offset, delay }.reads(samples, &law)
-    };
-    let residuals = |p: &[f64], out: &mut [f64]| {
-        for (o, (pred, m)) in out.iter_mut().zip(predict(p).iter().zip(&samples.measured)) {
-            *o = pred - m;
-        }
-    };
-    let settings = LmSettings {
-        max_iterations: 60,
-        ..LmSettings::default()
-    };
-    let result = levenberg_marquardt(
-        residuals,
-        samples.len(),
-        &initial,
-        &scales,
-        Some(&bounds),
-        &settings,
-    );
-    let (p, covariance) = match result {
-        Ok(r) => (r.parameters, r.covariance),
-        Err(_) => (initial.clone(), None),
-    };
-    let rss_of = |p: &[f64]| -> f64 {
-        predict(p)
+    }
+
+    /// The force the sensor reads at unknowns `p` (N), per sample.
+    fn predict(&self, p: &[f64]) -> Vec<f64> {
+        let (law, offset, delay) = self.build(p);
+        Sensor { offset, delay }.reads(self.samples, &law)
+    }
+
+    /// Σ (predicted − measured)² at unknowns `p` (N²).
+    fn rss(&self, p: &[f64]) -> f64 {
+        self.predict(p)
             .iter()
-            .zip(&samples.measured)
+            .zip(&self.samples.measured)
             .map(|(a, b)| (a - b).powi(2))
             .sum()
-    };
-    let rss = rss_of(&p);
-    let fitted = |name: &str, k: usize| {
-        let half = covariance
-            .as_ref()
-            .map_or(f64::NAN, |c| 1.96 * c[k][k].max(0.0).sqrt());
-        Fitted {
-            name: name.to_owned(),
-            value: p[k],
-            ci: (p[k] - half, p[k] + half),
+    }
+
+    /// Levenberg–Marquardt from the base model: the unknowns and their covariance (the
+    /// start and `None` if it fails).
+    fn fit(&self, unknowns: &Unknowns) -> (Vec<f64>, Option<Vec<Vec<f64>>>) {
+        let residuals = |p: &[f64], out: &mut [f64]| {
+            let predicted = self.predict(p);
+            for (o, (pred, m)) in out
+                .iter_mut()
+                .zip(predicted.iter().zip(&self.samples.measured))
+            {
+                *o = pred - m;
+            }
+        };
+        let settings = LmSettings {
+            max_iterations: 60,
+            ..LmSettings::default()
+        };
+        let result = levenberg_marquardt(
+            residuals,
+            self.samples.len(),
+            &unknowns.initial,
+            &unknowns.scales,
+            Some(&unknowns.bounds),
+            &settings,
+        );
+        match result {
+            Ok(r) => (r.parameters, r.covariance),
+            Err(_) => (unknowns.initial.clone(), None),
         }
-    };
-    let mut causes = Vec::new();
-    let (_, offset, delay) = build(&p);
-    for (&(candidate, shape), &slot) in chosen.iter().zip(&slots) {
-        let mut parameters = vec![fitted(candidate.strength().0, slot)];
-        if !shape.is_nan() {
-            parameters.push(fitted("exponent", slot + 1));
-        }
-        if candidate == Candidate::StiffnessExponent {
-            parameters.push(Fitted {
-                name: "reference_depth".into(),
-                value: delta_ref,
-                ci: (delta_ref, delta_ref),
+    }
+
+    /// Each chosen cause with its fitted parameters and its RSS increase when its
+    /// strength alone is set to 0 (the share before normalisation).
+    fn causes(&self, p: &[f64], rss: f64, fitted: &impl Fn(&str, usize) -> Fitted) -> Vec<Cause> {
+        let mut causes = Vec::new();
+        for (&(candidate, shape), &slot) in self.chosen.iter().zip(&self.slots) {
+            let mut parameters = vec![fitted(candidate.strength().0, slot)];
+            if !shape.is_nan() {
+                parameters.push(fitted("exponent", slot + 1));
+            }
+            if candidate == Candidate::StiffnessExponent {
+                parameters.push(Fitted {
+                    name: "reference_depth".into(),
+                    value: self.delta_ref,
+                    ci: (self.delta_ref, self.delta_ref),
+                });
+            }
+            let mut without = p.to_vec();
+            without[slot] = 0.0;
+            causes.push(Cause {
+                effect: candidate.name(),
+                kind: candidate.kind(),
+                parameters,
+                share: (self.rss(&without) - rss).max(0.0),
             });
         }
-        let mut without = p.clone();
-        without[slot] = 0.0;
-        causes.push(Cause {
-            effect: candidate.name(),
-            kind: candidate.kind(),
-            parameters,
-            share: (rss_of(&without) - rss).max(0.0),
-        });
+        causes
     }
-    let left = (rss - samples.len() as f64 * sigma * sigma).max(0.0);
-    let total = causes.iter().map(|c| c.share).sum::<f64>() + left;
-    if total > 0.0 {
-        causes.iter_mut().for_each(|c| c.share /= total);
-    }
-    Refit {
-        law: build(&p).0,
-        causes,
-        base_parameters: free.iter().enumerate().map(|(k, n)| fitted(n, k)).collect(),
-        sensor: Sensor { offset, delay },
-        rss,
-        left_share: if total > 0.0 { left / total } else { 0.0 },
+}
+
+/// Unknown k of `p` named `name` with its 95 % interval from `covariance` (NaN without).
+fn fitted(p: &[f64], covariance: Option<&[Vec<f64>]>, name: &str, k: usize) -> Fitted {
+    let half = covariance.map_or(f64::NAN, |c| 1.96 * c[k][k].max(0.0).sqrt());
+    Fitted {
+        name: name.to_owned(),
+        value: p[k],
+        ci: (p[k] - half, p[k] + half),
     }
 }

@@ -1,24 +1,19 @@
-//! Linear least squares and the bounded outer searches of separable least squares.
+//! The bounded outer searches of separable least squares, and the errors of the
+//! least-squares solvers.
 //!
 //! Separable least squares (variable projection, Golub & Pereyra 1973, *The
 //! differentiation of pseudo-inverses and nonlinear least squares problems whose
 //! variables separate*, SIAM J. Numer. Anal. 10(2)) splits a contact law's parameters
 //! into nonlinear ones (an exponent n) and linear ones (k, k·(1−ce²), …): for a fixed
-//! n the force is linear in the others, so [`linear_least_squares`] solves them
-//! exactly and leaves a residual that depends on n alone. [`minimize_scalar`] (one
-//! nonlinear parameter) or [`minimize_box2`] (two) then search that reduced residual
-//! over a bounded interval or box.
+//! n the force is linear in the others, so
+//! [`crate::numerics::linear_least_squares()`] solves them exactly and leaves a residual
+//! that depends on n alone. [`minimize_scalar`] (one nonlinear parameter) or
+//! [`minimize_box2`] (two) then search that reduced residual over a bounded interval
+//! or box.
 //!
 //! Nothing here is specific to contact laws and nothing prints.
 
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::householder;
-use faer::linalg::solvers::ColPivQr;
-use faer::{Conj, Mat, Par};
-
-/// A diagonal entry of a QR factor `R` at or below this fraction of the largest one
-/// marks its column as numerically dependent on the columns before it.
-pub(crate) const RANK_TOLERANCE: f64 = 1e-12;
+use crate::numerics::LinearLeastSquaresError;
 
 /// √ε of `f64`: the relative precision to which the minimiser of a smooth function
 /// can be located from its values (Brent 1973, ch. 5).
@@ -37,23 +32,10 @@ const MAX_SWEEPS: usize = 200;
 /// Points of the local grid of each coordinate search in [`minimize_box2`].
 const LOCAL_GRID: usize = 5;
 
-/// The solution of a linear least-squares problem.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LinearFit {
-    /// The minimising x, one per column, in the columns' units. A coefficient of a
-    /// column found dependent on the others (see [`LinearFit::rank`]) is exactly 0.
-    pub coefficients: Vec<f64>,
-    /// ‖A·x − b‖² at the solution (the targets' unit squared).
-    pub residual_sum_of_squares: f64,
-    /// Numerical rank of A; less than the number of columns when some columns are
-    /// (nearly) zero or (nearly) linear combinations of others.
-    pub rank: usize,
-}
-
 /// Why a least-squares problem could not be solved.
 #[derive(Debug, thiserror::Error)]
 pub enum LeastSquaresError {
-    /// The problem has no rows (no data, or no residuals).
+    /// The problem has no rows (no residuals).
     #[error("the least-squares problem has no rows")]
     NoRows,
     /// The problem has no unknowns.
@@ -62,9 +44,9 @@ pub enum LeastSquaresError {
     /// Fewer rows (equations, residuals) than unknowns.
     #[error("{rows} rows cannot determine {unknowns} unknowns; at least as many rows as unknowns are needed")]
     TooFewRows { rows: usize, unknowns: usize },
-    /// A regressor or target of a row is NaN or infinite.
-    #[error("row {row} has a non-finite regressor or target")]
-    NonFiniteEntry { row: usize },
+    /// A linear least-squares solve failed.
+    #[error(transparent)]
+    Linear(#[from] LinearLeastSquaresError),
     /// A per-parameter slice has the wrong length.
     #[error("{what} has {found} entries but there are {expected} parameters")]
     LengthMismatch {
@@ -99,137 +81,6 @@ pub enum LeastSquaresError {
     /// parameter is finite.
     #[error("the residuals' derivative with respect to parameter {parameter} is not finite on either side of {value}")]
     NonFiniteJacobian { parameter: usize, value: f64 },
-}
-
-/// Solves min ‖A·x − b‖² for a tall `rows × columns` matrix given row by row (a closure
-/// that fills one row's `columns` regressors and returns its target), by Householder QR
-/// (faer, with column pivoting so that the rank decision is reliable).
-///
-/// Columns are scaled to unit norm before the QR and the scaling undone after
-/// (regressors here differ by 10 orders of magnitude). Rank deficiency (a column ≈ 0 or
-/// ≈ collinear, judged by the R diagonal relative to its largest entry, threshold 1e-12)
-/// is reported via `rank < columns` and the affected coefficients set to 0 rather than
-/// returning huge values (the "basic" solution of Golub & Van Loan, *Matrix
-/// Computations*, §5.5). The residual sum of squares is read from the trailing part of
-/// Qᵀb, so it does not suffer the cancellation of ‖b‖² − ‖Ax‖².
-///
-/// The closure is called once per row, in order, with the regressor slice zeroed. It
-/// holds `rows × columns` values in memory (8 MB per million rows and column), twice
-/// while factorising.
-pub fn linear_least_squares(
-    rows: usize,
-    columns: usize,
-    row: impl Fn(usize, &mut [f64]) -> f64,
-) -> Result<LinearFit, LeastSquaresError> {
-    if columns == 0 {
-        return Err(LeastSquaresError::NoUnknowns);
-    }
-    if rows == 0 {
-        return Err(LeastSquaresError::NoRows);
-    }
-    if rows < columns {
-        return Err(LeastSquaresError::TooFewRows {
-            rows,
-            unknowns: columns,
-        });
-    }
-
-    let mut a = Mat::<f64>::zeros(rows, columns);
-    let mut b = Mat::<f64>::zeros(rows, 1);
-    let mut regressors = vec![0.0; columns];
-    for i in 0..rows {
-        regressors.fill(0.0);
-        let target = row(i, &mut regressors);
-        if !target.is_finite() || regressors.iter().any(|v| !v.is_finite()) {
-            return Err(LeastSquaresError::NonFiniteEntry { row: i });
-        }
-        for (j, &value) in regressors.iter().enumerate() {
-            a[(i, j)] = value;
-        }
-        b[(i, 0)] = target;
-    }
-
-    // Equilibrate: unit-norm columns, so that the QR's pivoting and the rank threshold
-    // compare directions, not units.
-    let norms: Vec<f64> = (0..columns)
-        .map(|j| {
-            let norm = euclidean_norm(a.col_as_slice(j));
-            if norm > 0.0 {
-                a.col_as_slice_mut(j).iter_mut().for_each(|v| *v /= norm);
-            }
-            norm
-        })
-        .collect();
-
-    let qr = a.col_piv_qr();
-    drop(a);
-    apply_q_transpose(&qr, &mut b);
-    let r = qr.thin_R();
-    let rank = numerical_rank(&qr);
-
-    // Back substitution on the leading rank × rank block; the dependent columns get 0.
-    let mut solution = vec![0.0; columns];
-    for k in (0..rank).rev() {
-        let mut sum = b[(k, 0)];
-        for (j, &x) in solution.iter().enumerate().take(rank).skip(k + 1) {
-            sum -= r[(k, j)] * x;
-        }
-        solution[k] = sum / r[(k, k)];
-    }
-    let residual_sum_of_squares = (rank..rows).map(|i| b[(i, 0)] * b[(i, 0)]).sum();
-
-    let (forward, _) = qr.P().arrays();
-    let mut coefficients = vec![0.0; columns];
-    for (k, &y) in solution.iter().enumerate().take(rank) {
-        let column = forward[k];
-        coefficients[column] = y / norms[column];
-    }
-    Ok(LinearFit {
-        coefficients,
-        residual_sum_of_squares,
-        rank,
-    })
-}
-
-/// Overwrites `rhs` (as many rows as the factorised matrix) by Qᵀ·rhs.
-pub(crate) fn apply_q_transpose(qr: &ColPivQr<f64>, rhs: &mut Mat<f64>) {
-    let (rows, block, columns) = (rhs.nrows(), qr.Q_coeff().nrows(), rhs.ncols());
-    let mut memory = MemBuffer::new(
-        householder::apply_block_householder_sequence_transpose_on_the_left_in_place_scratch::<f64>(
-            rows, block, columns,
-        ),
-    );
-    householder::apply_block_householder_sequence_transpose_on_the_left_in_place_with_conj(
-        qr.Q_basis(),
-        qr.Q_coeff(),
-        Conj::No,
-        rhs.as_mut(),
-        Par::Seq,
-        MemStack::new(&mut memory),
-    );
-}
-
-/// Number of leading diagonal entries of a column-pivoted R above [`RANK_TOLERANCE`]
-/// times the largest one (pivoting orders them by decreasing magnitude).
-pub(crate) fn numerical_rank(qr: &ColPivQr<f64>) -> usize {
-    let r = qr.thin_R();
-    let size = r.nrows().min(r.ncols());
-    let largest = (0..size).map(|k| r[(k, k)].abs()).fold(0.0, f64::max);
-    if largest.is_nan() || largest == 0.0 {
-        return 0;
-    }
-    (0..size)
-        .position(|k| r[(k, k)].is_nan() || r[(k, k)].abs() <= RANK_TOLERANCE * largest)
-        .unwrap_or(size)
-}
-
-/// ‖x‖₂ without overflow or underflow for entries far from 1.
-pub(crate) fn euclidean_norm(x: &[f64]) -> f64 {
-    let largest = x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    if largest == 0.0 || !largest.is_finite() {
-        return largest;
-    }
-    largest * x.iter().map(|v| (v / largest).powi(2)).sum::<f64>().sqrt()
 }
 
 /// Minimises a scalar function on [lower, upper]: a grid of `grid` points (at least 3),
@@ -539,6 +390,7 @@ fn brent<F: FnMut(f64) -> f64>(tracked: &mut Tracked<F>, mut a: f64, mut b: f64,
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numerics::linear_least_squares;
 
     fn relative(a: f64, b: f64) -> f64 {
         ((a - b) / b).abs()
@@ -547,99 +399,6 @@ mod tests {
     /// A deterministic well-spread sequence in [0, 1) (golden-ratio additive recurrence).
     fn spread(i: usize) -> f64 {
         (i as f64 * 0.618_033_988_749_894_9).fract()
-    }
-
-    #[test]
-    fn recovers_exact_coefficients_across_ten_orders_of_magnitude() {
-        let x = [2.5e9, -3.0e-4, 7.0];
-        let regressors = |i: usize, out: &mut [f64]| {
-            let t = i as f64 / 50.0;
-            out[0] = 1e-8 * (1.0 + t);
-            out[1] = 1e3 * (t * t - 0.3);
-            out[2] = (3.0 * t).sin();
-        };
-        let fit = linear_least_squares(200, 3, |i, out| {
-            regressors(i, out);
-            out.iter().zip(x).map(|(a, x)| a * x).sum()
-        })
-        .unwrap();
-        assert_eq!(fit.rank, 3);
-        for (found, expected) in fit.coefficients.iter().zip(x) {
-            assert!(
-                relative(*found, expected) < 1e-10,
-                "{found} vs {expected} ({:e})",
-                relative(*found, expected)
-            );
-        }
-        assert!(fit.residual_sum_of_squares < 1e-20, "{fit:?}");
-    }
-
-    #[test]
-    fn matches_the_normal_equations_on_noisy_data() {
-        // Straight line y = c0 + c1·t through five noisy points, solved by hand:
-        // Σ1 = 5, Σt = 10, Σt² = 30, Σy = 10.5, Σty = 30.8;
-        // c1 = (5·30.8 − 10·10.5)/(5·30 − 10²) = 49/50 = 0.98,
-        // c0 = (10.5 − 0.98·10)/5 = 0.14; residuals −0.04, 0.14, −0.18, 0.10, −0.02.
-        let data = [
-            (0.0, 0.1),
-            (1.0, 1.26),
-            (2.0, 1.92),
-            (3.0, 3.18),
-            (4.0, 4.04),
-        ];
-        let fit = linear_least_squares(data.len(), 2, |i, out| {
-            out[0] = 1.0;
-            out[1] = data[i].0;
-            data[i].1
-        })
-        .unwrap();
-        assert_eq!(fit.rank, 2);
-        assert!((fit.coefficients[0] - 0.14).abs() < 1e-13, "{fit:?}");
-        assert!((fit.coefficients[1] - 0.98).abs() < 1e-13, "{fit:?}");
-        let rss = [0.04_f64, 0.14, 0.18, 0.10, 0.02]
-            .iter()
-            .map(|r| r * r)
-            .sum::<f64>();
-        assert!((fit.residual_sum_of_squares - rss).abs() < 1e-13, "{fit:?}");
-    }
-
-    #[test]
-    fn identical_columns_are_reported_rank_deficient() {
-        // y = 3·t + 2, with t given twice (second copy in other units) beside a constant.
-        let fit = linear_least_squares(20, 3, |i, out| {
-            let t = i as f64;
-            out[0] = t;
-            out[1] = 1.0;
-            out[2] = 1e6 * t;
-            3.0 * t + 2.0
-        })
-        .unwrap();
-        assert_eq!(fit.rank, 2, "{fit:?}");
-        assert!(fit.coefficients.iter().all(|c| c.is_finite()));
-        // The two copies share the slope; one of them is 0.
-        let slope = fit.coefficients[0] + 1e6 * fit.coefficients[2];
-        assert!((slope - 3.0).abs() < 1e-10, "{fit:?}");
-        assert!(fit.coefficients[0] == 0.0 || fit.coefficients[2] == 0.0);
-        assert!((fit.coefficients[1] - 2.0).abs() < 1e-10, "{fit:?}");
-        assert!(fit.residual_sum_of_squares < 1e-18, "{fit:?}");
-
-        let exact_copies = linear_least_squares(10, 2, |i, out| {
-            out[0] = i as f64;
-            out[1] = i as f64;
-            i as f64
-        })
-        .unwrap();
-        assert_eq!(exact_copies.rank, 1);
-        assert!((exact_copies.coefficients.iter().sum::<f64>() - 1.0).abs() < 1e-12);
-
-        let zero_column = linear_least_squares(10, 2, |i, out| {
-            out[0] = i as f64;
-            2.0 * i as f64
-        })
-        .unwrap();
-        assert_eq!(zero_column.rank, 1);
-        assert_eq!(zero_column.coefficients[1], 0.0);
-        assert!((zero_column.coefficients[0] - 2.0).abs() < 1e-13);
     }
 
     #[test]
@@ -811,54 +570,5 @@ mod tests {
         );
         assert!((x - 2.0).abs() < 1e-9, "x = {x}");
         assert!((y - 0.25).abs() < 1e-7, "y = {y}");
-    }
-
-    #[test]
-    fn non_finite_entries_name_their_row() {
-        let error = linear_least_squares(10, 2, |i, out| {
-            out[0] = 1.0;
-            out[1] = if i == 7 { f64::NAN } else { i as f64 };
-            1.0
-        })
-        .unwrap_err();
-        assert!(matches!(
-            error,
-            LeastSquaresError::NonFiniteEntry { row: 7 }
-        ));
-        assert!(error.to_string().contains("row 7"), "{error}");
-
-        let error = linear_least_squares(4, 2, |i, out| {
-            out[0] = 1.0;
-            if i == 3 {
-                f64::INFINITY
-            } else {
-                1.0
-            }
-        })
-        .unwrap_err();
-        assert!(matches!(
-            error,
-            LeastSquaresError::NonFiniteEntry { row: 3 }
-        ));
-    }
-
-    #[test]
-    fn too_few_rows_or_none_are_errors() {
-        let error = linear_least_squares(2, 3, |_, _| 0.0).unwrap_err();
-        assert!(matches!(
-            error,
-            LeastSquaresError::TooFewRows {
-                rows: 2,
-                unknowns: 3
-            }
-        ));
-        assert!(matches!(
-            linear_least_squares(0, 1, |_, _| 0.0),
-            Err(LeastSquaresError::NoRows)
-        ));
-        assert!(matches!(
-            linear_least_squares(3, 0, |_, _| 0.0),
-            Err(LeastSquaresError::NoUnknowns)
-        ));
     }
 }

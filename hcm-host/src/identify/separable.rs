@@ -14,10 +14,11 @@
 //! | impact | e, δ_max | k (δ^e), d_max (step(δ, 0, 0, δ_max, 1)·δ̇) |
 
 use super::bounds::Bounds;
-use super::least_squares::{linear_least_squares, minimize_box2, minimize_scalar};
+use super::least_squares::{minimize_box2, minimize_scalar, LeastSquaresError};
 use super::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use super::samples::ForceSample;
 use super::IdentifyError;
+use crate::numerics::linear_least_squares;
 use hcm_core::law::{step, AnyNormalLaw};
 use hcm_core::model::ContactModel;
 
@@ -55,7 +56,8 @@ fn solve(
     let fit = linear_least_squares(samples.len(), columns, |i, row| {
         regressors(&samples[i], row);
         samples[i].force
-    })?;
+    })
+    .map_err(LeastSquaresError::from)?;
     Ok((fit.coefficients, fit.residual_sum_of_squares))
 }
 
@@ -193,7 +195,7 @@ fn refine(
     law: AnyNormalLaw<f64>,
     samples: &[ForceSample],
     bounds: &Bounds,
-    notes: Vec<String>,
+    mut notes: Vec<String>,
 ) -> Result<LsqFit, IdentifyError> {
     let free = bounds.free();
     let start = bounds.values(&law)?;
@@ -224,6 +226,12 @@ fn refine(
             .collect(),
         None => Vec::new(),
     };
+    if !result.termination.converged() {
+        notes.push(format!(
+            "Levenberg–Marquardt stopped before meeting a tolerance: {}",
+            result.termination
+        ));
+    }
     Ok(LsqFit {
         law: fitted,
         force_rms: (2.0 * result.cost / samples.len() as f64).sqrt(),

@@ -11,6 +11,7 @@
 
 use super::Indicators;
 use crate::dataset::{BodyTrack, Run};
+use crate::numerics::linear_least_squares;
 use crate::scenario::Model;
 use crate::simulate::pair_kinematics;
 use hcm_core::integrate::hermite_zero;
@@ -325,16 +326,16 @@ fn peak(h: &ContactHistory, inside: std::ops::Range<usize>) -> f64 {
     }
     let t0 = h.time[centre];
     let u = |i: usize| (h.time[i] - t0) / half;
-    // Normal equations of the degree-4 fit in u ∈ [−1, 1] (well conditioned there).
-    let mut a = nalgebra::Matrix5::<f64>::zeros();
-    let mut b = nalgebra::Vector5::<f64>::zeros();
-    for &i in &window {
-        let powers = nalgebra::Vector5::from_fn(|k, _| u(i).powi(k as i32));
-        a += powers * powers.transpose();
-        b += powers * h.force[i];
-    }
-    let Some(c) = a.cholesky().map(|ch| ch.solve(&b)) else {
-        return three_point_peak(h, inside);
+    // The degree-4 fit in u ∈ [−1, 1] (well conditioned there).
+    let fit = linear_least_squares(window.len(), 5, |j, powers| {
+        for (k, power) in powers.iter_mut().enumerate() {
+            *power = u(window[j]).powi(k as i32);
+        }
+        h.force[window[j]]
+    });
+    let c = match fit {
+        Ok(fit) if fit.rank == 5 => fit.coefficients,
+        _ => return three_point_peak(h, inside),
     };
     let p = |x: f64| c[0] + x * (c[1] + x * (c[2] + x * (c[3] + x * c[4])));
     let dp = |x: f64| c[1] + x * (2.0 * c[2] + x * (3.0 * c[3] + x * 4.0 * c[4]));

@@ -102,204 +102,24 @@ impl Scenario {
     /// Resolves names, builds the laws and checks everything a simulation relies on.
     /// `path` names the scenario in errors.
     pub fn resolve(&self, path: &Path) -> Result<Model, ScenarioError> {
-        let invalid = |field: String, message: String| ScenarioError::Invalid {
-            path: path.to_owned(),
-            field,
-            message,
-        };
-        let mut bodies = Vec::with_capacity(self.bodies.len());
-        for (i, spec) in self.bodies.iter().enumerate() {
-            let field = |key: &str| format!("body `{}` (#{i}) {key}", spec.name);
-            if self.bodies[..i].iter().any(|b| b.name == spec.name) {
-                return Err(invalid(
-                    field("name"),
-                    "appears twice; body names must be unique".into(),
-                ));
-            }
-            let mass = match (spec.fixed, spec.mass) {
-                (true, _) => f64::INFINITY,
-                (false, Some(m)) if m > 0.0 && m.is_finite() => m,
-                (false, Some(m)) => {
-                    return Err(invalid(
-                        field("mass"),
-                        format!("must be a positive number of kg, found {m}"),
-                    ))
-                }
-                (false, None) => {
-                    return Err(invalid(
-                        field("mass"),
-                        "is required for a moving body (or set fixed = true)".into(),
-                    ))
-                }
-            };
-            let shape = match spec.shape {
-                ShapeSpec::Sphere { radius } if radius > 0.0 && radius.is_finite() => {
-                    Shape::Sphere { radius }
-                }
-                ShapeSpec::Sphere { radius } => {
-                    return Err(invalid(
-                        field("shape.sphere.radius"),
-                        format!("must be a positive number of m, found {radius}"),
-                    ))
-                }
-                ShapeSpec::Plane { normal, offset } => {
-                    let n = Vector3::from(normal);
-                    if !(n.norm() > 0.0 && n.norm().is_finite() && offset.is_finite()) {
-                        return Err(invalid(
-                            field("shape.plane"),
-                            "needs a non-zero finite normal and a finite offset".into(),
-                        ));
-                    }
-                    Shape::Plane {
-                        normal: n.normalize(),
-                        offset,
-                    }
-                }
-            };
-            let material = match &spec.material {
-                None => None,
-                Some(name) => Some(*self.materials.get(name).ok_or_else(|| {
-                    let known: Vec<_> = self.materials.keys().cloned().collect();
-                    invalid(
-                        field("material"),
-                        format!(
-                            "names `{name}`, but the materials are: {}",
-                            known.join(", ")
-                        ),
-                    )
-                })?),
-            };
-            let (position, velocity) = (Vector3::from(spec.position), Vector3::from(spec.velocity));
-            if !position
-                .iter()
-                .chain(velocity.iter())
-                .all(|x| x.is_finite())
-            {
-                return Err(invalid(field("position/velocity"), "must be finite".into()));
-            }
-            bodies.push(Body {
-                name: spec.name.clone(),
-                mass,
-                fixed: spec.fixed,
-                shape,
-                material,
-                position,
-                velocity,
-                air_drag: spec.air_drag,
-            });
-            if let Some(drag) = &spec.air_drag {
-                drag.validate()
-                    .map_err(|e| invalid(field("air_drag"), e.to_string()))?;
-            }
-        }
+        let invalid = Invalid(path);
+        let bodies = (0..self.bodies.len())
+            .map(|i| self.resolve_body(i, &invalid))
+            .collect::<Result<Vec<_>, _>>()?;
         if bodies.iter().all(|b| b.fixed) {
-            return Err(invalid(
+            return Err(invalid.error(
                 "body".into(),
                 "at least one body must move (fixed = false)".into(),
             ));
         }
-        let mut contacts = Vec::with_capacity(self.contacts.len());
-        for (i, spec) in self.contacts.iter().enumerate() {
-            let field = |key: &str| {
-                format!(
-                    "contact #{i} ({} – {}) {key}",
-                    spec.bodies[0], spec.bodies[1]
-                )
-            };
-            let index = |name: &str| {
-                bodies
-                    .iter()
-                    .position(|b: &Body| b.name == name)
-                    .ok_or_else(|| {
-                        let known: Vec<_> = bodies.iter().map(|b| b.name.as_str()).collect();
-                        invalid(
-                            field("bodies"),
-                            format!("no body `{name}` (bodies: {})", known.join(", ")),
-                        )
-                    })
-            };
-            let (body_1, body_2) = (index(&spec.bodies[0])?, index(&spec.bodies[1])?);
-            if body_1 == body_2 {
-                return Err(invalid(
-                    field("bodies"),
-                    "a body cannot touch itself".into(),
-                ));
-            }
-            let (b1, b2) = (&bodies[body_1], &bodies[body_2]);
-            let Shape::Sphere { radius: radius_1 } = b1.shape else {
-                return Err(invalid(field("bodies"), format!("body 1 (`{}`) must be a sphere: supported pairs are sphere–plane and sphere–sphere", b1.name)));
-            };
-            if b1.fixed && b2.fixed {
-                return Err(invalid(field("bodies"), "both bodies are fixed".into()));
-            }
-            let effective_mass = if b1.fixed {
-                b2.mass
-            } else if b2.fixed {
-                b1.mass
-            } else {
-                b1.mass * b2.mass / (b1.mass + b2.mass)
-            };
-            let radius = match b2.shape {
-                Shape::Sphere { radius: radius_2 } => {
-                    sphere_sphere::effective_radius(radius_1, radius_2)
-                }
-                Shape::Plane { .. } => radius_1,
-            };
-            let parameters = derived_parameters(spec, b1, b2, radius, effective_mass)
-                .map_err(|m| invalid(field("parameters"), m))?;
-            let law = law_catalogue::build_from_table(&spec.law, &parameters)
-                .map_err(|e| invalid(field("law"), e.to_string()))?;
-            let known = law_catalogue::entry(&spec.law)
-                .map(|e| e.parameters)
-                .unwrap_or(&[]);
-            for (name, b) in &spec.noise {
-                if !known.iter().any(|p| p.name == name) {
-                    let names: Vec<_> = known.iter().map(|p| p.name).collect();
-                    return Err(invalid(
-                        field("noise"),
-                        format!(
-                            "`{name}` is not a parameter of `{}` ({})",
-                            spec.law,
-                            names.join(", ")
-                        ),
-                    ));
-                }
-                if !(*b >= 0.0 && b.is_finite()) {
-                    return Err(invalid(
-                        field("noise"),
-                        format!("`{name}` must be a relative standard deviation ≥ 0, found {b}"),
-                    ));
-                }
-            }
-            let noise = spec.noise.iter().map(|(k, v)| (k.clone(), *v)).collect();
-            if spec.effects.len() > MAX_EFFECTS {
-                return Err(invalid(
-                    field("effects"),
-                    format!("{} effects; at most {MAX_EFFECTS}", spec.effects.len()),
-                ));
-            }
-            let mut normal = ExtendedLaw::new(law);
-            for effect in &spec.effects {
-                // Checked above: at most MAX_EFFECTS, so no push fails.
-                let _ = normal.effects.push(*effect);
-            }
-            let contact = Contact {
-                body_1,
-                body_2,
-                model: ContactModel::physics(normal).with_residual(None),
-                effective_mass,
-                noise,
-            };
-            contact
-                .model
-                .validate()
-                .map_err(|e| invalid(field("effects"), e.to_string()))?;
-            contacts.push(contact);
-        }
-        self.check_settings().map_err(|(f, m)| invalid(f, m))?;
+        let contacts = (0..self.contacts.len())
+            .map(|i| self.resolve_contact(i, &bodies, &invalid))
+            .collect::<Result<Vec<_>, _>>()?;
+        self.check_settings()
+            .map_err(|(f, m)| invalid.error(f, m))?;
         for name in &self.record.bodies {
             if !bodies.iter().any(|b| &b.name == name) {
-                return Err(invalid("record.bodies".into(), format!("no body `{name}`")));
+                return Err(invalid.error("record.bodies".into(), format!("no body `{name}`")));
             }
         }
         Ok(Model {
@@ -308,6 +128,105 @@ impl Scenario {
             bodies,
             contacts,
         })
+    }
+
+    /// Body `i`: a unique name, its mass, shape, material, initial state and drag.
+    fn resolve_body(&self, i: usize, invalid: &Invalid<'_>) -> Result<Body, ScenarioError> {
+        let spec = &self.bodies[i];
+        let field = |key: &str| format!("body `{}` (#{i}) {key}", spec.name);
+        if self.bodies[..i].iter().any(|b| b.name == spec.name) {
+            return Err(invalid.error(
+                field("name"),
+                "appears twice; body names must be unique".into(),
+            ));
+        }
+        let mass = body_mass(spec).map_err(|m| invalid.error(field("mass"), m))?;
+        let shape = body_shape(&spec.shape).map_err(|(key, m)| invalid.error(field(key), m))?;
+        let material = match &spec.material {
+            None => None,
+            Some(name) => Some(*self.materials.get(name).ok_or_else(|| {
+                let known: Vec<_> = self.materials.keys().cloned().collect();
+                invalid.error(
+                    field("material"),
+                    format!(
+                        "names `{name}`, but the materials are: {}",
+                        known.join(", ")
+                    ),
+                )
+            })?),
+        };
+        let (position, velocity) = (Vector3::from(spec.position), Vector3::from(spec.velocity));
+        if !position
+            .iter()
+            .chain(velocity.iter())
+            .all(|x| x.is_finite())
+        {
+            return Err(invalid.error(field("position/velocity"), "must be finite".into()));
+        }
+        if let Some(drag) = &spec.air_drag {
+            drag.validate()
+                .map_err(|e| invalid.error(field("air_drag"), e.to_string()))?;
+        }
+        Ok(Body {
+            name: spec.name.clone(),
+            mass,
+            fixed: spec.fixed,
+            shape,
+            material,
+            position,
+            velocity,
+            air_drag: spec.air_drag,
+        })
+    }
+
+    /// Contact `i` between two of `bodies`: the pair, its law with the derived
+    /// parameters filled in, its parameter noise and its effects.
+    fn resolve_contact(
+        &self,
+        i: usize,
+        bodies: &[Body],
+        invalid: &Invalid<'_>,
+    ) -> Result<Contact, ScenarioError> {
+        let spec = &self.contacts[i];
+        let field = |key: &str| {
+            format!(
+                "contact #{i} ({} – {}) {key}",
+                spec.bodies[0], spec.bodies[1]
+            )
+        };
+        let (body_1, body_2, radius_1) =
+            contact_pair(spec, bodies).map_err(|m| invalid.error(field("bodies"), m))?;
+        let (b1, b2) = (&bodies[body_1], &bodies[body_2]);
+        let (radius, effective_mass) = pair_geometry(radius_1, b1, b2);
+        let parameters = derived_parameters(spec, b1, b2, radius, effective_mass)
+            .map_err(|m| invalid.error(field("parameters"), m))?;
+        let law = law_catalogue::build_from_table(&spec.law, &parameters)
+            .map_err(|e| invalid.error(field("law"), e.to_string()))?;
+        check_noise(spec).map_err(|m| invalid.error(field("noise"), m))?;
+        let noise = spec.noise.iter().map(|(k, v)| (k.clone(), *v)).collect();
+        if spec.effects.len() > MAX_EFFECTS {
+            return Err(invalid.error(
+                field("effects"),
+                format!("{} effects; at most {MAX_EFFECTS}", spec.effects.len()),
+            ));
+        }
+        let mut normal = ExtendedLaw::new(law);
+        for effect in &spec.effects {
+            // Checked above: at most MAX_EFFECTS, so no push fails.
+            let _ = normal.effects.push(*effect);
+        }
+        let contact = Contact {
+            body_1,
+            body_2,
+            model: ContactModel::physics(normal).with_residual(None),
+            effective_mass,
+            noise,
+        };
+        contact
+            .model
+            .validate()
+            .map_err(|e| invalid.error(field("effects"), e.to_string()))?;
+        Ok(contact)
     }
 
     fn check_settings(&self) -> Result<(), (String, String)> {
@@ -383,6 +302,123 @@ impl Scenario {
         }
         Ok(())
     }
+}
+
+/// Builds the [`ScenarioError::Invalid`] of the scenario at this path.
+struct Invalid<'a>(&'a Path);
+
+impl Invalid<'_> {
+    fn error(&self, field: String, message: String) -> ScenarioError {
+        ScenarioError::Invalid {
+            path: self.0.to_owned(),
+            field,
+            message,
+        }
+    }
+}
+
+/// The body's mass (kg): +∞ for a fixed body, else the given positive finite value.
+fn body_mass(spec: &super::BodySpec) -> Result<f64, String> {
+    match (spec.fixed, spec.mass) {
+        (true, _) => Ok(f64::INFINITY),
+        (false, Some(m)) if m > 0.0 && m.is_finite() => Ok(m),
+        (false, Some(m)) => Err(format!("must be a positive number of kg, found {m}")),
+        (false, None) => Err("is required for a moving body (or set fixed = true)".into()),
+    }
+}
+
+/// The body's contact geometry, checked; errors name the key at fault.
+fn body_shape(spec: &ShapeSpec) -> Result<Shape, (&'static str, String)> {
+    match *spec {
+        ShapeSpec::Sphere { radius } if radius > 0.0 && radius.is_finite() => {
+            Ok(Shape::Sphere { radius })
+        }
+        ShapeSpec::Sphere { radius } => Err((
+            "shape.sphere.radius",
+            format!("must be a positive number of m, found {radius}"),
+        )),
+        ShapeSpec::Plane { normal, offset } => {
+            let n = Vector3::from(normal);
+            if !(n.norm() > 0.0 && n.norm().is_finite() && offset.is_finite()) {
+                return Err((
+                    "shape.plane",
+                    "needs a non-zero finite normal and a finite offset".into(),
+                ));
+            }
+            Ok(Shape::Plane {
+                normal: n.normalize(),
+                offset,
+            })
+        }
+    }
+}
+
+/// Indices of the contact's two bodies and body 1's radius (m): both exist, differ,
+/// body 1 is a sphere and at least one of them moves.
+fn contact_pair(spec: &super::ContactSpec, bodies: &[Body]) -> Result<(usize, usize, f64), String> {
+    let index = |name: &str| {
+        bodies.iter().position(|b| b.name == name).ok_or_else(|| {
+            let known: Vec<_> = bodies.iter().map(|b| b.name.as_str()).collect();
+            format!("no body `{name}` (bodies: {})", known.join(", "))
+        })
+    };
+    let (body_1, body_2) = (index(&spec.bodies[0])?, index(&spec.bodies[1])?);
+    if body_1 == body_2 {
+        return Err("a body cannot touch itself".into());
+    }
+    let (b1, b2) = (&bodies[body_1], &bodies[body_2]);
+    let Shape::Sphere { radius: radius_1 } = b1.shape else {
+        return Err(format!(
+            "body 1 (`{}`) must be a sphere: supported pairs are sphere–plane and sphere–sphere",
+            b1.name
+        ));
+    };
+    if b1.fixed && b2.fixed {
+        return Err("both bodies are fixed".into());
+    }
+    Ok((body_1, body_2, radius_1))
+}
+
+/// The pair's effective radius R (m) for body 1 a sphere of radius `radius_1` (m), and
+/// its effective mass m_e = m1·m2/(m1 + m2) (kg), the moving body's mass when the other
+/// is fixed.
+fn pair_geometry(radius_1: f64, b1: &Body, b2: &Body) -> (f64, f64) {
+    let effective_mass = if b1.fixed {
+        b2.mass
+    } else if b2.fixed {
+        b1.mass
+    } else {
+        b1.mass * b2.mass / (b1.mass + b2.mass)
+    };
+    let radius = match b2.shape {
+        Shape::Sphere { radius: radius_2 } => sphere_sphere::effective_radius(radius_1, radius_2),
+        Shape::Plane { .. } => radius_1,
+    };
+    (radius, effective_mass)
+}
+
+/// Every noise entry names a parameter of the contact's law and is a relative
+/// standard deviation ≥ 0.
+fn check_noise(spec: &super::ContactSpec) -> Result<(), String> {
+    let known = law_catalogue::entry(&spec.law)
+        .map(|e| e.parameters)
+        .unwrap_or(&[]);
+    for (name, b) in &spec.noise {
+        if !known.iter().any(|p| p.name == name) {
+            let names: Vec<_> = known.iter().map(|p| p.name).collect();
+            return Err(format!(
+                "`{name}` is not a parameter of `{}` ({})",
+                spec.law,
+                names.join(", ")
+            ));
+        }
+        if !(*b >= 0.0 && b.is_finite()) {
+            return Err(format!(
+                "`{name}` must be a relative standard deviation ≥ 0, found {b}"
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The law's parameter table with the geometric parameters the law can derive

@@ -1,0 +1,16 @@
+//! Generic numerics: nothing here knows about contact laws, and nothing prints.
+//!
+//! - [`mod@linear_least_squares`]: the one linear least-squares routine of the host
+//!   (Householder QR with faer), with the residual sum of squares and, when asked, the
+//!   coefficients' covariance. Identification, Levenberg–Marquardt's damped steps, the
+//!   air-drag fit, the int8 output-layer re-fit, the diagnosis' effect selection and
+//!   the peak-force polynomial all solve through it.
+//! - [`euclidean_norm`]: ‖x‖₂ without overflow.
+
+pub mod linear_least_squares;
+mod norm;
+
+pub use linear_least_squares::{
+    linear_least_squares, Covariance, LinearFit, LinearLeastSquaresError, Reduction,
+};
+pub use norm::euclidean_norm;
