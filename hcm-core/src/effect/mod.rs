@@ -187,6 +187,10 @@ impl<T: Real> ExtendedLaw<T> {
     /// literally: terms add up, plasticity transforms compose in order. NaN in the
     /// state, memory or parameters gives NaN; partial sums saturate at ±[`Real::MAX`].
     pub fn normal_force(&self, state: &Indentation<T>, memory: &ContactMemory<T>) -> T {
+        // The common case (no effects) is the base law itself: skip the folds.
+        if self.effects.is_empty() {
+            return self.base.normal_force(state);
+        }
         let contact = self
             .effects
             .iter()

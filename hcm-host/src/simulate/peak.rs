@@ -34,7 +34,7 @@ fn force_at(
 ) -> f64 {
     stepper.dense_output(time, y);
     let k = system.kinematics(&y.0, c);
-    system.contact_load(&y.0, c, &k).normal_force
+    system.contact_normal_force(&y.0, c, &k)
 }
 
 /// The largest f_n of contact `c` on a grid over [start, end] of the last step.

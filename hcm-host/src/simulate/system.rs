@@ -107,9 +107,37 @@ impl ContactSystem<'_> {
 
     /// The loads of contact `c` (kinematics `k`) in state `y`, in contact mode:
     /// evaluated by the contact's core model (law + effects + residual, Eq 1) at its
-    /// one point, the residual fed [δ (m), δ̇ (m/s), δ̇0 (m/s)].
+    /// one point.
     pub fn contact_load(&self, y: &[f64], c: usize, k: &PairKinematics) -> PairLoad<f64> {
         let contact = &self.model.contacts[c];
+        let (point, input) = self.contact_point(y, c, k);
+        let origin = |b| self.layout.motion(self.model, y, b).0;
+        contact.model.pair_load(
+            &[point],
+            &origin(contact.body_1),
+            &origin(contact.body_2),
+            &input,
+        )
+    }
+
+    /// The normal force f_n (N) of contact `c` in state `y`, in contact mode: the
+    /// same model as [`ContactSystem::contact_load`] without assembling the wrench
+    /// (the peak search evaluates it often).
+    pub fn contact_normal_force(&self, y: &[f64], c: usize, k: &PairKinematics) -> f64 {
+        let (point, input) = self.contact_point(y, c, k);
+        let model = &self.model.contacts[c].model;
+        model
+            .normal_force(&point.indentation, &point.memory, &input)
+            .0
+    }
+
+    /// Contact `c`'s one point and the residual's input [δ (m), δ̇ (m/s), δ̇0 (m/s)].
+    fn contact_point(
+        &self,
+        y: &[f64],
+        c: usize,
+        k: &PairKinematics,
+    ) -> (ContactPoint<f64>, [f64; 3]) {
         let indentation = Indentation {
             depth: k.depth,
             rate: k.rate,
@@ -124,14 +152,7 @@ impl ContactSystem<'_> {
             position: k.point,
             relative_velocity: k.relative_velocity,
         };
-        let origin = |b| self.layout.motion(self.model, y, b).0;
-        let input = [k.depth, k.rate, indentation.approach_speed];
-        contact.model.pair_load(
-            &[point],
-            &origin(contact.body_1),
-            &origin(contact.body_2),
-            &input,
-        )
+        (point, [k.depth, k.rate, indentation.approach_speed])
     }
 }
 
