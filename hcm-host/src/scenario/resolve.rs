@@ -102,6 +102,7 @@ impl Scenario {
     /// Resolves names, builds the laws and checks everything a simulation relies on.
     /// `path` names the scenario in errors.
     pub fn resolve(&self, path: &Path) -> Result<Model, ScenarioError> {
+        super::validate::materials(self, path)?;
         let invalid = |field: String, message: String| ScenarioError::Invalid {
             path: path.to_owned(),
             field,
@@ -302,12 +303,13 @@ impl Scenario {
                 return Err(invalid("record.bodies".into(), format!("no body `{name}`")));
             }
         }
-        Ok(Model {
+        let model = Model {
             scenario: self.clone(),
             gravity: Vector3::from(self.gravity),
             bodies,
             contacts,
-        })
+        };
+        super::validate::starts_apart(model, path)
     }
 
     fn check_settings(&self) -> Result<(), (String, String)> {
