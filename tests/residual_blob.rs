@@ -151,15 +151,25 @@ fn every_prefix_of_a_valid_blob_is_truncated() {
     let blob = valid_blob();
     assert!(decode_3_16_1_2(&blob).is_ok());
     for length in 0..blob.len() {
+        // Past its header (magic, version, four shape varints, two tags), a prefix
+        // is measured against the length the header announces: the whole blob's.
+        let header = 11;
+        let announced = (length >= header).then_some(blob.len());
         assert_eq!(
             decode_3_16_1_2(&blob[..length]).unwrap_err(),
-            BlobError::Truncated,
+            BlobError::Truncated { length, announced },
             "prefix of {length} bytes"
         );
     }
     let mut longer = blob.clone();
     longer.push(0);
-    assert_eq!(decode_3_16_1_2(&longer).unwrap_err(), BlobError::Malformed);
+    assert_eq!(
+        decode_3_16_1_2(&longer).unwrap_err(),
+        BlobError::TrailingBytes {
+            count: 1,
+            announced: blob.len()
+        }
+    );
 }
 
 #[test]

@@ -18,13 +18,22 @@
 //!
 //! The arrays are raw bytes in a borrowed postcard byte field, not serde sequences:
 //! decoding then borrows from the blob (nothing allocated) and works for any size
-//! (serde derives arrays only up to 32 elements). [`decode`] checks, in order: length
-//! and magic, version, the postcard structure, the CRC, the tags and the shape, then
-//! that every number is finite and every scale positive.
+//! (serde derives arrays only up to 32 elements). [`decode`] checks, in order: the
+//! magic, the version, the length the header announces (a blob cut short, or with
+//! bytes after its end), the CRC, the postcard structure, the tags and the shape,
+//! then that every number is finite and every scale positive. A header that names
+//! an unknown depth or tag is believed only when the CRC is intact (an intact blob
+//! written for another firmware); otherwise the blob is reported as corrupted.
+
+mod error;
+mod length;
+
+pub use error::BlobError;
 
 use super::mlp::{Hidden, HiddenDepth, Layer, Mlp, WeightFormat};
 use super::{crc32, Activation, Quantisation};
 use core::fmt;
+use length::Header;
 use serde::{Deserialize, Serialize, Serializer};
 
 /// The first four bytes of every blob.
@@ -106,113 +115,6 @@ fn as_bytes<S: Serializer>(bytes: &&[u8], serializer: S) -> Result<S::Ok, S::Err
     serializer.serialize_bytes(bytes)
 }
 
-/// Why a weights blob was refused.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum BlobError {
-    /// The blob ends before its contents or its CRC do.
-    Truncated,
-    /// The blob does not start with `HCM1`: it is not a weights blob.
-    BadMagic,
-    /// The blob was written in a format version this firmware cannot read.
-    UnsupportedVersion {
-        /// The version in the blob.
-        found: u16,
-    },
-    /// The CRC-32 stored in the blob does not match its contents: it was corrupted.
-    BadCrc {
-        /// The CRC stored in the blob.
-        expected: u32,
-        /// The CRC computed over the blob's contents.
-        found: u32,
-    },
-    /// The blob holds a network of another size than the one the firmware declares.
-    WrongShape {
-        /// The firmware's network.
-        expected: Shape,
-        /// The blob's network.
-        found: Shape,
-    },
-    /// The blob's network has 0 or more than 3 hidden layers.
-    UnsupportedDepth {
-        /// Its number of hidden layers.
-        found: u32,
-    },
-    /// The activation tag is not one this firmware knows.
-    BadActivation {
-        /// The tag in the blob.
-        found: u8,
-    },
-    /// The weight-storage tag is not one this firmware knows.
-    BadQuantisation {
-        /// The tag in the blob.
-        found: u8,
-    },
-    /// The blob stores its weights in another format than the firmware declares.
-    WrongQuantisation {
-        /// The firmware's storage.
-        expected: Quantisation,
-        /// The blob's storage.
-        found: Quantisation,
-    },
-    /// A weight, bias or row scale is NaN or infinite.
-    NonFiniteWeight,
-    /// A normalisation mean is not finite, or a scale is not finite and > 0.
-    BadNormalisation,
-    /// An envelope bound is NaN, or a minimum exceeds its maximum.
-    BadEnvelope,
-    /// The blob's structure is not a weights blob's (bad encoding, a section of the
-    /// wrong length, an int8 weight of −128, bytes after the CRC).
-    Malformed,
-}
-
-impl fmt::Display for BlobError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            BlobError::Truncated => f.write_str("the weights blob is cut short"),
-            BlobError::BadMagic => f.write_str("this is not a weights blob (no HCM1 header)"),
-            BlobError::UnsupportedVersion { found } => write!(
-                f,
-                "the weights blob has format version {found}; this firmware reads version {VERSION}"
-            ),
-            BlobError::BadCrc { expected, found } => write!(
-                f,
-                "the weights blob is corrupted: its CRC is {expected:#010x} but its contents give {found:#010x}"
-            ),
-            BlobError::WrongShape { expected, found } => write!(
-                f,
-                "the weights blob holds a network of {found}; this firmware expects {expected}"
-            ),
-            BlobError::UnsupportedDepth { found } => write!(
-                f,
-                "the weights blob's network has {found} hidden layers; 1 to 3 are supported"
-            ),
-            BlobError::BadActivation { found } => {
-                write!(f, "the weights blob names an unknown activation (tag {found})")
-            }
-            BlobError::BadQuantisation { found } => {
-                write!(f, "the weights blob names an unknown weight storage (tag {found})")
-            }
-            BlobError::WrongQuantisation { expected, found } => write!(
-                f,
-                "the weights blob stores {found} weights; this firmware expects {expected}"
-            ),
-            BlobError::NonFiniteWeight => {
-                f.write_str("the weights blob contains a NaN or infinite weight")
-            }
-            BlobError::BadNormalisation => f.write_str(
-                "the weights blob's normalisation has a non-finite mean or a scale that is not positive",
-            ),
-            BlobError::BadEnvelope => f.write_str(
-                "the weights blob's training envelope has a NaN bound or a minimum above its maximum",
-            ),
-            BlobError::Malformed => f.write_str("the weights blob is malformed"),
-        }
-    }
-}
-
-impl core::error::Error for BlobError {}
-
 /// Decodes a weights blob into a network of the caller's shape and weight storage,
 /// without allocating.
 ///
@@ -233,17 +135,13 @@ where
 {
     let contents = open(bytes)?;
     let expected = Shape::of::<INPUTS, WIDTH, OUTPUTS, HIDDEN>();
-    if !(1..=3).contains(&contents.shape.hidden_layers) {
-        return Err(BlobError::UnsupportedDepth {
-            found: contents.shape.hidden_layers,
-        });
-    }
     if contents.shape != expected {
         return Err(BlobError::WrongShape {
             expected,
             found: contents.shape,
         });
     }
+    // `open` checked both tags.
     let activation = Activation::from_tag(contents.activation).ok_or(BlobError::BadActivation {
         found: contents.activation,
     })?;
@@ -306,60 +204,94 @@ where
     Ok(mlp)
 }
 
-/// Checks magic, version, structure and CRC, and returns the blob's contents.
+/// Checks magic, version, length, CRC and structure, and returns the blob's contents.
 fn open(bytes: &[u8]) -> Result<BlobContents<'_>, BlobError> {
+    let length = bytes.len();
     match bytes.get(..MAGIC.len()) {
         Some(magic) if magic != MAGIC => return Err(BlobError::BadMagic),
         None if !MAGIC.starts_with(bytes) => return Err(BlobError::BadMagic),
-        None => return Err(BlobError::Truncated),
+        None => {
+            return Err(BlobError::Truncated {
+                length,
+                announced: None,
+            })
+        }
         Some(_) => {}
     }
     // The version first, on its own: another version may lay out the rest differently.
     let (_, version): ([u8; 4], u16) = postcard::take_from_bytes(bytes)
         .map(|(header, _)| header)
-        .map_err(postcard_error)?;
+        .map_err(|error| header_error(bytes, error))?;
     if version != VERSION {
         return Err(BlobError::UnsupportedVersion { found: version });
     }
-
-    let (contents, trailer) = match postcard::take_from_bytes::<BlobContents<'_>>(bytes) {
-        Ok(parsed) => parsed,
-        Err(postcard::Error::DeserializeUnexpectedEnd) => return Err(BlobError::Truncated),
-        // Damage can break the structure before the CRC is reached: report the
-        // corruption, not its symptom, when the CRC at the end disagrees.
-        Err(error) => {
-            let body_end = bytes.len().saturating_sub(4);
-            let (body, trailer) = bytes.split_at_checked(body_end).unwrap_or((bytes, &[]));
-            check_crc(body, trailer)?;
-            return Err(postcard_error(error));
-        }
+    let (header, rest) =
+        postcard::take_from_bytes::<Header>(bytes).map_err(|error| header_error(bytes, error))?;
+    let Some(announced) = header.announced_length(length - rest.len()) else {
+        // Random bytes after a valid start give an unknown depth or tag: believe the
+        // header only if the blob is intact.
+        check_crc(bytes)?;
+        return Err(header.implausible().unwrap_or(BlobError::Malformed));
     };
-    let body = bytes
-        .get(..bytes.len().saturating_sub(trailer.len()))
+    if length < announced {
+        return Err(BlobError::Truncated {
+            length,
+            announced: Some(announced),
+        });
+    }
+    let (blob, after) = bytes.split_at_checked(announced).unwrap_or((bytes, &[]));
+    match check_crc(blob) {
+        Ok(()) if !after.is_empty() => Err(BlobError::TrailingBytes {
+            count: after.len(),
+            announced,
+        }),
+        Ok(()) => contents(blob),
+        Err(error) if after.is_empty() => Err(error),
+        // No CRC where the header puts it: the header or the body was changed, or the
+        // blob is intact but longer than its header says (written wrong).
+        Err(_) => check_crc(bytes).and(Err(BlobError::Malformed)),
+    }
+}
+
+/// The contents of `blob`, whose length and CRC have been checked: exactly one
+/// [`BlobContents`] and its CRC.
+fn contents(blob: &[u8]) -> Result<BlobContents<'_>, BlobError> {
+    let body = blob
+        .get(..blob.len().saturating_sub(4))
         .ok_or(BlobError::Malformed)?;
-    match trailer.len() {
-        0..=3 => Err(BlobError::Truncated),
-        4 => check_crc(body, trailer).map(|()| contents),
+    match postcard::take_from_bytes::<BlobContents<'_>>(body) {
+        Ok((contents, [])) => Ok(contents),
         _ => Err(BlobError::Malformed),
     }
 }
 
-/// `Ok` if `trailer` is the little-endian CRC-32 of `body`.
-fn check_crc(body: &[u8], trailer: &[u8]) -> Result<(), BlobError> {
-    let stored: [u8; 4] = trailer.try_into().map_err(|_| BlobError::Truncated)?;
+/// Why the header of `bytes` did not parse: cut short inside it, else corrupted or
+/// (with an intact CRC) malformed.
+fn header_error(bytes: &[u8], error: postcard::Error) -> BlobError {
+    match error {
+        postcard::Error::DeserializeUnexpectedEnd => BlobError::Truncated {
+            length: bytes.len(),
+            announced: None,
+        },
+        _ => check_crc(bytes).err().unwrap_or(BlobError::Malformed),
+    }
+}
+
+/// `Ok` if the last 4 bytes of `blob` are the little-endian CRC-32 of the rest.
+fn check_crc(blob: &[u8]) -> Result<(), BlobError> {
+    let (body, trailer) = blob
+        .split_at_checked(blob.len().saturating_sub(4))
+        .unwrap_or((blob, &[]));
+    let stored: [u8; 4] = trailer.try_into().map_err(|_| BlobError::Truncated {
+        length: blob.len(),
+        announced: None,
+    })?;
     let expected = u32::from_le_bytes(stored);
     let found = crc32(body);
     if expected == found {
         Ok(())
     } else {
         Err(BlobError::BadCrc { expected, found })
-    }
-}
-
-fn postcard_error(error: postcard::Error) -> BlobError {
-    match error {
-        postcard::Error::DeserializeUnexpectedEnd => BlobError::Truncated,
-        _ => BlobError::Malformed,
     }
 }
 
@@ -498,7 +430,71 @@ mod tests {
         );
     }
 
+    #[test]
+    fn random_bytes_after_a_valid_start_are_corruption_not_truncation() {
+        let (_, blob) = tiny();
+        // Magic, then version 2 as one varint byte: the rest from a fixed LCG.
+        let mut state = 0x2545_f491_u32;
+        for length in [blob.len(), 40, 600] {
+            let mut bytes = blob[..5].to_vec();
+            while bytes.len() < length {
+                state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+                bytes.push((state >> 24) as u8);
+            }
+            let error = decode::<2, 3, 1, 1, F32Weights>(&bytes).unwrap_err();
+            assert!(
+                matches!(error, BlobError::BadCrc { .. }),
+                "{length}: {error}"
+            );
+            assert!(std::format!("{error}").contains("checksum does not match"));
+        }
+    }
+
+    #[test]
+    fn each_damage_has_its_own_message() {
+        let (_, blob) = tiny();
+        let length = blob.len();
+        let short = decode::<2, 3, 1, 1, F32Weights>(&blob[..length - 3]).unwrap_err();
+        assert_eq!(
+            std::format!("{short}"),
+            std::format!(
+                "the weights blob is cut short: {} bytes, but its header announces {length}",
+                length - 3
+            )
+        );
+        let mut long = blob.clone();
+        long.extend_from_slice(&[0, 0]);
+        let long = decode::<2, 3, 1, 1, F32Weights>(&long).unwrap_err();
+        assert_eq!(
+            long,
+            BlobError::TrailingBytes {
+                count: 2,
+                announced: length
+            }
+        );
+        assert!(std::format!("{long}").starts_with("the weights blob has 2 unexpected byte(s)"));
+    }
+
     proptest! {
+        #[test]
+        fn any_prefix_is_cut_short_and_any_suffix_trailing(cut in 0_usize..200, tail in vec(any::<u8>(), 1..40)) {
+            let (_, blob) = tiny();
+            let cut = cut % blob.len();
+            match decode::<2, 3, 1, 1, F32Weights>(&blob[..cut]) {
+                Err(BlobError::Truncated { length, announced }) => {
+                    prop_assert_eq!(length, cut);
+                    prop_assert!(announced.is_none_or(|a| a == blob.len()));
+                }
+                other => prop_assert!(false, "{:?}", other),
+            }
+            let mut longer = blob.clone();
+            longer.extend_from_slice(&tail);
+            prop_assert_eq!(
+                decode::<2, 3, 1, 1, F32Weights>(&longer),
+                Err(BlobError::TrailingBytes { count: tail.len(), announced: blob.len() })
+            );
+        }
+
         #[test]
         fn arbitrary_bytes_never_panic(bytes in vec(any::<u8>(), 0..600)) {
             prop_assert!(decode::<2, 3, 1, 1, F32Weights>(&bytes).is_err());

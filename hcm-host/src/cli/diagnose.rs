@@ -34,14 +34,17 @@ pub struct Args {
     out: PathBuf,
     /// Which contact of the scenario.
     #[arg(long, default_value_t = 0)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
     contact: usize,
     /// Seed of the hold-out draw and of the HCM's training.
     #[arg(long, default_value_t = 1)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
     seed: u64,
     /// Share of the runs (inside the fitted range) held out for the gain table. The
     /// condition held out whole is the scenario's first `experiment.holdout_conditions`
     /// entry (else the last condition), e.g. `--set 'experiment.holdout_conditions=["v1.0"]'`.
     #[arg(long, default_value_t = 0.25)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::share)]
     holdout: f64,
 }
 

@@ -26,6 +26,7 @@ pub struct Args {
     residual: Option<PathBuf>,
     /// Which contact of the scenario.
     #[arg(long, default_value_t = 0)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
     contact: usize,
     /// Print JSON instead of markdown.
     #[arg(long)]

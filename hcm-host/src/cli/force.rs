@@ -16,12 +16,15 @@ pub struct Args {
     parameters: Vec<(String, f64)>,
     /// Indentation δ (m), > 0 in contact.
     #[arg(long, allow_negative_numbers = true)]
+    #[arg(value_parser = super::numbers::number)]
     depth: f64,
     /// Indentation rate δ̇ (m/s), > 0 while approaching.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(value_parser = super::numbers::number)]
     rate: f64,
     /// Approach speed δ̇0 (m/s) of this impact (Lankarani–Nikravesh, Flores).
     #[arg(long, default_value_t = 1.0)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::number)]
     approach_speed: f64,
 }
 

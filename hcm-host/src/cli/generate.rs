@@ -16,9 +16,11 @@ pub struct Args {
     scenario: super::ScenarioArgs,
     /// Runs per experimental condition (the flat shot has ten conditions).
     #[arg(long)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::runs)]
     runs: usize,
     /// Random seed: the same seed gives bit-identical files.
     #[arg(long, default_value_t = 1)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
     seed: u64,
     /// Output file (CSV, measured-data format).
     #[arg(long)]

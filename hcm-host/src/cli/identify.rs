@@ -29,15 +29,19 @@ pub struct Args {
     fitness: String,
     /// Which contact of the scenario (index of its `[[contact]]`).
     #[arg(long, default_value_t = 0)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
     contact: usize,
     /// Seed of the genetic algorithm.
     #[arg(long, default_value_t = 1)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
     seed: u64,
     /// GA population size.
     #[arg(long, default_value_t = 60)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::population)]
     population: usize,
     /// GA generations (it stops earlier when the best has stalled for 30).
     #[arg(long, default_value_t = 150)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::generations)]
     generations: usize,
     /// Physics file to write (TOML), read by `simulate --physics` and `evaluate`.
     #[arg(long)]

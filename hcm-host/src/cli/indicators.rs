@@ -49,26 +49,68 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&json)?);
         return Ok(());
     }
-    if dataset.runs.len() <= 10 {
-        let rows: Vec<_> = events
-            .iter()
-            .map(|e| {
-                (
-                    format!("run {} {}", e.run, e.contact),
-                    e.touch_down,
-                    Some(e.indicators),
-                )
-            })
-            .collect();
-        print!("{}", report::event_table(&rows));
-        println!();
-    }
-    print!("{}", report::summary_table(&summary));
-    if !without_contact.is_empty() {
+    if events.is_empty() {
         println!(
-            "\nruns without a completed contact: {}",
-            without_contact.join(", ")
+            "no completed contact in the data ({} read)",
+            count(dataset.runs.len(), "run")
         );
+    } else {
+        if dataset.runs.len() <= 10 {
+            let rows: Vec<_> = events
+                .iter()
+                .map(|e| {
+                    (
+                        format!("run `{}` {}", e.run, e.contact),
+                        e.touch_down,
+                        Some(e.indicators),
+                    )
+                })
+                .collect();
+            print!("{}", report::event_table(&rows));
+            println!();
+        }
+        print!("{}", report::summary_table(&summary));
+    }
+    if !without_contact.is_empty() {
+        let gap = if events.is_empty() { "" } else { "\n" };
+        println!("{gap}{}", without_contact_line(&without_contact));
     }
     Ok(())
+}
+
+/// `1 run without a completed contact: `0``: run ids in backquotes, as every other
+/// message names runs, so that a run called `0` is not read as a count.
+fn without_contact_line(ids: &[String]) -> String {
+    let quoted: Vec<String> = ids.iter().map(|id| format!("`{id}`")).collect();
+    format!(
+        "{} without a completed contact: {}",
+        count(ids.len(), "run"),
+        quoted.join(", ")
+    )
+}
+
+/// `1 run`, `2 runs`.
+fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::without_contact_line;
+
+    #[test]
+    fn runs_are_named_apart_from_their_count() {
+        assert_eq!(
+            without_contact_line(&["0".into()]),
+            "1 run without a completed contact: `0`"
+        );
+        assert_eq!(
+            without_contact_line(&["v0.1/000".into(), "2".into()]),
+            "2 runs without a completed contact: `v0.1/000`, `2`"
+        );
+    }
 }

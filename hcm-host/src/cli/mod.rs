@@ -8,6 +8,7 @@ mod generate;
 mod identify;
 mod indicators;
 mod laws;
+mod numbers;
 mod report;
 mod reproduce;
 mod simulate;

@@ -43,9 +43,11 @@ pub struct Args {
     out: PathBuf,
     /// Seed of the experiment, the GA and the training.
     #[arg(long, default_value_t = 1)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
     seed: u64,
     /// Runs per condition (default: the paper's).
     #[arg(long)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::runs)]
     runs: Option<usize>,
     /// Identification method of PM2: `ga` (the paper's, polished by LM) or `lsq`.
     #[arg(long, value_parser = ["ga", "lsq"], default_value = "ga")]

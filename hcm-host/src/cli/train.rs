@@ -23,15 +23,19 @@ pub struct Args {
     physics: PathBuf,
     /// Which contact of the scenario.
     #[arg(long, default_value_t = 0)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
     contact: usize,
     /// Seed of the initialisation, split and shuffles.
     #[arg(long, default_value_t = 1)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
     seed: u64,
     /// Most training epochs (early stopping usually ends sooner).
     #[arg(long, default_value_t = 200)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::epochs)]
     epochs: usize,
     /// Epochs of quantisation-aware fine-tuning of the int8 twin (0: plain rounding).
     #[arg(long, default_value_t = 20)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::fine_tuning_epochs)]
     int8_epochs: usize,
     /// Trained residual file to write (JSON), e.g. `residual.json`.
     #[arg(long)]

@@ -1,10 +1,12 @@
 //! The physics file: what `identify` writes and `simulate`, `evaluate` and later
 //! stages read — the identified law of each contact, and how it was fitted.
 
+use crate::law_catalogue::{self, LawInputError};
 use crate::output::write_atomically;
 use crate::scenario::{Model, Scenario, ScenarioError};
 use hcm_core::effect::{AirDrag, ContactEffect};
 use hcm_core::law::AnyNormalLaw;
+use hcm_core::LawError;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -75,7 +77,8 @@ pub struct Physics {
     pub fit: FitRecord,
 }
 
-/// Why a physics file could not be used.
+/// Why a physics file could not be used. Every variant but `Scenario` names the
+/// physics file: an error in it is never reported against the scenario.
 #[derive(Debug, thiserror::Error)]
 pub enum PhysicsError {
     /// Unreadable or malformed file.
@@ -84,7 +87,24 @@ pub enum PhysicsError {
     /// A contact pair the scenario does not have.
     #[error("physics file {path}: the scenario has no contact between `{}` and `{}`", bodies[0], bodies[1])]
     UnknownContact { path: String, bodies: [String; 2] },
-    /// The scenario with the physics applied is invalid.
+    /// A key of the physics file (`contact.0.law`, `contact.0.parameters.restitution`)
+    /// holds what its law or the scenario cannot take.
+    #[error("physics file {path}: {key}: {message}")]
+    Key {
+        path: String,
+        key: String,
+        message: String,
+    },
+    /// The physics file's laws are valid, but the scenario they make is not, while the
+    /// scenario alone is (e.g. a derived parameter out of its domain).
+    /// (The scenario's error is part of the message, not a `source`, so that a chain
+    /// printed with `{:#}` does not repeat it.)
+    #[error("physics file {path} does not fit the scenario: {scenario_error}")]
+    Misfit {
+        path: String,
+        scenario_error: ScenarioError,
+    },
+    /// The scenario is invalid, with or without the physics applied.
     #[error(transparent)]
     Scenario(#[from] ScenarioError),
 }
@@ -139,7 +159,11 @@ impl Physics {
 
     /// `scenario` with each contact's law and parameters replaced by this file's
     /// (and its parameter noise removed: a physics model is deterministic).
+    ///
+    /// Errors name the physics file and its key (`contact.0.law`,
+    /// `contact.0.parameters.restitution`), not the scenario it is applied to.
     pub fn apply(&self, scenario: &Scenario, path: &Path) -> Result<Scenario, PhysicsError> {
+        self.check(scenario, path)?;
         let mut assignments = Vec::new();
         for contact in &self.contacts {
             let index = scenario
@@ -171,7 +195,82 @@ impl Physics {
                 body.name, body.air_drag.coefficient
             ));
         }
-        Ok(scenario.with(&assignments)?)
+        let misfit = |scenario_error| PhysicsError::Misfit {
+            path: path.display().to_string(),
+            scenario_error,
+        };
+        let applied = scenario.with(&assignments).map_err(misfit)?;
+        // What `check` cannot see alone (parameters derived from the bodies): the
+        // scenario resolves without the physics but not with it.
+        match applied.model() {
+            Err(error) if scenario.model().is_ok() => Err(misfit(error)),
+            _ => Ok(applied),
+        }
+    }
+
+    /// Checks each key of the file that the scenario does not decide: law names,
+    /// parameter names, types and domains, body names and their air drag.
+    fn check(&self, scenario: &Scenario, path: &Path) -> Result<(), PhysicsError> {
+        let key_error = |key: String, message: String| PhysicsError::Key {
+            path: path.display().to_string(),
+            key,
+            message,
+        };
+        for (i, contact) in self.contacts.iter().enumerate() {
+            if let Err(error) = law_catalogue::build_from_table(&contact.law, &contact.parameters) {
+                let parameter = |name: &str| format!("contact.{i}.parameters.{name}");
+                let (key, message) = match &error {
+                    LawInputError::UnknownLaw(..) => {
+                        (format!("contact.{i}.law"), error.to_string())
+                    }
+                    LawInputError::UnknownParameter {
+                        parameter: name, ..
+                    }
+                    | LawInputError::NotANumber {
+                        parameter: name, ..
+                    } => (parameter(name), error.to_string()),
+                    // A parameter the scenario may derive from its bodies: checked once
+                    // applied.
+                    LawInputError::MissingParameter { .. } => continue,
+                    LawInputError::Domain(_, domain) => match domain_parameter(domain) {
+                        Some(name) => {
+                            let found = contact
+                                .parameters
+                                .get(name)
+                                .map_or(String::new(), |v| format!(", found {v}"));
+                            (parameter(name), format!("{error}{found}"))
+                        }
+                        None => (format!("contact.{i}.parameters"), error.to_string()),
+                    },
+                };
+                return Err(key_error(key, message));
+            }
+        }
+        for (i, body) in self.bodies.iter().enumerate() {
+            if !scenario.bodies.iter().any(|b| b.name == body.name) {
+                let names: Vec<_> = scenario.bodies.iter().map(|b| b.name.as_str()).collect();
+                let message = format!(
+                    "the scenario has no body `{}` (its bodies: {})",
+                    body.name,
+                    names.join(", ")
+                );
+                return Err(key_error(format!("body.{i}.name"), message));
+            }
+            if let Err(error) = body.air_drag.validate() {
+                return Err(key_error(format!("body.{i}.air_drag"), error.to_string()));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The parameter a domain error is about, if it names one.
+fn domain_parameter(error: &LawError) -> Option<&'static str> {
+    match error {
+        LawError::NotPositive { parameter }
+        | LawError::Negative { parameter }
+        | LawError::OutOfRange { parameter, .. } => Some(parameter),
+        _ => None,
     }
 }
 

@@ -8,6 +8,7 @@
 
 pub mod overrides;
 mod resolve;
+pub mod validate;
 
 pub use resolve::{Body, Contact, Model, Shape};
 
@@ -317,10 +318,11 @@ impl Scenario {
             // Straight from the text, so that errors carry line and column.
             toml::from_str(text).map_err(|e: toml::de::Error| syntax(e.to_string()))?
         } else {
+            let base = document.clone();
             for assignment in assignments {
                 overrides::apply(&mut document, assignment)?;
             }
-            Self::from_document(path, &document)?
+            Self::from_overridden(path, &base, &document, assignments)?
         };
         scenario.source = Source {
             path: path.to_owned(),
@@ -335,12 +337,32 @@ impl Scenario {
         for assignment in assignments {
             overrides::apply(&mut document, assignment)?;
         }
-        let mut scenario = Self::from_document(&self.source.path, &document)?;
+        let base = &self.source.document;
+        let mut scenario = Self::from_overridden(&self.source.path, base, &document, assignments)?;
         scenario.source = Source {
             path: self.source.path.clone(),
             document,
         };
         Ok(scenario)
+    }
+
+    /// [`Self::from_document`] for `document`, which is `base` with `assignments`
+    /// applied; a failure caused by one assignment alone names its key.
+    fn from_overridden(
+        path: &Path,
+        base: &toml::Table,
+        document: &toml::Table,
+        assignments: &[String],
+    ) -> Result<Scenario, ScenarioError> {
+        Self::from_document(path, document).map_err(|error| {
+            let check = |candidate: &toml::Table| {
+                toml::Value::Table(candidate.clone())
+                    .try_into::<Scenario>()
+                    .map(drop)
+                    .map_err(|e| e.message().to_owned())
+            };
+            overrides::blame(base, assignments, check).unwrap_or(error)
+        })
     }
 
     fn from_document(path: &Path, document: &toml::Table) -> Result<Scenario, ScenarioError> {

@@ -54,6 +54,68 @@ pub fn apply(document: &mut toml::Table, assignment: &str) -> Result<(), Scenari
     Ok(())
 }
 
+/// The first of `assignments` that, applied alone to `base`, makes `check` fail: an
+/// error naming its key and what the key expects. `None` when `base` itself fails or
+/// no assignment fails alone (then only their combination is wrong).
+///
+/// Deserialising the document after the overrides loses the keys (serde reports
+/// "invalid type: string "abc", expected f64" with no path); this finds the culprit.
+pub fn blame(
+    base: &toml::Table,
+    assignments: &[String],
+    check: impl Fn(&toml::Table) -> Result<(), String>,
+) -> Option<ScenarioError> {
+    check(base).ok()?;
+    assignments.iter().find_map(|assignment| {
+        let mut document = base.clone();
+        apply(&mut document, assignment).ok()?;
+        let message = check(&document).err()?;
+        let key = assignment.split_once('=').map_or("", |(key, _)| key.trim());
+        Some(ScenarioError::Override {
+            assignment: assignment.clone(),
+            message: format!("`{key}` {}", in_words(&message)),
+        })
+    })
+}
+
+/// serde's "invalid type: string "abc", expected f64" as "expects a number, found
+/// string "abc"", and its other common messages likewise; others as they are, after
+/// "is refused:" (they say what was expected themselves: "unknown field `colour`,
+/// expected one of `name`, `mass`, …").
+fn in_words(message: &str) -> String {
+    let message = message.trim();
+    let typed = ["invalid type: ", "invalid value: "]
+        .iter()
+        .find_map(|prefix| message.strip_prefix(prefix));
+    if let Some(rest) = typed {
+        if let Some((found, expected)) = rest.split_once(", expected ") {
+            let found = if found == "sequence" {
+                "an array"
+            } else {
+                found
+            };
+            return format!("expects {}, found {found}", type_in_words(expected));
+        }
+    }
+    if let Some(rest) = message.strip_prefix("invalid length ") {
+        if let Some((found, expected)) = rest.split_once(", expected ") {
+            return format!("expects {expected}, found {found} values");
+        }
+    }
+    format!("is refused: {message}")
+}
+
+/// A Rust type name as serde gives it, in words.
+fn type_in_words(expected: &str) -> &str {
+    match expected {
+        "f64" | "f32" => "a number",
+        "u8" | "u16" | "u32" | "u64" | "usize" => "a whole number ≥ 0",
+        "i8" | "i16" | "i32" | "i64" | "isize" => "a whole number",
+        "a sequence" => "an array [...]",
+        other => other,
+    }
+}
+
 /// Parses a TOML value; a bare word that is not TOML is taken as a string.
 fn parse_value(text: &str) -> Result<toml::Value, String> {
     match format!("value = {text}").parse::<toml::Table>() {
@@ -135,5 +197,42 @@ mod tests {
         assert!(e.contains("simulation") && e.contains("gravity"), "{e}");
         let e = apply(&mut doc, "gravity").unwrap_err().to_string();
         assert!(e.contains("key=value"), "{e}");
+    }
+
+    /// `check` for [`blame`]: the body's velocity must be 3 numbers.
+    fn three_numbers(document: &toml::Table) -> Result<(), String> {
+        let velocity = &document["body"][0]["velocity"];
+        let numbers: Vec<f64> = velocity
+            .clone()
+            .try_into()
+            .map_err(|e: toml::de::Error| e.message().to_owned())?;
+        match numbers.len() {
+            3 => Ok(()),
+            n => Err(format!("invalid length {n}, expected an array of length 3")),
+        }
+    }
+
+    #[test]
+    fn blame_names_the_assignment_that_breaks_the_document_alone() {
+        let assignments = [
+            "contact.0.law=flores".to_owned(),
+            "body.ball.velocity=[0, 0]".to_owned(),
+            "body.ball.velocity=[0, 0, abc]".to_owned(),
+        ];
+        let e = blame(&document(), &assignments, three_numbers)
+            .unwrap()
+            .to_string();
+        assert_eq!(
+            e,
+            "--set body.ball.velocity=[0, 0]: `body.ball.velocity` expects an array of length 3, found 2 values"
+        );
+        let typed = ["body.ball.velocity=\"fast\"".to_owned()];
+        let e = blame(&document(), &typed, three_numbers)
+            .unwrap()
+            .to_string();
+        assert!(e.contains("`body.ball.velocity` expects "), "{e}");
+        assert!(e.contains("found string \"fast\""), "{e}");
+        // Fine alone: nothing to blame.
+        assert!(blame(&document(), &assignments[..1], three_numbers).is_none());
     }
 }

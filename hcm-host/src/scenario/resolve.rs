@@ -102,6 +102,7 @@ impl Scenario {
     /// Resolves names, builds the laws and checks everything a simulation relies on.
     /// `path` names the scenario in errors.
     pub fn resolve(&self, path: &Path) -> Result<Model, ScenarioError> {
+        super::validate::materials(self, path)?;
         let invalid = Invalid(path);
         let bodies = (0..self.bodies.len())
             .map(|i| self.resolve_body(i, &invalid))
@@ -122,12 +123,13 @@ impl Scenario {
                 return Err(invalid.error("record.bodies".into(), format!("no body `{name}`")));
             }
         }
-        Ok(Model {
+        let model = Model {
             scenario: self.clone(),
             gravity: Vector3::from(self.gravity),
             bodies,
             contacts,
-        })
+        };
+        super::validate::starts_apart(model, path)
     }
 
     /// Body `i`: a unique name, its mass, shape, material, initial state and drag.

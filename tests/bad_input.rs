@@ -1,0 +1,536 @@
+//! Every bad input answered (issue 12): a value that parses but is physically
+//! impossible, an error in a physics file, a `--set` or numeric option of the wrong
+//! kind, a damaged weights blob, a run without contact. Each message must name the
+//! file, key or option and what was expected, and a refused command must leave
+//! nothing behind.
+
+use hcm_host::scenario::Scenario;
+use hcm_tests::cli::Hcm;
+use hcm_tests::scenario;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+/// The names of the files in the fixture's directory.
+fn files(hcm: &Hcm) -> BTreeSet<String> {
+    std::fs::read_dir(hcm.dir())
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+        .collect()
+}
+
+/// Runs `call` (which must fail) and asserts that it wrote nothing: its `--out`
+/// absent, and no other file (S1/S2 files, temporaries) in the directory.
+fn refused(hcm: &Hcm, out: &Path, call: hcm_tests::cli::Call) -> String {
+    let before = files(hcm);
+    let stderr = call.fails();
+    assert!(!out.exists(), "{} was written:\n{stderr}", out.display());
+    assert_eq!(files(hcm), before, "something was left behind:\n{stderr}");
+    stderr
+}
+
+/// Asserts that `message` contains every one of `parts`.
+fn says(message: &str, parts: &[&str]) {
+    for part in parts {
+        assert!(message.contains(part), "no `{part}` in:\n{message}");
+    }
+}
+
+/// The bouncing-ball scenario with `from` replaced by `to`, written to the fixture's
+/// directory as `name`.
+fn edited_ball(hcm: &Hcm, name: &str, from: &str, to: &str) -> PathBuf {
+    let text = std::fs::read_to_string(scenario("bouncing_ball.toml")).unwrap();
+    assert!(text.contains(from), "{from}");
+    let path = hcm.path(name);
+    std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+    path
+}
+
+#[test]
+fn an_impossible_material_is_refused_by_key_with_its_allowed_range() {
+    let hcm = Hcm::new();
+    let out = hcm.path("trajectory.csv");
+    let cases = [
+        (
+            "poisson_ratio = 0.3",
+            "poisson_ratio = 0.5",
+            "material.steel.poisson_ratio",
+            "(-1, 0.5)",
+            "found 0.5",
+        ),
+        (
+            "poisson_ratio = 0.25",
+            "poisson_ratio = -1.2",
+            "material.concrete.poisson_ratio",
+            "(-1, 0.5)",
+            "found -1.2",
+        ),
+        (
+            "youngs_modulus = 2.06e11",
+            "youngs_modulus = -2.06e11",
+            "material.steel.youngs_modulus",
+            "greater than zero",
+            "found -2.06e11",
+        ),
+        (
+            "youngs_modulus = 2.5193e10",
+            "youngs_modulus = 0.0",
+            "material.concrete.youngs_modulus",
+            "greater than zero",
+            "found 0",
+        ),
+    ];
+    for (i, (from, to, key, expected, found)) in cases.into_iter().enumerate() {
+        let path = edited_ball(&hcm, &format!("ball{i}.toml"), from, to);
+        let stderr = refused(
+            &hcm,
+            &out,
+            hcm.run("simulate")
+                .opt("--scenario", &path)
+                .opt("--out", &out),
+        );
+        says(&stderr, &[&format!("ball{i}.toml"), key, expected, found]);
+    }
+    // Also through --set: the same check, whatever set the value.
+    let stderr = refused(
+        &hcm,
+        &out,
+        hcm.run("simulate")
+            .opt("--scenario", scenario("bouncing_ball.toml"))
+            .opt("--set", "material.steel.poisson_ratio=0.7")
+            .opt("--out", &out),
+    );
+    says(
+        &stderr,
+        &["material.steel.poisson_ratio", "(-1, 0.5)", "found 0.7"],
+    );
+}
+
+#[test]
+fn bodies_starting_inside_each_other_are_refused_with_the_fix() {
+    let hcm = Hcm::new();
+    let out = hcm.path("trajectory.csv");
+    // Today's culprit: 0.5 m inside the ground simulated 300,001 rows of free fall.
+    let stderr = refused(
+        &hcm,
+        &out,
+        hcm.run("simulate")
+            .opt("--scenario", scenario("bouncing_ball.toml"))
+            .opt("--set", "body.ball.position=[0, 0, -0.5]")
+            .opt("--out", &out),
+    );
+    says(
+        &stderr,
+        &[
+            "bouncing_ball.toml",
+            "body.ball.position",
+            "0.5127 m inside `ground`",
+            "at most 1.27e-5 m deep",
+            "position = [0, 0, 0.0127] starts it touching",
+        ],
+    );
+    // The plate pushed 5 mm into the resting ball of the flat shot.
+    let stderr = refused(
+        &hcm,
+        &out,
+        hcm.run("simulate")
+            .opt("--scenario", scenario("flat_shot.toml"))
+            .opt("--set", "body.plate.position=[0, -0.005, 0]")
+            .opt("--out", &out),
+    );
+    says(
+        &stderr,
+        &[
+            "flat_shot.toml",
+            "body.ball.position",
+            "0.005 m inside `plate`",
+            "position = [0, 0.0177, 0]",
+        ],
+    );
+}
+
+#[test]
+fn touching_and_slightly_preloaded_starts_still_load() {
+    // The flat shot starts touching (δ = 0); a preload below 10⁻³·R is a contact
+    // state, not an overlap; a little deeper is refused.
+    let flat_shot = scenario("flat_shot.toml");
+    Scenario::load(&flat_shot, &[]).unwrap().model().unwrap();
+    let ball = scenario("bouncing_ball.toml");
+    Scenario::load(&ball, &[]).unwrap().model().unwrap();
+    let at = |height: f64| {
+        let set = [format!("body.ball.position=[0, 0, {height}]")];
+        Scenario::load(&ball, &set).unwrap().model()
+    };
+    at(0.0127 - 1.2e-5).unwrap();
+    let error = at(0.0127 - 1.3e-5).unwrap_err().to_string();
+    says(&error, &["body.ball.position", "1.3e-5 m inside `ground`"]);
+}
+
+/// The bouncing ball's S1 and S2 files (10 runs), generated in `hcm`'s directory.
+fn ball_data(hcm: &Hcm) -> (PathBuf, PathBuf) {
+    hcm.run("generate")
+        .opt("--scenario", scenario("bouncing_ball.toml"))
+        .opt("--runs", "10")
+        .opt("--seed", "3")
+        .opt("--out", hcm.path("data.csv"))
+        .ok();
+    (hcm.path("data.s1.csv"), hcm.path("data.s2.csv"))
+}
+
+/// A Lankarani–Nikravesh physics file with `parameters` (an inline TOML table's
+/// inside) and `law`.
+fn physics_file(hcm: &Hcm, name: &str, law: &str, parameters: &str) -> PathBuf {
+    let path = hcm.path(name);
+    let text = format!(
+        "[[contact]]\nbodies = [\"ball\", \"ground\"]\nlaw = \"{law}\"\nparameters = {{ {parameters} }}\n"
+    );
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+const LN: &str = "stiffness = 6.86e9, exponent = 1.489, restitution = 0.929";
+
+#[test]
+fn a_physics_file_error_names_the_physics_file_and_its_key() {
+    let hcm = Hcm::new();
+    let (s1, s2) = ball_data(&hcm);
+    let ball = scenario("bouncing_ball.toml");
+    let good = physics_file(&hcm, "pm2.toml", "lankarani_nikravesh", LN);
+    hcm.run("evaluate")
+        .opt("--scenario", &ball)
+        .opt("--data", &s2)
+        .opt("--physics", &good)
+        .ok();
+
+    let unknown = physics_file(&hcm, "unknown.toml", "lankarani", LN);
+    let domain = physics_file(
+        &hcm,
+        "domain.toml",
+        "lankarani_nikravesh",
+        &LN.replace("0.929", "1.5"),
+    );
+    let other = physics_file(
+        &hcm,
+        "other.toml",
+        "lankarani_nikravesh",
+        "stiffness = 6.86e9, exponent = 1.489, restitution = 0.9, damping = 3.0",
+    );
+    // Only once applied can a derived parameter's law be checked: still the physics file's.
+    let derived = physics_file(
+        &hcm,
+        "derived.toml",
+        "variable_stiffness",
+        "surface_loading = 2.0, damping = -5.0",
+    );
+    let cases: [(&Path, &[&str]); 4] = [
+        (
+            &unknown,
+            &[
+                "physics file",
+                "unknown.toml",
+                "contact.0.law",
+                "unknown law `lankarani`",
+                "the laws are: hertz",
+            ],
+        ),
+        (
+            &domain,
+            &[
+                "physics file",
+                "domain.toml",
+                "contact.0.parameters.restitution",
+                "must lie in (0, 1]",
+                "found 1.5",
+            ],
+        ),
+        (
+            &other,
+            &[
+                "physics file",
+                "other.toml",
+                "contact.0.parameters.damping",
+                "its parameters are: stiffness, exponent, restitution",
+            ],
+        ),
+        (
+            &derived,
+            &[
+                "physics file",
+                "derived.toml",
+                "does not fit the scenario",
+                "`damping` must be a finite number, zero or greater",
+            ],
+        ),
+    ];
+    for (physics, parts) in cases {
+        let evaluate = hcm
+            .run("evaluate")
+            .opt("--scenario", &ball)
+            .opt("--data", &s2)
+            .opt("--physics", physics);
+        let stderr = refused(&hcm, &hcm.path("none"), evaluate);
+        says(&stderr, parts);
+        // Named first: the scenario file is not what is wrong.
+        assert!(stderr.starts_with("error: physics file"), "{stderr}");
+    }
+    let out = hcm.path("residual.json");
+    let train = hcm
+        .run("train")
+        .opt("--scenario", &ball)
+        .opt("--data", &s1)
+        .opt("--physics", &domain)
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, train),
+        &["domain.toml", "contact.0.parameters.restitution"],
+    );
+    let out = hcm.path("diagnosis");
+    let diagnose = hcm
+        .run("diagnose")
+        .opt("--scenario", &ball)
+        .opt("--data", &s1)
+        .opt("--physics", &unknown)
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, diagnose),
+        &["unknown.toml", "contact.0.law"],
+    );
+}
+
+#[test]
+fn a_set_of_the_wrong_kind_names_the_key_and_what_it_expects() {
+    let hcm = Hcm::new();
+    let out = hcm.path("trajectory.csv");
+    let cases: [(&str, &[&str]); 4] = [
+        (
+            "body.ball.mass=abc",
+            &[
+                "--set body.ball.mass=abc",
+                "`body.ball.mass` expects a number",
+                "found string \"abc\"",
+            ],
+        ),
+        (
+            "body.ball.velocity=[0,0]",
+            &[
+                "`body.ball.velocity` expects an array of length 3",
+                "found 2 values",
+            ],
+        ),
+        (
+            "simulation.max_steps=-3",
+            &["`simulation.max_steps` expects a whole number ≥ 0"],
+        ),
+        (
+            "body.ground.fixed=1",
+            &["`body.ground.fixed` expects a boolean"],
+        ),
+    ];
+    for (set, parts) in cases {
+        let simulate = hcm
+            .run("simulate")
+            .opt("--scenario", scenario("bouncing_ball.toml"))
+            .opt("--set", set)
+            .opt("--out", &out);
+        says(&refused(&hcm, &out, simulate), parts);
+    }
+}
+
+#[test]
+fn numeric_options_say_what_they_take() {
+    let hcm = Hcm::new();
+    let out = hcm.path("data.csv");
+    let ball = scenario("bouncing_ball.toml");
+    let cases: [(&str, &str, &[&str]); 5] = [
+        (
+            "--runs",
+            "1e9",
+            &[
+                "'--runs <RUNS>'",
+                "a whole number of runs ≥ 1, e.g. --runs 100",
+                "write its digits, 1000000000",
+            ],
+        ),
+        (
+            "--runs",
+            "-5",
+            &["a whole number of runs ≥ 1", "-5 is negative"],
+        ),
+        (
+            "--runs",
+            "0",
+            &["a whole number of runs ≥ 1", "0 is below 1"],
+        ),
+        (
+            "--seed",
+            "-1",
+            &[
+                "'--seed <SEED>'",
+                "a whole number from 0 to 18446744073709551615",
+                "-1 is negative",
+            ],
+        ),
+        ("--seed", "1.5", &["1.5 is not a whole number"]),
+    ];
+    for (option, value, parts) in cases {
+        let mut generate = hcm
+            .run("generate")
+            .opt("--scenario", &ball)
+            .opt("--out", &out);
+        generate = match option {
+            "--runs" => generate.opt("--runs", value),
+            _ => generate.opt("--runs", "2").opt(option, value),
+        };
+        says(&refused(&hcm, &out, generate), parts);
+    }
+    // The other counts share the parsers.
+    let out = hcm.path("residual.json");
+    let train = hcm
+        .run("train")
+        .opt("--scenario", &ball)
+        .opt("--data", "s1.csv")
+        .opt("--physics", "pm2.toml")
+        .opt("--contact", "-1")
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, train),
+        &["'--contact <CONTACT>'", "counted from 0", "-1 is negative"],
+    );
+    let out = hcm.path("pm2.toml");
+    let identify = hcm
+        .run("identify")
+        .opt("--scenario", &ball)
+        .opt("--data", "s1.csv")
+        .opt("--law", "hertz")
+        .opt("--population", "1")
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, identify),
+        &["'--population <POPULATION>'", "≥ 2", "1 is below 2"],
+    );
+}
+
+/// A residual blob of the bouncing ball's HCM, through generate → train → export, with
+/// the data and physics file it goes with.
+fn ball_blob(hcm: &Hcm) -> (PathBuf, PathBuf, Vec<u8>) {
+    let (s1, s2) = ball_data(hcm);
+    let ball = scenario("bouncing_ball.toml");
+    let pm2 = physics_file(hcm, "pm2.toml", "lankarani_nikravesh", LN);
+    let residual = hcm.path("residual.json");
+    hcm.run("train")
+        .opt("--scenario", &ball)
+        .opt("--data", &s1)
+        .opt("--physics", &pm2)
+        .opt("--epochs", "2")
+        .opt("--int8-epochs", "0")
+        .opt("--out", &residual)
+        .ok();
+    let blob = hcm.path("residual.hcm");
+    hcm.run("export")
+        .opt("--residual", &residual)
+        .opt("--out", &blob)
+        .ok();
+    (s2, pm2, std::fs::read(blob).unwrap())
+}
+
+#[test]
+fn each_damage_to_a_blob_has_its_own_message() {
+    let hcm = Hcm::new();
+    let (s2, pm2, blob) = ball_blob(&hcm);
+    let length = blob.len();
+    let evaluate = |name: &str, bytes: &[u8]| {
+        let path = hcm.path(name);
+        std::fs::write(&path, bytes).unwrap();
+        let call = hcm
+            .run("evaluate")
+            .opt("--scenario", scenario("bouncing_ball.toml"))
+            .opt("--data", &s2)
+            .opt("--physics", &pm2)
+            .opt("--residual", &path);
+        refused(&hcm, &hcm.path("none"), call)
+    };
+    evaluate_ok(&hcm, &s2, &pm2, &blob);
+
+    let mut trailing = blob.clone();
+    trailing.extend_from_slice(&[0, 0]);
+    says(
+        &evaluate("trailing.hcm", &trailing),
+        &[
+            "trailing.hcm",
+            "2 unexpected byte(s) after the end of the network",
+            &format!("announces {length} bytes"),
+        ],
+    );
+    says(
+        &evaluate("short.hcm", &blob[..length - 100]),
+        &[
+            "short.hcm",
+            &format!(
+                "cut short: {} bytes, but its header announces {length}",
+                length - 100
+            ),
+        ],
+    );
+    let mut flipped = blob.clone();
+    flipped[length / 2] ^= 0x10;
+    says(
+        &evaluate("flipped.hcm", &flipped),
+        &[
+            "flipped.hcm",
+            "corrupted: its checksum does not match its contents",
+        ],
+    );
+    // A valid start (magic, version) and random bytes: corrupted, never "cut short".
+    let mut state = 0x9e37_79b9_u32;
+    for seed in 0..20 {
+        let mut random = blob[..5].to_vec();
+        while random.len() < length {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            random.push((state >> 24) as u8);
+        }
+        let stderr = evaluate(&format!("random{seed}.hcm"), &random);
+        says(&stderr, &["corrupted: its checksum does not match"]);
+    }
+}
+
+/// The unchanged blob is accepted: the damage, not the test's setup, is refused.
+fn evaluate_ok(hcm: &Hcm, s2: &Path, pm2: &Path, blob: &[u8]) {
+    let path = hcm.path("intact.hcm");
+    std::fs::write(&path, blob).unwrap();
+    let stdout = hcm
+        .run("evaluate")
+        .opt("--scenario", scenario("bouncing_ball.toml"))
+        .opt("--data", s2)
+        .opt("--physics", pm2)
+        .opt("--residual", &path)
+        .ok();
+    assert!(stdout.contains("HCM"), "{stdout}");
+}
+
+#[test]
+fn runs_without_contact_are_named_apart_from_their_count() {
+    let hcm = Hcm::new();
+    let ball = scenario("bouncing_ball.toml");
+    let data = hcm.path("flight.csv");
+    // 50 ms of a 143 ms fall: run `0` never touches the ground.
+    hcm.run("simulate")
+        .opt("--scenario", &ball)
+        .opt("--set", "simulation.end_time=0.05")
+        .opt("--out", &data)
+        .ok();
+    let stdout = hcm
+        .run("indicators")
+        .opt("--scenario", &ball)
+        .opt("--data", &data)
+        .ok();
+    says(
+        &stdout,
+        &[
+            "1 run without a completed contact: `0`",
+            "no completed contact in the data (1 run read)",
+        ],
+    );
+    assert!(
+        !stdout.contains("runs without a completed contact: 0"),
+        "{stdout}"
+    );
+}
