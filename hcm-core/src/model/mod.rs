@@ -108,6 +108,7 @@ impl<T: Real, R> ContactModel<T, R> {
     }
 
     /// Physics force at one point: f_n, and the friction from the point's slip.
+    #[inline]
     pub fn point_force(&self, point: &ContactPoint<T>) -> PointForce<T> {
         let normal_force = self.physics_normal_force(&point.indentation, &point.memory);
         let friction = match &self.friction {
@@ -187,51 +188,64 @@ impl<T: Real, R: Residual<T>> ContactModel<T, R> {
         reference_2: &Vector3<T>,
         residual_input: &[T],
     ) -> PairLoad<T> {
-        let mut load = PairLoad {
-            wrench: zero_wrench(),
-            normal_force: T::zero(),
-            evaluated: Evaluated::PhysicsOnly,
-        };
-        let Some(first) = points.iter().position(|p| touching(p.indentation.depth)) else {
-            return load;
+        let touches = |p: &&ContactPoint<T>| touching(p.indentation.depth);
+        let Some((at, first)) = points.iter().enumerate().find(|(_, p)| touches(p)) else {
+            return PairLoad {
+                wrench: zero_wrench(),
+                normal_force: T::zero(),
+                evaluated: Evaluated::PhysicsOnly,
+            };
         };
         // The residual was trained on (measured − physics): it adds to the physics'
         // result and does not feed back into the friction law.
         let correction = self.residual.correction(residual_input);
-        if correction.is_some() {
-            load.evaluated = Evaluated::PhysicsAndResidual;
+        let mut force = self.point_force(first);
+        if let Some(Correction::NormalForce(extra)) = correction {
+            force.normal_force = (force.normal_force + extra).saturate();
         }
-        for (i, point) in points.iter().enumerate().skip(first) {
-            if !touching(point.indentation.depth) {
-                continue;
-            }
-            let mut force = self.point_force(point);
-            if let (true, Some(Correction::NormalForce(extra))) = (i == first, correction) {
-                force.normal_force = (force.normal_force + extra).saturate();
-            }
+        // The first point's wrench is assembled directly (the common single-point
+        // contact pays for no summation); the others add to it.
+        let mut load = PairLoad {
+            wrench: point_wrench(first, &force, reference_1, reference_2),
+            normal_force: force.normal_force,
+            evaluated: match correction {
+                Some(_) => Evaluated::PhysicsAndResidual,
+                None => Evaluated::PhysicsOnly,
+            },
+        };
+        let rest = points.get(at + 1..).unwrap_or(&[]);
+        for point in rest.iter().filter(touches) {
+            let force = self.point_force(point);
             load.normal_force = (load.normal_force + force.normal_force).saturate();
-            add_point_wrench(&mut load.wrench, point, &force, reference_1, reference_2);
+            let w = point_wrench(point, &force, reference_1, reference_2);
+            load.wrench.force_1 += w.force_1;
+            load.wrench.torque_1 += w.torque_1;
+            load.wrench.force_2 += w.force_2;
+            load.wrench.torque_2 += w.torque_2;
         }
+        let Some(correction) = correction else {
+            return load;
+        };
         let w = &mut load.wrench;
         match correction {
-            Some(Correction::Wrench { force, torque }) => {
+            Correction::Wrench { force, torque } => {
                 w.force_1 += force;
                 w.torque_1 += torque;
                 w.force_2 -= force;
                 w.torque_2 -= torque + (reference_1 - reference_2).cross(&force);
             }
-            Some(Correction::PairWrench {
+            Correction::PairWrench {
                 force_1,
                 torque_1,
                 force_2,
                 torque_2,
-            }) => {
+            } => {
                 w.force_1 += force_1;
                 w.torque_1 += torque_1;
                 w.force_2 += force_2;
                 w.torque_2 += torque_2;
             }
-            Some(Correction::NormalForce(_)) | None => {}
+            Correction::NormalForce(_) => {}
         }
         load
     }
@@ -246,25 +260,21 @@ fn zero_wrench<T: Real>() -> ContactWrench<T> {
     }
 }
 
-/// Adds one point's force to the pair's wrench by Eq 1.
-fn add_point_wrench<T: Real>(
-    wrench: &mut ContactWrench<T>,
+/// One point's force on both bodies by Eq 1.
+#[inline]
+fn point_wrench<T: Real>(
     point: &ContactPoint<T>,
     force: &PointForce<T>,
     reference_1: &Vector3<T>,
     reference_2: &Vector3<T>,
-) {
-    let w = ContactWrench::assemble(
+) -> ContactWrench<T> {
+    ContactWrench::assemble(
         force.normal_force,
         &point.normal,
         &force.friction,
         &(point.position - reference_1),
         &(point.position - reference_2),
-    );
-    wrench.force_1 += w.force_1;
-    wrench.torque_1 += w.torque_1;
-    wrench.force_2 += w.force_2;
-    wrench.torque_2 += w.torque_2;
+    )
 }
 
 #[cfg(test)]

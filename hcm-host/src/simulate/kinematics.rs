@@ -23,6 +23,7 @@ pub struct PairKinematics {
 }
 
 /// Kinematics of `contact` with body 1 at (p1, v1) and body 2 at (p2, v2) (m, m/s).
+#[inline]
 pub fn pair_kinematics(
     model: &Model,
     contact: &Contact,

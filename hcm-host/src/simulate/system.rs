@@ -121,14 +121,13 @@ impl ContactSystem<'_> {
     }
 
     /// The normal force f_n (N) of contact `c` in state `y`, in contact mode: the
-    /// same model as [`ContactSystem::contact_load`] without assembling the wrench
-    /// (the peak search evaluates it often).
+    /// same model as [`ContactSystem::contact_load`] without the point's geometry and
+    /// the wrench (the peak search evaluates it often).
     pub fn contact_normal_force(&self, y: &[f64], c: usize, k: &PairKinematics) -> f64 {
-        let (point, input) = self.contact_point(y, c, k);
+        let (indentation, memory) = self.indentation(y, c, k);
+        let input = [k.depth, k.rate, indentation.approach_speed];
         let model = &self.model.contacts[c].model;
-        model
-            .normal_force(&point.indentation, &point.memory, &input)
-            .0
+        model.normal_force(&indentation, &memory, &input).0
     }
 
     /// Contact `c`'s one point and the residual's input [δ (m), δ̇ (m/s), δ̇0 (m/s)].
@@ -138,21 +137,34 @@ impl ContactSystem<'_> {
         c: usize,
         k: &PairKinematics,
     ) -> (ContactPoint<f64>, [f64; 3]) {
-        let indentation = Indentation {
-            depth: k.depth,
-            rate: k.rate,
-            approach_speed: self.modes.approach_speed[c],
-        };
+        let (indentation, memory) = self.indentation(y, c, k);
         let point = ContactPoint {
             indentation,
-            memory: ContactMemory {
-                max_depth: y[self.layout.deepest_index(c)].max(k.depth),
-            },
+            memory,
             normal: k.normal,
             position: k.point,
             relative_velocity: k.relative_velocity,
         };
         (point, [k.depth, k.rate, indentation.approach_speed])
+    }
+
+    /// Contact `c`'s (δ, δ̇, δ̇0) and δ_max in state `y`.
+    #[inline]
+    fn indentation(
+        &self,
+        y: &[f64],
+        c: usize,
+        k: &PairKinematics,
+    ) -> (Indentation<f64>, ContactMemory<f64>) {
+        let indentation = Indentation {
+            depth: k.depth,
+            rate: k.rate,
+            approach_speed: self.modes.approach_speed[c],
+        };
+        let memory = ContactMemory {
+            max_depth: y[self.layout.deepest_index(c)].max(k.depth),
+        };
+        (indentation, memory)
     }
 }
 
