@@ -6,10 +6,10 @@ use super::progress_bar;
 use anyhow::Context;
 use hcm_host::evaluate::{evaluate, markdown, ConditionTable};
 use hcm_host::experiment::{generate, split};
-use hcm_host::figure::{Colour, Figure, Series};
+use hcm_host::figure::{Band, Colour, Figure, Series};
 use hcm_host::identify::evolve::Fitness;
 use hcm_host::identify::genetic::GeneticSettings;
-use hcm_host::identify::replay::{simulate_target_with, targets};
+use hcm_host::identify::replay::{curve, simulate_target_with, targets, Target};
 use hcm_host::identify::samples::force_samples;
 use hcm_host::identify::{identify, Method, Physics};
 use hcm_host::law_catalogue;
@@ -270,8 +270,37 @@ fn paper_comparison(example: Example, table: &ConditionTable) -> String {
     out
 }
 
-/// Fig 9/12 (contact force of S2 mean, PM2, HCM) and Fig 10/13 (force error over the contact),
-/// each as SVG and PNG; returns the file names.
+/// The standard error of `target`'s mean force at each sample, s/√n over the runs of its
+/// condition in `data` (N): the noise within which a model's difference from the mean
+/// cannot be told from chance. NaN with fewer than two runs, where it is undefined.
+fn mean_standard_error(
+    model: &hcm_host::scenario::Model,
+    data: &hcm_host::dataset::Dataset,
+    target: &Target,
+) -> anyhow::Result<Vec<f64>> {
+    let mut curves = Vec::new();
+    for run in &data.runs {
+        if hcm_host::experiment::condition_of(&run.id) == target.condition {
+            let len = target.curve.len();
+            curves.extend(curve(model, run, 0, target.period, len)?.map(|c| c.0));
+        }
+    }
+    let n = curves.len() as f64;
+    let at = |j: usize| {
+        let squares: f64 = curves
+            .iter()
+            .map(|c| (c[j] - target.curve[j]).powi(2))
+            .sum();
+        (squares / (n - 1.0)).sqrt() / n.sqrt()
+    };
+    Ok((0..target.curve.len())
+        .map(|j| if n < 2.0 { f64::NAN } else { at(j) })
+        .collect())
+}
+
+/// Fig 9/12 (contact force of S2 mean, PM2, HCM, with a zoom on the peak) and Fig 10/13
+/// (force error over the contact, with the zero line and ±2 standard errors of the S2
+/// mean), each as SVG and PNG; returns the file names.
 fn figures(
     pm2: &hcm_host::scenario::Model,
     hcm: &hcm_host::scenario::Model,
@@ -325,7 +354,18 @@ fn figures(
                 points: points(&hcm_curve),
             },
         ],
-    );
+    )
+    .with_peak_inset();
+    let noise = mean_standard_error(pm2, s2, &target)?;
+    let band = Band {
+        label: "±2 standard errors of the S2 mean",
+        colour: Colour::hex(0xd9d9d9),
+        points: noise
+            .iter()
+            .enumerate()
+            .map(|(j, e)| (time(j), -2.0 * e, 2.0 * e))
+            .collect(),
+    };
     let error = Figure::new(
         "Force error: S2 mean − model",
         "time since touch-down (µs)",
@@ -342,7 +382,9 @@ fn figures(
                 points: errors(&hcm_curve),
             },
         ],
-    );
+    )
+    .with_band(band)
+    .with_zero_line();
     let mut names = Vec::new();
     for (stem, figure) in [("contact_force", &force), ("force_error", &error)] {
         let (svg, png) = (format!("{stem}.svg"), format!("{stem}.png"));
