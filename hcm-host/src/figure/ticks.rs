@@ -9,6 +9,8 @@ const LARGEST: f64 = 1e300;
 /// Relative resolution of a range: a range narrower than this fraction of its values is
 /// widened to it, since `f64` cannot label finer steps meaningfully (–).
 const RESOLUTION: f64 = 1e-9;
+/// Least fraction of the axis the data should span before a finer step is tried (–).
+const MIN_COVERAGE: f64 = 0.75;
 /// Largest magnitude labelled in plain notation; larger ticks use a power of ten (data
 /// units).
 const PLAIN_BELOW: f64 = 1e5;
@@ -32,8 +34,9 @@ pub(super) struct Ticks {
 impl Ticks {
     /// Round ticks covering `low`–`high` (data units) in about `intervals` steps
     /// (between 0.63 and 1.6 times as many, plus up to two for the widening to whole
-    /// ticks). A zero-width range is widened about its value (to ±50 % of it, at least
-    /// ±0.5), a reversed or non-finite one replaced by 0–1.
+    /// ticks; up to twice as many where a coarser step would leave more than a quarter of
+    /// the axis empty). A zero-width range is widened about its value (to ±50 % of it, at
+    /// least ±0.5), a reversed or non-finite one replaced by 0–1.
     pub(super) fn new(low: f64, high: f64, intervals: usize) -> Ticks {
         let (low, high) = widened(low, high);
         let raw = (high - low) / intervals.max(1) as f64;
@@ -45,6 +48,29 @@ impl Ticks {
             f if f < 10f64.sqrt() => (2, exponent),
             f if f < 50f64.sqrt() => (5, exponent),
             _ => (1, exponent + 1),
+        };
+        let ticks = Ticks::covering(low, high, mantissa, exponent);
+        // E.g. forces from −3 N to 1700 N: steps of 500 N would spend a fifth of the axis
+        // on −500–0 N; steps of 200 N spend a tenth.
+        let (first, last) = ticks.range();
+        if (high - low) / (last - first) >= MIN_COVERAGE {
+            return ticks;
+        }
+        let finer = ticks.finer(low, high);
+        let limit = 2 * intervals.max(1) as i64;
+        if finer.last - finer.first <= limit {
+            finer
+        } else {
+            ticks
+        }
+    }
+
+    /// The ticks of the next finer round step (10 → 5 → 2 → 1) covering `low`–`high`.
+    fn finer(&self, low: f64, high: f64) -> Ticks {
+        let (mantissa, exponent) = match self.mantissa {
+            5 => (2, self.exponent),
+            2 => (1, self.exponent),
+            _ => (5, self.exponent - 1),
         };
         Ticks::covering(low, high, mantissa, exponent)
     }
@@ -233,6 +259,18 @@ mod tests {
         let (values, labels) = ticks(-0.93, -0.12);
         assert_eq!(values, [-1.0, -0.8, -0.6, -0.4, -0.2, 0.0]);
         assert_eq!(labels, ["−1.0", "−0.8", "−0.6", "−0.4", "−0.2", "0.0"]);
+    }
+
+    #[test]
+    fn a_finer_step_is_taken_rather_than_leave_much_of_the_axis_empty() {
+        // Steps of 500 would show −500–2000 for data from −3 to 1700.
+        let (values, _) = ticks(-3.0, 1700.0);
+        assert_eq!(values.first(), Some(&-200.0));
+        assert_eq!(values.last(), Some(&1800.0));
+        assert_eq!(values.len(), 11);
+        // Not when the finer step would crowd the axis.
+        let ticks = Ticks::new(-3.0, 1700.0, 2);
+        assert_eq!(ticks.range(), (-1000.0, 2000.0));
     }
 
     #[test]
