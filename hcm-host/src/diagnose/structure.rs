@@ -17,7 +17,7 @@
 //! and that leaves room for σ being an estimate.
 
 use super::ContactSamples;
-use crate::figure::{Colour, Figure, Series};
+use crate::figure::{Band, Colour, Figure, Series};
 
 /// Bins against δ/δ_peak, loading and unloading each.
 const DEPTH_BINS: usize = 10;
@@ -268,7 +268,8 @@ const AFTER: Colour = Colour::hex(0x1f77b4);
 /// The mean residual of `before` — and of `after`, if given — against time since
 /// touch-down, δ/δ_peak while loading, δ/δ_peak while unloading and δ̇/δ̇0, each as
 /// (file stem, figure); `labels` names the two models in the legends (e.g. the base and
-/// the extended model). Empty bins are left out of the curves.
+/// the extended model). Empty bins are left out of the curves. Each figure has the zero
+/// line and, shaded, the ±2σ/√n within which a bin's mean of n samples is noise.
 pub fn structure_figures<'a>(
     before: &Structure,
     after: Option<&Structure>,
@@ -284,25 +285,25 @@ pub fn structure_figures<'a>(
         (
             "residual_vs_time",
             "Mean residual over the contact",
-            "time since touch-down / contact duration (-)",
+            "time since touch-down / contact duration (–)",
             |s| &s.by_phase,
         ),
         (
             "residual_vs_depth_loading",
             "Mean residual while loading",
-            "indentation / peak indentation (-)",
+            "indentation δ / peak indentation (–)",
             |s| &s.by_depth_loading,
         ),
         (
             "residual_vs_depth_unloading",
             "Mean residual while unloading",
-            "indentation / peak indentation (-)",
+            "indentation δ / peak indentation (–)",
             |s| &s.by_depth_unloading,
         ),
         (
             "residual_vs_rate",
             "Mean residual against the indentation rate",
-            "indentation rate / approach speed (-)",
+            "indentation rate δ̇ / approach speed δ̇₀ (–)",
             |s| &s.by_rate,
         ),
     ];
@@ -327,8 +328,19 @@ pub fn structure_figures<'a>(
                     points: curve(bins(after)),
                 });
             }
-            let y_label = "mean residual, measured - model (N)";
-            (stem, Figure::new(title, x_label, y_label, series))
+            let y_label = "mean residual, measured − model (N)";
+            // A bin's mean of n samples with noise σ is noise within ±2σ/√n.
+            let noise = bins(before).iter().filter(|b| b.count > 0).map(|b| {
+                let half = 2.0 * before.sigma / (b.count as f64).sqrt();
+                (b.centre, -half, half)
+            });
+            let band = Band {
+                label: "±2σ/√n: noise of a bin's mean",
+                colour: Colour::hex(0xd9d9d9),
+                points: noise.collect(),
+            };
+            let figure = Figure::new(title, x_label, y_label, series);
+            (stem, figure.with_band(band).with_zero_line())
         })
         .collect()
 }

@@ -1,28 +1,26 @@
-//! Line plots — a few polylines on linear axes with tick labels, a title, axis labels and a
-//! legend — written as SVG ([`Figure::svg`]) and as PNG ([`Figure::png`]).
+//! Line plots — a few curves on linear axes with round ticks, a title, axis titles and a
+//! legend, optionally a shaded band (e.g. the noise of a measured mean), the zero line and
+//! an inset zooming on the peak — written as SVG ([`Figure::svg`]) and PNG ([`Figure::png`]).
 //!
-//! Everything a figure shows is placed once, here, in a `Layout`: the axis ranges, the
-//! ticks, every text and its position, the legend and the mapping from data to pixels. The
-//! two renderers (`svg.rs`, `png.rs`) only draw that layout, so the two files show the same
-//! figure. Neither needs a font file or a system font: the SVG leaves the text to the viewer,
-//! the PNG uses the bitmap fonts built into `embedded-graphics`.
+//! Everything a figure shows is placed once, in a `Layout` (`layout.rs`, with `plot.rs`
+//! for the axes, `ticks.rs` for the tick values, `legend.rs`, and `inset.rs` for the
+//! zoom): the ranges, every text and its position, the legend and the curves in pixels.
+//! The two renderers (`svg.rs`, and `png.rs` on `canvas.rs`) only draw that layout, so the
+//! two files show the same figure. Text is measured and, in the PNG, drawn anti-aliased
+//! with the DejaVu Sans font compiled into the binary (`font.rs`), so Greek letters, µ, ±,
+//! superscripts and δ̇ show as they are written.
 
+mod canvas;
+mod font;
+mod inset;
+mod layout;
+mod legend;
+mod plot;
 mod png;
 mod svg;
+mod ticks;
 
-/// Width of the image (px).
-const WIDTH: f64 = 720.0;
-/// Height of the image (px).
-const HEIGHT: f64 = 440.0;
-/// Margins around the plot area: left, right, top, bottom (px).
-const MARGIN: (f64, f64, f64, f64) = (80.0, 20.0, 40.0, 60.0);
-/// Intervals between ticks per axis (so one more tick label than this).
-const TICK_INTERVALS: usize = 5;
-/// Width assumed for one character of normal-size text, to size the legend box (px); the
-/// PNG's font is exactly this wide, the SVG's sans-serif font about as wide on average.
-const CHAR_WIDTH: f64 = 7.0;
-/// Vertical distance between legend rows (px).
-const LEGEND_ROW: f64 = 16.0;
+use layout::Layout;
 
 /// An sRGB colour, 8 bits per channel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,10 +38,12 @@ impl Colour {
     pub const BLACK: Colour = Colour::hex(0x000000);
     /// White.
     pub const WHITE: Colour = Colour::hex(0xffffff);
-    /// The light grey of the horizontal grid lines.
-    const GRID: Colour = Colour::hex(0xdddddd);
-    /// The grey of the legend box's border.
-    const LEGEND_BORDER: Colour = Colour::hex(0xbbbbbb);
+    /// The light grey of the grid lines.
+    const GRID: Colour = Colour::hex(0xe4e4e4);
+    /// The dark grey of the zero line and of the frames.
+    const AXIS: Colour = Colour::hex(0x444444);
+    /// The mid grey of the zoomed window's outline.
+    const MARKER: Colour = Colour::hex(0x999999);
 
     /// The colour written `0xRRGGBB`, e.g. `Colour::hex(0x1f77b4)`.
     pub const fn hex(rgb: u32) -> Colour {
@@ -70,319 +70,328 @@ pub struct Series<'a> {
     pub points: Vec<(f64, f64)>,
 }
 
-/// A line plot, laid out and ready to be written as SVG or PNG.
+/// A shaded band: at each x, the range from `low` to `high` — e.g. ±2 standard errors of
+/// a measured mean, within which a model's deviation cannot be told from noise.
+pub struct Band<'a> {
+    /// Legend label.
+    pub label: &'a str,
+    /// Fill colour (a light one: the band is drawn under the grid and the curves).
+    pub colour: Colour,
+    /// (x, low, high) in data units; points with a non-finite value are left out.
+    pub points: Vec<(f64, f64, f64)>,
+}
+
+impl Band<'_> {
+    /// The points whose three values are finite.
+    fn finite(&self) -> impl Iterator<Item = (f64, f64, f64)> + '_ {
+        self.points
+            .iter()
+            .copied()
+            .filter(|p| p.0.is_finite() && p.1.is_finite() && p.2.is_finite())
+    }
+}
+
+/// A line plot, ready to be written as SVG or PNG.
 pub struct Figure<'a> {
+    title: String,
+    x_label: String,
+    y_label: String,
     series: Vec<Series<'a>>,
-    layout: Layout,
+    band: Option<Band<'a>>,
+    zero_line: bool,
+    peak_inset: bool,
 }
 
 impl<'a> Figure<'a> {
-    /// Lays out `series` as a line plot with a title and axis labels (all in data units as
-    /// given; the labels should name the units).
+    /// `series` as a line plot with a title and axis titles (all in data units as given;
+    /// the axis titles should name the units). The axes span every finite point, widened
+    /// to round ticks.
     pub fn new(title: &str, x_label: &str, y_label: &str, series: Vec<Series<'a>>) -> Self {
-        let layout = Layout::new(title, x_label, y_label, &series);
-        Figure { series, layout }
+        Figure {
+            title: title.to_owned(),
+            x_label: x_label.to_owned(),
+            y_label: y_label.to_owned(),
+            series,
+            band: None,
+            zero_line: false,
+            peak_inset: false,
+        }
+    }
+
+    /// The figure with `band` shaded under the curves (the y axis spans it too) and
+    /// named in the legend after them.
+    pub fn with_band(self, band: Band<'a>) -> Self {
+        Figure {
+            band: Some(band),
+            ..self
+        }
+    }
+
+    /// The figure with a dark line at y = 0 (the y axis includes 0): for differences,
+    /// where the sign matters.
+    pub fn with_zero_line(self) -> Self {
+        Figure {
+            zero_line: true,
+            ..self
+        }
+    }
+
+    /// The figure with an inset that zooms on the highest point of the first series,
+    /// showing every series there, for curves too close together to be told apart at
+    /// full scale; the zoomed window is outlined on the plot.
+    pub fn with_peak_inset(self) -> Self {
+        Figure {
+            peak_inset: true,
+            ..self
+        }
     }
 
     /// The figure as an SVG document.
     pub fn svg(&self) -> String {
-        svg::render(self)
+        svg::render(&Layout::new(self))
     }
 
     /// The figure as a PNG file (8-bit RGB, [`Figure::size`] pixels).
     pub fn png(&self) -> Result<Vec<u8>, ::png::EncodingError> {
-        png::render(self)
+        png::render(&Layout::new(self))
     }
 
     /// Width and height of the image (px).
     pub fn size(&self) -> (u32, u32) {
-        (self.layout.width as u32, self.layout.height as u32)
+        (layout::WIDTH as u32, layout::HEIGHT as u32)
     }
 
     /// The plot area, where the curves are drawn: left, top, right, bottom edges (px from
     /// the image's top-left corner).
     pub fn plot_area(&self) -> (f64, f64, f64, f64) {
-        let p = &self.layout.plot;
+        let p = Layout::new(self).main.area;
         (p.left, p.top, p.right, p.bottom)
-    }
-}
-
-/// An axis-aligned rectangle, edges in px from the image's top-left corner (y down).
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Rect {
-    left: f64,
-    top: f64,
-    right: f64,
-    bottom: f64,
-}
-
-/// Where a text's reference point is along the text.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Anchor {
-    Start,
-    Middle,
-    End,
-}
-
-/// A text's size.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum TextSize {
-    /// The title: 15 px in the SVG, a 9 × 15 px font in the PNG.
-    Title,
-    /// Everything else: 12 px in the SVG, a 7 × 13 px font in the PNG.
-    Normal,
-}
-
-/// One text of the figure.
-#[derive(Clone, Debug, PartialEq)]
-struct Label {
-    text: String,
-    /// Reference point: horizontal position given by `anchor` (px).
-    x: f64,
-    /// Reference point: the baseline (px).
-    y: f64,
-    anchor: Anchor,
-    size: TextSize,
-    /// Turned a quarter turn anticlockwise about the reference point, to read bottom to top.
-    vertical: bool,
-}
-
-/// One legend row: a short line in the series' colour, then its label (whose position is
-/// among [`Layout::labels`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct LegendRow {
-    /// The line's ends (px).
-    x0: f64,
-    x1: f64,
-    /// The line's height (px).
-    y: f64,
-}
-
-/// Where everything of a figure goes, in px of a `width` × `height` image (origin at the
-/// top-left corner, y down).
-struct Layout {
-    width: f64,
-    height: f64,
-    /// The plot area: the frame around the curves.
-    plot: Rect,
-    /// Data range shown along x: left and right edge of the plot area (data units).
-    x_range: (f64, f64),
-    /// Data range shown along y: bottom and top edge of the plot area (data units).
-    y_range: (f64, f64),
-    /// Heights of the horizontal grid lines, one per y tick (px).
-    grid: Vec<f64>,
-    /// Title, tick labels, axis labels and legend labels.
-    labels: Vec<Label>,
-    /// The box behind the legend, if there is any series.
-    legend_box: Option<Rect>,
-    /// One legend row per series, in order.
-    legend: Vec<LegendRow>,
-}
-
-impl Layout {
-    fn new(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> Layout {
-        let (width, height) = (WIDTH, HEIGHT);
-        let (left, right, top, bottom) = MARGIN;
-        let plot = Rect {
-            left,
-            top,
-            right: width - right,
-            bottom: height - bottom,
-        };
-        let finite = || {
-            series
-                .iter()
-                .flat_map(|s| s.points.iter())
-                .filter(|(x, y)| x.is_finite() && y.is_finite())
-        };
-        let x_range = range(finite().map(|p| p.0));
-        let (y0, y1) = range(finite().map(|p| p.1));
-        let pad = 0.05 * (y1 - y0);
-        let mut layout = Layout {
-            width,
-            height,
-            plot,
-            x_range,
-            y_range: (y0 - pad, y1 + pad),
-            grid: Vec::new(),
-            labels: Vec::new(),
-            legend_box: None,
-            legend: Vec::new(),
-        };
-        let label = |text: &str, x: f64, y: f64, anchor: Anchor| Label {
-            text: text.to_owned(),
-            x,
-            y,
-            anchor,
-            size: TextSize::Normal,
-            vertical: false,
-        };
-        let mut labels = vec![Label {
-            size: TextSize::Title,
-            ..label(title, width / 2.0, 22.0, Anchor::Middle)
-        }];
-        let (x0, x1) = layout.x_range;
-        let (y0, y1) = layout.y_range;
-        let n = TICK_INTERVALS as f64;
-        let steps = ((x1 - x0) / n, (y1 - y0) / n);
-        for i in 0..=TICK_INTERVALS {
-            let (x, y) = (x0 + steps.0 * i as f64, y0 + steps.1 * i as f64);
-            let (px, py) = (layout.px(x), layout.py(y));
-            labels.push(label(
-                &tick(x, steps.0),
-                px,
-                plot.bottom + 16.0,
-                Anchor::Middle,
-            ));
-            labels.push(label(
-                &tick(y, steps.1),
-                plot.left - 6.0,
-                py + 4.0,
-                Anchor::End,
-            ));
-            layout.grid.push(py);
-        }
-        labels.push(label(
-            x_label,
-            (plot.left + plot.right) / 2.0,
-            height - 18.0,
-            Anchor::Middle,
-        ));
-        labels.push(Label {
-            vertical: true,
-            ..label(y_label, 18.0, height / 2.0, Anchor::Middle)
-        });
-        // The legend sits in the plot area's top-right corner, on a box sized to its labels.
-        let longest = series
-            .iter()
-            .map(|s| s.label.chars().count())
-            .max()
-            .unwrap_or(0);
-        let text_x = plot.right - 14.0 - CHAR_WIDTH * longest as f64;
-        for (i, s) in series.iter().enumerate() {
-            let y = plot.top + 18.0 + LEGEND_ROW * i as f64;
-            layout.legend.push(LegendRow {
-                x0: text_x - 30.0,
-                x1: text_x - 5.0,
-                y,
-            });
-            labels.push(label(s.label, text_x, y + 4.0, Anchor::Start));
-        }
-        if let (Some(first), Some(last)) = (layout.legend.first(), layout.legend.last()) {
-            layout.legend_box = Some(Rect {
-                left: first.x0 - 8.0,
-                top: first.y - 11.0,
-                right: plot.right - 6.0,
-                bottom: last.y + 10.0,
-            });
-        }
-        layout.labels = labels;
-        layout
-    }
-
-    /// The pixel column of `x` (data units → px).
-    fn px(&self, x: f64) -> f64 {
-        let (x0, x1) = self.x_range;
-        self.plot.left + (x - x0) / (x1 - x0) * (self.plot.right - self.plot.left)
-    }
-
-    /// The pixel row of `y` (data units → px).
-    fn py(&self, y: f64) -> f64 {
-        let (y0, y1) = self.y_range;
-        self.plot.bottom - (y - y0) / (y1 - y0) * (self.plot.bottom - self.plot.top)
-    }
-
-    /// The series' finite points, in px, in order.
-    fn path(&self, series: &Series) -> Vec<(f64, f64)> {
-        series
-            .points
-            .iter()
-            .filter(|(x, y)| x.is_finite() && y.is_finite())
-            .map(|&(x, y)| (self.px(x), self.py(y)))
-            .collect()
-    }
-}
-
-/// The smallest and largest of `values` (all finite), widened to a range of non-zero length
-/// if they are equal, or (0, 1) if there are none.
-fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (low, high) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), v| {
-        (low.min(v), high.max(v))
-    });
-    if low > high {
-        (0.0, 1.0)
-    } else if low == high {
-        let half = low.abs().max(1.0) * 0.5;
-        (low - half, high + half)
-    } else {
-        (low, high)
-    }
-}
-
-/// A short tick label for `value`, one of ticks `step` apart (data units): decimals down to
-/// one place below the step's leading digit, so a label is off by at most 5 % of the step;
-/// scientific notation for very large or small values.
-fn tick(value: f64, step: f64) -> String {
-    // A tick that is zero up to rounding (e.g. −1e−17) is shown as 0, not "-0".
-    let value = if value.abs() < 1e-9 * step.abs() {
-        0.0
-    } else {
-        value
-    };
-    let magnitude = value.abs().max(step.abs());
-    if !(1e-3..1e5).contains(&magnitude) {
-        format!("{value:.2e}")
-    } else {
-        let decimals = (1 - step.abs().log10().floor() as i32).clamp(0, 6) as usize;
-        format!("{value:.decimals$}")
     }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::layout::{Label, Layout};
+    use super::plot::Rect;
     use super::*;
 
+    fn series(label: &str, colour: Colour, points: Vec<(f64, f64)>) -> Series<'_> {
+        Series {
+            label,
+            colour,
+            points,
+        }
+    }
+
+    /// A half-sine force pulse like the ball's (N over µs), shifted by `offset` (N).
+    fn pulse(offset: f64) -> Vec<(f64, f64)> {
+        (0..=118)
+            .map(|t| {
+                let t = t as f64;
+                (
+                    t,
+                    3000.0 * (std::f64::consts::PI * t / 118.0).sin() + offset,
+                )
+            })
+            .collect()
+    }
+
+    /// The force figure of `reproduce`: three nearly equal pulses, with the peak inset.
+    fn force_figure() -> Figure<'static> {
+        Figure::new(
+            "Contact force over the contact (S2)",
+            "time since touch-down (µs)",
+            "normal force (N)",
+            vec![
+                series("S2 mean", Colour::hex(0x333333), pulse(0.0)),
+                series("PM2", Colour::hex(0xd62728), pulse(25.0)),
+                series("HCM", Colour::hex(0x1f77b4), pulse(8.0)),
+            ],
+        )
+        .with_peak_inset()
+    }
+
+    /// The error figure of `reproduce`: two differences, the noise band, the zero line.
+    fn error_figure() -> Figure<'static> {
+        let wave = |a: f64| (0..=118).map(move |t| (t as f64, a * (t as f64 / 20.0).sin()));
+        Figure::new(
+            "Force error: S2 mean − model",
+            "time since touch-down (µs)",
+            "force error (N)",
+            vec![
+                series("PM2", Colour::hex(0xd62728), wave(-37.0).collect()),
+                series("HCM", Colour::hex(0x1f77b4), wave(12.0).collect()),
+            ],
+        )
+        .with_band(Band {
+            label: "±2 standard errors of the S2 mean",
+            colour: Colour::hex(0xd9d9d9),
+            points: (0..=118).map(|t| (t as f64, -6.5, 6.5)).collect(),
+        })
+        .with_zero_line()
+    }
+
+    /// Figures that stress the layout: the two of `reproduce`, long labels, tiny and huge
+    /// values, a single point, nothing at all.
+    fn figures() -> Vec<Figure<'static>> {
+        let long = "a rather long legend label for one of several series";
+        vec![
+            force_figure(),
+            error_figure(),
+            Figure::new(
+                "Mean residual against the indentation rate δ̇/δ̇₀",
+                "indentation rate / approach speed (–)",
+                "mean residual, measured − model (N)",
+                vec![
+                    series(long, Colour::BLACK, vec![(-1.2, 1.1e-4), (0.93, 1.9e-4)]),
+                    series(long, Colour::BLACK, vec![(0.0, 1.5e-4)]),
+                    series("third", Colour::BLACK, vec![(0.5, 1.2e-4)]),
+                ],
+            )
+            .with_zero_line(),
+            Figure::new(
+                "huge",
+                "x",
+                "y",
+                vec![series("a", Colour::BLACK, vec![(-3e7, 2e6), (9e7, -4e6)])],
+            ),
+            Figure::new(
+                "one",
+                "x",
+                "y",
+                vec![series("a", Colour::BLACK, vec![(1e300, -1e300)])],
+            ),
+            Figure::new("none", "x", "y", Vec::new()).with_peak_inset(),
+        ]
+    }
+
     #[test]
-    fn the_axes_span_every_finite_point_and_pixels_follow_them() {
-        let layout = Layout::new(
+    fn the_axes_span_every_finite_point_on_whole_ticks_and_pixels_follow_them() {
+        let figure = Figure::new(
             "t",
             "x",
             "y",
-            &[Series {
-                label: "a",
-                colour: Colour::BLACK,
-                points: vec![(1.0, -2.0), (3.0, 8.0), (f64::NAN, 100.0)],
-            }],
+            vec![series(
+                "a",
+                Colour::BLACK,
+                vec![(1.0, -2.0), (3.0, 8.0), (f64::NAN, 100.0)],
+            )],
         );
-        assert_eq!(layout.x_range, (1.0, 3.0));
-        assert_eq!(layout.y_range, (-2.5, 8.5));
-        assert_eq!(layout.px(1.0), layout.plot.left);
-        assert_eq!(layout.px(3.0), layout.plot.right);
-        assert_eq!(layout.py(-2.5), layout.plot.bottom);
-        assert_eq!(layout.py(8.5), layout.plot.top);
-        assert_eq!(layout.grid.len(), TICK_INTERVALS + 1);
+        let plot = Layout::new(&figure).main;
+        assert_eq!(plot.x.range(), (1.0, 3.0));
+        assert_eq!(plot.y.range(), (-2.0, 8.0));
+        assert_eq!(plot.px(1.0), plot.area.left);
+        assert_eq!(plot.px(3.0), plot.area.right);
+        assert_eq!(plot.py(-2.0), plot.area.bottom);
+        assert_eq!(plot.py(8.0), plot.area.top);
+        assert_eq!(plot.grid_y.len(), plot.y.values().count());
+        assert_eq!(plot.grid_x.len(), plot.x.values().count());
     }
 
     #[test]
-    fn a_plot_without_finite_points_or_with_one_still_has_a_range() {
+    fn the_force_figure_has_round_ticks() {
+        let plot = Layout::new(&force_figure()).main;
+        assert_eq!(plot.x.labels(), ["0", "20", "40", "60", "80", "100", "120"]);
         assert_eq!(
-            range([f64::NAN].into_iter().filter(|v| v.is_finite())),
-            (0.0, 1.0)
+            plot.y.labels(),
+            ["0", "500", "1000", "1500", "2000", "2500", "3000", "3500"]
         );
-        assert_eq!(range([4.0].into_iter()), (2.0, 6.0));
-        assert_eq!(range([0.0].into_iter()), (-0.5, 0.5));
     }
 
     #[test]
-    fn tick_labels_have_the_decimals_their_spacing_needs() {
-        assert_eq!(tick(3074.051, 644.087), "3074");
-        assert_eq!(tick(-146.383, 644.087), "-146");
-        assert_eq!(tick(23.6, 23.6), "24");
-        assert_eq!(tick(-2.033, 4.513), "-2.0");
-        assert_eq!(tick(0.25, 0.05), "0.250");
-        assert_eq!(tick(-1e-17, 0.2), "0.00");
-        assert_eq!(tick(2.5e-4, 1e-4), "2.50e-4");
-        assert_eq!(tick(2e6, 5e5), "2.00e6");
+    fn every_label_lies_inside_the_image_and_no_two_overlap() {
+        for figure in figures() {
+            let layout = Layout::new(&figure);
+            let image = Rect {
+                left: 0.0,
+                top: 0.0,
+                right: layout.width,
+                bottom: layout.height,
+            };
+            let boxes: Vec<(&Label, Rect)> =
+                layout.labels.iter().map(|l| (l, l.bounds())).collect();
+            for (i, (a, ra)) in boxes.iter().enumerate() {
+                assert!(image.contains(ra), "{:?} leaves the image: {ra:?}", a.text);
+                for (b, rb) in &boxes[i + 1..] {
+                    assert!(
+                        !ra.overlaps(rb),
+                        "{:?} {ra:?} overlaps {:?} {rb:?}",
+                        a.text,
+                        b.text
+                    );
+                }
+                // Nor does a label run into a plot area: only the inset's labels lie in
+                // the main one, on the inset's background.
+                let inset = layout.inset.as_ref();
+                if ra.overlaps(&layout.main.area) {
+                    let inset = inset.unwrap_or_else(|| panic!("{:?} in the plot", a.text));
+                    assert!(inset.background.contains(ra), "{:?} off the inset", a.text);
+                    assert!(!ra.overlaps(&inset.plot.area), "{:?} in the inset", a.text);
+                }
+                for entry in &layout.legend {
+                    assert!(!ra.overlaps(&entry.area), "{:?} on a swatch", a.text);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_error_figure_has_its_zero_line_and_noise_band() {
+        let layout = Layout::new(&error_figure());
+        let plot = &layout.main;
+        assert_eq!(plot.zero, Some(plot.py(0.0)));
+        assert!(plot.y.values().any(|v| v == 0.0));
+        let band = plot.band.as_ref().expect("a band");
+        assert_eq!(band.columns.len(), 119);
+        for &(_, upper, lower) in &band.columns {
+            assert!((upper - plot.py(6.5)).abs() < 1e-9 && (lower - plot.py(-6.5)).abs() < 1e-9);
+        }
+        // The band is named in the legend, after the curves.
+        assert_eq!(layout.legend.len(), 3);
+        assert_eq!(layout.legend[2].swatch, legend::Swatch::Block);
+        // Without the zero line there is none, and 0 need not be in the range.
+        let away = Figure::new(
+            "t",
+            "x",
+            "y",
+            vec![series("a", Colour::BLACK, vec![(0.0, 5.0), (1.0, 6.0)])],
+        );
+        let plot = Layout::new(&away).main;
+        assert_eq!(plot.zero, None);
+        assert!(plot.y.range().0 > 0.0);
+    }
+
+    #[test]
+    fn the_peak_inset_zooms_where_the_curves_differ_and_hides_none_of_the_peak() {
+        let layout = Layout::new(&force_figure());
+        let inset = layout.inset.as_ref().expect("an inset");
+        let (main, zoom) = (&layout.main, &inset.plot);
+        // Inside the plot area, clear of the window it zooms on.
+        assert!(main.area.contains(&inset.background));
+        assert!(!inset.background.overlaps(&inset.marker));
+        // The window is around the peak (59 µs), and much taller in px than on the main plot.
+        let (x0, x1) = zoom.x.range();
+        assert!(x0 < 59.0 && x1 > 59.0 && x1 - x0 < 30.0, "{x0}–{x1}");
+        let (y0, y1) = zoom.y.range();
+        let gain = zoom.area.height() / (y1 - y0) / (main.area.height() / 3500.0);
+        assert!(gain > 5.0, "zoom ×{gain}");
+        // The 25 N between two curves is several px apart in the inset.
+        assert!(zoom.py(3000.0) - zoom.py(3025.0) > 8.0);
+        // Every curve shows there, inside the inset's frame.
+        assert_eq!(zoom.curves.len(), 3);
+        for curve in &zoom.curves {
+            assert!(!curve.pieces.is_empty());
+            let inside = |p: &(f64, f64)| {
+                zoom.area.left - 1e-9 <= p.0
+                    && p.0 <= zoom.area.right + 1e-9
+                    && zoom.area.top - 1e-9 <= p.1
+                    && p.1 <= zoom.area.bottom + 1e-9
+            };
+            assert!(curve.pieces.iter().flatten().all(inside));
+        }
+        // No inset is asked of the error figure, and a figure without points gets none.
+        assert!(Layout::new(&error_figure()).inset.is_none());
+        assert!(Layout::new(&figures()[5]).inset.is_none());
     }
 
     #[test]

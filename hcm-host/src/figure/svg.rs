@@ -1,61 +1,42 @@
-//! The SVG renderer: writes a [`Figure`]'s layout as SVG elements by hand — a few lines,
-//! polylines and texts need no drawing library, and the viewer supplies the font.
+//! The SVG renderer: writes a figure's [`Layout`] as SVG elements by hand — lines,
+//! polylines, a polygon and texts need no drawing library. The text stays Unicode; the
+//! font-family list names the PNG's font first, so the two look alike where it is installed.
 
-use super::{Anchor, Figure, Label, Rect, TextSize};
+use super::font::FAMILY;
+use super::layout::{Anchor, Label, Layout, TextSize};
+use super::legend::Swatch;
+use super::plot::{Plot, Rect};
+use super::Colour;
 use std::fmt::Write;
 
-/// The figure as an SVG document (sizes in px).
-pub(super) fn render(figure: &Figure) -> String {
-    let layout = &figure.layout;
+/// Stroke width of the curves in the main plot and in the inset (px).
+const CURVE_WIDTH: f64 = 1.6;
+
+/// The layout as an SVG document (sizes in px).
+pub(super) fn render(layout: &Layout) -> String {
     let (width, height) = (layout.width, layout.height);
-    let plot = layout.plot;
     let mut svg = String::new();
     let _ = writeln!(
         svg,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" font-size="12">"#
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="{FAMILY}" font-size="{}">"#,
+        TextSize::Normal.px()
     );
     let _ = writeln!(svg, r#"<rect width="100%" height="100%" fill="white"/>"#);
-    for y in &layout.grid {
-        let _ = writeln!(
-            svg,
-            r#"<line x1="{}" x2="{}" y1="{y:.1}" y2="{y:.1}" stroke="{}"/>"#,
-            plot.left,
-            plot.right,
-            super::Colour::GRID.css()
-        );
+    plot(&mut svg, &layout.main);
+    if let Some(inset) = &layout.inset {
+        rect(&mut svg, inset.marker, "none", Colour::MARKER);
+        rect(&mut svg, inset.background, "white", Colour::WHITE);
+        plot(&mut svg, &inset.plot);
     }
-    rect(&mut svg, plot, "none", "black");
-    for s in &figure.series {
-        let path: Vec<String> = layout
-            .path(s)
-            .iter()
-            .map(|(x, y)| format!("{x:.2},{y:.2}"))
-            .collect();
-        let _ = writeln!(
-            svg,
-            r#"<polyline fill="none" stroke="{}" stroke-width="1.6" points="{}"/>"#,
-            s.colour.css(),
-            path.join(" ")
-        );
-    }
-    if let Some(frame) = layout.legend_box {
-        rect(
-            &mut svg,
-            frame,
-            "white",
-            &super::Colour::LEGEND_BORDER.css(),
-        );
-    }
-    for (s, row) in figure.series.iter().zip(&layout.legend) {
-        let _ = writeln!(
-            svg,
-            r#"<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="{}" stroke-width="2"/>"#,
-            row.x0,
-            row.x1,
-            row.y,
-            row.y,
-            s.colour.css()
-        );
+    for entry in &layout.legend {
+        let a = entry.area;
+        match entry.swatch {
+            Swatch::Line => {
+                let y = 0.5 * (a.top + a.bottom);
+                line(&mut svg, (a.left, y), (a.right, y), entry.colour, 2.0);
+            }
+            Swatch::Block => rect(&mut svg, a, &entry.colour.css(), entry.colour),
+        }
     }
     for label in &layout.labels {
         text(&mut svg, label);
@@ -64,15 +45,70 @@ pub(super) fn render(figure: &Figure) -> String {
     svg
 }
 
-/// Appends a rectangle filled with `fill` and outlined in `stroke` (CSS colours).
-fn rect(svg: &mut String, r: Rect, fill: &str, stroke: &str) {
+/// Appends one set of axes: band, grid, zero line, frame, curves.
+fn plot(svg: &mut String, plot: &Plot) {
+    let area = plot.area;
+    if let Some(band) = &plot.band {
+        let upper = band.columns.iter().map(|c| (c.0, c.1));
+        let lower = band.columns.iter().rev().map(|c| (c.0, c.2));
+        let _ = writeln!(
+            svg,
+            r#"<polygon fill="{}" stroke="none" points="{}"/>"#,
+            band.colour.css(),
+            points(upper.chain(lower))
+        );
+    }
+    for &y in &plot.grid_y {
+        line(svg, (area.left, y), (area.right, y), Colour::GRID, 1.0);
+    }
+    for &x in &plot.grid_x {
+        line(svg, (x, area.top), (x, area.bottom), Colour::GRID, 1.0);
+    }
+    if let Some(y) = plot.zero {
+        line(svg, (area.left, y), (area.right, y), Colour::AXIS, 1.2);
+    }
+    rect(svg, area, "none", Colour::AXIS);
+    for curve in &plot.curves {
+        for piece in &curve.pieces {
+            let _ = writeln!(
+                svg,
+                r#"<polyline fill="none" stroke="{}" stroke-width="{CURVE_WIDTH}" stroke-linejoin="round" points="{}"/>"#,
+                curve.colour.css(),
+                points(piece.iter().copied())
+            );
+        }
+    }
+}
+
+/// `x,y x,y …` with two decimals (px).
+fn points(points: impl Iterator<Item = (f64, f64)>) -> String {
+    let pairs: Vec<String> = points.map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
+    pairs.join(" ")
+}
+
+/// Appends a straight line `width` px wide.
+fn line(svg: &mut String, from: (f64, f64), to: (f64, f64), colour: Colour, width: f64) {
     let _ = writeln!(
         svg,
-        r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{fill}" stroke="{stroke}"/>"#,
+        r#"<line x1="{:.1}" x2="{:.1}" y1="{:.1}" y2="{:.1}" stroke="{}" stroke-width="{width}"/>"#,
+        from.0,
+        to.0,
+        from.1,
+        to.1,
+        colour.css()
+    );
+}
+
+/// Appends a rectangle filled with `fill` (a CSS colour or "none") and outlined in `stroke`.
+fn rect(svg: &mut String, r: Rect, fill: &str, stroke: Colour) {
+    let _ = writeln!(
+        svg,
+        r#"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="{fill}" stroke="{}"/>"#,
         r.left,
         r.top,
-        r.right - r.left,
-        r.bottom - r.top
+        r.width(),
+        r.height(),
+        stroke.css()
     );
 }
 
@@ -84,12 +120,12 @@ fn text(svg: &mut String, label: &Label) {
         Anchor::End => "end",
     };
     let size = match label.size {
-        TextSize::Title => r#" font-size="15""#,
-        TextSize::Normal => "",
+        TextSize::Normal => String::new(),
+        other => format!(r#" font-size="{}""#, other.px()),
     };
     let (x, y) = (label.x, label.y);
     let turn = if label.vertical {
-        format!(r#" transform="rotate(-90 {x} {y})""#)
+        format!(r#" transform="rotate(-90 {x:.1} {y:.1})""#)
     } else {
         String::new()
     };
@@ -116,8 +152,7 @@ fn escape(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Colour, Series};
-    use super::*;
+    use super::super::{Band, Colour, Figure, Series};
 
     #[test]
     fn a_plot_holds_every_series_and_its_label() {
@@ -148,5 +183,29 @@ mod tests {
     fn reserved_characters_in_labels_are_escaped() {
         let svg = Figure::new("a < b & c", "x", "y", Vec::new()).svg();
         assert!(svg.contains(">a &lt; b &amp; c</text>"));
+    }
+
+    #[test]
+    fn text_is_unicode_in_the_pngs_font_first() {
+        let svg = Figure::new("δ̇ (µm/s) ± σ", "x", "y", Vec::new()).svg();
+        assert!(svg.contains(">δ̇ (µm/s) ± σ</text>"));
+        assert!(svg.contains(r#"font-family="'DejaVu Sans', "#));
+    }
+
+    #[test]
+    fn a_band_is_one_polygon_in_its_colour_with_a_legend_block() {
+        let band = Band {
+            label: "noise",
+            colour: Colour::hex(0xcccccc),
+            points: vec![(0.0, -1.0, 1.0), (1.0, -2.0, 2.0), (2.0, f64::NAN, 1.0)],
+        };
+        let svg = Figure::new("t", "x", "y", Vec::new()).with_band(band).svg();
+        assert_eq!(svg.matches("<polygon").count(), 1);
+        // Upper edge forward, lower edge back: 2 finite points, 4 corners.
+        let polygon = svg.lines().find(|l| l.starts_with("<polygon")).unwrap();
+        let corners = polygon.split("points=\"").nth(1).unwrap();
+        assert_eq!(corners.split(' ').count(), 4, "{polygon}");
+        assert!(svg.contains(r##"<rect"##) && svg.contains(">noise</text>"));
+        assert!(svg.contains(r##"fill="#cccccc""##));
     }
 }

@@ -4,8 +4,8 @@
 use super::{Blobs, PipelineError, Progress, Stage, CONTACT};
 use crate::dataset::Dataset;
 use crate::evaluate::{evaluate, ConditionTable};
-use crate::figure::{Colour, Figure, Series};
-use crate::identify::replay::{simulate_target_with, targets, Target};
+use crate::figure::{Band, Colour, Figure, Series};
+use crate::identify::replay::{curve, simulate_target_with, targets, Target};
 use crate::scenario::Model;
 
 /// The column labels of the models compared, in the table's order.
@@ -51,14 +51,15 @@ pub fn evaluate_on_s2(
         .into_iter()
         .next()
         .ok_or(PipelineError::NoValidation)?;
-    let figures = figures(&target, pm2, &hcm);
+    let figures = figures(&target, pm2, &hcm, validation);
     progress.end(Stage::Evaluate);
     Ok(Evaluation { table, figures })
 }
 
-/// The S2 mean force curve of `target` beside PM2's and the HCM's replays of it, and
-/// the error of each.
-fn figures(target: &Target, pm2: &Model, hcm: &Model) -> Vec<NamedFigure> {
+/// The S2 mean force curve of `target` beside PM2's and the HCM's replays of it (with a
+/// zoom on the peak, where the curves overlap), and the error of each (with the zero line
+/// and ±2 standard errors of the S2 mean).
+fn figures(target: &Target, pm2: &Model, hcm: &Model, validation: &Dataset) -> Vec<NamedFigure> {
     let replay = |model: &Model| {
         simulate_target_with(target, CONTACT, &model.contacts[CONTACT])
             .map(|(curve, _)| curve)
@@ -96,7 +97,18 @@ fn figures(target: &Target, pm2: &Model, hcm: &Model) -> Vec<NamedFigure> {
             series("PM2", 0xd62728, points(&pm2_curve)),
             series("HCM", 0x1f77b4, points(&hcm_curve)),
         ],
-    );
+    )
+    .with_peak_inset();
+    let standard_error = mean_standard_error(pm2, validation, target);
+    let band = Band {
+        label: "±2 standard errors of the S2 mean",
+        colour: Colour::hex(0xd9d9d9),
+        points: standard_error
+            .iter()
+            .enumerate()
+            .map(|(j, e)| (time(j), -2.0 * e, 2.0 * e))
+            .collect(),
+    };
     let error = Figure::new(
         "Force error: S2 mean − model",
         "time since touch-down (µs)",
@@ -105,7 +117,9 @@ fn figures(target: &Target, pm2: &Model, hcm: &Model) -> Vec<NamedFigure> {
             series("PM2", 0xd62728, errors(&pm2_curve)),
             series("HCM", 0x1f77b4, errors(&hcm_curve)),
         ],
-    );
+    )
+    .with_band(band)
+    .with_zero_line();
     vec![
         NamedFigure {
             stem: "contact_force",
@@ -116,4 +130,34 @@ fn figures(target: &Target, pm2: &Model, hcm: &Model) -> Vec<NamedFigure> {
             figure: error,
         },
     ]
+}
+
+/// Standard error s/√n (N) of the S2 mean force curve of `target`, sample by sample,
+/// over the condition's runs (NaN with fewer than two runs: no band is drawn).
+fn mean_standard_error(model: &Model, data: &Dataset, target: &Target) -> Vec<f64> {
+    let len = target.curve.len();
+    let curves: Vec<Vec<f64>> = data
+        .runs
+        .iter()
+        .filter(|run| crate::experiment::condition_of(&run.id) == target.condition)
+        .filter_map(|run| {
+            curve(model, run, CONTACT, target.period, len)
+                .ok()
+                .flatten()
+        })
+        .map(|(c, _)| c)
+        .collect();
+    let n = curves.len() as f64;
+    (0..len)
+        .map(|j| {
+            if n < 2.0 {
+                return f64::NAN;
+            }
+            let squares: f64 = curves
+                .iter()
+                .map(|c| (c.get(j).copied().unwrap_or(f64::NAN) - target.curve[j]).powi(2))
+                .sum();
+            (squares / (n - 1.0)).sqrt() / n.sqrt()
+        })
+        .collect()
 }
