@@ -20,6 +20,10 @@ fn entries(dir: &Path) -> Vec<String> {
     names
 }
 
+/// Runs of a `generate` that is interrupted long before its end: tens of seconds of work,
+/// yet an output (≈ 300 MB) that fits on a small test disk.
+const LONG: &str = "3000";
+
 /// `hcm generate` of the ball, `runs` runs, seed 2, into `out`, started in `dir`.
 fn spawn_generate(dir: &Path, runs: &str, out: &str, threads: Option<&str>) -> Child {
     let mut command = Command::new(hcm_exe());
@@ -46,23 +50,49 @@ fn send(child: &Child, signal: &str) {
     assert!(status.success(), "kill -{signal} failed");
 }
 
-/// Waits until a temporary file in `dir` holds data: the run has started writing.
-fn wait_for_writing(dir: &Path) {
+/// Waits until a temporary file in `dir` holds more than `bytes`: the run is writing.
+fn wait_for_writing(dir: &Path, bytes: u64) {
     let start = Instant::now();
     loop {
         let writing = fs::read_dir(dir).unwrap().flatten().any(|e| {
             e.file_name().to_string_lossy().starts_with(".hcm-tmp-")
-                && e.metadata().is_ok_and(|m| m.len() > 10_000)
+                && e.metadata().is_ok_and(|m| m.len() > bytes)
         });
         if writing {
             return;
         }
         assert!(
-            start.elapsed() < Duration::from_secs(120),
-            "no output started"
+            start.elapsed() < Duration::from_secs(300),
+            "no output of {bytes} bytes"
         );
         std::thread::sleep(Duration::from_millis(10));
     }
+}
+
+/// The peak resident memory of process `pid` so far (bytes), from /proc.
+fn peak_memory(pid: u32) -> u64 {
+    let status = fs::read_to_string(format!("/proc/{pid}/status")).unwrap();
+    let line = status.lines().find(|l| l.starts_with("VmHWM:")).unwrap();
+    let kilobytes: u64 = line.split_whitespace().nth(1).unwrap().parse().unwrap();
+    kilobytes * 1024
+}
+
+#[test]
+fn generate_holds_a_chunk_of_runs_in_memory_not_the_experiment() {
+    // 3000 runs would be ≈ 300 MB in memory. The files grow while the runs are made,
+    // and the peak memory after ≈ 400 runs written stays the peak after ≈ 1200.
+    let hcm = Hcm::new();
+    let mut child = spawn_generate(hcm.dir(), LONG, "data.csv", None);
+    wait_for_writing(hcm.dir(), 20_000_000);
+    let early = peak_memory(child.id());
+    wait_for_writing(hcm.dir(), 60_000_000);
+    let late = peak_memory(child.id());
+    send(&child, "TERM");
+    child.wait().unwrap();
+    println!("peak memory {early} B after 20 MB written, {late} B after 60 MB");
+    assert!(late < 200_000_000, "{late} B");
+    assert!(late < early + 20_000_000, "{early} B → {late} B");
+    assert!(entries(hcm.dir()).is_empty());
 }
 
 #[test]
@@ -280,8 +310,8 @@ fn ended_by(status: ExitStatus, signal: i32) -> bool {
 fn sigterm_and_sigint_remove_the_temporaries_and_leave_no_output() {
     for (signal, number) in [("TERM", 15), ("INT", 2)] {
         let hcm = Hcm::new();
-        let mut child = spawn_generate(hcm.dir(), "100000", "data.csv", None);
-        wait_for_writing(hcm.dir());
+        let mut child = spawn_generate(hcm.dir(), LONG, "data.csv", None);
+        wait_for_writing(hcm.dir(), 10_000);
         send(&child, signal);
         let status = child.wait().unwrap();
         assert_eq!(status.code(), Some(128 + number), "SIG{signal}: {status}");
@@ -326,8 +356,8 @@ fn an_interrupt_at_any_moment_leaves_all_three_outputs_or_none() {
 #[test]
 fn leftovers_of_a_killed_run_are_removed_by_the_next_run_in_the_same_place() {
     let hcm = Hcm::new();
-    let mut child = spawn_generate(hcm.dir(), "100000", "data.csv", None);
-    wait_for_writing(hcm.dir());
+    let mut child = spawn_generate(hcm.dir(), LONG, "data.csv", None);
+    wait_for_writing(hcm.dir(), 10_000);
     // SIGKILL cannot be caught: its temporaries stay, recognisably named.
     send(&child, "KILL");
     assert_eq!(child.wait().unwrap().signal(), Some(9));
