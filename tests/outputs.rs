@@ -1,10 +1,13 @@
 //! What hcm leaves at its outputs when something is wrong or it is interrupted: a clear
 //! refusal before any work and nothing at the destination, or the complete outputs.
-//! The interrupts are real signals sent to a real `hcm generate`.
+//! The interrupts are real signals sent to a real `hcm generate`, so these tests are
+//! Unix's (as are FIFOs, sockets and /dev/null).
+#![cfg(unix)]
 
 use hcm_tests::cli::{hcm_exe, Hcm};
 use hcm_tests::scenario;
 use std::fs;
+use std::os::unix::fs::FileTypeExt;
 use std::os::unix::process::ExitStatusExt;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
@@ -279,8 +282,6 @@ fn special_files_at_out_are_refused_and_kept() {
     );
     assert_eq!(entries(hcm.dir()), left);
 }
-
-use std::os::unix::fs::FileTypeExt;
 
 #[test]
 fn a_link_at_out_is_followed_and_kept() {
