@@ -88,8 +88,9 @@ pub struct ConditionTable {
     /// S2 mean indicators.
     pub measured: Indicators,
     /// Standard error of each S2 mean (s/√n, same units): errors below about twice
-    /// this, relative to the mean, are within the sampling noise of S2.
-    pub standard_error: Indicators,
+    /// this, relative to the mean, are within the sampling noise of S2. None (JSON
+    /// `null`) with a single run, whose spread is unknown.
+    pub standard_error: Option<Indicators>,
     /// The models compared, one row each.
     pub models: Vec<ModelRow>,
 }
@@ -146,12 +147,15 @@ pub fn markdown(table: &ConditionTable) -> String {
         "contact duration (s)",
     ];
     for (i, label) in labels.iter().enumerate() {
-        let (mean, error) = (table.measured.values()[i], table.standard_error.values()[i]);
-        let _ = write!(
-            out,
-            "| {label} | {mean:.5e} | {:.2} % |",
-            100.0 * (error / mean).abs()
-        );
+        let mean = table.measured.values()[i];
+        let _ = match table.standard_error {
+            Some(error) => write!(
+                out,
+                "| {label} | {mean:.5e} | {:.2} % |",
+                100.0 * (error.values()[i] / mean).abs()
+            ),
+            None => write!(out, "| {label} | {mean:.5e} | n/a ({} run) |", table.runs),
+        };
         for m in &table.models {
             match m.indicators {
                 Some(v) => {

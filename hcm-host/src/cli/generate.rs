@@ -1,8 +1,8 @@
 //! `hcm generate`: the noise-added experiment (PM1) and its S1/S2 split.
 
 use super::progress_bar;
-use anyhow::Context;
-use hcm_host::experiment::{generate, split};
+use hcm_host::experiment::ExperimentWriter;
+use hcm_host::output::bytes;
 use std::path::{Path, PathBuf};
 
 /// Generate noisy runs of a scenario: `hcm generate --scenario scenarios/bouncing_ball.toml --runs 1000 --seed 1 --out data.csv`.
@@ -36,32 +36,36 @@ pub fn sibling(out: &Path, suffix: &str) -> PathBuf {
     out.with_file_name(format!("{stem}.{suffix}.csv"))
 }
 
+/// Outputs above this size are announced before the work starts (bytes).
+const LARGE_OUTPUT: u64 = 1_000_000_000;
+
 pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
-    let conditions = scenario.experiment.conditions.len().max(1);
-    let bar = progress_bar((conditions * args.runs) as u64, "simulating runs");
-    let data = generate(&scenario, args.runs, args.seed, || bar.inc(1))?;
-    bar.finish_and_clear();
-    let sets = split(&scenario, data.clone(), args.seed);
     let (s1, s2) = (sibling(&args.out, "s1"), sibling(&args.out, "s2"));
-    for (set, path) in [
-        (&data, &args.out),
-        (&sets.training, &s1),
-        (&sets.validation, &s2),
-    ] {
-        set.write(path)
-            .with_context(|| format!("writing {}", path.display()))?;
+    // Every refusal (too few runs, a special file at an output, too little disk space)
+    // comes here, before the simulations and before anything appears at the outputs.
+    let writer = ExperimentWriter::new(&scenario, args.runs, args.seed, [&args.out, &s1, &s2])?;
+    let estimate = writer.estimated_bytes();
+    if estimate > LARGE_OUTPUT {
+        eprintln!(
+            "note: OUT, S1 and S2 will take about {} together",
+            bytes(estimate)
+        );
     }
+    let conditions = writer.generation().conditions();
+    let bar = progress_bar(writer.generation().total_runs() as u64, "simulating runs");
+    let written = writer.write(|| bar.inc(1))?;
+    bar.finish_and_clear();
     println!(
         "{}: {} runs ({} condition{}) → {}; S1 {} runs → {}; S2 {} runs → {}",
         scenario.name,
-        data.runs.len(),
+        written.runs,
         conditions,
         if conditions == 1 { "" } else { "s" },
         args.out.display(),
-        sets.training.runs.len(),
+        written.training,
         s1.display(),
-        sets.validation.runs.len(),
+        written.validation,
         s2.display()
     );
     Ok(())

@@ -5,7 +5,7 @@
 
 use super::progress_bar;
 use anyhow::Context;
-use hcm_host::output::write_bytes;
+use hcm_host::output::{write_bytes, StagedDirectory};
 use hcm_host::pipeline::{
     reproduce, Example, Pm2Method, Progress, ReproduceSettings, Reproduction, Stage, StageTiming,
 };
@@ -74,20 +74,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             _ => Pm2Method::Ga,
         },
     };
-    // Before the minutes of work, so that an unwritable directory fails at once.
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
+    // Built as a hidden directory beside --out and renamed into place at the end, so
+    // that --out appears complete or not at all; made before the minutes of work, so
+    // that an unwritable place or an --out that may not be replaced fails at once.
+    let staged = StagedDirectory::create(&args.out, "results.json")?;
+    let out = staged.path();
     let mut reproduction = reproduce(&settings, &Bars::default())?;
     let clock = Instant::now();
-    write_stages(&reproduction, &args.out)?;
+    write_stages(&reproduction, out)?;
     let results = &mut reproduction.results;
     results.timings.push(StageTiming {
         stage: "write files".into(),
         seconds: clock.elapsed().as_secs_f64(),
     });
-    write_bytes(&args.out.join("results.json"), results.json()?.as_bytes())?;
+    write_bytes(&out.join("results.json"), results.json()?.as_bytes())?;
     let report = results.markdown();
-    write_bytes(&args.out.join("report.md"), report.as_bytes())?;
+    write_bytes(&out.join("report.md"), report.as_bytes())?;
+    staged.commit()?;
     print!("{report}");
     Ok(())
 }

@@ -66,6 +66,8 @@ pub mod schema;
 mod read;
 mod write;
 
+pub use write::RunWriter;
+
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -235,7 +237,7 @@ impl From<OutputError> for DataError {
     fn from(error: OutputError) -> Self {
         DataError::new(
             &error.path.display().to_string(),
-            format!("cannot {} it: {}", error.action, error.source),
+            format!("cannot {} it: {}", error.action, error.error),
         )
     }
 }

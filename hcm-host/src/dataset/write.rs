@@ -1,74 +1,101 @@
 //! Writing the CSV format: the dataset is checked first, then written run by run, and
-//! within a run body by body, each body's samples in time order.
+//! within a run body by body, each body's samples in time order. [`RunWriter`] writes runs
+//! as they come, for data too large to hold (`hcm generate`).
 
 use std::collections::HashSet;
 use std::fmt::Write as _;
 use std::io::Write;
 
 use super::schema::{self, COLUMNS, FIRST_NUMERIC};
-use super::{DataError, Dataset, Sample};
+use super::{DataError, Dataset, Run, Sample};
 
 /// Refuses a dataset the reader would not read back as the same dataset: no samples,
 /// empty runs or bodies, empty, whitespace-padded or repeated names, non-finite values,
 /// time not strictly increasing within a body. `destination` names the output in errors.
 pub(super) fn check(dataset: &Dataset, destination: &str) -> Result<(), DataError> {
-    let refuse = |column: &str, problem: String| {
-        Err(DataError::new(destination, format!("cannot write: {problem}")).in_column(column))
-    };
     if dataset.runs.is_empty() {
-        return Err(DataError::new(
-            destination,
-            "cannot write: the dataset has no runs; a file needs at least one sample",
-        ));
+        return Err(no_runs(destination));
     }
     let mut run_ids = HashSet::new();
     for run in &dataset.runs {
-        if let Some(problem) = name_problem(&run.id) {
-            return refuse("run", format!("run identifier `{}` {problem}", run.id));
-        }
+        check_id(run, destination)?;
         if !run_ids.insert(run.id.as_str()) {
-            return refuse("run", format!("run `{}` appears twice", run.id));
+            return refuse(
+                destination,
+                "run",
+                format!("run `{}` appears twice", run.id),
+            );
         }
-        if run.bodies.is_empty() {
-            return refuse("body", format!("run `{}` has no bodies", run.id));
+        check_bodies(run, destination)?;
+    }
+    Ok(())
+}
+
+fn refuse(destination: &str, column: &str, problem: String) -> Result<(), DataError> {
+    Err(DataError::new(destination, format!("cannot write: {problem}")).in_column(column))
+}
+
+fn no_runs(destination: &str) -> DataError {
+    DataError::new(
+        destination,
+        "cannot write: the dataset has no runs; a file needs at least one sample",
+    )
+}
+
+/// Refuses a run identifier that would not read back unchanged.
+fn check_id(run: &Run, destination: &str) -> Result<(), DataError> {
+    match name_problem(&run.id) {
+        Some(problem) => refuse(
+            destination,
+            "run",
+            format!("run identifier `{}` {problem}", run.id),
+        ),
+        None => Ok(()),
+    }
+}
+
+/// Refuses a run whose bodies would not read back as they are (see [`check`]).
+fn check_bodies(run: &Run, destination: &str) -> Result<(), DataError> {
+    let refuse = |column: &str, problem: String| refuse(destination, column, problem);
+    if run.bodies.is_empty() {
+        return refuse("body", format!("run `{}` has no bodies", run.id));
+    }
+    let mut body_names = HashSet::new();
+    for track in &run.bodies {
+        let at = format!("run `{}`, body `{}`", run.id, track.body);
+        if let Some(problem) = name_problem(&track.body) {
+            return refuse("body", format!("{at}: the name {problem}"));
         }
-        let mut body_names = HashSet::new();
-        for track in &run.bodies {
-            let at = format!("run `{}`, body `{}`", run.id, track.body);
-            if let Some(problem) = name_problem(&track.body) {
-                return refuse("body", format!("{at}: the name {problem}"));
+        if !body_names.insert(track.body.as_str()) {
+            return refuse("body", format!("{at} appears twice"));
+        }
+        if track.samples.is_empty() {
+            return refuse("time", format!("{at} has no samples"));
+        }
+        let mut previous: Option<&Sample> = None;
+        for (index, sample) in track.samples.iter().enumerate() {
+            let values = schema::sample_values(sample);
+            if let Some(offset) = values.iter().position(|value| !value.is_finite()) {
+                return refuse(
+                    COLUMNS[FIRST_NUMERIC + offset].name,
+                    format!(
+                        "{at}, sample {index}: {:?} is not a finite number",
+                        values[offset]
+                    ),
+                );
             }
-            if !body_names.insert(track.body.as_str()) {
-                return refuse("body", format!("{at} appears twice"));
-            }
-            if track.samples.is_empty() {
-                return refuse("time", format!("{at} has no samples"));
-            }
-            let mut previous: Option<&Sample> = None;
-            for (index, sample) in track.samples.iter().enumerate() {
-                let values = schema::sample_values(sample);
-                if let Some(offset) = values.iter().position(|value| !value.is_finite()) {
+            if let Some(previous) = previous {
+                if sample.time <= previous.time {
                     return refuse(
-                        COLUMNS[FIRST_NUMERIC + offset].name,
+                        "time",
                         format!(
-                            "{at}, sample {index}: {:?} is not a finite number",
-                            values[offset]
+                            "{at}, sample {index}: time {:?} s does not come after {:?} s",
+                            sample.time, previous.time
                         ),
                     );
                 }
-                if let Some(previous) = previous {
-                    if sample.time <= previous.time {
-                        return refuse(
-                            "time",
-                            format!(
-                                "{at}, sample {index}: time {:?} s does not come after {:?} s",
-                                sample.time, previous.time
-                            ),
-                        );
-                    }
-                }
-                previous = Some(sample);
             }
+            previous = Some(sample);
         }
     }
     Ok(())
@@ -91,27 +118,84 @@ pub(super) fn write(
     destination: &str,
     writer: impl Write,
 ) -> Result<(), DataError> {
-    let failed = |error: csv::Error| DataError::new(destination, format!("cannot write: {error}"));
-    let mut csv = csv::Writer::from_writer(writer);
-    csv.write_record(COLUMNS.iter().map(|column| column.name))
-        .map_err(failed)?;
-    let mut number = String::new();
+    let mut out = RunWriter::new(writer, destination)?;
     for run in &dataset.runs {
+        out.write_rows(run)?;
+    }
+    out.finish().map(drop)
+}
+
+/// Writes the measured-data format one run at a time, so that memory holds one run, not
+/// the dataset: the same bytes as [`Dataset::write`] of the runs written. Each run is
+/// checked as that checks a dataset, except that run identifiers are not compared across
+/// runs (that would hold them all): the caller keeps them unique, as generated ids are.
+pub struct RunWriter<W: Write> {
+    csv: csv::Writer<W>,
+    destination: String,
+    runs: usize,
+    /// A reused buffer for one number's text.
+    number: String,
+}
+
+impl<W: Write> RunWriter<W> {
+    /// Starts the file with its header row. `destination` names the output in errors.
+    pub fn new(writer: W, destination: &str) -> Result<Self, DataError> {
+        let mut out = RunWriter {
+            csv: csv::Writer::from_writer(writer),
+            destination: destination.to_owned(),
+            runs: 0,
+            number: String::new(),
+        };
+        out.csv
+            .write_record(COLUMNS.iter().map(|column| column.name))
+            .map_err(|e| out.failed(e))?;
+        Ok(out)
+    }
+
+    /// Checks and writes one run.
+    pub fn write_run(&mut self, run: &Run) -> Result<(), DataError> {
+        check_id(run, &self.destination)?;
+        check_bodies(run, &self.destination)?;
+        self.write_rows(run)
+    }
+
+    /// Writes one checked run.
+    fn write_rows(&mut self, run: &Run) -> Result<(), DataError> {
         for track in &run.bodies {
             for sample in &track.samples {
-                csv.write_field(&run.id).map_err(failed)?;
-                csv.write_field(&track.body).map_err(failed)?;
-                for value in schema::sample_values(sample) {
-                    number.clear();
-                    // `{:?}` is the shortest text that parses back to the same bits, with
-                    // an exponent for very large and small magnitudes (`1e-300`, `1e17`).
-                    let _ = write!(number, "{value:?}");
-                    csv.write_field(&number).map_err(failed)?;
-                }
-                csv.write_record(None::<&[u8]>).map_err(failed)?;
+                self.write_sample(&run.id, &track.body, sample)
+                    .map_err(|e| self.failed(e))?;
             }
         }
+        self.runs += 1;
+        Ok(())
     }
-    csv.flush()
-        .map_err(|error| DataError::new(destination, format!("cannot write: {error}")))
+
+    fn write_sample(&mut self, run: &str, body: &str, sample: &Sample) -> csv::Result<()> {
+        self.csv.write_field(run)?;
+        self.csv.write_field(body)?;
+        for value in schema::sample_values(sample) {
+            self.number.clear();
+            // `{:?}` is the shortest text that parses back to the same bits, with an
+            // exponent for very large and small magnitudes (`1e-300`, `1e17`).
+            let _ = write!(self.number, "{value:?}");
+            self.csv.write_field(&self.number)?;
+        }
+        self.csv.write_record(None::<&[u8]>)
+    }
+
+    /// Flushes the rows and hands back the writer; refuses a file without runs.
+    pub fn finish(self) -> Result<W, DataError> {
+        if self.runs == 0 {
+            return Err(no_runs(&self.destination));
+        }
+        let destination = self.destination;
+        self.csv.into_inner().map_err(|error| {
+            DataError::new(&destination, format!("cannot write: {}", error.error()))
+        })
+    }
+
+    fn failed(&self, error: csv::Error) -> DataError {
+        DataError::new(&self.destination, format!("cannot write: {error}"))
+    }
 }

@@ -4,18 +4,25 @@
 //!
 //! Every run draws from its own random stream, derived from the seed and the run's
 //! index, so the data are bit-identical for a seed whatever the number of threads.
+//! [`Generation`] makes the runs a chunk at a time, in parallel, and hands them on in
+//! order: memory holds one chunk, however many runs are asked for, and
+//! [`ExperimentWriter`] streams them to OUT, S1 and S2.
 
+mod generation;
 mod split;
+mod write;
 
-pub use split::{condition_of, split, Split};
+pub use generation::Generation;
+pub use split::{check_split, condition_of, split, split_sizes, Holdout, Split};
+pub use write::{ExperimentWriter, Written};
 
-use crate::dataset::{Dataset, Run};
+use crate::dataset::{DataError, Dataset, Run};
+use crate::output::{NoSpace, OutputError};
 use crate::scenario::{Model, Scenario, ScenarioError};
 use crate::simulate::{simulate, SimulationError};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
-use rayon::prelude::*;
 
 /// Why an experiment could not be generated.
 #[derive(Debug, thiserror::Error)]
@@ -35,6 +42,45 @@ pub enum ExperimentError {
     /// Nothing to generate.
     #[error("--runs must be at least 1")]
     NoRuns,
+    /// More runs than can be counted.
+    #[error("--runs {runs}: {runs} runs of each of {conditions} conditions are more than can be counted")]
+    TooManyRuns { runs: usize, conditions: usize },
+    /// The split would leave S1 or S2 empty.
+    #[error(
+        "--runs {runs}: the split into S1 (training) and S2 (validation) needs at least one \
+         run in each; with {conditions} condition(s) and a random {holdout_percent} % of the \
+         runs held out for S2 (experiment.holdout_fraction), that takes --runs {minimum} \
+         or more"
+    )]
+    TooFewRuns {
+        runs: usize,
+        minimum: usize,
+        conditions: usize,
+        holdout_percent: f64,
+    },
+    /// Every condition is held out: S1 would be empty.
+    #[error(
+        "experiment.holdout_conditions names every condition, so S1 (training) would be \
+         empty; leave at least one condition out of it"
+    )]
+    AllHeldOut,
+    /// The output would not fit on the disk.
+    #[error(
+        "{space} ({runs} runs of about {} each, written twice: OUT, then S1 and S2); \
+         ask for fewer --runs or write elsewhere",
+        crate::output::bytes(*per_run)
+    )]
+    TooLarge {
+        runs: u64,
+        per_run: u64,
+        space: NoSpace,
+    },
+    /// An output could not be written.
+    #[error(transparent)]
+    Write(#[from] DataError),
+    /// An output could not be created or moved into place.
+    #[error(transparent)]
+    Output(#[from] OutputError),
 }
 
 /// The conditions of an experiment: (name, model). A scenario without conditions
@@ -82,37 +128,21 @@ fn run_rng(seed: u64, index: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(z ^ (z >> 31))
 }
 
-/// Generates `runs_per_condition` noisy runs of every condition of `scenario`.
-/// `progress` is called once per finished run (from worker threads).
+/// Generates `runs_per_condition` noisy runs of every condition of `scenario`, in
+/// memory. `progress` is called once per finished run (from worker threads).
 pub fn generate(
     scenario: &Scenario,
     runs_per_condition: usize,
     seed: u64,
     progress: impl Fn() + Sync,
 ) -> Result<Dataset, ExperimentError> {
-    if runs_per_condition == 0 {
-        return Err(ExperimentError::NoRuns);
-    }
-    let conditions = conditions(scenario)?;
-    let jobs: Vec<(usize, usize)> = (0..conditions.len())
-        .flat_map(|c| (0..runs_per_condition).map(move |k| (c, k)))
-        .collect();
-    let runs: Result<Vec<Run>, ExperimentError> = jobs
-        .par_iter()
-        .enumerate()
-        .map(|(index, &(c, k))| {
-            let (name, model) = &conditions[c];
-            let id = run_id(name, k, runs_per_condition);
-            let mut rng = run_rng(seed, index as u64);
-            let run = noisy_run(model, &mut rng).map_err(|source| ExperimentError::Simulation {
-                run: id.clone(),
-                source,
-            })?;
-            progress();
-            Ok(Run { id, ..run })
-        })
-        .collect();
-    Ok(Dataset { runs: runs? })
+    let generation = Generation::new(scenario, runs_per_condition, seed)?;
+    let mut runs = Vec::with_capacity(generation.total_runs());
+    generation.for_each(progress, |_, run| -> Result<(), ExperimentError> {
+        runs.push(run);
+        Ok(())
+    })?;
+    Ok(Dataset { runs })
 }
 
 /// One run of PM1: contact parameters η = a + a·b·ζ (Eq 18), then output noise

@@ -28,7 +28,8 @@ pub struct Target {
     pub indicators: Indicators,
     /// Standard error of each mean indicator, s/√n over the runs (same units): the
     /// noise floor below which a model's error against the mean cannot be told apart.
-    pub standard_error: Indicators,
+    /// None for a single run, whose spread is unknown (not zero).
+    pub standard_error: Option<Indicators>,
     /// Time step of the curve (s).
     pub period: f64,
 }
@@ -128,10 +129,11 @@ pub fn targets(model: &Model, data: &Dataset, c: usize) -> Result<Vec<Target>, I
             .map(|j| curves.iter().map(|v| v[j]).sum::<f64>() / n)
             .collect();
         let mean = |f: fn(&Indicators) -> f64| indicators.iter().map(f).sum::<f64>() / n;
+        // The sample standard deviation s needs two runs: with one, n − 1 = 0.
         let standard_error = |f: fn(&Indicators) -> f64| {
             let m = mean(f);
             let squares = indicators.iter().map(|i| (f(i) - m).powi(2)).sum::<f64>();
-            (squares / (n - 1.0).max(1.0)).sqrt() / n.sqrt()
+            (squares / (n - 1.0)).sqrt() / n.sqrt()
         };
         targets.push(Target {
             condition: name.to_owned(),
@@ -144,12 +146,12 @@ pub fn targets(model: &Model, data: &Dataset, c: usize) -> Result<Vec<Target>, I
                 energy_loss: mean(|i| i.energy_loss),
                 duration: mean(|i| i.duration),
             },
-            standard_error: Indicators {
+            standard_error: (indicators.len() >= 2).then(|| Indicators {
                 max_force: standard_error(|i| i.max_force),
                 impulse: standard_error(|i| i.impulse),
                 energy_loss: standard_error(|i| i.energy_loss),
                 duration: standard_error(|i| i.duration),
-            },
+            }),
             period,
         });
     }

@@ -110,8 +110,10 @@ pub fn reproduce(
 ) -> Result<Reproduction, PipelineError> {
     let path = settings.scenario.as_path();
     let scenario = Scenario::load(path, &settings.overrides)?;
-    // A scenario that does not resolve fails here, before minutes of generation.
+    // A scenario that does not resolve, or a run count too small to split into S1 and
+    // S2, fails here, before minutes of generation.
     scenario.model()?;
+    crate::experiment::check_split(&scenario, settings.runs)?;
     let mut timings = Vec::new();
     let mut timed = |stage: &str, clock: Instant| {
         timings.push(StageTiming {
