@@ -9,6 +9,53 @@ use std::process::Command;
 /// The indicator keys of a model row, in the report's order.
 const INDICATORS: [&str; 4] = ["max_force", "impulse", "energy_loss", "duration"];
 
+/// The indicators' row labels in the report's tables, in [`INDICATORS`] order.
+const LABELS: [&str; 4] = [
+    "maximum contact force",
+    "contact impulse",
+    "contact energy loss",
+    "contact duration",
+];
+
+/// The cell of the report's S2 table (the table headed `| indicator | S2 mean |`) in
+/// the row labelled `label` and the column headed `model`.
+fn cell<'a>(report: &'a str, label: &str, model: &str) -> &'a str {
+    let cells = |line: &'a str| -> Vec<&'a str> {
+        let inner = line.trim().trim_start_matches('|').trim_end_matches('|');
+        inner.split('|').map(str::trim).collect()
+    };
+    let mut lines = report
+        .lines()
+        .skip_while(|l| !l.starts_with("| indicator | S2 mean |"));
+    let header = cells(
+        lines
+            .next()
+            .unwrap_or_else(|| panic!("no S2 table:\n{report}")),
+    );
+    let column = (header.iter().position(|h| *h == model))
+        .unwrap_or_else(|| panic!("no column `{model}` in {header:?}"));
+    let row = (lines.take_while(|l| l.starts_with('|')).map(cells))
+        .find(|row| row[0] == label)
+        .unwrap_or_else(|| panic!("no row `{label}` in the S2 table:\n{report}"));
+    row[column]
+}
+
+/// A printed quantity such as `8.67294 mJ` or `2924.31 N`, in SI units.
+fn si(printed: &str) -> f64 {
+    let (number, unit) = printed
+        .split_once(' ')
+        .unwrap_or_else(|| panic!("`{printed}` is not `number unit`"));
+    let number: f64 = number.parse().unwrap_or_else(|_| panic!("`{printed}`"));
+    let factor = match unit {
+        "N" | "N·s" | "J" | "s" => 1.0,
+        "kN" => 1e3,
+        "mN·s" | "mJ" | "ms" => 1e-3,
+        "µJ" | "µs" => 1e-6,
+        other => panic!("unit `{other}` of `{printed}`"),
+    };
+    number * factor
+}
+
 /// `hcm reproduce bouncing-ball` with `args`, into `out`: its results.json and report.md.
 fn reproduce(out: &Path, args: &[&str]) -> (Value, String) {
     let run = Command::new(hcm_exe())
@@ -109,12 +156,15 @@ fn hcm_below_pm2(results: &Value, seed: &str) {
 fn same_table(results: &Value, report: &str) {
     assert_eq!(results["example"], "bouncing-ball");
     for model in ["PM2", "HCM", "HCM int8"] {
-        for key in INDICATORS {
+        for (key, label) in INDICATORS.iter().zip(LABELS) {
             let value = number(&row(results, model)["indicators"], key);
-            let printed = format!("{value:.5e}");
+            let printed = cell(report, label, model);
+            // Six significant digits, as many as `{:.5e}` shows: a rounding error of at
+            // most half a unit in the sixth digit.
+            let shown = si(printed);
             assert!(
-                report.contains(&printed),
-                "{model} {key} {printed}:\n{report}"
+                (shown - value).abs() <= 5.000_001e-6 * value.abs(),
+                "{model} {key}: {value} printed as {printed}:\n{report}"
             );
         }
     }

@@ -15,11 +15,26 @@ use serde_json::json;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-/// Diagnose a physics model against measured data: residual structure against the
-/// noise floor, the catalogued effects that explain it (named, with parameters, 95 %
-/// intervals and shares), the extended model (DIR/extended.toml) and its gain on
-/// held-out runs (and a held-out condition) beside the base model and the HCM.
+/// Diagnose a physics model against data: what is wrong, why, and the model extended.
+///
+/// Example: `hcm diagnose --scenario scenarios/flat_shot.toml --data measured.csv --physics base.toml --out diag/`
+///
+/// Compares the base model's force with the data against the noise floor, names the
+/// catalogued effects that explain the difference (with parameters, 95 % intervals and
+/// shares), writes the extended model (OUT/extended.toml) and measures its gain on
+/// held-out runs (and a held-out condition) beside the base model and the HCM. Writes
+/// OUT/report.md, OUT/diagnosis.json and figures.
+///
+/// Terms:
+///   base model      the physics file given with `--physics` (e.g. from `hcm identify`)
+///   extended model  the base model plus the effects found
+///   noise floor     the data's own force noise σ, from its second differences
+///   held-out runs   runs never fitted, on which the gain is measured
+///   HCM             hybrid contact model: the base model plus a residual network
+///                   trained on the same runs, for comparison
+///   residual        measured − model force (N); the network learns it
 #[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
     scenario: super::ScenarioArgs,
