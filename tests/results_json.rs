@@ -120,6 +120,7 @@ fn on_the_ball_the_hcm_beats_pm2_on_every_indicator() {
         );
         hcm_below_pm2(&results, seed);
         same_table(&results, &report);
+        reads_on_its_own(&results, &report);
     }
 }
 
@@ -190,4 +191,67 @@ fn same_table(results: &Value, report: &str) {
     for stage in stages {
         assert!(report.contains(&format!("| {stage} | ")), "{stage}");
     }
+}
+
+/// The report reads without the paper: the setup in a sentence from the scenario's
+/// bodies, every term glossed, numbers in plain notation, the example by its
+/// command-line name, and each figure embedded with a caption.
+fn reads_on_its_own(results: &Value, report: &str) {
+    assert!(
+        report.contains("**Setup.** `ball` (a steel sphere, radius 12.7 mm, mass 66.93 g) starts at rest 100 mm above `ground`"),
+        "{report}"
+    );
+    assert!(report.contains("hits it at 1.401 m/s"), "{report}");
+    assert!(report.contains("bouncing-ball") && !report.contains("BouncingBall"));
+    let glossary = report
+        .split("## What the words mean")
+        .nth(1)
+        .and_then(|rest| rest.split("\n## ").next())
+        .unwrap_or_else(|| panic!("no glossary:\n{report}"));
+    for term in [
+        "**PM1**",
+        "**S1**",
+        "**S2**",
+        "**PM2**",
+        "**HCM**",
+        "**HCM int8**",
+        "**Error** (the paper's Eq 20)",
+        "*envelope*",
+        "*residual*",
+    ] {
+        assert!(
+            glossary.contains(term),
+            "{term} is not glossed:\n{glossary}"
+        );
+    }
+    // No number in scientific notation such as 2.91186e3 or 4.0e-7.
+    let bytes = report.as_bytes();
+    for (i, window) in bytes.windows(3).enumerate() {
+        let exponent = window[0].is_ascii_digit()
+            && (window[1] == b'e' || window[1] == b'E')
+            && (window[2].is_ascii_digit() || window[2] == b'-' || window[2] == b'+');
+        assert!(
+            !exponent,
+            "scientific notation at {}",
+            &report[i.saturating_sub(20)..(i + 10).min(report.len())]
+        );
+    }
+    for png in results["figures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .filter(|f| f.ends_with(".png"))
+    {
+        let embedded = report
+            .split(&format!("]({png})\n\n"))
+            .nth(1)
+            .unwrap_or_else(|| panic!("{png} is not embedded:\n{report}"));
+        assert!(
+            embedded.starts_with('*') && embedded.lines().next().unwrap().len() > 40,
+            "{png} has no caption"
+        );
+    }
+    // A takeaway per table, computed from its numbers.
+    assert_eq!(report.matches("**Takeaway:**").count(), 3, "{report}");
 }

@@ -204,7 +204,7 @@ impl ReproduceResults {
                 percent(paper_hcm[i])
             );
         }
-        let _ = writeln!(md, "\n- *(hcm)*: this run, from the table above; *(paper)*: the paper's {}, computed the same way on its own runs.", self.example.section().split(", ").nth(1).unwrap_or("table"));
+        let _ = writeln!(md, "\n- *(hcm)*: this run, from the table above; *(paper)*: the paper's {}, on its own runs.", self.example.section().split(", ").nth(1).unwrap_or("table"));
         md
     }
 
@@ -244,7 +244,7 @@ impl ReproduceResults {
         let newton = Scale::plain("N");
         let noise = newton.brief(self.setup.force_noise, 4);
         let mut md = String::from("## 4. The residual network\n\n");
-        let _ = writeln!(md, "The network learned from {} force samples of S1 for {} epochs (passes over the data), keeping the weights of epoch {}: on samples held back from its training its force error is {} RMS, where the data's own noise is {noise}.",
+        let _ = writeln!(md, "The network learned from {} force samples of S1 for {} epochs (passes over the data), keeping the weights of epoch {}: on samples held back from its training its force error is {} root-mean-square (RMS), where the data's own noise is {noise}.",
             r.training_samples, r.epochs, r.best_epoch, newton.brief(r.validation_rms, 4));
         let _ = writeln!(md, "With its weights stored as 8-bit integers its output moves by {} RMS when they are plainly rounded, and by {} after {} epochs of quantisation-aware fine-tuning (training the integer copy to match the original).",
             newton.brief(r.int8_rounded_rms, 4), newton.brief(r.int8_tuned_rms, 4), r.int8_epochs);
@@ -253,7 +253,11 @@ impl ReproduceResults {
                 format!(
                     "{} bytes with {} weights (worst relative difference {})",
                     b.bytes,
-                    b.weights,
+                    match b.weights.as_str() {
+                        "f32" => "32-bit floating-point (f32)",
+                        "int8" => "8-bit integer (int8)",
+                        other => other,
+                    },
                     number(b.round_trip_error, 2)
                 )
             })
