@@ -15,11 +15,26 @@ use serde_json::json;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-/// Diagnose a physics model against measured data: residual structure against the
-/// noise floor, the catalogued effects that explain it (named, with parameters, 95 %
-/// intervals and shares), the extended model (DIR/extended.toml) and its gain on
-/// held-out runs (and a held-out condition) beside the base model and the HCM.
+/// Diagnose a physics model against data: what is wrong, why, and the model extended.
+///
+/// Example: `hcm diagnose --scenario scenarios/flat_shot.toml --data measured.csv --physics base.toml --out diag/`
+///
+/// Compares the base model's force with the data against the noise floor, names the
+/// catalogued effects that explain the difference (with parameters, 95 % intervals and
+/// shares), writes the extended model (OUT/extended.toml) and measures its gain on
+/// held-out runs (and a held-out condition) beside the base model and the HCM. Writes
+/// OUT/report.md, OUT/diagnosis.json and figures.
+///
+/// Terms:
+///   base model      the physics file given with `--physics` (e.g. from `hcm identify`)
+///   extended model  the base model plus the effects found
+///   noise floor     the data's own force noise σ, from its second differences
+///   held-out runs   runs never fitted, on which the gain is measured
+///   HCM             hybrid contact model: the base model plus a residual network
+///                   trained on the same runs, for comparison
+///   residual        measured − model force (N); the network learns it
 #[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
     scenario: super::ScenarioArgs,
@@ -150,6 +165,41 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
     })
 }
 
+/// The report's terms, glossed once for a reader who has not read the paper.
+const TERMS: &str = "What the words mean: the *base* model is the physics file given with `--physics`; \
+the *extended* model is the base model plus the effects named below, its base parameters re-fitted; \
+the *HCM* (hybrid contact model) is the base model plus a small neural network trained on the same runs \
+to predict the force the base model gets wrong, for comparison. The *residual* is measured − model force; \
+the *noise floor* σ is the data's own force noise, read from the force's second differences; the \
+*excess over noise* is √(RMS² − σ²), what a model leaves beyond the noise. *Held-out* runs (and a \
+held-out condition) were never fitted. The four *indicators* of a contact are its maximum force, \
+impulse, energy loss and duration; their *error* is |measured mean − model| / measured mean (the \
+paper's Eq 20), in per cent. *RMSE*: root-mean-square error; *RSS*: residual sum of squares; *CV*: \
+5-fold cross-validation over whole runs; *BIC*: the Bayesian information criterion's threshold.\n\n";
+
+/// One line from the last gain table (the held-out condition when there is one): the
+/// indicator the base model misses most, and what the extended model and the HCM make
+/// of it.
+fn gain_takeaway(gain: &[hcm_host::diagnose::gain::GainTable]) -> Option<String> {
+    let table = gain.last()?;
+    let errors = |label: &str| {
+        (table.rows.iter())
+            .find(|r| r.judged.model == label)
+            .and_then(|r| r.judged.errors)
+            .map(|e| e.values())
+    };
+    let (base, extended) = (errors("base")?, errors("extended")?);
+    let worst = (0..4).fold(0, |w, i| if base[i] > base[w] { i } else { w });
+    let names = ["maximum force", "impulse", "energy loss", "duration"];
+    let hcm = errors("HCM").map_or(String::new(), |h| {
+        format!(" (HCM {:.2} %)", 100.0 * h[worst])
+    });
+    Some(format!(
+        "On the {} ({} runs), the base model's largest error, on the {}, goes {:.2} % → {:.2} % with the extended model{hcm}.",
+        table.group, table.runs, names[worst], 100.0 * base[worst], 100.0 * extended[worst]
+    ))
+}
+
 /// The one-line answer: the named causes, "none", or "unexplained".
 fn answer(d: &Diagnosis) -> String {
     let mut parts: Vec<String> = d.causes.iter().map(|c| c.effect.to_owned()).collect();
@@ -169,6 +219,10 @@ fn answer(d: &Diagnosis) -> String {
 fn report(d: &Diagnosis, figures: &[&str]) -> String {
     let mut md = String::from("# hcm diagnose\n\n");
     let _ = writeln!(md, "**Answer: {}.**\n", answer(d));
+    if let Some(line) = gain_takeaway(&d.gain) {
+        let _ = writeln!(md, "**Gain.** {line}\n");
+    }
+    md.push_str(TERMS);
     let _ = writeln!(
         md,
         "Fitted on {} runs; {} held out{}. Noise floor σ = {:.2} N (from {} second differences of the force).\n",

@@ -7,10 +7,25 @@ use hcm_host::identify::Physics;
 use hcm_host::residual::ContactResidual;
 use std::path::PathBuf;
 
-/// Compare a physics model with validation data: S2 mean, PM2 and the Eq 20 error per
-/// indicator, per condition. Each condition is replayed from the mean state of its
-/// runs just before touch-down.
+/// The paper's table for a physics model (and the HCM) on validation data (S2).
+///
+/// Example: `hcm evaluate --scenario scenarios/bouncing_ball.toml --data data.s2.csv --physics pm2.toml`
+///
+/// For each condition of the data: the mean indicators of its runs beside those of each
+/// model, simulated from the runs' mean state just before touch-down, and each model's
+/// error.
+///
+/// Terms:
+///   S2          the validation set written by `hcm generate` (OUT.s2.csv)
+///   PM2         the physics law identified by `hcm identify` (`--physics`)
+///   HCM         hybrid contact model: PM2 plus the residual network (`--residual`)
+///   residual    the network trained by `hcm train` to predict the force PM2 gets wrong
+///   blob        the residual network as `hcm export` writes it
+///   indicators  of one contact: maximum force (N), impulse (N·s), energy loss (N·m)
+///               and duration (s)
+///   error       the paper's Eq 20: |measured mean − model| / measured mean
 #[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
     scenario: super::ScenarioArgs,
@@ -20,8 +35,9 @@ pub struct Args {
     /// Physics file written by `hcm identify`.
     #[arg(long)]
     physics: PathBuf,
-    /// Residual network blob from `hcm train`: adds the HCM column (PM2 + residual,
-    /// simulated with the residual inside the integrator's force).
+    /// Residual network blob written by `hcm export` (from the network `hcm train`
+    /// wrote): adds the HCM column (PM2 + residual, simulated with the residual inside
+    /// the integrator's force).
     #[arg(long)]
     residual: Option<PathBuf>,
     /// Which contact of the scenario.

@@ -16,8 +16,23 @@ pub enum Weights {
     Int8,
 }
 
-/// Export a trained residual network as a weights blob for the core (and firmware).
+/// Export a trained residual network as a blob for the core (f32 or int8 weights).
+///
+/// Example: `hcm export --residual residual.json --weights int8 --out residual.int8.bin`
+///
+/// Decodes the blob again in the core and prints its worst difference to the host's
+/// network over the envelope. `hcm evaluate --residual` and firmware read the blob.
+///
+/// Terms:
+///   residual  the network trained by `hcm train`: the force PM2 gets wrong
+///   blob      the network in the core's binary format (shapes, weights, normalisation,
+///             envelope, checksum), decoded without allocation
+///   int8      8-bit integer weights with one scale per row: about half the bytes
+///   envelope  the range of inputs seen in training; outside it the HCM is PM2 alone
+///   PM2       the physics law the residual corrects (`hcm identify`)
+///   HCM       hybrid contact model: PM2 plus the residual network
 #[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
 pub struct Args {
     /// Trained residual file written by `hcm train`.
     #[arg(long)]

@@ -5,8 +5,19 @@ use hcm_core::law::Indentation;
 use hcm_core::model::ContactModel;
 use hcm_host::law_catalogue;
 
-/// Evaluate a normal law: `hcm force --law hertz --set stiffness=3.6e9 --set exponent=1.5 --depth 1e-5`.
+/// Evaluate one normal law at one contact state.
+///
+/// Example: `hcm force --law hertz --set stiffness=3.6e9 --set exponent=1.5 --depth 1e-5`
+///
+/// Prints the normal force f_n (N, > 0 pushing apart) in f64 and in the f32 a controller
+/// computes. `hcm laws` lists the laws and their parameters.
+///
+/// Terms:
+///   δ     indentation: how far the two undeformed surfaces overlap (m), > 0 in contact
+///   δ̇     indentation rate (m/s), > 0 while the bodies approach
+///   δ̇0    approach speed at touch-down (m/s), used by some laws' damping
 #[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
 pub struct Args {
     /// Law name (see `hcm laws`).
     #[arg(long)]

@@ -5,12 +5,24 @@ use hcm_host::experiment::ExperimentWriter;
 use hcm_host::output::bytes;
 use std::path::{Path, PathBuf};
 
-/// Generate noisy runs of a scenario: `hcm generate --scenario scenarios/bouncing_ball.toml --runs 1000 --seed 1 --out data.csv`.
+/// Generate a noise-added experiment (PM1) and split it into S1 and S2.
 ///
-/// Writes all runs to OUT and the split next to it: OUT.s1.csv (training, S1) and
-/// OUT.s2.csv (validation, S2). Noise levels, conditions and the split rule come from
-/// the scenario's `[experiment]` and `[[contact]] noise` (see the README).
+/// Example: `hcm generate --scenario scenarios/bouncing_ball.toml --runs 1000 --seed 1 --out data.csv`
+///
+/// Writes three files: OUT with every run, and beside it the split: S1 in OUT.s1.csv
+/// and S2 in OUT.s2.csv (the extension of OUT replaced: data.csv → data.s1.csv,
+/// data.s2.csv). Noise levels, conditions and the split rule come from the scenario's
+/// `[experiment]` and `[[contact]] noise` (README, "Scenario keys for experiments").
+///
+/// Terms:
+///   PM1   the scenario's contact simulated with noise, standing in for measurements:
+///         each run scatters the law's parameters (the paper's Eq 18) and adds random
+///         noise to every recorded force sample (Eq 19)
+///   S1    the training set: the runs `hcm identify` and `hcm train` learn from
+///   S2    the validation set, used only to judge models (`hcm evaluate`): a random
+///         share of the runs, or the runs of the scenario's holdout conditions
 #[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
     scenario: super::ScenarioArgs,
@@ -22,7 +34,8 @@ pub struct Args {
     #[arg(long, default_value_t = 1)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
     seed: u64,
-    /// Output file (CSV, measured-data format).
+    /// Output file (CSV, measured-data format) for every run; S1 and S2 are written
+    /// beside it as OUT.s1.csv and OUT.s2.csv (data.csv → data.s1.csv, data.s2.csv).
     #[arg(long)]
     out: PathBuf,
 }

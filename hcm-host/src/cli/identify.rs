@@ -8,9 +8,23 @@ use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::{identify, Method, Physics};
 use std::path::PathBuf;
 
-/// Identify a physics model (PM2) from data:
-/// `hcm identify --scenario scenarios/bouncing_ball.toml --data data.s1.csv --law lankarani_nikravesh --method lsq --out pm2.toml`.
+/// Identify a physics model (PM2) from data.
+///
+/// Example: `hcm identify --scenario scenarios/bouncing_ball.toml --data data.s1.csv --law lankarani_nikravesh --out pm2.toml`
+///
+/// Fits the chosen law's free parameters to the data's contacts, prints them with
+/// their uncertainty and the fit's force error, and writes a physics file that
+/// `hcm simulate --physics`, `hcm train` and `hcm evaluate` read.
+///
+/// Terms:
+///   PM2           physics model 2: a contact law with parameters identified on data
+///   S1            the training set written by `hcm generate` (OUT.s1.csv)
+///   physics file  TOML naming each contact's law and parameters, plus a [fit] record
+///   GA            the paper's genetic algorithm (`--method ga`): it simulates candidate
+///                 parameters and compares them with the data
+///   indicators    of one contact: maximum force, impulse, energy loss and duration
 #[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
     scenario: super::ScenarioArgs,

@@ -5,12 +5,19 @@ use hcm_host::dataset::Dataset;
 use hcm_host::indicators::{from_run, summarize};
 use std::path::PathBuf;
 
-/// Contact indicators per event and run, with mean and standard deviation over runs.
+/// Contact indicators per contact and run, with mean and standard deviation over runs.
 ///
 /// The scenario supplies what the data cannot: the bodies' shapes (to recompute the
-/// indentation δ from the recorded positions and interpolate its zero crossings)
-/// and masses (for the energy loss ½·m_e·(δ̇_in² − δ̇_out²)).
+/// indentation δ from the recorded positions and find where it crosses zero) and
+/// masses (for the energy loss ½·m_e·(δ̇_in² − δ̇_out²)).
+///
+/// Terms:
+///   indicators  of one contact: maximum force (N), impulse ∫f dt (N·s), energy lost
+///               (N·m = J) and duration (s), between touch-down and lift-off (δ = 0)
+///   δ, δ̇        indentation (m, > 0 in contact) and its rate (m/s, > 0 approaching)
+///   m_e         effective mass m1·m2/(m1 + m2) of the two bodies (kg)
 #[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
 pub struct Args {
     /// Data file in the measured-data format (CSV).
     #[arg(long)]

@@ -17,38 +17,51 @@ mod train;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
-/// Hybrid contact modeling: contact laws, simulation, identification and diagnosis.
+/// hcm: hybrid contact modelling — a physics contact law plus a small neural network
+/// that learns the law's error from measured data.
+///
+/// The method (the paper's): many repeated contacts are measured — here simulated with
+/// noise (PM1), standing in for a rig — and split into a training set S1 and a
+/// validation set S2. A physics law fitted to S1 is PM2. A residual network trained on S1
+/// to predict the force PM2 gets wrong, added to PM2, is the HCM (hybrid contact model).
+/// Both are judged on S2 by four indicators of each contact (maximum force, impulse,
+/// energy loss, duration) and their error |measured − model| / measured (the paper's
+/// Eq 20).
+///
+/// The commands:
+///   hcm laws        list the contact laws with their equations and parameters
+///   hcm force       evaluate one law at one indentation
+///   hcm simulate    simulate a scenario (bodies, materials, contact laws) to a trajectory
+///   hcm indicators  the four indicators of every contact in a data file
+///   hcm generate    make PM1's noisy runs and split them into S1 and S2
+///   hcm identify    fit a physics law (PM2) to data
+///   hcm train       train the residual network on S1 (the force PM2 gets wrong)
+///   hcm export      write the trained network as a blob for the core (f32 or int8)
+///   hcm evaluate    the paper's table: PM2 (and the HCM) against S2
+///   hcm reproduce   all of the above for one of the paper's examples, with a report
+///   hcm diagnose    name what a physics law misses in data, and extend it
+///
+/// `hcm COMMAND --help` defines each command's terms; the README has the details.
 #[derive(Parser)]
-#[command(name = "hcm", version, about, long_about = None)]
+#[command(name = "hcm", version, verbatim_doc_comment)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
 }
 
+/// The subcommands; each one's help is its `Args` struct's doc comment.
 #[derive(Subcommand)]
 enum Command {
-    /// List the normal contact laws with their equations and parameters.
     Laws(laws::Args),
-    /// Evaluate one normal law at one contact state.
     Force(force::Args),
-    /// Simulate a scenario and write its trajectory (measured-data CSV).
     Simulate(simulate::Args),
-    /// Contact indicators (max force, impulse, energy loss, duration) from a data file.
     Indicators(indicators::Args),
-    /// Generate a noise-added experiment (PM1) and split it into S1 and S2.
     Generate(generate::Args),
-    /// Identify a physics model (PM2) from data: least squares or genetic algorithm.
     Identify(identify::Args),
-    /// The paper's table for a physics model on validation data (S2).
     Evaluate(evaluate::Args),
-    /// Train the residual network of the HCM on S1 (and its int8 twin).
     Train(train::Args),
-    /// Export a trained residual network as the core's weights blob (f32 or int8).
     Export(export::Args),
-    /// Reproduce one of the paper's examples end to end, with report and figures.
     Reproduce(reproduce::Args),
-    /// Diagnose a physics model against measured data: what is wrong, the cause named,
-    /// the extended model and its gain.
     Diagnose(diagnose::Args),
 }
 
@@ -129,4 +142,29 @@ pub fn check_contact(contact: usize, model: &hcm_host::scenario::Model) -> anyho
         model.contacts.len()
     );
     Ok(contact)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Cli;
+    use clap::CommandFactory;
+
+    /// Every subcommand clap knows is named in the top-level description, and each has
+    /// a one-line summary of its own.
+    #[test]
+    fn the_description_lists_every_command() {
+        let cli = Cli::command();
+        let description = cli
+            .get_long_about()
+            .map(ToString::to_string)
+            .unwrap_or_default();
+        for command in cli.get_subcommands() {
+            let name = command.get_name();
+            assert!(
+                description.contains(&format!("  hcm {name} ")),
+                "`hcm {name}` is missing from the description:\n{description}"
+            );
+            assert!(command.get_about().is_some(), "`hcm {name}` has no summary");
+        }
+    }
 }

@@ -7,8 +7,21 @@ use hcm_host::identify::Physics;
 use hcm_host::simulate::simulate;
 use std::path::PathBuf;
 
-/// Simulate a scenario: `hcm simulate --scenario scenarios/bouncing_ball.toml --out traj.csv`.
+/// Simulate a scenario and write its trajectory.
+///
+/// Example: `hcm simulate --scenario scenarios/bouncing_ball.toml --out traj.csv`
+///
+/// Writes every body's sampled motion and contact force to OUT (measured-data CSV, one
+/// row per sample per body; the README's "Measured-data format") and prints the
+/// indicators of each contact.
+///
+/// Terms:
+///   scenario    a TOML file of bodies, materials, contact laws and solver settings
+///   indicators  of one contact: maximum force (N), impulse ∫f dt (N·s), energy lost
+///               (N·m = J) and duration (s)
+///   PM2         a physics law identified on data by `hcm identify` (`--physics`)
 #[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
     scenario: super::ScenarioArgs,

@@ -9,9 +9,26 @@ use hcm_host::residual::{HIDDEN, WIDTH};
 use hcm_host::train::{quantisation_aware, residual_pairs, train, TrainSettings, TrainedResidual};
 use std::path::PathBuf;
 
-/// Train the residual network (inputs δ, δ̇, δ̇0; output measured − PM2 force) and its
-/// int8 twin; OUT is a JSON file for `hcm export`.
+/// Train the residual network of the HCM on S1 (and its int8 twin).
+///
+/// Example: `hcm train --scenario scenarios/bouncing_ball.toml --data data.s1.csv --physics pm2.toml --out residual.json`
+///
+/// Its inputs are δ, δ̇ and δ̇0 of each contact sample, its output the measured force
+/// minus PM2's. OUT (JSON) holds the network, its int8 twin and its envelope; turn it
+/// into a blob for the core with `hcm export`.
+///
+/// Terms:
+///   residual  the network's output: the force PM2 gets wrong (measured − PM2, N)
+///   HCM       hybrid contact model: PM2 plus the residual network
+///   PM2       the physics law identified by `hcm identify` (`--physics`)
+///   S1        the training set written by `hcm generate` (OUT.s1.csv)
+///   int8      the network with 8-bit integer weights (less memory on a controller),
+///             fine-tuned to match the f32 network
+///   envelope  the range of inputs seen in training; outside it the HCM is PM2 alone
+///   blob      the network in the core's binary format, written by `hcm export`
+///   δ, δ̇, δ̇0  indentation (m), its rate (m/s), the approach speed at touch-down (m/s)
 #[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
     scenario: super::ScenarioArgs,

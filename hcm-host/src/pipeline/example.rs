@@ -5,6 +5,7 @@ use crate::evaluate::IndicatorErrors;
 use crate::identify::evolve::Fitness;
 use crate::identify::genetic::GeneticSettings;
 use crate::identify::Method;
+use crate::scenario::{Scenario, ScenarioError};
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -19,11 +20,36 @@ pub enum Example {
 }
 
 impl Example {
+    /// Its name on the command line and in reports (`bouncing-ball`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Example::BouncingBall => "bouncing-ball",
+            Example::FlatShot => "flat-shot",
+        }
+    }
+
+    /// Where the paper has it: section and results table.
+    pub fn section(self) -> &'static str {
+        match self {
+            Example::BouncingBall => "Section 5.1, Table 5",
+            Example::FlatShot => "Section 5.2, Table 10",
+        }
+    }
+
     /// Its scenario file in the repository's `scenarios/`.
     pub fn file(self) -> &'static str {
         match self {
             Example::BouncingBall => "bouncing_ball.toml",
             Example::FlatShot => "flat_shot.toml",
+        }
+    }
+
+    /// The text of its scenario file, built into the program so that `hcm reproduce`
+    /// runs the same scenario from any directory, with or without the repository.
+    pub fn shipped_scenario(self) -> &'static str {
+        match self {
+            Example::BouncingBall => include_str!("../../../scenarios/bouncing_ball.toml"),
+            Example::FlatShot => include_str!("../../../scenarios/flat_shot.toml"),
         }
     }
 
@@ -84,8 +110,9 @@ impl Pm2Method {
 pub struct ReproduceSettings {
     /// Which example (its paper figures).
     pub example: Example,
-    /// Its scenario file.
-    pub scenario: PathBuf,
+    /// Its scenario file; `None`: the shipped scenario built into the program
+    /// ([`Example::shipped_scenario`]).
+    pub scenario: Option<PathBuf>,
     /// Overrides of the scenario's values (`key=value`, as
     /// [`crate::scenario::Scenario::load`] takes them).
     pub overrides: Vec<String>,
@@ -98,16 +125,39 @@ pub struct ReproduceSettings {
 }
 
 impl ReproduceSettings {
-    /// The paper's run count and method for `example` (its scenario read from
-    /// `scenario`), seed 1.
-    pub fn paper(example: Example, scenario: PathBuf) -> Self {
+    /// The paper's run count and method for `example` on its shipped scenario, seed 1.
+    pub fn paper(example: Example) -> Self {
         Self {
             example,
-            scenario,
+            scenario: None,
             overrides: Vec::new(),
             seed: 1,
             runs: example.runs(),
             method: Pm2Method::Ga,
+        }
+    }
+}
+
+impl ReproduceSettings {
+    /// The scenario with the overrides applied. The shipped one is named
+    /// `scenarios/bouncing_ball.toml (built in)` in errors and reports.
+    pub fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
+        match &self.scenario {
+            Some(path) => Scenario::load(path, &self.overrides),
+            None => Scenario::parse(
+                &self.scenario_label(),
+                self.example.shipped_scenario(),
+                &self.overrides,
+            ),
+        }
+    }
+
+    /// The scenario file as given, or `scenarios/NAME.toml (built in)` for the
+    /// shipped one.
+    pub fn scenario_label(&self) -> PathBuf {
+        match &self.scenario {
+            Some(path) => path.clone(),
+            None => PathBuf::from(format!("scenarios/{} (built in)", self.example.file())),
         }
     }
 }

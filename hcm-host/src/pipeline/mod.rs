@@ -23,8 +23,10 @@ mod export;
 mod generate;
 mod identify;
 mod progress;
+mod quantity;
 mod report;
 mod results;
+mod setup;
 mod train;
 
 pub use evaluate::{evaluate_on_s2, Evaluation, NamedFigure};
@@ -37,6 +39,7 @@ pub use results::{
     BlobSummary, NamedValue, PaperErrors, Pm2Summary, ReproduceResults, ResidualSummary,
     StageTiming,
 };
+pub use setup::Setup;
 pub use train::{train_residual, Trained};
 
 use crate::experiment::{ExperimentError, Split};
@@ -108,8 +111,9 @@ pub fn reproduce(
     settings: &ReproduceSettings,
     progress: &dyn Progress,
 ) -> Result<Reproduction, PipelineError> {
-    let path = settings.scenario.as_path();
-    let scenario = Scenario::load(path, &settings.overrides)?;
+    let scenario = settings.load_scenario()?;
+    let label = settings.scenario_label();
+    let path = label.as_path();
     // A scenario that does not resolve, or a run count too small to split into S1 and
     // S2, fails here, before minutes of generation.
     scenario.model()?;
@@ -150,7 +154,16 @@ pub fn reproduce(
     let evaluation = evaluate_on_s2(&pm2.model, &blobs, &sets.validation, progress)?;
     timed("evaluate + figures", clock);
 
-    let results = ReproduceResults::gather(settings, &pm2, &trained, &blobs, &evaluation, timings);
+    let setup = Setup::describe(&scenario, &sets, &evaluation.table.condition);
+    let results = ReproduceResults::gather(
+        settings,
+        setup,
+        &pm2,
+        &trained,
+        &blobs,
+        &evaluation,
+        timings,
+    );
     Ok(Reproduction {
         scenario,
         sets,
@@ -165,7 +178,6 @@ pub fn reproduce(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::path::Path;
     use std::sync::Mutex;
 
     /// Progress that keeps what it is told.
@@ -199,13 +211,11 @@ mod tests {
     }
 
     fn settings() -> ReproduceSettings {
-        let scenario =
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/bouncing_ball.toml");
         ReproduceSettings {
             runs: 12,
             method: Pm2Method::Lsq,
             seed: 4,
-            ..ReproduceSettings::paper(Example::BouncingBall, scenario)
+            ..ReproduceSettings::paper(Example::BouncingBall)
         }
     }
 

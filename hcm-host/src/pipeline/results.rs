@@ -1,7 +1,7 @@
 //! The results of a reproduction: every table of the report as typed values, the
 //! content of `results.json` (keys documented in the README, "results.json").
 
-use super::{Blobs, Evaluation, Example, Pm2, ReproduceSettings, Trained};
+use super::{Blobs, Evaluation, Example, Pm2, ReproduceSettings, Setup, Trained};
 use crate::evaluate::{ConditionTable, IndicatorErrors};
 use serde::Serialize;
 
@@ -33,6 +33,9 @@ pub struct ReproduceResults {
     pub timings: Vec<StageTiming>,
     /// The figure files, SVG and PNG.
     pub figures: Vec<String>,
+    /// The experiment in words, for the report (not in results.json).
+    #[serde(skip)]
+    pub setup: Setup,
 }
 
 /// PM2 as identified.
@@ -104,9 +107,10 @@ pub struct StageTiming {
 }
 
 impl ReproduceResults {
-    /// The results of the stages' values.
+    /// The results of the stages' values; `setup` describes the experiment.
     pub fn gather(
         settings: &ReproduceSettings,
+        setup: Setup,
         pm2: &Pm2,
         trained: &Trained,
         blobs: &Blobs,
@@ -131,7 +135,7 @@ impl ReproduceResults {
             example: settings.example,
             seed: settings.seed,
             runs_per_condition: settings.runs,
-            scenario: settings.scenario.display().to_string(),
+            scenario: settings.scenario_label().display().to_string(),
             overrides: settings.overrides.clone(),
             pm2: Pm2Summary {
                 law: found.law.name().to_owned(),
@@ -156,6 +160,7 @@ impl ReproduceResults {
                 .iter()
                 .flat_map(|f| [format!("{}.svg", f.stem), format!("{}.png", f.stem)])
                 .collect(),
+            setup,
         }
     }
 

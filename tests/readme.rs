@@ -1,0 +1,216 @@
+//! Every command the README shows runs. Each `hcm …` and `cargo run … -p hcm-host -- …`
+//! line of the README's `sh` blocks runs through the `hcm` fixture, block by block, each
+//! block in a fresh directory holding a copy of `scenarios/` (as a clone's root does), so
+//! that relative paths resolve as they would for a reader and outputs land in the
+//! temporary directory. A failing command fails the test, naming its README line.
+//!
+//! As the README says, two kinds of line are too long for CI and run smaller: a `--runs`
+//! above [`MOST_RUNS`] runs with `--runs` [`MOST_RUNS`], and `reproduce` (the paper's
+//! 1000 runs by default) with `--runs` [`MOST_RUNS`].
+
+use hcm_tests::cli::Hcm;
+use std::path::Path;
+
+/// The most runs a README command is given here (README: "too long for CI").
+const MOST_RUNS: usize = 40;
+
+/// Lines of `sh` blocks that CI runs itself (`.ci/run`) or that measure this machine:
+/// not run here.
+const NOT_RUN: [&str; 5] = [
+    "cargo test",
+    "cargo bench",
+    "cargo clippy",
+    "cargo fmt",
+    "cargo build",
+];
+
+/// A command line of the README: its line number (1-based) and text, continuation
+/// lines joined.
+struct Line {
+    number: usize,
+    text: String,
+}
+
+/// The logical lines of every ```sh block, one list per block.
+fn sh_blocks(readme: &str) -> Vec<Vec<Line>> {
+    let mut blocks = Vec::new();
+    let mut current: Option<Vec<Line>> = None;
+    let mut continued = false;
+    for (index, raw) in readme.lines().enumerate() {
+        let trimmed = raw.trim_end();
+        match current.as_mut() {
+            None if trimmed.trim_start() == "```sh" => current = Some(Vec::new()),
+            None => {}
+            Some(_) if trimmed.trim_start().starts_with("```") => {
+                blocks.extend(current.take());
+                continued = false;
+            }
+            Some(lines) => {
+                let (body, continues) = match trimmed.strip_suffix('\\') {
+                    Some(body) => (body, true),
+                    None => (trimmed, false),
+                };
+                match lines.last_mut() {
+                    Some(last) if continued => {
+                        last.text.push(' ');
+                        last.text.push_str(body.trim());
+                    }
+                    _ if body.trim().is_empty() => {}
+                    _ => lines.push(Line {
+                        number: index + 1,
+                        text: body.trim().to_owned(),
+                    }),
+                }
+                continued = continues;
+            }
+        }
+    }
+    blocks
+}
+
+/// The words of a shell command line: whitespace separates, '…' and "…" quote, a
+/// backslash escapes the next character, and `#` at the start of a word begins a
+/// comment.
+fn words(line: &str) -> Vec<String> {
+    let mut words = Vec::new();
+    let mut word: Option<String> = None;
+    let mut chars = line.chars();
+    while let Some(c) = chars.next() {
+        match c {
+            c if c.is_whitespace() => words.extend(word.take()),
+            '#' if word.is_none() => break,
+            '\'' => word
+                .get_or_insert_with(String::new)
+                .extend(chars.by_ref().take_while(|&q| q != '\'')),
+            '"' => {
+                let word = word.get_or_insert_with(String::new);
+                while let Some(q) = chars.next() {
+                    match q {
+                        '"' => break,
+                        '\\' => word.extend(chars.next()),
+                        q => word.push(q),
+                    }
+                }
+            }
+            '\\' => word.get_or_insert_with(String::new).extend(chars.next()),
+            c => word.get_or_insert_with(String::new).push(c),
+        }
+    }
+    words.extend(word);
+    words
+}
+
+/// The arguments to `hcm` of a command line: after `hcm`, or after the `--` of a
+/// `cargo run` of the `hcm-host` package. None for anything else.
+fn hcm_arguments(words: &[String]) -> Option<Vec<String>> {
+    match words {
+        [first, rest @ ..] if first == "hcm" => Some(rest.to_vec()),
+        [cargo, run, rest @ ..] if cargo == "cargo" && run == "run" => {
+            let split = rest.iter().position(|w| w == "--")?;
+            let (options, arguments) = (&rest[..split], &rest[split + 1..]);
+            let package = options
+                .windows(2)
+                .any(|w| w[0] == "-p" && w[1] == "hcm-host")
+                || options.iter().any(|w| w == "--package=hcm-host");
+            package.then(|| arguments.to_vec())
+        }
+        _ => None,
+    }
+}
+
+/// `arguments` as CI runs them: at most [`MOST_RUNS`] runs, and `reproduce` with that
+/// many when it names none.
+fn shortened(mut arguments: Vec<String>) -> Vec<String> {
+    let runs = arguments.iter().position(|a| a == "--runs");
+    match runs {
+        Some(i) if i + 1 < arguments.len() => {
+            let asked: usize = arguments[i + 1].parse().expect("--runs takes a count");
+            arguments[i + 1] = asked.min(MOST_RUNS).to_string();
+        }
+        None if arguments.first().is_some_and(|a| a == "reproduce") => {
+            arguments.extend(["--runs".to_owned(), MOST_RUNS.to_string()]);
+        }
+        _ => {}
+    }
+    arguments
+}
+
+/// Copies the files of directory `from` into `to` (created).
+fn copy_files(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_file() {
+            std::fs::copy(&path, to.join(path.file_name().unwrap())).unwrap();
+        }
+    }
+}
+
+#[test]
+fn every_command_of_the_readme_runs() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let blocks = sh_blocks(&readme);
+    let mut ran = 0;
+    for block in &blocks {
+        let hcm = Hcm::new();
+        copy_files(&root.join("scenarios"), &hcm.path("scenarios"));
+        for line in block {
+            let words = words(&line.text);
+            let Some(arguments) = hcm_arguments(&words) else {
+                assert!(
+                    NOT_RUN.iter().any(|p| line.text.starts_with(p)),
+                    "README line {}: `{}` is neither an hcm command nor one CI runs itself",
+                    line.number,
+                    line.text
+                );
+                continue;
+            };
+            let arguments = shortened(arguments);
+            // Shown with the fixture's message if the command fails.
+            eprintln!("README line {}: hcm {}", line.number, arguments.join(" "));
+            let (subcommand, rest) = arguments.split_first().expect("a subcommand");
+            rest.iter()
+                .fold(hcm.run(subcommand), |call, argument| call.arg(argument))
+                .ok();
+            ran += 1;
+        }
+    }
+    // The README's blocks: the first two commands, the simulations, the hertz example,
+    // PM1/PM2, the HCM step by step and the diagnosis.
+    assert!(
+        blocks.len() >= 6 && ran >= 17,
+        "{} blocks, {ran} commands",
+        blocks.len()
+    );
+}
+
+#[test]
+fn command_lines_parse_as_a_shell_would() {
+    let readme = "text\n```sh\nhcm a --x 'b c' \\\n    --y \"d\\\"e\"   # comment\n\ncargo run --release -p hcm-host -- reproduce x\ncargo test --workspace\n```\n```csv\nhcm no\n```\n";
+    let blocks = sh_blocks(readme);
+    assert_eq!(blocks.len(), 1);
+    let lines: Vec<(usize, Vec<String>)> = blocks[0]
+        .iter()
+        .map(|l| (l.number, words(&l.text)))
+        .collect();
+    assert_eq!(
+        lines[0],
+        (
+            3,
+            vec!["hcm", "a", "--x", "b c", "--y", "d\"e"]
+                .into_iter()
+                .map(String::from)
+                .collect()
+        )
+    );
+    let reproduce = hcm_arguments(&lines[1].1).unwrap();
+    assert_eq!(shortened(reproduce), ["reproduce", "x", "--runs", "40"]);
+    assert_eq!(hcm_arguments(&lines[2].1), None);
+    let generate = ["generate", "--runs", "1000", "--out", "x.csv"]
+        .map(String::from)
+        .to_vec();
+    assert_eq!(shortened(generate)[2], "40");
+    let few = ["generate", "--runs", "10"].map(String::from).to_vec();
+    assert_eq!(shortened(few)[2], "10");
+}
