@@ -17,9 +17,6 @@ pub struct PairKinematics {
     pub normal: Vector3<f64>,
     /// Contact point (m).
     pub point: Vector3<f64>,
-    /// Velocity of body 1 relative to body 2 (m/s); bodies do not rotate yet, so it is
-    /// the same at every point.
-    pub relative_velocity: Vector3<f64>,
 }
 
 /// Kinematics of `contact` with body 1 at (p1, v1) and body 2 at (p2, v2) (m, m/s).
@@ -44,6 +41,5 @@ pub fn pair_kinematics(
         rate: -(v1 - v2).dot(&geometry.normal),
         normal: geometry.normal,
         point: geometry.point,
-        relative_velocity: v1 - v2,
     }
 }

@@ -51,6 +51,7 @@ pub struct Loads {
 
 impl ContactSystem<'_> {
     /// Kinematics of contact `c` in state `y`.
+    #[inline]
     pub fn kinematics(&self, y: &[f64], c: usize) -> PairKinematics {
         let contact = &self.model.contacts[c];
         let motion = |b| self.layout.motion(self.model, y, b);
@@ -143,9 +144,21 @@ impl ContactSystem<'_> {
             memory,
             normal: k.normal,
             position: k.point,
-            relative_velocity: k.relative_velocity,
+            relative_velocity: self.relative_velocity(y, c),
         };
         (point, [k.depth, k.rate, indentation.approach_speed])
+    }
+
+    /// Velocity of contact `c`'s body 1 relative to its body 2 (m/s): what friction
+    /// reads as slip. Bodies do not rotate yet, so it is the same at every point; read
+    /// only when the contact has friction (it costs two body lookups per evaluation).
+    fn relative_velocity(&self, y: &[f64], c: usize) -> Vector3<f64> {
+        let contact = &self.model.contacts[c];
+        if contact.model.friction.is_none() {
+            return Vector3::zeros();
+        }
+        let velocity = |b| self.layout.motion(self.model, y, b).1;
+        velocity(contact.body_1) - velocity(contact.body_2)
     }
 
     /// Contact `c`'s (δ, δ̇, δ̇0) and δ_max in state `y`.
