@@ -183,7 +183,7 @@ fn the_peak_of_noisy_data_is_not_biased_upwards() {
     use rand::{RngExt, SeedableRng};
     // σ = 15 N on every force sample (the experiments' output noise): the mean of the
     // raw per-run maxima sits ≈ +0.5 % above the true peak; the smoothed peak of the
-    // indicators must not (parameters.md: "compute indicators from a smoothed signal").
+    // indicators must not (docs/reconstruction.md: indicators come from a smoothed signal).
     let m = model("bouncing_ball.toml", &[]);
     let simulation = simulate(&m).unwrap();
     let exact = first_event(&simulation).max_force;

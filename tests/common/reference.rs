@@ -1,4 +1,4 @@
-//! The reference setup of shared/reference/parameters.md (steel ball on concrete),
+//! The reference setup of docs/reconstruction.md (steel ball on concrete),
 //! shared by the law tests and benchmarks so that every law is exercised at the
 //! parameters the paper's examples use.
 

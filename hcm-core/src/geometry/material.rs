@@ -64,7 +64,7 @@ mod tests {
             youngs_modulus: 2.5193e10,
             poisson_ratio: 0.25,
         };
-        // parameters.md: c·E* = 4.804e10 Pa with c = 2.
+        // docs/reconstruction.md: c·E* = 4.804e10 Pa with c = 2.
         let e_star: f64 = effective_modulus(&steel, &concrete);
         assert!((2.0 * e_star / 4.804e10 - 1.0).abs() < 1e-4, "{e_star}");
     }

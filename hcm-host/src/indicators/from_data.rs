@@ -292,7 +292,7 @@ fn impulse(
 const PEAK_WINDOW: f64 = 0.1;
 
 /// The maximum normal force of one event, read from a smoothed signal
-/// (shared/reference/parameters.md: the mean of per-run maxima of a noisy force is
+/// (docs/reconstruction.md: the mean of per-run maxima of a noisy force is
 /// biased upwards, +0.5 % for the ball at σ = 15 N, so the raw largest sample is not used).
 ///
 /// A degree-4 polynomial in time is fitted by least squares to the samples within

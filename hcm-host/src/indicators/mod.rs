@@ -1,7 +1,7 @@
 //! The paper's contact indicators (maximum force, impulse, energy loss, duration),
 //! the Eq 20 error between two of them, and their statistics over runs.
 //!
-//! Definitions (shared/reference/parameters.md): over one contact event from the
+//! Definitions (docs/reconstruction.md): over one contact event from the
 //! touch-down to the lift-off δ = 0 crossing, the maximum normal force, the normal
 //! impulse ∫f_n dt, the relative-motion energy loss ½·m_e·(δ̇_in² − δ̇_out²), and the
 //! duration.
