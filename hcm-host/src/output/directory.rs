@@ -184,15 +184,7 @@ fn replaceable(target: &Path, marker: &str, new_names: Option<&[OsString]>) -> R
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn entries(dir: &Path) -> Vec<String> {
-        let mut names: Vec<String> = fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
-    }
+    use crate::output::tests::entries;
 
     #[test]
     fn a_directory_appears_whole_at_commit_and_not_before() {
