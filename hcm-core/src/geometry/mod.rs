@@ -4,10 +4,14 @@
 //! One file per pair of shapes; each gives the Hertz stiffness of Eq 3 for that pair
 //! and the contact kinematics a simulator feeds to the laws in [`crate::law`].
 
+pub mod box_plane;
+mod cuboid;
 mod material;
+pub mod sphere_box;
 pub mod sphere_plane;
 pub mod sphere_sphere;
 
+pub use cuboid::Cuboid;
 pub use material::{effective_modulus, Material};
 
 use crate::Real;
@@ -23,6 +27,10 @@ pub struct ContactGeometry<T: Real> {
     /// Contact point (m): the middle of the overlap along the normal.
     pub point: Vector3<T>,
 }
+
+/// The contacts of one shape pair with several points (a box on a plane: up to 8),
+/// fixed-size (no allocator), as many as a [`crate::model::Manifold`] holds.
+pub type Contacts<T> = heapless::Vec<ContactGeometry<T>, { crate::model::MAX_POINTS }>;
 
 /// Hertz contact stiffness k = 4/3 · E* · √R (N/m^1.5), Eq 3.
 ///

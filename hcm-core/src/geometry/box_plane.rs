@@ -1,0 +1,141 @@
+//! A cuboid (body 1) against a plane or half-space (body 2), e.g. a cube on the ground.
+
+use super::{ContactGeometry, Contacts, Cuboid};
+use crate::model::MAX_POINTS;
+use crate::Real;
+use nalgebra::Vector3;
+
+/// The vertices of `cuboid` behind the plane through `plane_point` (m) with outward
+/// `plane_normal` (unit), one contact per vertex, in vertex order ([`Cuboid::vertex`]).
+///
+/// Each contact has depth δ = −(signed distance of the vertex from the plane) (m), > 0
+/// (a vertex exactly on the plane is not a contact), the normal `plane_normal`
+/// (plane → box), and its point at the vertex itself: there the force acts and the
+/// slip is measured. A face flat on the plane gives four contacts, an edge two, a
+/// corner one; a box entirely behind the plane all eight. NaN inputs give no contacts.
+pub fn contacts<T: Real>(
+    cuboid: &Cuboid<T>,
+    plane_point: &Vector3<T>,
+    plane_normal: &Vector3<T>,
+) -> Contacts<T> {
+    let mut found = Contacts::new();
+    for index in 0..MAX_POINTS {
+        let vertex = cuboid.vertex(index);
+        let depth = -(vertex - plane_point).dot(plane_normal);
+        if depth > T::zero() {
+            // At most eight vertices into a capacity of eight: the push cannot fail.
+            let _ = found.push(ContactGeometry {
+                depth,
+                normal: *plane_normal,
+                point: vertex,
+            });
+        }
+    }
+    found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use core::f64::consts::FRAC_PI_4;
+    use nalgebra::UnitQuaternion;
+
+    const CUBE: f64 = 0.05;
+
+    fn cube(center_z: f64, orientation: UnitQuaternion<f64>) -> Cuboid<f64> {
+        Cuboid {
+            half_extents: Vector3::repeat(CUBE),
+            center: Vector3::new(0.2, -0.1, center_z),
+            orientation,
+        }
+    }
+
+    fn on_ground(cuboid: &Cuboid<f64>) -> Contacts<f64> {
+        contacts(cuboid, &Vector3::zeros(), &Vector3::z())
+    }
+
+    fn assert_depths(found: &Contacts<f64>, count: usize, depth: f64) {
+        assert_eq!(found.len(), count, "{found:?}");
+        for c in found {
+            assert!((c.depth - depth).abs() < 1e-12, "{c:?}");
+            assert_eq!(c.normal, Vector3::z());
+            assert!(
+                (c.point.z + depth).abs() < 1e-12,
+                "the point is the vertex: {c:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn flat_box_one_millimetre_deep_touches_at_four_corners() {
+        let found = on_ground(&cube(CUBE - 1e-3, UnitQuaternion::identity()));
+        assert_depths(&found, 4, 1e-3);
+        let corners: [(f64, f64); 4] = [(0.15, -0.15), (0.25, -0.15), (0.15, -0.05), (0.25, -0.05)];
+        for (c, (x, y)) in found.iter().zip(corners) {
+            assert!((c.point.x - x).abs() < 1e-12 && (c.point.y - y).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn box_on_an_edge_touches_at_two_corners() {
+        let tilt = UnitQuaternion::from_euler_angles(FRAC_PI_4, 0.0, 0.0);
+        let found = on_ground(&cube(CUBE * 2.0_f64.sqrt() - 1e-3, tilt));
+        assert_depths(&found, 2, 1e-3);
+        // The edge is along x: its two ends.
+        assert!((found[0].point.x - found[1].point.x).abs() > 0.099);
+    }
+
+    #[test]
+    fn box_on_a_corner_touches_at_one() {
+        // The body diagonal (1, 1, 1) turned onto −z.
+        let down = UnitQuaternion::rotation_between(&Vector3::repeat(1.0), &-Vector3::z())
+            .unwrap_or_else(UnitQuaternion::identity);
+        let found = on_ground(&cube(CUBE * 3.0_f64.sqrt() - 2e-3, down));
+        assert_depths(&found, 1, 2e-3);
+    }
+
+    #[test]
+    fn tilted_plane_and_clear_box() {
+        let normal = Vector3::new(1.0, 0.0, 1.0).normalize();
+        let cuboid = Cuboid {
+            half_extents: Vector3::new(0.1, 0.2, 0.3),
+            center: Vector3::zeros(),
+            orientation: UnitQuaternion::from_euler_angles(0.0, FRAC_PI_4, 0.0),
+        };
+        // Rotated by 45° about y, the box's −z face lies flat on a plane with normal
+        // (1, 0, 1)/√2 through its centre shifted by 0.3 − 5 mm towards the box.
+        let plane = -normal * (0.3 - 5e-3);
+        let found = contacts(&cuboid, &plane, &normal);
+        assert_eq!(found.len(), 4, "{found:?}");
+        for c in &found {
+            assert!((c.depth - 5e-3).abs() < 1e-12, "{c:?}");
+        }
+        assert!(contacts(&cuboid, &(-normal), &normal).is_empty());
+    }
+
+    #[test]
+    fn box_sunk_below_the_plane_touches_at_all_eight() {
+        assert_eq!(on_ground(&cube(-1.0, UnitQuaternion::identity())).len(), 8);
+    }
+
+    #[test]
+    fn f32_as_a_controller_holds_it() {
+        let cuboid = Cuboid {
+            half_extents: Vector3::repeat(0.05_f32),
+            center: Vector3::new(0.0, 0.0, 0.049),
+            orientation: UnitQuaternion::identity(),
+        };
+        let found = contacts(&cuboid, &Vector3::zeros(), &Vector3::z());
+        assert_eq!(found.len(), 4);
+        assert!((found[0].depth - 1e-3).abs() < 1e-6);
+    }
+
+    #[test]
+    fn nan_inputs_give_no_contacts_and_no_panic() {
+        let nan = Vector3::repeat(f64::NAN);
+        assert!(on_ground(&cube(f64::NAN, UnitQuaternion::identity())).is_empty());
+        let cuboid = cube(0.0, UnitQuaternion::identity());
+        assert!(contacts(&cuboid, &nan, &Vector3::z()).is_empty());
+        assert!(contacts(&cuboid, &Vector3::zeros(), &nan).is_empty());
+    }
+}
