@@ -4,9 +4,10 @@ use super::RigidState;
 use crate::integrate::{Dopri5, IntegrationError, OdeSystem};
 use crate::Real;
 
-/// Renormalises q when |‖q‖ − 1| exceeds this (dimensionless): a few ulps of f64, so
-/// a run that does not drift is not restarted (and keeps its FSAL evaluation).
-const DRIFT_TOLERANCE: f64 = 4.0 * f64::EPSILON;
+/// Renormalises q when |‖q‖ − 1| exceeds this many machine epsilons of `T`
+/// (dimensionless): a few ulps, so a step that did not drift is not followed by a
+/// restart (and keeps its FSAL evaluation).
+const DRIFT_ULPS: f64 = 4.0;
 
 /// [`Dopri5::step`] towards `until` (s), first renormalising the quaternion of the
 /// current state if it drifted from unit.
@@ -25,7 +26,7 @@ pub fn step_unit<T: Real>(
     until: T,
 ) -> Result<(), IntegrationError> {
     let state = stepper.state();
-    if state.quaternion_drift() > T::of(DRIFT_TOLERANCE) {
+    if state.quaternion_drift() > T::of(DRIFT_ULPS) * T::default_epsilon() {
         let mut unit = *state;
         unit.normalise();
         let time = stepper.time();
@@ -62,6 +63,30 @@ mod tests {
         assert!(stepper.previous_state().quaternion_drift() < 1e-15);
         assert!(stepper.state().quaternion_drift() < 1e-12);
         assert!(stepper.time() > 0.0);
+    }
+
+    #[test]
+    fn an_f32_spin_stays_unit_to_a_few_f32_ulps() {
+        let body = RigidBody::new(1.0_f32, Matrix3::identity(), Vector3::zeros());
+        let mut system = ConstantLoad {
+            body,
+            force: Vector3::zeros(),
+            torque: Vector3::zeros(),
+        };
+        let start = RigidState::new(
+            Vector3::zeros(),
+            UnitQuaternion::identity(),
+            Vector3::zeros(),
+            Vector3::new(0.3, -2.0, 1.0),
+        );
+        let mut stepper = Dopri5::new(&mut system, 0.0, start, Settings::new(1e-5, 1e-6));
+        while stepper.time() < 10.0 {
+            step_unit(&mut stepper, &mut system, 10.0).unwrap();
+        }
+        assert!(stepper.state().quaternion_drift() < 1e-5);
+        // A sphere-like body keeps ω: no gyroscopic torque when I = 1.
+        let omega = stepper.state().body_angular_velocity();
+        assert!((omega - Vector3::new(0.3, -2.0, 1.0)).norm() < 1e-6);
     }
 
     #[test]
