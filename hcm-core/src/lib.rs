@@ -58,6 +58,7 @@ pub mod law;
 pub mod model;
 mod real;
 pub mod residual;
+pub mod rigid;
 pub mod wrench;
 
 pub use error::LawError;
