@@ -13,6 +13,7 @@ use nalgebra::Vector3;
 /// (plane → box), and its point at the vertex itself: there the force acts and the
 /// slip is measured. A face flat on the plane gives four contacts, an edge two, a
 /// corner one; a box entirely behind the plane all eight. NaN inputs give no contacts.
+/// `feature` is the vertex index (0..8), stable while that corner stays in contact.
 pub fn contacts<T: Real>(
     cuboid: &Cuboid<T>,
     plane_point: &Vector3<T>,
@@ -28,16 +29,42 @@ pub fn contacts<T: Real>(
                 depth,
                 normal: *plane_normal,
                 point: vertex,
+                // `index` < 8: the cast is exact.
+                feature: index as u32,
             });
         }
     }
     found
 }
 
+/// Signed distance (m) of the lowest vertex of `cuboid` from the plane through
+/// `plane_point` (m) with outward `plane_normal` (unit): > 0 when the box is clear of
+/// the plane, < 0 (minus the deepest indentation δ) when it penetrates. Continuous in
+/// the pose, so a simulator can locate touch-down and lift-off by root finding. NaN in
+/// any input gives NaN.
+pub fn separation<T: Real>(
+    cuboid: &Cuboid<T>,
+    plane_point: &Vector3<T>,
+    plane_normal: &Vector3<T>,
+) -> T {
+    let mut lowest = T::MAX;
+    for index in 0..MAX_POINTS {
+        let height = (cuboid.vertex(index) - plane_point).dot(plane_normal);
+        if height.is_nan() {
+            return height;
+        }
+        if height < lowest {
+            lowest = height;
+        }
+    }
+    lowest
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use core::f64::consts::FRAC_PI_4;
+    use heapless::Vec;
     use nalgebra::UnitQuaternion;
 
     const CUBE: f64 = 0.05;
@@ -111,6 +138,27 @@ mod tests {
             assert!((c.depth - 5e-3).abs() < 1e-12, "{c:?}");
         }
         assert!(contacts(&cuboid, &(-normal), &normal).is_empty());
+    }
+
+    #[test]
+    fn features_are_the_vertex_indices() {
+        let found = on_ground(&cube(CUBE - 1e-3, UnitQuaternion::identity()));
+        let features: Vec<u32, 8> = found.iter().map(|c| c.feature).collect();
+        // The four corners with a clear z bit (bit 2): the bottom face.
+        assert_eq!(features.as_slice(), &[0, 1, 2, 3]);
+    }
+
+    #[test]
+    fn separation_is_the_lowest_vertex_height() {
+        let up = Vector3::z();
+        let flat = cube(CUBE + 2e-3, UnitQuaternion::identity());
+        assert!((separation(&flat, &Vector3::zeros(), &up) - 2e-3).abs() < 1e-12);
+        let sunk = cube(CUBE - 1e-3, UnitQuaternion::identity());
+        assert!((separation(&sunk, &Vector3::zeros(), &up) + 1e-3).abs() < 1e-12);
+        let tilt = UnitQuaternion::from_euler_angles(FRAC_PI_4, 0.0, 0.0);
+        let edge = cube(CUBE * 2.0_f64.sqrt() + 1e-3, tilt);
+        assert!((separation(&edge, &Vector3::zeros(), &up) - 1e-3).abs() < 1e-12);
+        assert!(separation(&edge, &Vector3::zeros(), &Vector3::repeat(f64::NAN)).is_nan());
     }
 
     #[test]

@@ -4,7 +4,9 @@
 //! One file per pair of shapes; each gives the Hertz stiffness of Eq 3 for that pair
 //! and the contact kinematics a simulator feeds to the laws in [`crate::law`].
 
+pub mod box_box;
 pub mod box_plane;
+pub mod compound;
 mod cuboid;
 mod material;
 pub mod sphere_box;
@@ -26,6 +28,11 @@ pub struct ContactGeometry<T: Real> {
     pub normal: Vector3<T>,
     /// Contact point (m): the middle of the overlap along the normal.
     pub point: Vector3<T>,
+    /// Which pair of geometric features made this point (–): the same value while the
+    /// same features stay in contact, so a simulator can carry the point's history
+    /// (approach speed δ̇0, δ_max) from step to step. Each generator documents its
+    /// encoding; a shape pair with a single contact uses 0.
+    pub feature: u32,
 }
 
 /// The contacts of one shape pair with several points (a box on a plane: up to 8),

@@ -12,7 +12,7 @@ use nalgebra::Vector3;
 /// least penetration (ties: x before y before z, + before −), so the sphere is pushed
 /// out the shortest way. Depth δ (m) is negative when the sphere is clear of the box;
 /// the point is, as for [`super::sphere_plane`], the middle of the overlap along the
-/// normal. NaN inputs give a NaN depth and no panic.
+/// normal. NaN inputs give a NaN depth and no panic. One contact, so `feature` is 0.
 pub fn contact<T: Real>(center: &Vector3<T>, radius: T, cuboid: &Cuboid<T>) -> ContactGeometry<T> {
     let local = cuboid.to_local(center);
     let closest = clamp_into(&local, &cuboid.half_extents);
@@ -29,6 +29,7 @@ pub fn contact<T: Real>(center: &Vector3<T>, radius: T, cuboid: &Cuboid<T>) -> C
         depth,
         normal,
         point: cuboid.to_world(&closest) - normal * (T::of(0.5) * depth),
+        feature: 0,
     }
 }
 

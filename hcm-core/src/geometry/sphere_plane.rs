@@ -14,7 +14,8 @@ pub fn hertz_stiffness<T: Real>(sphere: &Material<T>, plane: &Material<T>, radiu
 /// plane through `plane_point` (m) with outward `plane_normal` (unit).
 ///
 /// The normal of the result is `plane_normal` (plane → sphere); `depth` is negative
-/// when the sphere is clear of the plane (the gap, with its sign flipped).
+/// when the sphere is clear of the plane (the gap, with its sign flipped). One contact,
+/// so `feature` is 0.
 pub fn contact<T: Real>(
     center: &Vector3<T>,
     radius: T,
@@ -28,6 +29,7 @@ pub fn contact<T: Real>(
         depth,
         normal: *plane_normal,
         point: center - plane_normal * (radius - half * depth),
+        feature: 0,
     }
 }
 

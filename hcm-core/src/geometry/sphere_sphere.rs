@@ -26,7 +26,7 @@ pub fn hertz_stiffness<T: Real>(
 ///
 /// The normal points from centre 2 to centre 1. Coincident centres have no defined
 /// normal: the result then uses +z, with the full depth r1 + r2. NaN centres give
-/// +z and a NaN depth.
+/// +z and a NaN depth. One contact, so `feature` is 0.
 pub fn contact<T: Real>(
     center_1: &Vector3<T>,
     radius_1: T,
@@ -45,6 +45,7 @@ pub fn contact<T: Real>(
         depth,
         normal,
         point: center_1 - normal * (radius_1 - T::of(0.5) * depth),
+        feature: 0,
     }
 }
 
