@@ -2,7 +2,8 @@
 
 use super::report;
 use hcm_host::dataset::Dataset;
-use hcm_host::indicators::{from_run, summarize};
+use hcm_host::indicators::{from_run, pair_events_from_run, summarize};
+use hcm_host::scenario::Model;
 use std::path::PathBuf;
 
 /// Contact indicators per contact and run, with mean and standard deviation over runs.
@@ -32,6 +33,9 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let model = args.scenario.load()?.model()?;
     let dataset = Dataset::read(&args.data)?;
+    if model.is_rigid() {
+        return run_rigid(&model, &dataset, args.json);
+    }
     let mut events = Vec::new();
     let mut without_contact = Vec::new();
     for run in &dataset.runs {
@@ -81,6 +85,54 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if !without_contact.is_empty() {
         let gap = if events.is_empty() { "" } else { "\n" };
         println!("{gap}{}", without_contact_line(&without_contact));
+    }
+    Ok(())
+}
+
+/// The 3D indicators (max force, max torque, linear and angular impulse, duration)
+/// per contact event and run, with mean ± std over runs per (contact, event).
+fn run_rigid(model: &Model, dataset: &Dataset, json: bool) -> anyhow::Result<()> {
+    let mut events = Vec::new();
+    let mut without_contact = Vec::new();
+    for run in &dataset.runs {
+        let found = pair_events_from_run(model, run)?;
+        if found.is_empty() {
+            without_contact.push(run.id.clone());
+        }
+        events.extend(found);
+    }
+    if json {
+        let per_event: Vec<_> = events
+            .iter()
+            .map(|e| {
+                serde_json::json!({
+                    "run": e.run, "contact": e.contact, "event": e.event,
+                    "touch_down": e.touch_down, "lift_off": e.lift_off, "indicators": e.indicators,
+                })
+            })
+            .collect();
+        let json =
+            serde_json::json!({ "events": per_event, "runs_without_contact": without_contact });
+        println!("{}", serde_json::to_string_pretty(&json)?);
+        return Ok(());
+    }
+    if events.is_empty() {
+        println!(
+            "no completed contact in the data ({} read)",
+            count(dataset.runs.len(), "run")
+        );
+    } else {
+        let rows: Vec<_> = events
+            .iter()
+            .map(|e| {
+                let label = format!("run `{}` {} #{}", e.run, e.contact, e.event + 1);
+                (label, e.touch_down, e.indicators, false)
+            })
+            .collect();
+        print!("{}", report::pair_event_table(&rows));
+    }
+    if !without_contact.is_empty() {
+        println!("{}", without_contact_line(&without_contact));
     }
     Ok(())
 }

@@ -1,6 +1,6 @@
 //! Markdown tables shared by the subcommands.
 
-use hcm_host::indicators::{EventSummary, Indicators};
+use hcm_host::indicators::{EventSummary, Indicators, WrenchIndicators};
 use std::fmt::Write;
 
 /// One row per contact event: label, touch-down time and the indicators.
@@ -20,6 +20,28 @@ pub fn event_table(rows: &[(String, f64, Option<Indicators>)]) -> String {
                 "| {label} | {touch_down:.9} | (still in contact at the end) | | | |"
             ),
         }
+        .expect("writing to a String cannot fail");
+    }
+    out
+}
+
+/// One row per 3D contact event: label, touch-down (s), indicators, and whether the
+/// event was still open when the run ended.
+pub fn pair_event_table(rows: &[(String, f64, WrenchIndicators, bool)]) -> String {
+    let mut out = String::from(
+        "| contact | touch-down (s) | max force (N) | max torque (N·m) | linear impulse (N·s) | angular impulse (N·m·s) | duration (s) |\n|---|---|---|---|---|---|---|\n",
+    );
+    for (label, touch_down, i, open) in rows {
+        let duration = if *open {
+            format!("≥ {:.6e} (still in contact at the end)", i.duration)
+        } else {
+            format!("{:.6e}", i.duration)
+        };
+        writeln!(
+            out,
+            "| {label} | {touch_down:.9} | {:.6e} | {:.6e} | {:.6e} | {:.6e} | {duration} |",
+            i.max_force, i.max_torque, i.linear_impulse, i.angular_impulse
+        )
         .expect("writing to a String cannot fail");
     }
     out

@@ -56,6 +56,30 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         samples,
         args.out.display()
     );
+    let label = |c: usize| {
+        let c = &model.contacts[c];
+        format!(
+            "{}–{}",
+            model.bodies[c.body_1].name, model.bodies[c.body_2].name
+        )
+    };
+    if model.is_rigid() {
+        let rows: Vec<_> = simulation
+            .pair_events
+            .iter()
+            .map(|e| {
+                let indicators = e.indicators_until(e.lift_off.unwrap_or(simulation.end_time));
+                (
+                    label(e.contact),
+                    e.touch_down,
+                    indicators,
+                    e.lift_off.is_none(),
+                )
+            })
+            .collect();
+        print!("{}", report::pair_event_table(&rows));
+        return Ok(());
+    }
     let rows: Vec<_> = simulation
         .events
         .iter()

@@ -7,12 +7,16 @@
 //! duration.
 
 mod from_data;
+mod from_poses;
 mod summary;
+mod wrench;
 
 pub use from_data::{
     contact_history, event_spans, from_run, ContactHistory, DataEvent, EventSpan, IndicatorError,
 };
+pub use from_poses::{pair_events_from_run, PairDataEvent};
 pub use summary::{summarize, EventSummary, Statistic};
+pub use wrench::WrenchIndicators;
 
 use serde::Serialize;
 

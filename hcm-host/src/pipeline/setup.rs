@@ -143,25 +143,33 @@ fn body_phrase(body: &Body, material: Option<&str>) -> String {
     } else {
         format!(", mass {}", Scale::mass(body.mass).brief(body.mass, 4))
     };
-    match body.shape {
+    match &body.shape {
         Shape::Sphere { radius } => format!(
             "a {fixed}{material}sphere, radius {}{mass}",
-            Scale::prefixed(radius, "m").brief(radius, 4)
+            Scale::prefixed(*radius, "m").brief(*radius, 4)
         ),
         Shape::Plane { .. } if body.fixed => format!("a fixed {material}plane"),
         Shape::Plane { .. } => format!("a flat-faced {material}body{mass}"),
+        Shape::Box { half_extents: h } => {
+            let side = |x: f64| Scale::prefixed(2.0 * x, "m").brief(2.0 * x, 4);
+            let sides = format!("{} × {} × {}", side(h.x), side(h.y), side(h.z));
+            format!("a {fixed}{material}box {sides}{mass}")
+        }
+        Shape::Compound { parts } => {
+            format!("a {fixed}{material}body of {} boxes", parts.len())
+        }
     }
 }
 
 /// The kinematics of the model's contact: (gap along the normal (m), approach speed
 /// (m/s, > 0 closing), approach acceleration from gravity (m/s², > 0 closing)).
 fn approach(model: &Model, one: &Body, two: &Body) -> Option<(f64, f64, f64)> {
-    let (normal, gap) = match (one.shape, two.shape) {
-        (Shape::Sphere { radius }, Shape::Plane { normal, offset }) => (
+    let (normal, gap) = match (&one.shape, &two.shape) {
+        (&Shape::Sphere { radius }, &Shape::Plane { normal, offset }) => (
             normal,
             normal.dot(&(one.position - two.position)) - offset - radius,
         ),
-        (Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) => {
+        (&Shape::Sphere { radius: r1 }, &Shape::Sphere { radius: r2 }) => {
             let between = one.position - two.position;
             (between.try_normalize(0.0)?, between.norm() - r1 - r2)
         }

@@ -8,9 +8,11 @@
 
 pub mod overrides;
 mod resolve;
+mod rigid;
 pub mod validate;
 
 pub use resolve::{Body, Contact, Model, Shape};
+pub use rigid::{FrictionSpec, InertiaSpec, OrientationSpec, Part, PartSpec};
 
 use hcm_core::effect::{AirDrag, ContactEffect};
 use hcm_core::geometry::Material;
@@ -84,6 +86,17 @@ pub struct BodySpec {
     /// Initial velocity (m/s).
     #[serde(default)]
     pub velocity: [f64; 3],
+    /// Initial orientation (body → world); default: the identity.
+    #[serde(default)]
+    pub orientation: Option<OrientationSpec>,
+    /// Initial angular velocity ω (rad/s, **world frame**).
+    #[serde(default)]
+    pub angular_velocity: [f64; 3],
+    /// Inertia tensor about the centre of mass in the body frame (kg·m²): principal
+    /// moments `[Ixx, Iyy, Izz]` or a full symmetric 3×3 matrix. Default: the uniform
+    /// solid of the shape (a sphere 2/5·m·r², a box m·(b² + c²)/3 with half extents).
+    #[serde(default)]
+    pub inertia: Option<InertiaSpec>,
     /// Quadratic air drag on the body, e.g. `air_drag = { coefficient = 1e-4 }` (kg/m).
     #[serde(default)]
     pub air_drag: Option<AirDrag<f64>>,
@@ -106,6 +119,18 @@ pub enum ShapeSpec {
         /// Distance from the reference point to the surface along the normal (m).
         #[serde(default)]
         offset: f64,
+    },
+    /// A rectangular box (cuboid) centred on the reference point, its edges along the
+    /// body's axes.
+    Box {
+        /// Half extents along the body's x, y and z axes (m).
+        half_extents: [f64; 3],
+    },
+    /// Several boxes fixed together (a block with a hole = walls + bottom); only a
+    /// fixed body may be compound.
+    Compound {
+        /// The boxes, each placed in the body's frame.
+        parts: Vec<PartSpec>,
     },
 }
 
@@ -131,6 +156,11 @@ pub struct ContactSpec {
     /// kind, at most four.
     #[serde(default)]
     pub effects: Vec<ContactEffect<f64>>,
+    /// Velocity-based STEP friction (Eq 10–11) at every contact point, e.g.
+    /// `friction = { mu_static = 0.3, mu_dynamic = 0.2, v_static = 1e-3, v_dynamic = 1e-2 }`
+    /// (–, –, m/s, m/s). None: frictionless.
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
 }
 
 /// Solver settings and the stop condition.

@@ -1,6 +1,7 @@
 //! From a scenario as written to a model ready to simulate: names resolved to
 //! indices, laws built and validated, derived parameters filled in.
 
+use super::rigid::{self, Part};
 use super::{Scenario, ScenarioError, ShapeSpec};
 use crate::law_catalogue;
 use crate::residual::HostContactModel;
@@ -8,11 +9,12 @@ use hcm_core::effect::{AirDrag, ExtendedLaw, MAX_EFFECTS};
 use hcm_core::geometry::{effective_modulus, sphere_sphere, Material};
 use hcm_core::law::AnyNormalLaw;
 use hcm_core::model::ContactModel;
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use std::path::Path;
 
-/// Contact geometry of a body, in the world frame (bodies do not rotate yet).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Contact geometry of a body, in the body's frame (which starts at the body's
+/// initial orientation; the 1D examples never rotate it).
+#[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
     /// A sphere of radius r (m) centred on the body's reference point.
     Sphere {
@@ -26,6 +28,24 @@ pub enum Shape {
         /// Distance of the surface from the reference point along the normal (m).
         offset: f64,
     },
+    /// A box centred on the reference point, edges along the body axes.
+    Box {
+        /// Half extents (m).
+        half_extents: Vector3<f64>,
+    },
+    /// Boxes fixed together (fixed bodies only).
+    Compound {
+        /// The boxes, placed in the body's frame.
+        parts: Vec<Part>,
+    },
+}
+
+impl Shape {
+    /// Whether this shape needs the rigid-body simulator (it has corners or faces
+    /// that turn with the body).
+    pub fn is_polyhedral(&self) -> bool {
+        matches!(self, Shape::Box { .. } | Shape::Compound { .. })
+    }
 }
 
 /// A body of the model.
@@ -45,11 +65,19 @@ pub struct Body {
     pub position: Vector3<f64>,
     /// Initial velocity (m/s).
     pub velocity: Vector3<f64>,
+    /// Initial orientation (body → world).
+    pub orientation: UnitQuaternion<f64>,
+    /// Initial angular velocity ω (rad/s, world frame).
+    pub angular_velocity: Vector3<f64>,
+    /// Inertia tensor about the centre of mass, body frame (kg·m²); the identity for
+    /// fixed bodies (never used).
+    pub inertia: Matrix3<f64>,
     /// Quadratic air drag in flight and in contact, if any.
     pub air_drag: Option<AirDrag<f64>>,
 }
 
-/// A contact pair of the model: body 1 is a sphere, body 2 a sphere or a plane.
+/// A contact pair of the model: body 1 a sphere or a box, body 2 a sphere, plane, box
+/// or compound (see [`Model::is_rigid`] for which pairs need the 3D simulator).
 #[derive(Clone, Debug)]
 pub struct Contact {
     /// Index of body 1 in [`Model::bodies`].
@@ -87,6 +115,19 @@ pub struct Model {
 }
 
 impl Model {
+    /// Whether the scenario needs the 3D rigid-body simulator: a box or compound
+    /// body, friction, or a body that starts turned or spinning. Otherwise the
+    /// bodies move without rotating and the 1D simulator (its events located at
+    /// δ = 0 per contact) runs it.
+    pub fn is_rigid(&self) -> bool {
+        self.bodies.iter().any(|b| {
+            b.shape.is_polyhedral()
+                || (!b.fixed
+                    && (b.angular_velocity != Vector3::zeros()
+                        || b.orientation != UnitQuaternion::identity()))
+        }) || self.contacts.iter().any(|c| c.model.friction.is_some())
+    }
+
     /// Index of the body named `name`.
     pub fn body_index(&self, name: &str) -> Option<usize> {
         self.bodies.iter().position(|b| b.name == name)
@@ -143,7 +184,7 @@ impl Scenario {
             ));
         }
         let mass = body_mass(spec).map_err(|m| invalid.error(field("mass"), m))?;
-        let shape = body_shape(&spec.shape).map_err(|(key, m)| invalid.error(field(key), m))?;
+        let shape = body_shape(&spec.shape).map_err(|(key, m)| invalid.error(field(&key), m))?;
         let material = match &spec.material {
             None => None,
             Some(name) => Some(*self.materials.get(name).ok_or_else(|| {
@@ -169,6 +210,37 @@ impl Scenario {
             drag.validate()
                 .map_err(|e| invalid.error(field("air_drag"), e.to_string()))?;
         }
+        let orientation = rigid::orientation(spec.orientation.as_ref())
+            .map_err(|m| invalid.error(field("orientation"), m))?;
+        let angular_velocity = Vector3::from(spec.angular_velocity);
+        if !angular_velocity.iter().all(|w| w.is_finite()) {
+            return Err(invalid.error(field("angular_velocity"), "must be finite (rad/s)".into()));
+        }
+        if spec.fixed && angular_velocity != Vector3::zeros() {
+            return Err(invalid.error(
+                field("angular_velocity"),
+                "a fixed body cannot spin; remove it or set fixed = false".into(),
+            ));
+        }
+        if !spec.fixed && matches!(shape, Shape::Compound { .. }) {
+            return Err(invalid.error(
+                field("shape"),
+                "a compound body must be fixed (set fixed = true); moving bodies are a sphere or a box".into(),
+            ));
+        }
+        let inertia = if spec.fixed {
+            Matrix3::identity()
+        } else {
+            let default = match &shape {
+                Shape::Sphere { radius } => {
+                    Some(Matrix3::identity() * (0.4 * mass * radius * radius))
+                }
+                Shape::Box { half_extents } => Some(rigid::box_inertia(mass, half_extents)),
+                _ => None,
+            };
+            rigid::inertia(spec.inertia.as_ref(), mass, default)
+                .map_err(|m| invalid.error(field("inertia"), m))?
+        };
         Ok(Body {
             name: spec.name.clone(),
             mass,
@@ -177,6 +249,9 @@ impl Scenario {
             material,
             position,
             velocity,
+            orientation,
+            angular_velocity,
+            inertia,
             air_drag: spec.air_drag,
         })
     }
@@ -217,10 +292,18 @@ impl Scenario {
             // Checked above: at most MAX_EFFECTS, so no push fails.
             let _ = normal.effects.push(*effect);
         }
+        let mut model = ContactModel::physics(normal).with_residual(None);
+        if let Some(friction) = &spec.friction {
+            model.friction = Some(
+                friction
+                    .law()
+                    .map_err(|m| invalid.error(field("friction"), m))?,
+            );
+        }
         let contact = Contact {
             body_1,
             body_2,
-            model: ContactModel::physics(normal).with_residual(None),
+            model,
             effective_mass,
             noise,
         };
@@ -330,34 +413,44 @@ fn body_mass(spec: &super::BodySpec) -> Result<f64, String> {
 }
 
 /// The body's contact geometry, checked; errors name the key at fault.
-fn body_shape(spec: &ShapeSpec) -> Result<Shape, (&'static str, String)> {
-    match *spec {
-        ShapeSpec::Sphere { radius } if radius > 0.0 && radius.is_finite() => {
-            Ok(Shape::Sphere { radius })
+fn body_shape(spec: &ShapeSpec) -> Result<Shape, (String, String)> {
+    match spec {
+        ShapeSpec::Sphere { radius } if *radius > 0.0 && radius.is_finite() => {
+            Ok(Shape::Sphere { radius: *radius })
         }
         ShapeSpec::Sphere { radius } => Err((
-            "shape.sphere.radius",
+            "shape.sphere.radius".into(),
             format!("must be a positive number of m, found {radius}"),
         )),
         ShapeSpec::Plane { normal, offset } => {
-            let n = Vector3::from(normal);
+            let n = Vector3::from(*normal);
             if !(n.norm() > 0.0 && n.norm().is_finite() && offset.is_finite()) {
                 return Err((
-                    "shape.plane",
+                    "shape.plane".into(),
                     "needs a non-zero finite normal and a finite offset".into(),
                 ));
             }
             Ok(Shape::Plane {
                 normal: n.normalize(),
-                offset,
+                offset: *offset,
             })
         }
+        ShapeSpec::Box { half_extents } => Ok(Shape::Box {
+            half_extents: rigid::half_extents(half_extents)
+                .map_err(|m| ("shape.box.half_extents".to_owned(), m))?,
+        }),
+        ShapeSpec::Compound { parts } => Ok(Shape::Compound {
+            parts: rigid::parts(parts)?,
+        }),
     }
 }
 
-/// Indices of the contact's two bodies and body 1's radius (m): both exist, differ,
-/// body 1 is a sphere and at least one of them moves.
-fn contact_pair(spec: &super::ContactSpec, bodies: &[Body]) -> Result<(usize, usize, f64), String> {
+/// Indices of the contact's two bodies and body 1's radius (m; None for a box): both
+/// exist, differ, form a supported pair, and at least one of them moves.
+fn contact_pair(
+    spec: &super::ContactSpec,
+    bodies: &[Body],
+) -> Result<(usize, usize, Option<f64>), String> {
     let index = |name: &str| {
         bodies.iter().position(|b| b.name == name).ok_or_else(|| {
             let known: Vec<_> = bodies.iter().map(|b| b.name.as_str()).collect();
@@ -369,11 +462,22 @@ fn contact_pair(spec: &super::ContactSpec, bodies: &[Body]) -> Result<(usize, us
         return Err("a body cannot touch itself".into());
     }
     let (b1, b2) = (&bodies[body_1], &bodies[body_2]);
-    let Shape::Sphere { radius: radius_1 } = b1.shape else {
-        return Err(format!(
-            "body 1 (`{}`) must be a sphere: supported pairs are sphere–plane and sphere–sphere",
-            b1.name
-        ));
+    let radius_1 = match (&b1.shape, &b2.shape) {
+        (Shape::Sphere { radius }, _) => Some(*radius),
+        (Shape::Box { .. }, Shape::Plane { .. } | Shape::Box { .. } | Shape::Compound { .. }) => {
+            None
+        }
+        _ => {
+            return Err(format!(
+                "`{}` ({}) against `{}` ({}) is not a supported pair: body 1 is a sphere \
+                 (against a plane, sphere, box or compound) or a box (against a plane, box or \
+                 compound); swap the bodies if body 1 is the plane",
+                b1.name,
+                shape_name(&b1.shape),
+                b2.name,
+                shape_name(&b2.shape)
+            ))
+        }
     };
     if b1.fixed && b2.fixed {
         return Err("both bodies are fixed".into());
@@ -381,10 +485,19 @@ fn contact_pair(spec: &super::ContactSpec, bodies: &[Body]) -> Result<(usize, us
     Ok((body_1, body_2, radius_1))
 }
 
-/// The pair's effective radius R (m) for body 1 a sphere of radius `radius_1` (m), and
-/// its effective mass m_e = m1·m2/(m1 + m2) (kg), the moving body's mass when the other
-/// is fixed.
-fn pair_geometry(radius_1: f64, b1: &Body, b2: &Body) -> (f64, f64) {
+fn shape_name(shape: &Shape) -> &'static str {
+    match shape {
+        Shape::Sphere { .. } => "sphere",
+        Shape::Plane { .. } => "plane",
+        Shape::Box { .. } => "box",
+        Shape::Compound { .. } => "compound",
+    }
+}
+
+/// The pair's effective radius R (m) — NaN when body 1 is a box, which has no radius
+/// of curvature — and its effective mass m_e = m1·m2/(m1 + m2) (kg), the moving
+/// body's mass when the other is fixed.
+fn pair_geometry(radius_1: Option<f64>, b1: &Body, b2: &Body) -> (f64, f64) {
     let effective_mass = if b1.fixed {
         b2.mass
     } else if b2.fixed {
@@ -392,9 +505,10 @@ fn pair_geometry(radius_1: f64, b1: &Body, b2: &Body) -> (f64, f64) {
     } else {
         b1.mass * b2.mass / (b1.mass + b2.mass)
     };
-    let radius = match b2.shape {
-        Shape::Sphere { radius: radius_2 } => sphere_sphere::effective_radius(radius_1, radius_2),
-        Shape::Plane { .. } => radius_1,
+    let radius = match (radius_1, &b2.shape) {
+        (None, _) => f64::NAN,
+        (Some(r1), Shape::Sphere { radius: r2 }) => sphere_sphere::effective_radius(r1, *r2),
+        (Some(r1), _) => r1,
     };
     (radius, effective_mass)
 }
@@ -440,6 +554,16 @@ fn derived_parameters(
             spec.law
         )),
     };
+    if radius.is_nan() && matches!(spec.law.as_str(), "variable_stiffness" | "hertz") {
+        let given = |k: &str| spec.parameters.contains_key(k);
+        if !(given("stiffness") || given("radius") && given("effective_modulus")) {
+            return Err(format!(
+                "law `{}` derives its stiffness from a radius of curvature, and a box has \
+                 none: give `stiffness` (N/m^1.5) explicitly",
+                spec.law
+            ));
+        }
+    }
     let mut fill = |key: &str, value: f64| {
         table
             .entry(key.to_owned())

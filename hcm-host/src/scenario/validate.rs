@@ -66,12 +66,13 @@ pub(super) fn starts_apart(model: Model, path: &Path) -> Result<Model, ScenarioE
     for (index, contact) in model.contacts.iter().enumerate() {
         let (body_1, body_2) = (&model.bodies[contact.body_1], &model.bodies[contact.body_2]);
         // Body 1 is a sphere (resolve checks it); R as in Eq 3.
-        let radius = match (body_1.shape, body_2.shape) {
-            (Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) => {
+        let radius = match (&body_1.shape, &body_2.shape) {
+            (&Shape::Sphere { radius: r1 }, &Shape::Sphere { radius: r2 }) => {
                 sphere_sphere::effective_radius(r1, r2)
             }
-            (Shape::Sphere { radius }, Shape::Plane { .. }) => radius,
-            (Shape::Plane { .. }, _) => continue,
+            (&Shape::Sphere { radius }, Shape::Plane { .. }) => radius,
+            // Pairs with a box: checked by the rigid-body simulator's manifold.
+            _ => continue,
         };
         let at_start = |b: &super::Body| (b.position, b.velocity);
         let start = pair_kinematics(&model, contact, at_start(body_1), at_start(body_2));

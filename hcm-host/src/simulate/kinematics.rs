@@ -19,7 +19,21 @@ pub struct PairKinematics {
     pub point: Vector3<f64>,
 }
 
-/// Kinematics of `contact` with body 1 at (p1, v1) and body 2 at (p2, v2) (m, m/s).
+impl PairKinematics {
+    /// NaN everywhere: a pair whose contact is not one point along a line of centres.
+    fn undefined() -> Self {
+        PairKinematics {
+            depth: f64::NAN,
+            rate: f64::NAN,
+            normal: Vector3::repeat(f64::NAN),
+            point: Vector3::repeat(f64::NAN),
+        }
+    }
+}
+
+/// Kinematics of `contact` with body 1 at (p1, v1) and body 2 at (p2, v2) (m, m/s):
+/// a sphere against a plane or a sphere, which never turn in the 1D examples. Pairs
+/// with a box are the rigid-body simulator's ([`super::rigid`]); here they are NaN.
 #[inline]
 pub fn pair_kinematics(
     model: &Model,
@@ -28,13 +42,15 @@ pub fn pair_kinematics(
     (p2, v2): (Vector3<f64>, Vector3<f64>),
 ) -> PairKinematics {
     let Shape::Sphere { radius } = model.bodies[contact.body_1].shape else {
-        unreachable!("resolve() only accepts spheres as body 1")
+        return PairKinematics::undefined();
     };
     let geometry = match model.bodies[contact.body_2].shape {
         Shape::Plane { normal, offset } => {
             sphere_plane::contact(&p1, radius, &(p2 + normal * offset), &normal)
         }
         Shape::Sphere { radius: radius_2 } => sphere_sphere::contact(&p1, radius, &p2, radius_2),
+        // Pairs with corners turn with the bodies: the rigid-body simulator's manifold.
+        Shape::Box { .. } | Shape::Compound { .. } => return PairKinematics::undefined(),
     };
     PairKinematics {
         depth: geometry.depth,

@@ -5,6 +5,7 @@
 mod kinematics;
 mod peak;
 mod record;
+pub mod rigid;
 mod state;
 mod system;
 
@@ -66,8 +67,11 @@ impl ContactEvent {
 /// A simulated run.
 #[derive(Clone, Debug)]
 pub struct Simulation {
-    /// Contact events in order of touch-down.
+    /// Contact events in order of touch-down (1D scenarios).
     pub events: Vec<ContactEvent>,
+    /// Contact events of body pairs in 3D scenarios ([`Model::is_rigid`]), in order
+    /// of touch-down.
+    pub pair_events: Vec<rigid::PairEvent>,
     /// Time the run stopped (s).
     pub end_time: f64,
     /// Accepted and rejected solver steps.
@@ -102,8 +106,13 @@ pub(crate) struct Segment {
     pub modes: ContactModes,
 }
 
-/// Simulates `model` from t = 0 and samples its trajectory.
+/// Simulates `model` from t = 0 and samples its trajectory: in 3D
+/// ([`rigid::simulate_rigid`]) when [`Model::is_rigid`], else along the line of
+/// centres with events located per contact.
 pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
+    if model.is_rigid() {
+        return rigid::simulate_rigid(model);
+    }
     let spec = &model.scenario.simulation;
     let layout = Layout::new(model);
     let mut y0 = layout.initial_state(model);
@@ -217,6 +226,7 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
     let run = record::sample(model, &layout, &segments, &events, end_time);
     Ok(Simulation {
         events,
+        pair_events: Vec::new(),
         end_time,
         steps: (stepper.accepted_steps(), stepper.rejected_steps()),
         run,

@@ -1,0 +1,184 @@
+//! 3D contact indicators read back from sampled data (simulated or measured): the
+//! pair's separation is recomputed from the recorded poses and the scenario's
+//! shapes, an event is a stretch of samples in which it is negative, and its
+//! indicators come from the moving body's recorded force and torque.
+//!
+//! Touch-down and lift-off are the linearly interpolated zero crossings of the
+//! separation; the impulses integrate the recorded wrench by the trapezoid rule with
+//! the wrench taken as zero at the two crossings (every law gives zero force at
+//! δ = 0); the maxima are the largest recorded ‖**F**‖ and ‖**T**‖. The recorded wrench
+//! is the body's total contact load, so two pairs of one body touching at once share
+//! it: each pair is credited with the whole load over its own events.
+
+use super::{IndicatorError, WrenchIndicators};
+use crate::dataset::{Run, Sample};
+use crate::scenario::Model;
+use crate::simulate::rigid::{pair_separation, Pose};
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+
+/// One 3D contact event found in a run's data.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PairDataEvent {
+    /// Run id.
+    pub run: String,
+    /// Contact label, `body1–body2`.
+    pub contact: String,
+    /// Event number within this contact and run (0 = first).
+    pub event: usize,
+    /// Interpolated touch-down time (s).
+    pub touch_down: f64,
+    /// Interpolated lift-off time (s).
+    pub lift_off: f64,
+    /// The indicators.
+    pub indicators: WrenchIndicators,
+}
+
+/// Every completed 3D contact event of every contact of `model` in `run`; events
+/// still open at the end of the data are left out.
+pub fn pair_events_from_run(
+    model: &Model,
+    run: &Run,
+) -> Result<Vec<PairDataEvent>, IndicatorError> {
+    let mut found = Vec::new();
+    for contact in &model.contacts {
+        let (b1, b2) = (&model.bodies[contact.body_1], &model.bodies[contact.body_2]);
+        let label = format!("{}–{}", b1.name, b2.name);
+        let mover = if b1.fixed { b2 } else { b1 };
+        let track = |name: &str| {
+            run.body(name).ok_or_else(|| IndicatorError::MissingBody {
+                run: run.id.clone(),
+                body: name.to_owned(),
+            })
+        };
+        let moving = &track(&mover.name)?.samples;
+        let other = if b1.fixed || b2.fixed {
+            None
+        } else {
+            let other_name = if mover.name == b1.name {
+                &b2.name
+            } else {
+                &b1.name
+            };
+            let samples = &track(other_name)?.samples;
+            if samples.len() != moving.len()
+                || samples.iter().zip(moving).any(|(a, b)| a.time != b.time)
+            {
+                return Err(IndicatorError::DifferentClocks {
+                    run: run.id.clone(),
+                    first: b1.name.clone(),
+                    second: b2.name.clone(),
+                });
+            }
+            Some(samples)
+        };
+        let separation: Vec<f64> = (0..moving.len())
+            .map(|i| {
+                let pose_of = |b: &crate::scenario::Body, sample: Option<&Sample>| match sample {
+                    Some(s) if !b.fixed => pose(s),
+                    _ => fixed_pose(b),
+                };
+                let s1 = if b1.name == mover.name {
+                    Some(&moving[i])
+                } else {
+                    other.map(|o| &o[i])
+                };
+                let s2 = if b2.name == mover.name {
+                    Some(&moving[i])
+                } else {
+                    other.map(|o| &o[i])
+                };
+                pair_separation(model, contact, &pose_of(b1, s1), &pose_of(b2, s2))
+            })
+            .collect();
+        for (event, (touch_down, lift_off, inside)) in
+            spans(moving, &separation).into_iter().enumerate()
+        {
+            found.push(PairDataEvent {
+                run: run.id.clone(),
+                contact: label.clone(),
+                event,
+                touch_down,
+                lift_off,
+                indicators: indicators(moving, inside, touch_down, lift_off),
+            });
+        }
+    }
+    Ok(found)
+}
+
+/// A recorded sample's pose (velocities as recorded).
+fn pose(s: &Sample) -> Pose {
+    let [w, x, y, z] = s.orientation;
+    Pose {
+        position: Vector3::from(s.position),
+        orientation: UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z)),
+        velocity: Vector3::from(s.velocity),
+        angular_velocity: Vector3::from(s.angular_velocity),
+    }
+}
+
+fn fixed_pose(b: &crate::scenario::Body) -> Pose {
+    Pose {
+        position: b.position,
+        orientation: b.orientation,
+        velocity: Vector3::zeros(),
+        angular_velocity: Vector3::zeros(),
+    }
+}
+
+/// The completed stretches of negative separation: (touch-down (s), lift-off (s),
+/// indices of the samples inside).
+fn spans(samples: &[Sample], separation: &[f64]) -> Vec<(f64, f64, std::ops::Range<usize>)> {
+    let crossing = |i: usize| {
+        let (g0, g1) = (separation[i], separation[i + 1]);
+        let (t0, t1) = (samples[i].time, samples[i + 1].time);
+        t0 + (t1 - t0) * g0 / (g0 - g1)
+    };
+    let mut found = Vec::new();
+    let mut start: Option<(f64, usize)> = None;
+    for i in 0..separation.len().saturating_sub(1) {
+        let (now, next) = (separation[i] < 0.0, separation[i + 1] < 0.0);
+        if !now && next {
+            start = Some((crossing(i), i + 1));
+        } else if now && !next {
+            if let Some((touch_down, first)) = start.take() {
+                found.push((touch_down, crossing(i), first..i + 1));
+            }
+        }
+    }
+    found
+}
+
+/// The indicators of one event from the samples `inside` it and its crossing times.
+fn indicators(
+    samples: &[Sample],
+    inside: std::ops::Range<usize>,
+    touch_down: f64,
+    lift_off: f64,
+) -> WrenchIndicators {
+    let wrench = |s: &Sample| {
+        let mut w = [0.0; 6];
+        w[..3].copy_from_slice(&s.force);
+        w[3..].copy_from_slice(&s.torque);
+        w
+    };
+    let mut points: Vec<(f64, [f64; 6])> = vec![(touch_down, [0.0; 6])];
+    points.extend(samples[inside.clone()].iter().map(|s| (s.time, wrench(s))));
+    points.push((lift_off, [0.0; 6]));
+    let mut impulse = [0.0; 6];
+    for pair in points.windows(2) {
+        let dt = pair[1].0 - pair[0].0;
+        for (k, total) in impulse.iter_mut().enumerate() {
+            *total += 0.5 * dt * (pair[0].1[k] + pair[1].1[k]);
+        }
+    }
+    let norm = |v: &[f64; 3]| Vector3::from(*v).norm();
+    let inner = &samples[inside];
+    WrenchIndicators::new(
+        inner.iter().map(|s| norm(&s.force)).fold(0.0, f64::max),
+        inner.iter().map(|s| norm(&s.torque)).fold(0.0, f64::max),
+        [impulse[0], impulse[1], impulse[2]],
+        [impulse[3], impulse[4], impulse[5]],
+        lift_off - touch_down,
+    )
+}

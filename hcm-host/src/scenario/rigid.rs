@@ -1,0 +1,234 @@
+//! The scenario keys of rigid bodies in 3D: orientation, inertia, boxes and compound
+//! bodies, and a contact's friction — as written, and checked into what the
+//! simulator uses.
+
+use hcm_core::friction::VelocityStepFriction;
+use nalgebra::{Matrix3, Quaternion, SymmetricEigen, UnitQuaternion, Vector3};
+use serde::Deserialize;
+
+/// An orientation (body → world) as a scenario writes it.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum OrientationSpec {
+    /// A quaternion `[w, x, y, z]` (–), normalised on load.
+    Quaternion([f64; 4]),
+    /// Angles `[roll, pitch, yaw]` (rad) of R = Rz(yaw)·Ry(pitch)·Rx(roll): rotations
+    /// about the fixed world axes x, then y, then z.
+    RollPitchYaw([f64; 3]),
+}
+
+/// An inertia tensor (kg·m², about the centre of mass, body frame) as written.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum InertiaSpec {
+    /// Principal moments `[Ixx, Iyy, Izz]` (kg·m²) along the body axes.
+    Principal([f64; 3]),
+    /// The full symmetric tensor, row by row (kg·m²).
+    Full([[f64; 3]; 3]),
+}
+
+/// One box of a compound body, placed in the body's frame.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PartSpec {
+    /// Half extents along the part's own axes (m).
+    pub half_extents: [f64; 3],
+    /// Centre of the part relative to the body's reference point, body frame (m).
+    #[serde(default)]
+    pub position: [f64; 3],
+    /// Orientation of the part relative to the body; default: aligned with it.
+    #[serde(default)]
+    pub orientation: Option<OrientationSpec>,
+}
+
+/// One box of a compound body, checked.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Part {
+    /// Half extents (m), each > 0.
+    pub half_extents: Vector3<f64>,
+    /// Centre relative to the body's reference point, body frame (m).
+    pub position: Vector3<f64>,
+    /// Orientation relative to the body (–).
+    pub orientation: UnitQuaternion<f64>,
+}
+
+/// Velocity-based STEP friction (Eq 10–11) as a scenario writes it.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSpec {
+    /// Static coefficient μ_s (–), reached at `v_static`.
+    pub mu_static: f64,
+    /// Dynamic coefficient μ_d (–), from `v_dynamic` on.
+    pub mu_dynamic: f64,
+    /// Stiction transition speed v_s (m/s).
+    pub v_static: f64,
+    /// Friction transition speed v_d (m/s), > v_s.
+    pub v_dynamic: f64,
+}
+
+impl FrictionSpec {
+    /// The core's friction law, checked (coefficients ≥ 0, 0 < v_s < v_d).
+    pub fn law(&self) -> Result<VelocityStepFriction<f64>, String> {
+        let law = VelocityStepFriction {
+            static_coefficient: self.mu_static,
+            dynamic_coefficient: self.mu_dynamic,
+            stiction_speed: self.v_static,
+            dynamic_speed: self.v_dynamic,
+        };
+        law.validate().map_err(|e| e.to_string())?;
+        Ok(law)
+    }
+}
+
+/// The orientation of `spec` (identity when absent); a quaternion must be finite and
+/// non-zero.
+pub(super) fn orientation(spec: Option<&OrientationSpec>) -> Result<UnitQuaternion<f64>, String> {
+    match spec {
+        None => Ok(UnitQuaternion::identity()),
+        Some(OrientationSpec::Quaternion([w, x, y, z])) => {
+            let q = Quaternion::new(*w, *x, *y, *z);
+            let norm = q.norm();
+            if !(norm.is_finite() && norm > 0.0) {
+                return Err(format!(
+                    "quaternion [{w}, {x}, {y}, {z}] must be finite and non-zero (w, x, y, z)"
+                ));
+            }
+            Ok(UnitQuaternion::from_quaternion(q))
+        }
+        Some(OrientationSpec::RollPitchYaw([roll, pitch, yaw])) => {
+            if ![roll, pitch, yaw].iter().all(|a| a.is_finite()) {
+                return Err("roll_pitch_yaw angles must be finite (rad)".into());
+            }
+            Ok(UnitQuaternion::from_euler_angles(*roll, *pitch, *yaw))
+        }
+    }
+}
+
+/// The inertia tensor (kg·m²): as given, or the uniform solid of the shape of `mass`
+/// (kg) with `radius` (sphere, m) or `half_extents` (box, m).
+pub(super) fn inertia(
+    spec: Option<&InertiaSpec>,
+    mass: f64,
+    default: Option<Matrix3<f64>>,
+) -> Result<Matrix3<f64>, String> {
+    let tensor =
+        match spec {
+            Some(InertiaSpec::Principal(d)) => Matrix3::from_diagonal(&Vector3::from(*d)),
+            Some(InertiaSpec::Full(rows)) => Matrix3::from_fn(|i, j| rows[i][j]),
+            None => return default.ok_or_else(|| {
+                format!(
+                    "is required for this shape (mass {mass} kg): give [Ixx, Iyy, Izz] in kg·m²"
+                )
+            }),
+        };
+    check_inertia(&tensor)?;
+    Ok(tensor)
+}
+
+/// A physical inertia tensor: finite, symmetric, positive definite, and its principal
+/// moments obey the triangle inequality I1 + I2 ≥ I3 (every rigid mass distribution
+/// does).
+fn check_inertia(tensor: &Matrix3<f64>) -> Result<(), String> {
+    if !tensor.iter().all(|x| x.is_finite()) {
+        return Err("must be finite (kg·m²)".into());
+    }
+    let scale = tensor.abs().max();
+    if (tensor - tensor.transpose()).abs().max() > 1e-9 * scale {
+        return Err("must be symmetric".into());
+    }
+    let mut moments = SymmetricEigen::new(*tensor).eigenvalues;
+    moments.as_mut_slice().sort_by(f64::total_cmp);
+    if moments[0] <= 0.0 {
+        return Err(format!(
+            "must be positive definite; its principal moments are {moments:?} kg·m²"
+        ));
+    }
+    if moments[0] + moments[1] < moments[2] * (1.0 - 1e-9) {
+        return Err(format!(
+            "principal moments {:.4e}, {:.4e}, {:.4e} kg·m² break I1 + I2 ≥ I3: no rigid body has them",
+            moments[0], moments[1], moments[2]
+        ));
+    }
+    Ok(())
+}
+
+/// The uniform solid box of `mass` (kg) and `half_extents` (m): diag(b² + c², a² + c²,
+/// a² + b²)·m/3 (kg·m²).
+pub(super) fn box_inertia(mass: f64, half_extents: &Vector3<f64>) -> Matrix3<f64> {
+    let s = half_extents.component_mul(half_extents);
+    Matrix3::from_diagonal(&Vector3::new(s.y + s.z, s.x + s.z, s.x + s.y)) * (mass / 3.0)
+}
+
+/// Checked half extents (m): three positive finite numbers.
+pub(super) fn half_extents(h: &[f64; 3]) -> Result<Vector3<f64>, String> {
+    if h.iter().all(|x| *x > 0.0 && x.is_finite()) {
+        Ok(Vector3::from(*h))
+    } else {
+        Err(format!(
+            "half_extents {h:?} must be three positive numbers of m"
+        ))
+    }
+}
+
+/// The checked parts of a compound body.
+pub(super) fn parts(specs: &[PartSpec]) -> Result<Vec<Part>, (String, String)> {
+    if specs.is_empty() {
+        return Err((
+            "shape.compound.parts".into(),
+            "needs at least one box".into(),
+        ));
+    }
+    specs
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let field = |key: &str| format!("shape.compound.parts[{i}].{key}");
+            let position = Vector3::from(p.position);
+            if !position.iter().all(|x| x.is_finite()) {
+                return Err((field("position"), "must be finite (m)".into()));
+            }
+            Ok(Part {
+                half_extents: half_extents(&p.half_extents)
+                    .map_err(|m| (field("half_extents"), m))?,
+                position,
+                orientation: orientation(p.orientation.as_ref())
+                    .map_err(|m| (field("orientation"), m))?,
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn roll_pitch_yaw_is_rz_ry_rx() {
+        let q = orientation(Some(&OrientationSpec::RollPitchYaw([0.35, -0.26, 0.1]))).unwrap();
+        let expected = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.1)
+            * UnitQuaternion::from_axis_angle(&Vector3::y_axis(), -0.26)
+            * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 0.35);
+        assert!(q.angle_to(&expected) < 1e-15);
+    }
+
+    #[test]
+    fn a_quaternion_is_normalised_and_a_zero_one_refused() {
+        let q = orientation(Some(&OrientationSpec::Quaternion([2.0, 0.0, 0.0, 0.0]))).unwrap();
+        assert_eq!(q, UnitQuaternion::identity());
+        let zero = orientation(Some(&OrientationSpec::Quaternion([0.0; 4])));
+        assert!(zero.unwrap_err().contains("non-zero"));
+    }
+
+    #[test]
+    fn unphysical_inertia_is_refused_with_the_reason() {
+        let bad = |spec: InertiaSpec| inertia(Some(&spec), 1.0, None).unwrap_err();
+        assert!(bad(InertiaSpec::Principal([1.0, 1.0, 3.0])).contains("I1 + I2 ≥ I3"));
+        assert!(bad(InertiaSpec::Principal([1.0, 0.0, 1.0])).contains("positive definite"));
+        let skew = [[1.0, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        assert!(bad(InertiaSpec::Full(skew)).contains("symmetric"));
+        let cube = box_inertia(0.37, &Vector3::repeat(0.05));
+        // m·s²/6 for a cube of side s = 0.1 m.
+        assert!((cube[(0, 0)] - 0.37 * 0.01 / 6.0).abs() < 1e-15);
+        assert_eq!(inertia(None, 0.37, Some(cube)).unwrap(), cube);
+    }
+}

@@ -1,0 +1,145 @@
+//! Where each rigid body's state and each contact's running integrals sit in the
+//! simulator's state vector, and the pose of a body read back from it.
+
+use crate::scenario::Model;
+use crate::simulate::StateVector;
+use hcm_core::rigid::RigidState;
+use nalgebra::{UnitQuaternion, Vector3};
+
+/// Components of one moving body: p (3), q (4), v (3), ω in the body frame (3), as
+/// [`RigidState`] orders them.
+const BODY_LEN: usize = 13;
+/// Components of one contact: the linear impulse ∫**F** dt (N·s, 3) and the angular
+/// impulse ∫**T** dt (N·m·s, 3) on its moving body, torque about that body's centre of
+/// mass.
+const CONTACT_LEN: usize = 6;
+
+/// Where each body's and contact's quantities sit in a [`StateVector`].
+#[derive(Clone, Debug)]
+pub struct RigidLayout {
+    /// First component of each body (None for fixed bodies).
+    body_slot: Vec<Option<usize>>,
+    /// First component of the contacts' integrals.
+    contact_base: usize,
+    /// Total length.
+    len: usize,
+}
+
+/// A body's pose and velocities at one instant, world frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    /// Centre of mass (m).
+    pub position: Vector3<f64>,
+    /// Orientation, body → world (–).
+    pub orientation: UnitQuaternion<f64>,
+    /// Velocity of the centre of mass (m/s).
+    pub velocity: Vector3<f64>,
+    /// Angular velocity ω (rad/s, world frame).
+    pub angular_velocity: Vector3<f64>,
+}
+
+impl Pose {
+    /// Velocity (m/s) of the body's material point at `point` (m): v + ω × (point − p).
+    #[inline]
+    pub fn point_velocity(&self, point: &Vector3<f64>) -> Vector3<f64> {
+        self.velocity + self.angular_velocity.cross(&(point - self.position))
+    }
+}
+
+impl RigidLayout {
+    /// The layout of `model`: its moving bodies in file order, then its contacts.
+    pub fn new(model: &Model) -> RigidLayout {
+        let mut next = 0;
+        let body_slot = model
+            .bodies
+            .iter()
+            .map(|b| {
+                (!b.fixed).then(|| {
+                    next += BODY_LEN;
+                    next - BODY_LEN
+                })
+            })
+            .collect();
+        RigidLayout {
+            body_slot,
+            contact_base: next,
+            len: next + CONTACT_LEN * model.contacts.len(),
+        }
+    }
+
+    /// The initial state: each moving body as the scenario places it, integrals 0.
+    pub fn initial_state(&self, model: &Model) -> StateVector {
+        let mut y = vec![0.0; self.len];
+        for (body, slot) in model.bodies.iter().zip(&self.body_slot) {
+            if let Some(s) = *slot {
+                let body_omega = body
+                    .orientation
+                    .inverse_transform_vector(&body.angular_velocity);
+                let state =
+                    RigidState::new(body.position, body.orientation, body.velocity, body_omega);
+                y[s..s + BODY_LEN].copy_from_slice(&state.components);
+            }
+        }
+        StateVector(y)
+    }
+
+    /// First component of body `b`, if it moves.
+    pub fn slot(&self, body: usize) -> Option<usize> {
+        self.body_slot[body]
+    }
+
+    /// The rigid state of moving body `b` in `y`, if it moves.
+    pub fn rigid_state(&self, y: &[f64], body: usize) -> Option<RigidState<f64>> {
+        let s = self.body_slot[body]?;
+        let mut state = RigidState {
+            components: [0.0; BODY_LEN],
+        };
+        state.components.copy_from_slice(&y[s..s + BODY_LEN]);
+        Some(state)
+    }
+
+    /// Pose and velocities of body `b` in `y`; a fixed body rests where the scenario
+    /// put it.
+    pub fn pose(&self, model: &Model, y: &[f64], body: usize) -> Pose {
+        match self.rigid_state(y, body) {
+            Some(state) => Pose {
+                position: state.position(),
+                orientation: state.orientation(),
+                velocity: state.velocity(),
+                angular_velocity: state.world_angular_velocity(),
+            },
+            None => {
+                let b = &model.bodies[body];
+                Pose {
+                    position: b.position,
+                    orientation: b.orientation,
+                    velocity: Vector3::zeros(),
+                    angular_velocity: Vector3::zeros(),
+                }
+            }
+        }
+    }
+
+    /// First component of contact `c`'s impulses (linear 3, then angular 3).
+    pub fn impulse_index(&self, contact: usize) -> usize {
+        self.contact_base + CONTACT_LEN * contact
+    }
+
+    /// The largest |‖q‖ − 1| over the moving bodies of `y` (–).
+    pub fn quaternion_drift(&self, y: &[f64]) -> f64 {
+        (0..self.body_slot.len())
+            .filter_map(|b| self.rigid_state(y, b))
+            .map(|s| s.quaternion_drift())
+            .fold(0.0, f64::max)
+    }
+
+    /// Scales every moving body's quaternion in `y` to unit norm.
+    pub fn normalise(&self, y: &mut [f64]) {
+        for b in 0..self.body_slot.len() {
+            if let (Some(s), Some(mut state)) = (self.body_slot[b], self.rigid_state(y, b)) {
+                state.normalise();
+                y[s + 3..s + 7].copy_from_slice(&state.components[3..7]);
+            }
+        }
+    }
+}

@@ -1,0 +1,148 @@
+//! Sampling a 3D run into the measured-data format while it is integrated: the
+//! contact rate inside contact events (and a margin around them), the flight rate
+//! elsewhere, on one grid of integer ticks.
+
+use super::event::EventTracker;
+use super::system::RigidSystem;
+use crate::dataset::{BodyTrack, Run, Sample};
+use crate::scenario::Model;
+use crate::simulate::StateVector;
+use hcm_core::integrate::Dopri5;
+use nalgebra::Vector3;
+use std::collections::{BTreeMap, VecDeque};
+
+/// One accepted step kept for sampling: (start (s), end (s), its dense output).
+type Step = (f64, f64, Dopri5<f64, StateVector>);
+
+/// Collects the samples of a run.
+pub struct Recorder {
+    /// Contact sample period (s): one tick.
+    tick: f64,
+    /// Ticks between flight samples.
+    stride: u64,
+    /// Time sampled at the contact rate around each event (s).
+    margin: f64,
+    /// The bodies recorded (indices).
+    recorded: Vec<usize>,
+    /// Samples by tick, one per recorded body.
+    samples: BTreeMap<u64, Vec<Sample>>,
+    /// Recent steps, covering at least `margin` before the current one.
+    recent: VecDeque<Step>,
+}
+
+impl Recorder {
+    /// A recorder for `model`'s `record` settings.
+    pub fn new(model: &Model) -> Self {
+        let record = &model.scenario.record;
+        let wanted = &record.bodies;
+        Recorder {
+            tick: record.contact_sample_period,
+            stride: (record.flight_sample_period / record.contact_sample_period)
+                .round()
+                .max(1.0) as u64,
+            margin: record.contact_margin,
+            recorded: (0..model.bodies.len())
+                .filter(|&b| wanted.is_empty() || wanted.contains(&model.bodies[b].name))
+                .collect(),
+            samples: BTreeMap::new(),
+            recent: VecDeque::new(),
+        }
+    }
+
+    /// Samples the step just taken: the ticks in (start, end], at the contact rate
+    /// where `events` say a contact (or its margin) is, and — for a touch-down found
+    /// in this step — the margin before it, from the recent steps.
+    pub fn record_step(
+        &mut self,
+        system: &RigidSystem<'_>,
+        stepper: &Dopri5<f64, StateVector>,
+        events: &EventTracker,
+        first: bool,
+    ) {
+        let (start, end) = (stepper.previous_time(), stepper.time());
+        self.recent.push_back((start, end, stepper.clone()));
+        while self
+            .recent
+            .front()
+            .is_some_and(|s| s.1 < start - self.margin)
+        {
+            self.recent.pop_front();
+        }
+        let from = if first {
+            0
+        } else {
+            (start / self.tick).floor() as u64 + 1
+        };
+        let lookback = (start - self.margin).max(0.0);
+        let lookback_from = (lookback / self.tick).ceil() as u64;
+        for k in lookback_from.min(from)..=(end / self.tick).floor() as u64 {
+            let t = k as f64 * self.tick;
+            let dense = in_window(events, t, self.margin);
+            if self.samples.contains_key(&k) || !(dense || (k >= from && k % self.stride == 0)) {
+                continue;
+            }
+            if let Some(step) = self.recent.iter().find(|s| s.0 <= t && t <= s.1) {
+                let samples = sample_at(system, &step.2, t, &self.recorded);
+                self.samples.insert(k, samples);
+            }
+        }
+    }
+
+    /// The run sampled so far (id `"0"`).
+    pub fn finish(self, model: &Model) -> Run {
+        let mut tracks: Vec<BodyTrack> = self
+            .recorded
+            .iter()
+            .map(|&b| BodyTrack {
+                body: model.bodies[b].name.clone(),
+                samples: Vec::new(),
+            })
+            .collect();
+        for samples in self.samples.into_values() {
+            for (track, sample) in tracks.iter_mut().zip(samples) {
+                track.samples.push(sample);
+            }
+        }
+        Run {
+            id: "0".into(),
+            bodies: tracks,
+        }
+    }
+}
+
+/// Whether `t` (s) lies in an event or within `margin` (s) of one.
+fn in_window(events: &EventTracker, t: f64, margin: f64) -> bool {
+    events
+        .events
+        .iter()
+        .any(|e| e.touch_down - margin <= t && e.lift_off.is_none_or(|off| t <= off + margin))
+}
+
+/// Every recorded body at time `t` (s) of `step`'s dense output.
+fn sample_at(
+    system: &RigidSystem<'_>,
+    step: &Dopri5<f64, StateVector>,
+    t: f64,
+    recorded: &[usize],
+) -> Vec<Sample> {
+    let mut y = step.state().clone();
+    step.dense_output(t, &mut y);
+    let mut loads: Vec<(Vector3<f64>, Vector3<f64>)> = Vec::new();
+    system.body_loads(&y.0, &mut loads);
+    recorded
+        .iter()
+        .map(|&b| {
+            let pose = system.layout.pose(system.model, &y.0, b);
+            let q = pose.orientation.quaternion();
+            Sample {
+                time: t,
+                position: pose.position.into(),
+                orientation: [q.w, q.i, q.j, q.k],
+                velocity: pose.velocity.into(),
+                angular_velocity: pose.angular_velocity.into(),
+                force: loads[b].0.into(),
+                torque: loads[b].1.into(),
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,209 @@
+//! The equations of motion of a 3D scenario as an ODE: Newton–Euler for every moving
+//! body (Eq 22, [`hcm_core::rigid`]) under gravity, air drag and the contact wrenches,
+//! each contact a manifold of points evaluated by the contact's core model (normal
+//! law + effects + STEP friction at every point, Eq 1 with the arms, plus the
+//! residual), and each contact's linear and angular impulse.
+
+use super::geometry::pair_contacts;
+use super::layout::{Pose, RigidLayout};
+use super::memory::PointMemory;
+use crate::scenario::Model;
+use crate::simulate::StateVector;
+use hcm_core::integrate::OdeSystem;
+use hcm_core::law::Indentation;
+use hcm_core::model::{ContactPoint, Manifold, PairLoad};
+use hcm_core::rigid::RigidBody;
+use nalgebra::Vector3;
+
+/// A 3D scenario's dynamics with the current point histories.
+pub struct RigidSystem<'a> {
+    /// The model.
+    pub model: &'a Model,
+    /// State layout.
+    pub layout: &'a RigidLayout,
+    /// Each contact's point histories.
+    pub memory: Vec<PointMemory>,
+    /// Each body's mass properties (fixed bodies: unused).
+    bodies: Vec<RigidBody<f64>>,
+    /// Force and torque on each body (N, N·m), reused per evaluation.
+    scratch: Vec<(Vector3<f64>, Vector3<f64>)>,
+}
+
+/// A contact's touching points with their feature ids and the two bodies' poses.
+pub struct PairManifold {
+    /// The points, as the contact model reads them.
+    pub points: Manifold<f64>,
+    /// Each point's feature id (see [`hcm_core::geometry::ContactGeometry`]).
+    pub features: heapless::Vec<u32, { hcm_core::model::MAX_POINTS }>,
+    /// Body 1's pose.
+    pub pose_1: Pose,
+    /// Body 2's pose.
+    pub pose_2: Pose,
+}
+
+/// One contact's loads at one instant and the body whose motion it reports.
+#[derive(Clone, Copy, Debug)]
+pub struct ContactLoad {
+    /// The loads on both bodies (torques about their centres of mass).
+    pub load: PairLoad<f64>,
+    /// Contact points touching.
+    pub points: usize,
+    /// The force (N) and torque (N·m, about its centre of mass) on the contact's
+    /// moving body: body 1, or body 2 when body 1 is fixed.
+    pub on_mover: (Vector3<f64>, Vector3<f64>),
+}
+
+impl RigidSystem<'_> {
+    /// The system of `model` with no contact history.
+    pub fn new<'m>(model: &'m Model, layout: &'m RigidLayout) -> RigidSystem<'m> {
+        let bodies = model
+            .bodies
+            .iter()
+            .map(|b| RigidBody::new(b.mass, b.inertia, model.gravity))
+            .collect();
+        RigidSystem {
+            model,
+            layout,
+            memory: vec![PointMemory::default(); model.contacts.len()],
+            bodies,
+            scratch: Vec::new(),
+        }
+    }
+
+    /// The manifold of contact `c` in state `y`: every touching point with its
+    /// indentation, history, normal, position and slip velocity.
+    pub fn manifold(&self, y: &[f64], c: usize) -> PairManifold {
+        let contact = &self.model.contacts[c];
+        let pose_1 = self.layout.pose(self.model, y, contact.body_1);
+        let pose_2 = self.layout.pose(self.model, y, contact.body_2);
+        let mut manifold = Manifold::new();
+        let mut features = heapless::Vec::new();
+        for g in pair_contacts(self.model, contact, &pose_1, &pose_2) {
+            let relative_velocity =
+                pose_1.point_velocity(&g.point) - pose_2.point_velocity(&g.point);
+            let rate = -relative_velocity.dot(&g.normal);
+            let (approach_speed, memory) = self.memory[c].recall(g.feature, g.depth, rate);
+            let point = ContactPoint {
+                indentation: Indentation {
+                    depth: g.depth,
+                    rate,
+                    approach_speed,
+                },
+                memory,
+                normal: g.normal,
+                position: g.point,
+                relative_velocity,
+            };
+            // Both hold at most MAX_POINTS: the pushes cannot fail.
+            let _ = manifold.push(point);
+            let _ = features.push(g.feature);
+        }
+        PairManifold {
+            points: manifold,
+            features,
+            pose_1,
+            pose_2,
+        }
+    }
+
+    /// The loads of contact `c` in state `y` (zero when apart).
+    pub fn contact_load(&self, y: &[f64], c: usize) -> ContactLoad {
+        let contact = &self.model.contacts[c];
+        let PairManifold {
+            points,
+            pose_1,
+            pose_2,
+            ..
+        } = self.manifold(y, c);
+        // The residual's input (Eq 12): the moving body's 13 state components.
+        let mover = if self.model.bodies[contact.body_1].fixed {
+            contact.body_2
+        } else {
+            contact.body_1
+        };
+        let input = self
+            .layout
+            .rigid_state(y, mover)
+            .map_or([f64::NAN; 13], |s| s.components);
+        let load = contact
+            .model
+            .pair_load(&points, &pose_1.position, &pose_2.position, &input);
+        let w = &load.wrench;
+        let on_mover = if mover == contact.body_1 {
+            (w.force_1, w.torque_1)
+        } else {
+            (w.force_2, w.torque_2)
+        };
+        ContactLoad {
+            load,
+            points: points.len(),
+            on_mover,
+        }
+    }
+
+    /// Latches the point histories at the accepted state `y` (see [`PointMemory`]).
+    pub fn latch(&mut self, y: &[f64]) {
+        for c in 0..self.model.contacts.len() {
+            let pair = self.manifold(y, c);
+            let touching = pair
+                .points
+                .iter()
+                .zip(&pair.features)
+                .map(|(p, &feature)| (feature, p.indentation.depth, p.indentation.rate));
+            self.memory[c].latch(touching);
+        }
+    }
+
+    /// Contact force and torque (N, N·m) on every body in state `y`.
+    pub fn body_loads(&self, y: &[f64], out: &mut Vec<(Vector3<f64>, Vector3<f64>)>) {
+        out.clear();
+        out.resize(
+            self.model.bodies.len(),
+            (Vector3::zeros(), Vector3::zeros()),
+        );
+        for (c, contact) in self.model.contacts.iter().enumerate() {
+            let w = self.contact_load(y, c).load.wrench;
+            out[contact.body_1].0 += w.force_1;
+            out[contact.body_1].1 += w.torque_1;
+            out[contact.body_2].0 += w.force_2;
+            out[contact.body_2].1 += w.torque_2;
+        }
+    }
+}
+
+impl OdeSystem<f64, StateVector> for RigidSystem<'_> {
+    fn derivative(&mut self, _time: f64, state: &StateVector, derivative: &mut StateVector) {
+        let (y, dy) = (&state.0, &mut derivative.0);
+        let mut loads = std::mem::take(&mut self.scratch);
+        loads.clear();
+        loads.resize(
+            self.model.bodies.len(),
+            (Vector3::zeros(), Vector3::zeros()),
+        );
+        for (c, contact) in self.model.contacts.iter().enumerate() {
+            let load = self.contact_load(y, c);
+            let w = &load.load.wrench;
+            loads[contact.body_1].0 += w.force_1;
+            loads[contact.body_1].1 += w.torque_1;
+            loads[contact.body_2].0 += w.force_2;
+            loads[contact.body_2].1 += w.torque_2;
+            let i = self.layout.impulse_index(c);
+            dy[i..i + 3].copy_from_slice(load.on_mover.0.as_slice());
+            dy[i + 3..i + 6].copy_from_slice(load.on_mover.1.as_slice());
+        }
+        for (b, body) in self.model.bodies.iter().enumerate() {
+            let (Some(s), Some(rigid)) = (self.layout.slot(b), self.layout.rigid_state(y, b))
+            else {
+                continue;
+            };
+            let (mut force, torque) = loads[b];
+            if let Some(drag) = &body.air_drag {
+                force += drag.force(&rigid.velocity());
+            }
+            let mut out = rigid;
+            self.bodies[b].derivative(&rigid, &force, &torque, &mut out);
+            dy[s..s + 13].copy_from_slice(&out.components);
+        }
+        self.scratch = loads;
+    }
+}
