@@ -70,7 +70,8 @@ pub struct Body {
     /// Initial angular velocity ω (rad/s, world frame).
     pub angular_velocity: Vector3<f64>,
     /// Inertia tensor about the centre of mass, body frame (kg·m²); the identity for
-    /// fixed bodies (never used).
+    /// fixed bodies (never used); NaN for a moving plane without one, which only the
+    /// 1D simulator (no rotation) accepts.
     pub inertia: Matrix3<f64>,
     /// Quadratic air drag in flight and in contact, if any.
     pub air_drag: Option<AirDrag<f64>>,
@@ -170,6 +171,21 @@ impl Scenario {
             bodies,
             contacts,
         };
+        if model.is_rigid() {
+            if let Some((i, b)) = model
+                .bodies
+                .iter()
+                .enumerate()
+                .find(|(_, b)| !b.fixed && b.inertia[(0, 0)].is_nan())
+            {
+                return Err(invalid.error(
+                    format!("body `{}` (#{i}) inertia", b.name),
+                    "is required for a moving plane in a 3D scenario (boxes, friction or \
+                     rotation): give [Ixx, Iyy, Izz] in kg·m²"
+                        .into(),
+                ));
+            }
+        }
         super::validate::starts_apart(model, path)
     }
 
@@ -238,8 +254,13 @@ impl Scenario {
                 Shape::Box { half_extents } => Some(rigid::box_inertia(mass, half_extents)),
                 _ => None,
             };
-            rigid::inertia(spec.inertia.as_ref(), mass, default)
-                .map_err(|m| invalid.error(field("inertia"), m))?
+            match (spec.inertia.as_ref(), default) {
+                // A moving plane (the flat shot's plate) never turns in the 1D
+                // simulator; a 3D scenario asks for its inertia (`resolve`).
+                (None, None) => Matrix3::from_element(f64::NAN),
+                (given, default) => rigid::inertia(given, mass, default)
+                    .map_err(|m| invalid.error(field("inertia"), m))?,
+            }
         };
         Ok(Body {
             name: spec.name.clone(),

@@ -111,16 +111,17 @@ pub(super) fn inertia(
     mass: f64,
     default: Option<Matrix3<f64>>,
 ) -> Result<Matrix3<f64>, String> {
-    let tensor =
-        match spec {
-            Some(InertiaSpec::Principal(d)) => Matrix3::from_diagonal(&Vector3::from(*d)),
-            Some(InertiaSpec::Full(rows)) => Matrix3::from_fn(|i, j| rows[i][j]),
-            None => return default.ok_or_else(|| {
+    let tensor = match spec {
+        Some(InertiaSpec::Principal(d)) => Matrix3::from_diagonal(&Vector3::from(*d)),
+        Some(InertiaSpec::Full(rows)) => Matrix3::from_fn(|i, j| rows[i][j]),
+        None => {
+            return default.ok_or_else(|| {
                 format!(
                     "is required for this shape (mass {mass} kg): give [Ixx, Iyy, Izz] in kg·m²"
                 )
-            }),
-        };
+            })
+        }
+    };
     check_inertia(&tensor)?;
     Ok(tensor)
 }
