@@ -84,10 +84,14 @@ pub struct Simulation {
 #[derive(Debug, thiserror::Error)]
 pub enum SimulationError {
     /// The solver gave up (stiff, diverging or too long a run).
-    #[error("scenario `{scenario}`: {source} (check the law parameters, or loosen simulation.relative_tolerance / raise simulation.max_steps)")]
+    /// (The integrator's error is shown in the message, not chained as a source, so
+    /// that it is printed once.)
+    #[error("scenario `{scenario}`: {cause} (check the law parameters, or loosen simulation.relative_tolerance / raise simulation.max_steps{hint})")]
     Solver {
         scenario: String,
-        source: IntegrationError,
+        cause: IntegrationError,
+        /// What else to check for this model (e.g. a friction transition speed).
+        hint: String,
     },
     /// A contact's parameter noise names a parameter its law does not have.
     #[error("contact {contact}: parameter noise: {source}")]
@@ -144,9 +148,10 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
         max_steps: spec.max_steps,
         ..Settings::new(spec.relative_tolerance, spec.absolute_tolerance)
     };
-    let solver_error = |source| SimulationError::Solver {
+    let solver_error = |cause| SimulationError::Solver {
         scenario: model.scenario.name.clone(),
-        source,
+        cause,
+        hint: String::new(),
     };
     let mut stepper = Dopri5::new(&mut system, 0.0, y0.clone(), settings);
     let mut scratch = y0;
