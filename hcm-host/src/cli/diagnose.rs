@@ -73,6 +73,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let physics = Physics::read(&args.physics)?;
     let base = physics.apply(&scenario, &args.physics)?.model()?;
+    super::require_one_dimensional(&base, "diagnose")?;
     super::check_contact(args.contact, &base)?;
     let data = Dataset::read(&args.data)?;
     std::fs::create_dir_all(&args.out)

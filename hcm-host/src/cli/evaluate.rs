@@ -53,6 +53,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let physics = Physics::read(&args.physics)?;
     let pm2 = physics.apply(&scenario, &args.physics)?.model()?;
+    super::require_one_dimensional(&pm2, "evaluate")?;
     super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
     let mut models = vec![("PM2", pm2.clone())];

@@ -65,6 +65,7 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let model = scenario.model()?;
+    super::require_one_dimensional(&model, "identify")?;
     super::check_contact(args.contact, &model)?;
     let data = Dataset::read(&args.data)?;
     let settings = GeneticSettings {

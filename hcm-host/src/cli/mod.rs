@@ -134,6 +134,23 @@ impl ScenarioArgs {
     }
 }
 
+/// Refuses a 3D scenario for a command that so far works along a line of centres
+/// (identify, train, evaluate, diagnose), saying what does work with it.
+pub fn require_one_dimensional(
+    model: &hcm_host::scenario::Model,
+    command: &str,
+) -> anyhow::Result<()> {
+    anyhow::ensure!(
+        !model.is_rigid(),
+        "scenario `{}` is 3D (a box or compound body, friction, or a body that starts turned \
+         or spinning), and `hcm {command}` works only on 1D scenarios so far (spheres against a \
+         plane or a sphere, moving without rotation, like scenarios/bouncing_ball.toml). \
+         3D scenarios work with `hcm simulate`, `hcm generate` and `hcm indicators`",
+        model.scenario.name
+    );
+    Ok(())
+}
+
 /// Checks that `contact` indexes one of `model`'s contacts.
 pub fn check_contact(contact: usize, model: &hcm_host::scenario::Model) -> anyhow::Result<usize> {
     anyhow::ensure!(

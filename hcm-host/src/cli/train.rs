@@ -64,6 +64,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let pm2 = Physics::read(&args.physics)?
         .apply(&scenario, &args.physics)?
         .model()?;
+    super::require_one_dimensional(&pm2, "train")?;
     super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
     let (samples, _) = force_samples(&pm2, &data, args.contact)?;

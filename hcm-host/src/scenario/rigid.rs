@@ -75,7 +75,17 @@ impl FrictionSpec {
             stiction_speed: self.v_static,
             dynamic_speed: self.v_dynamic,
         };
-        law.validate().map_err(|e| e.to_string())?;
+        // The core names its fields; say them as the scenario spells them.
+        law.validate().map_err(|e| {
+            [
+                ("static_coefficient", "mu_static"),
+                ("dynamic_coefficient", "mu_dynamic"),
+                ("stiction_speed", "v_static"),
+                ("dynamic_speed", "v_dynamic"),
+            ]
+            .iter()
+            .fold(e.to_string(), |m, (core, key)| m.replace(core, key))
+        })?;
         Ok(law)
     }
 }

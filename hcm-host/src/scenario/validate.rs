@@ -4,6 +4,7 @@
 
 use super::{Model, Scenario, ScenarioError, Shape};
 use crate::simulate::pair_kinematics;
+use crate::simulate::rigid::{pair_contacts, Pose};
 use hcm_core::geometry::{sphere_sphere, Material};
 use hcm_core::LawError;
 use std::path::Path;
@@ -71,8 +72,11 @@ pub(super) fn starts_apart(model: Model, path: &Path) -> Result<Model, ScenarioE
                 sphere_sphere::effective_radius(r1, r2)
             }
             (&Shape::Sphere { radius }, Shape::Plane { .. }) => radius,
-            // Pairs with a box: checked by the rigid-body simulator's manifold.
-            _ => continue,
+            // Pairs with a box: their manifold's deepest point.
+            _ => {
+                box_starts_apart(&model, index, path)?;
+                continue;
+            }
         };
         let at_start = |b: &super::Body| (b.position, b.velocity);
         let start = pair_kinematics(&model, contact, at_start(body_1), at_start(body_2));
@@ -107,6 +111,60 @@ pub(super) fn starts_apart(model: Model, path: &Path) -> Result<Model, ScenarioE
         });
     }
     Ok(model)
+}
+
+/// A pair with a box may start at most [`MAX_INITIAL_INDENTATION`] of its smallest
+/// box half extent deep (a box's faces are flat, so its size, not a radius, says what
+/// an overlap is): else an error naming the moving body and where to move it.
+fn box_starts_apart(model: &Model, index: usize, path: &Path) -> Result<(), ScenarioError> {
+    let contact = &model.contacts[index];
+    let (body_1, body_2) = (&model.bodies[contact.body_1], &model.bodies[contact.body_2]);
+    let pose = |b: &super::Body| Pose {
+        position: b.position,
+        orientation: b.orientation,
+        velocity: b.velocity,
+        angular_velocity: b.angular_velocity,
+    };
+    let size = [&body_1.shape, &body_2.shape]
+        .into_iter()
+        .filter_map(|shape| match shape {
+            Shape::Box { half_extents } => Some(half_extents.min()),
+            Shape::Sphere { radius } => Some(*radius),
+            _ => None,
+        })
+        .fold(f64::INFINITY, f64::min);
+    let allowed = MAX_INITIAL_INDENTATION * size;
+    let Some(deepest) = pair_contacts(model, contact, &pose(body_1), &pose(body_2))
+        .into_iter()
+        .max_by(|a, b| a.depth.total_cmp(&b.depth))
+        .filter(|g| g.depth > allowed)
+    else {
+        return Ok(());
+    };
+    let (moved, other, direction) = if body_1.fixed {
+        (body_2, body_1, -deepest.normal)
+    } else {
+        (body_1, body_2, deepest.normal)
+    };
+    let touching = moved.position + direction * deepest.depth;
+    Err(ScenarioError::Invalid {
+        path: path.to_owned(),
+        field: format!("body.{}.position", moved.name),
+        message: format!(
+            "`{}` starts {depth} m inside `{}` (contact #{index}'s deepest point is at \
+             δ = {depth} m); a contact may start at most {} m deep ({MAX_INITIAL_INDENTATION} × \
+             the smallest half extent or radius, {} m). Move `{}` {depth} m along [{}]: \
+             position = [{}] starts it touching",
+            moved.name,
+            other.name,
+            round(allowed),
+            round(size),
+            moved.name,
+            list(direction.iter().copied()),
+            list(touching.iter().copied()),
+            depth = round(deepest.depth),
+        ),
+    })
 }
 
 /// `x` to 9 significant digits, printed briefly: 0.0127 rather than

@@ -1,0 +1,104 @@
+//! What a user meets when a 3D scenario is wrong: each mistake in the keys of boxes,
+//! compound bodies, orientation, inertia and friction is answered with the field at
+//! fault, what was expected and, where there is one, the fix — before anything runs.
+
+use hcm_tests::cli::Hcm;
+
+/// `hcm simulate` on the shipped cube drop with `sets` applied: its error message.
+fn refused(sets: &[&str]) -> String {
+    let hcm = Hcm::new();
+    let mut call = hcm
+        .run("simulate")
+        .opt("--scenario", hcm_tests::scenario("cube_drop.toml"))
+        .opt("--out", hcm.path("out.csv"));
+    for set in sets {
+        call = call.opt("--set", set);
+    }
+    let message = call.fails();
+    assert!(!hcm.path("out.csv").exists(), "nothing written on an error");
+    message
+}
+
+fn assert_says(message: &str, parts: &[&str]) {
+    for part in parts {
+        assert!(message.contains(part), "missing `{part}` in: {message}");
+    }
+}
+
+#[test]
+fn a_box_starting_inside_the_ground_is_told_where_to_move() {
+    let message = refused(&["body.cube.position=[0, 0, 0.04]"]);
+    assert_says(
+        &message,
+        &[
+            "body.cube.position",
+            "starts 0.0348",
+            "inside `ground`",
+            "position = [0, 0, 0.0748",
+        ],
+    );
+}
+
+#[test]
+fn an_inertia_no_rigid_body_has_is_refused() {
+    assert_says(
+        &refused(&["body.cube.inertia=[1e-3, 1e-3, 3e-3]"]),
+        &["body `cube` (#0) inertia", "I1 + I2 ≥ I3"],
+    );
+    assert_says(
+        &refused(&["body.cube.inertia=[[1e-3, 5e-4, 0], [0, 1e-3, 0], [0, 0, 1e-3]]"]),
+        &["inertia", "symmetric"],
+    );
+}
+
+#[test]
+fn friction_and_orientation_errors_name_the_scenario_keys() {
+    assert_says(
+        &refused(&["contact.0.friction.v_dynamic=1e-4"]),
+        &["contact #0", "friction", "v_dynamic", "v_static"],
+    );
+    assert_says(
+        &refused(&["body.cube.orientation={ euler = [1, 2, 3] }"]),
+        &["body.cube.orientation", "quaternion", "roll_pitch_yaw"],
+    );
+    assert_says(
+        &refused(&["body.cube.orientation={ quaternion = [0, 0, 0, 0] }"]),
+        &["orientation", "non-zero"],
+    );
+}
+
+#[test]
+fn a_law_that_needs_a_radius_asks_for_its_stiffness_on_a_box() {
+    assert_says(
+        &refused(&["contact.0.law=\"hertz\"", "contact.0.parameters={}"]),
+        &["hertz", "radius of curvature", "give `stiffness`"],
+    );
+}
+
+#[test]
+fn unsupported_pairs_and_moving_compounds_are_refused() {
+    assert_says(
+        &refused(&["contact.0.bodies=[\"ground\", \"cube\"]"]),
+        &["not a supported pair", "swap the bodies"],
+    );
+    assert_says(
+        &refused(&[
+            "body.cube.shape={ compound = { parts = [{ half_extents = [0.05, 0.05, 0.05] }] } }",
+        ]),
+        &["compound body must be fixed"],
+    );
+}
+
+#[test]
+fn one_dimensional_commands_refuse_a_3d_scenario_and_say_what_works() {
+    let hcm = Hcm::new();
+    std::fs::write(hcm.path("data.csv"), "run,body,time\n").unwrap();
+    let message = hcm
+        .run("identify")
+        .opt("--scenario", hcm_tests::scenario("cube_drop.toml"))
+        .opt("--data", hcm.path("data.csv"))
+        .opt("--law", "impact")
+        .opt("--out", hcm.path("pm2.toml"))
+        .fails();
+    assert_says(&message, &["is 3D", "hcm identify", "hcm simulate"]);
+}
