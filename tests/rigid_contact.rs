@@ -142,3 +142,102 @@ friction = { mu_static = 0.3, mu_dynamic = 0.2, v_static = 1e-3, v_dynamic = 1e-
     assert!(worst < 1e-9, "{worst}");
     assert!(largest_asymmetry < 1e-9, "{largest_asymmetry}");
 }
+
+/// Every law of the catalogue, with parameters for a 0.5 kg box (TOML).
+const LAWS: [(&str, &str); 6] = [
+    ("hertz", "stiffness = 1e9, exponent = 1.5"),
+    ("lankarani_nikravesh", "stiffness = 1e9, exponent = 1.5, restitution = 0.8"),
+    (
+        "variable_stiffness",
+        "surface_loading = 2.0, effective_modulus = 1e10, radius = 0.01, damping = 500.0, effective_mass = 0.125",
+    ),
+    (
+        "impact",
+        "stiffness = 1e9, exponent = 1.5, max_damping = 200.0, full_damping_depth = 1e-5",
+    ),
+    ("hunt_crossley", "stiffness = 1e9, exponent = 1.5, damping = 0.2"),
+    ("flores", "stiffness = 1e9, exponent = 1.5, restitution = 0.8"),
+];
+
+/// The same law in 1D: a sphere of a quarter of the box's mass dropped the same gap
+/// onto the plane. (restitution δ̇_out/δ̇_in, peak force (N)).
+fn quarter_mass_sphere(law: &str, parameters: &str, drop: f64) -> (f64, f64) {
+    let radius = 0.01;
+    let text = format!(
+        r#"
+name = "quarter"
+gravity = [0.0, 0.0, -9.81]
+[[body]]
+name = "ball"
+mass = 0.125
+shape = {{ sphere = {{ radius = {radius} }} }}
+position = [0.0, 0.0, {}]
+[[body]]
+name = "ground"
+fixed = true
+shape = {{ plane = {{ normal = [0.0, 0.0, 1.0] }} }}
+position = [0.0, 0.0, 0.0]
+[[contact]]
+bodies = ["ball", "ground"]
+law = "{law}"
+parameters = {{ {parameters} }}
+[simulation]
+end_time = 0.2
+stop_after_contacts = 1
+relative_tolerance = 1e-12
+absolute_tolerance = 1e-14
+[record]
+contact_sample_period = 1e-4
+flight_sample_period = 1e-3
+contact_margin = 0.0
+"#,
+        radius + drop
+    );
+    let path = Path::new("quarter.toml");
+    let model = Scenario::parse(path, &text, &[])
+        .unwrap()
+        .resolve(path)
+        .unwrap();
+    assert!(!model.is_rigid());
+    let simulation = simulate(&model).unwrap();
+    let event = &simulation.events[0];
+    (
+        event.separation_speed / event.approach_speed,
+        event.max_force,
+    )
+}
+
+#[test]
+fn every_law_acts_at_each_corner_of_a_flat_box_as_on_a_quarter_of_its_mass() {
+    // Dropped flat, each of the four corners carries a quarter of the box along the
+    // same δ(t): the restitution must be the 1D law's for m/4, the peak force four
+    // times its peak. For Lankarani–Nikravesh and Flores this checks that every corner
+    // latches its own approach speed δ̇0 at its touch-down.
+    let drop = 0.05;
+    for (law, parameters) in LAWS {
+        let contact = format!("law = \"{law}\"\nparameters = {{ {parameters} }}");
+        let scenario = box_scenario(
+            0.02 + drop,
+            "{ quaternion = [1.0, 0.0, 0.0, 0.0] }",
+            &contact,
+            0.25,
+        );
+        let model = scenario.resolve(Path::new("box_drop.toml")).unwrap();
+        let simulation = simulate(&model).unwrap();
+        let event = &simulation.pair_events[0];
+        let lift_off = event.lift_off.expect("it bounces off");
+        // Approach and separation speeds from free flight: v² = 2·g·h before, and the
+        // apex after (z + v_z²/2g).
+        let samples = &simulation.run.bodies[0].samples;
+        let after = samples.iter().find(|s| s.time > lift_off + 1e-3).unwrap();
+        let apex = after.position[2] + after.velocity[2].powi(2) / (2.0 * 9.81) - 0.02;
+        let restitution = (apex / drop).sqrt();
+        let (expected, peak) = quarter_mass_sphere(law, parameters, drop);
+        println!(
+            "{law}: box restitution {restitution:.9}, quarter-mass sphere {expected:.9}; peak {:.6e} N vs 4 × {peak:.6e} N",
+            event.max_force
+        );
+        assert!((restitution - expected).abs() < 1e-6, "{law}");
+        assert!((event.max_force / (4.0 * peak) - 1.0).abs() < 1e-4, "{law}");
+    }
+}
