@@ -3,9 +3,13 @@
 use super::report;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
+use hcm_host::figure::rigid_run::rigid_figures;
 use hcm_host::identify::Physics;
+use hcm_host::output::{commit, StagedFile};
+use hcm_host::pipeline::NamedFigure;
 use hcm_host::simulate::simulate;
-use std::path::PathBuf;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 
 /// Simulate a scenario and write its trajectory.
 ///
@@ -14,6 +18,14 @@ use std::path::PathBuf;
 /// Writes every body's sampled motion and contact force to OUT (measured-data CSV, one
 /// row per sample per body; the README's "Measured-data format") and prints the
 /// indicators of each contact.
+///
+/// With --figures DIR (3D scenarios only: a box, compound, friction or rotation; a 1D
+/// scenario is refused) also writes into DIR, as SVG and PNG:
+///   trajectory      side view (x–z, mm, equal scales): the centre-of-mass path, the
+///                   body's outline at the start, its first touch-downs and the end,
+///                   and the fixed bodies' outlines (a plane's trace at the body's y)
+///   contact_force   ‖F‖ on the moving body over time (N), touch-downs marked
+///   contact_torque  ‖T‖ about its centre of mass over time (N·m), touch-downs marked
 ///
 /// Terms:
 ///   scenario    a TOML file of bodies, materials, contact laws and solver settings
@@ -31,6 +43,10 @@ pub struct Args {
     /// Where to write the trajectory (CSV, measured-data format).
     #[arg(long)]
     out: PathBuf,
+    /// Directory (created if missing) for the figures of a 3D scenario: trajectory,
+    /// contact_force, contact_torque (.svg and .png).
+    #[arg(long, value_name = "DIR")]
+    figures: Option<PathBuf>,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -39,6 +55,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         scenario = Physics::read(path)?.apply(&scenario, path)?;
     }
     let model = scenario.model()?;
+    if args.figures.is_some() && !model.is_rigid() {
+        anyhow::bail!(
+            "--figures: scenario `{}` is 1D (no box, compound, friction or rotation); \
+             the figures show 3D motion — plot OUT's force column instead",
+            model.scenario.name
+        );
+    }
     let simulation = simulate(&model)?;
     let dataset = Dataset {
         runs: vec![simulation.run.clone()],
@@ -78,6 +101,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             })
             .collect();
         print!("{}", report::pair_event_table(&rows));
+        if let Some(dir) = &args.figures {
+            write_figures(dir, &rigid_figures(&model, &simulation))?;
+            println!("wrote the figures to {}", dir.display());
+        }
         return Ok(());
     }
     let rows: Vec<_> = simulation
@@ -93,5 +120,27 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         })
         .collect();
     print!("{}", report::event_table(&rows));
+    Ok(())
+}
+
+/// Writes each figure as `<stem>.svg` and `<stem>.png` into `dir` (created if missing),
+/// all moved into place together: the set appears whole or not at all.
+fn write_figures(dir: &Path, figures: &[NamedFigure]) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let mut finished = Vec::new();
+    for named in figures {
+        let png = named
+            .figure
+            .png()
+            .with_context(|| format!("drawing {}.png", named.stem))?;
+        for (extension, bytes) in [("svg", named.figure.svg().into_bytes()), ("png", png)] {
+            let path = dir.join(format!("{}.{extension}", named.stem));
+            let mut file = StagedFile::create(&path)?;
+            file.write_all(&bytes)
+                .with_context(|| format!("writing {}", path.display()))?;
+            finished.push(file.finish()?);
+        }
+    }
+    commit(finished)?;
     Ok(())
 }

@@ -3,6 +3,7 @@
 //! axis titles, and the inset if asked for. Margins are measured from the text they hold
 //! (in the figures' font), so no label leaves the image or runs into another.
 
+use super::aspect;
 use super::font;
 use super::inset::{self, Inset};
 use super::legend::{self, LegendEntry};
@@ -160,13 +161,13 @@ impl Layout {
         let normal = TextSize::Normal.line();
         let x_ticks = TextSize::Normal.x_tick_gap() + normal;
         let bottom = HEIGHT - PAD - normal - GAP - x_ticks;
-        let (y0, y1) = y_extent(figure);
-        let y = fit(Ticks::new(y0, y1, INTERVALS.1), |t| {
-            spacing(t, bottom - top) >= normal + LINE_SPACING
-        });
-        let left = PAD + normal + GAP + widest(&y.labels(), TextSize::Normal) + GAP;
-        let area = x_area(figure, left, top, bottom);
-        let mut main = Plot::new(area.0, area.1, y);
+        let axes = |x, y| axes(x, y, top, bottom);
+        let (area, x, y) = if figure.equal_scales {
+            aspect::equal_scales(axes, x_extent(figure), y_extent(figure))
+        } else {
+            axes(x_extent(figure), y_extent(figure))
+        };
+        let mut main = Plot::new(area, x, y);
         if let Some(band) = &figure.band {
             main.draw_band(band);
         }
@@ -193,16 +194,27 @@ impl Layout {
     }
 }
 
-/// The plot area from `left`, `top` and `bottom` and the x ticks, whose last label
-/// sets the right margin: the area and the ticks.
-fn x_area(figure: &Figure, left: f64, top: f64, bottom: f64) -> (Rect, Ticks) {
+/// The plot area between `top` and `bottom` (px) and the ticks of the data extents `x`
+/// and `y`: the y tick labels set the left margin, the last x tick label the right one.
+fn axes(x: (f64, f64), (y0, y1): (f64, f64), top: f64, bottom: f64) -> (Rect, Ticks, Ticks) {
+    let normal = TextSize::Normal.line();
+    let y = fit(Ticks::new(y0, y1, INTERVALS.1), |t| {
+        spacing(t, bottom - top) >= normal + LINE_SPACING
+    });
+    let left = PAD + normal + GAP + widest(&y.labels(), TextSize::Normal) + GAP;
+    let (area, x) = x_area(x, left, top, bottom);
+    (area, x, y)
+}
+
+/// The plot area from `left`, `top` and `bottom` and the x ticks of the extent `x`, whose
+/// last label sets the right margin: the area and the ticks.
+fn x_area((x0, x1): (f64, f64), left: f64, top: f64, bottom: f64) -> (Rect, Ticks) {
     let fits = |right: f64| {
         move |t: &Ticks| {
             spacing(t, right - left) >= widest(&t.labels(), TextSize::Normal) + LABEL_SPACING
         }
     };
     let provisional = WIDTH - PAD - 16.0;
-    let (x0, x1) = x_extent(figure);
     let x = fit(Ticks::new(x0, x1, INTERVALS.0), fits(provisional));
     let last = x.labels().pop().unwrap_or_default();
     let half = 0.5 * font::width(&last, TextSize::Normal.px());

@@ -1,4 +1,4 @@
-//! The legend: one entry per curve, then the band, each a colour swatch and its label,
+//! The legend: one entry per curve (but those of an empty label), then the band, each a colour swatch and its label,
 //! set in rows between the title and the plot area, so that it never hides a curve.
 
 use super::font;
@@ -32,6 +32,7 @@ pub(super) fn entries<'f>(figure: &'f Figure) -> Vec<(&'f str, Colour, Swatch, f
     let curves = figure
         .series
         .iter()
+        .filter(|s| !s.label.is_empty())
         .map(|s| (s.label, s.colour, Swatch::Line));
     let band = figure
         .band

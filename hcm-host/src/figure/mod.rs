@@ -10,6 +10,7 @@
 //! with the DejaVu Sans font compiled into the binary (`font.rs`), so Greek letters, µ, ±,
 //! superscripts and δ̇ show as they are written.
 
+mod aspect;
 mod canvas;
 mod font;
 mod inset;
@@ -17,6 +18,8 @@ mod layout;
 mod legend;
 mod plot;
 mod png;
+pub mod rigid_run;
+pub mod side_view;
 mod svg;
 mod ticks;
 
@@ -62,7 +65,8 @@ impl Colour {
 
 /// One curve: label, colour, points (x, y).
 pub struct Series<'a> {
-    /// Legend label.
+    /// Legend label; an empty one gives no legend entry (e.g. a curve of the same kind
+    /// as one before it, which is named).
     pub label: &'a str,
     /// Stroke colour.
     pub colour: Colour,
@@ -100,6 +104,7 @@ pub struct Figure<'a> {
     band: Option<Band<'a>>,
     zero_line: bool,
     peak_inset: bool,
+    equal_scales: bool,
 }
 
 impl<'a> Figure<'a> {
@@ -115,6 +120,7 @@ impl<'a> Figure<'a> {
             band: None,
             zero_line: false,
             peak_inset: false,
+            equal_scales: false,
         }
     }
 
@@ -142,6 +148,16 @@ impl<'a> Figure<'a> {
     pub fn with_peak_inset(self) -> Self {
         Figure {
             peak_inset: true,
+            ..self
+        }
+    }
+
+    /// The figure with as many px per data unit along x as along y, for pictures of
+    /// space (a side view): the axis ranges are widened to the plot's proportions and
+    /// the plot area narrowed to fit the round ticks.
+    pub fn with_equal_scales(self) -> Self {
+        Figure {
+            equal_scales: true,
             ..self
         }
     }
@@ -262,7 +278,45 @@ mod tests {
                 vec![series("a", Colour::BLACK, vec![(1e300, -1e300)])],
             ),
             Figure::new("none", "x", "y", Vec::new()).with_peak_inset(),
+            side_view(),
         ]
+    }
+
+    /// A side view with equal scales: a tall narrow path over a wide floor, and a curve
+    /// left out of the legend.
+    fn side_view() -> Figure<'static> {
+        Figure::new(
+            "side view",
+            "x (mm)",
+            "z (mm)",
+            vec![
+                series("path", Colour::BLACK, vec![(0.0, 150.0), (10.0, 50.0)]),
+                series("floor", Colour::BLACK, vec![(-120.0, 0.0), (60.0, 0.0)]),
+                series("", Colour::BLACK, vec![(-20.0, 10.0), (20.0, 10.0)]),
+            ],
+        )
+        .with_equal_scales()
+    }
+
+    #[test]
+    fn equal_scales_take_as_many_px_per_unit_on_both_axes_and_show_every_point() {
+        let layout = Layout::new(&side_view());
+        let plot = &layout.main;
+        let (x0, x1) = plot.x.range();
+        let (y0, y1) = plot.y.range();
+        let (sx, sy) = (
+            plot.area.width() / (x1 - x0),
+            plot.area.height() / (y1 - y0),
+        );
+        assert!((sx / sy - 1.0).abs() < 1e-12, "{sx} vs {sy} px per mm");
+        assert!(x0 <= -120.0 && x1 >= 60.0 && y0 <= 0.0 && y1 >= 150.0);
+        // Not much of the image is given away: the plot fills one side of the room.
+        let full = Layout::new(&Figure::new("side view", "x (mm)", "z (mm)", Vec::new()));
+        let filled = (plot.area.width() / full.main.area.width())
+            .max(plot.area.height() / full.main.area.height());
+        assert!(filled > 0.99, "{filled}");
+        // Two legend entries: the unnamed curve has none.
+        assert_eq!(layout.legend.len(), 2);
     }
 
     #[test]
