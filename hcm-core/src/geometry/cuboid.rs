@@ -24,6 +24,12 @@ impl<T: Real> Cuboid<T> {
         self.center + self.orientation * local
     }
 
+    /// Half extents (m) of the box's axis-aligned bounding box in the common frame:
+    /// |R|·h, with |R| the rotation matrix's entries made positive.
+    pub fn world_half_extents(&self) -> Vector3<T> {
+        self.orientation.to_rotation_matrix().matrix().abs() * self.half_extents
+    }
+
     /// `point` (m, common frame) in the box's own frame, relative to its centre (m).
     pub fn to_local(&self, point: &Vector3<T>) -> Vector3<T> {
         self.orientation
