@@ -9,7 +9,8 @@
 //! Run with `--nocapture` to see the figures each test measured.
 
 use hcm_tests::rigid_reference::{
-    angular_momentum, compare, cube_drop, energy, simulate, vertices, Case, Sample, Trajectory,
+    angular_momentum, compare, cube_drop, energy, simulate, tossed_plate, vertices, Case, Sample,
+    Trajectory,
 };
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use std::sync::OnceLock;
@@ -63,28 +64,6 @@ fn poses(trajectory: &[Sample]) -> (Vec<f64>, Vec<[f64; 3]>, Vec<[f64; 4]>) {
         })
         .collect();
     (times, positions, quaternions)
-}
-
-/// Another body and parameter set, as the unseen check will bring: a flat box
-/// with a full (non-diagonal) inertia tensor, thrown harder onto softer, more damped and
-/// more frictional contact.
-fn tossed_plate() -> Case {
-    let mut case = cube_drop();
-    let mass = 0.8;
-    let principal = Matrix3::from_diagonal(&Vector3::new(8e-4, 2e-3, 2.6e-3));
-    let axes = Rotation3::from_euler_angles(0.3, -0.2, 0.7);
-    case.half_extents = Vector3::new(0.08, 0.05, 0.02);
-    case.mass = mass;
-    case.inertia = axes.matrix() * principal * axes.matrix().transpose();
-    case.rotation = Rotation3::from_euler_angles(-0.6, 0.4, 1.1).into_inner();
-    case.position = Vector3::new(0.1, -0.05, 0.2);
-    case.velocity = Vector3::new(-0.8, 1.2, -0.5);
-    case.angular_velocity = Vector3::new(-4.0, 6.0, 9.0);
-    case.impact.stiffness = 3e6;
-    case.impact.max_damping = 300.0;
-    case.friction.mu_static = 0.5;
-    case.friction.mu_dynamic = 0.4;
-    case
 }
 
 /// The final pose's and the run's worst change (m, rad) when the step is halved.
