@@ -105,7 +105,7 @@ fn misaligned_pointers_are_answered_with_their_code() {
     let mut storage = vec![0_u64; 2 * HCM_RESIDUAL_SIZE / 8];
     // 8-aligned but not 16-aligned: the `HcmResidual` a careless `malloc` could give.
     let base = storage.as_mut_ptr();
-    let at = if (base as usize) % 16 == 0 { 1 } else { 0 };
+    let at = usize::from((base as usize).is_multiple_of(16));
     let out = base.wrapping_add(at).cast::<HcmResidual>();
     let mut law = extended(&[]);
     let mut force = [0.0_f32; 2];
