@@ -153,6 +153,7 @@ impl Record {
         f32::from_bits(u32::from_str_radix(hex, 16).unwrap())
     }
 
+    /// The contact the record was evaluated at.
     fn contact(&self) -> (Indentation<f32>, ContactMemory<f32>) {
         let state = Indentation {
             depth: self.float("depth"),
@@ -163,6 +164,24 @@ impl Record {
             max_depth: self.float("max_depth"),
         };
         (state, memory)
+    }
+
+    /// [`Record::contact`] for a record that has one, else NaN (never read).
+    fn contact_if_any(&self) -> (Indentation<f32>, ContactMemory<f32>) {
+        if self.fields.contains_key("depth") {
+            return self.contact();
+        }
+        let nan = Indentation {
+            depth: f32::NAN,
+            rate: f32::NAN,
+            approach_speed: f32::NAN,
+        };
+        (
+            nan,
+            ContactMemory {
+                max_depth: f32::NAN,
+            },
+        )
     }
 }
 
@@ -211,94 +230,129 @@ fn check_hybrid<R: Residual<f32>>(
     assert_eq!(record.integer("outside"), outside, "{input:?}");
 }
 
+/// What the example's records are checked against: the core's own objects.
+struct Reference {
+    header: HashMap<String, i64>,
+    law: AnyNormalLaw<f32>,
+    /// The extended law, as the example's `effect` records build it.
+    extended: ExtendedLaw<f32>,
+    f32_mlp: Mlp<3, 16, 1, 2, F32Weights>,
+    int8_mlp: Mlp<3, 16, 1, 2, Int8Weights>,
+}
+
+impl Reference {
+    fn new() -> Reference {
+        let blobs = root().join("examples/blobs");
+        let read = |name: &str| std::fs::read(blobs.join(name)).unwrap();
+        let law = pm2_law();
+        Reference {
+            header: header_values(),
+            law,
+            extended: ExtendedLaw::new(law),
+            f32_mlp: decode(&read("bouncing_ball.f32.hcm")).unwrap(),
+            int8_mlp: decode(&read("bouncing_ball.int8.hcm")).unwrap(),
+        }
+    }
+
+    /// Checks one printed record (an `effect` record extends the extended law).
+    fn check(&mut self, record: &Record, line: &str) {
+        let (state, memory) = record.contact_if_any();
+        let bits = |key: &str| record.float(key).to_bits();
+        match record.kind.as_str() {
+            "law" => self.check_law(record),
+            "effect" => self.push_effect(record),
+            "residual" => self.check_residual(record),
+            "law_force" => assert_eq!(bits("force"), self.law.normal_force(&state).to_bits()),
+            "extended_force" => {
+                let model = ContactModel::physics(self.extended.clone());
+                let force = model.physics_normal_force(&state, &memory);
+                assert_eq!(bits("force"), force.to_bits(), "{line}");
+            }
+            "hybrid" => {
+                let pm2 = ExtendedLaw::new(self.law);
+                match record.text("weights") {
+                    "f32" => check_hybrid(record, &pm2, &self.f32_mlp, &self.f32_mlp.envelope),
+                    "int8" => check_hybrid(record, &pm2, &self.int8_mlp, &self.int8_mlp.envelope),
+                    other => panic!("unknown weights {other}"),
+                }
+            }
+            "check" => self.check_status(record),
+            other => panic!("unknown record {other}: {line}"),
+        }
+    }
+
+    /// The PM2 law's kind (the header's constant) and parameters, bit for bit.
+    fn check_law(&self, record: &Record) {
+        let name = format!("HCM_LAW_{}", self.law.name().to_uppercase());
+        assert_eq!(record.integer("kind"), self.header[&name], "{name}");
+        for (i, value) in self.law.values().iter().enumerate() {
+            let printed = record.float(&format!("p{i}"));
+            assert_eq!(printed.to_bits(), value.to_bits(), "parameter {i}");
+        }
+    }
+
+    fn push_effect(&mut self, record: &Record) {
+        let (kind, value) = (record.integer("kind"), record.float("p0"));
+        let effect: ContactEffect<f32> = if kind == self.header["HCM_EFFECT_VISCOUS_DAMPING"] {
+            ViscousDamping { coefficient: value }.into()
+        } else if kind == self.header["HCM_EFFECT_ADHESION"] {
+            Adhesion {
+                pull_off_force: value,
+            }
+            .into()
+        } else {
+            panic!("the example uses another effect: kind {kind}")
+        };
+        self.extended.effects.push(effect).unwrap();
+    }
+
+    fn check_residual(&self, record: &Record) {
+        let (quantisation, envelope) = match record.text("file") {
+            "bouncing_ball.f32.hcm" => (0, self.f32_mlp.envelope),
+            "bouncing_ball.int8.hcm" => (1, self.int8_mlp.envelope),
+            other => panic!("unknown blob {other}"),
+        };
+        assert_eq!(record.integer("quantisation"), quantisation);
+        for i in 0..3 {
+            assert_eq!(record.float(&format!("min{i}")), envelope.min[i]);
+            assert_eq!(record.float(&format!("max{i}")), envelope.max[i]);
+        }
+    }
+
+    /// Each refusal the example shows returned its code (the header's value).
+    fn check_status(&self, record: &Record) {
+        let expected = match record.text("what") {
+            "bit_flip" => "HCM_STATUS_BLOB_BAD_CRC",
+            "truncated" => "HCM_STATUS_BLOB_TRUNCATED",
+            "not_decoded" => "HCM_STATUS_NOT_DECODED",
+            "null_blob" => "HCM_STATUS_NULL_POINTER",
+            "unknown_law" => "HCM_STATUS_BAD_PARAMETER",
+            "decode_again" => "HCM_STATUS_OK",
+            other => panic!("unknown check {other}"),
+        };
+        assert_eq!(
+            record.integer("status"),
+            self.header[expected],
+            "{expected}"
+        );
+    }
+}
+
 #[test]
 fn the_c_example_matches_rusts_evaluation_bit_for_bit() {
     let library = static_library();
     let folder = tempfile::tempdir().unwrap();
     let output = run_example(&library, folder.path());
-    let header = header_values();
-    let blobs = root().join("examples/blobs");
-    let f32_mlp: Mlp<3, 16, 1, 2, F32Weights> =
-        decode(&std::fs::read(blobs.join("bouncing_ball.f32.hcm")).unwrap()).unwrap();
-    let int8_mlp: Mlp<3, 16, 1, 2, Int8Weights> =
-        decode(&std::fs::read(blobs.join("bouncing_ball.int8.hcm")).unwrap()).unwrap();
-
-    let law = pm2_law();
-    let pm2 = ExtendedLaw::new(law);
-    let mut extended = ExtendedLaw::new(law);
+    let mut reference = Reference::new();
     let mut counts: HashMap<String, usize> = HashMap::new();
     for line in output.lines() {
         let record = Record::parse(line);
-        *counts.entry(record.kind.clone()).or_default() += 1;
-        match record.kind.as_str() {
-            "law" => {
-                let name = format!("HCM_LAW_{}", law.name().to_uppercase());
-                assert_eq!(record.integer("kind"), header[&name], "{name}");
-                for (i, value) in law.values().iter().enumerate() {
-                    let printed = record.float(&format!("p{i}"));
-                    assert_eq!(printed.to_bits(), value.to_bits(), "parameter {i}");
-                }
-            }
-            "effect" => {
-                let (kind, value) = (record.integer("kind"), record.float("p0"));
-                let effect: ContactEffect<f32> = if kind == header["HCM_EFFECT_VISCOUS_DAMPING"] {
-                    ViscousDamping { coefficient: value }.into()
-                } else if kind == header["HCM_EFFECT_ADHESION"] {
-                    Adhesion {
-                        pull_off_force: value,
-                    }
-                    .into()
-                } else {
-                    panic!("the example uses another effect: {line}")
-                };
-                extended.effects.push(effect).unwrap();
-            }
-            "residual" => {
-                let (quantisation, envelope) = match record.text("file") {
-                    "bouncing_ball.f32.hcm" => (0, f32_mlp.envelope),
-                    "bouncing_ball.int8.hcm" => (1, int8_mlp.envelope),
-                    other => panic!("unknown blob {other}"),
-                };
-                assert_eq!(record.integer("quantisation"), quantisation);
-                for i in 0..3 {
-                    assert_eq!(record.float(&format!("min{i}")), envelope.min[i]);
-                    assert_eq!(record.float(&format!("max{i}")), envelope.max[i]);
-                }
-            }
-            "law_force" => {
-                let (state, _) = record.contact();
-                let force = law.normal_force(&state);
-                assert_eq!(record.float("force").to_bits(), force.to_bits(), "{line}");
-            }
-            "extended_force" => {
-                let (state, memory) = record.contact();
-                let model = ContactModel::physics(extended.clone());
-                let force = model.physics_normal_force(&state, &memory);
-                assert_eq!(record.float("force").to_bits(), force.to_bits(), "{line}");
-            }
-            "hybrid" => match record.text("weights") {
-                "f32" => check_hybrid(&record, &pm2, &f32_mlp, &f32_mlp.envelope),
-                "int8" => check_hybrid(&record, &pm2, &int8_mlp, &int8_mlp.envelope),
-                other => panic!("unknown weights {other}"),
-            },
-            "check" => {
-                let expected = match record.text("what") {
-                    "bit_flip" => "HCM_STATUS_BLOB_BAD_CRC",
-                    "truncated" => "HCM_STATUS_BLOB_TRUNCATED",
-                    "not_decoded" => "HCM_STATUS_NOT_DECODED",
-                    "null_blob" => "HCM_STATUS_NULL_POINTER",
-                    "unknown_law" => "HCM_STATUS_BAD_PARAMETER",
-                    "decode_again" => "HCM_STATUS_OK",
-                    other => panic!("unknown check {other}"),
-                };
-                assert_eq!(record.integer("status"), header[expected], "{line}");
-            }
-            other => panic!("unknown record {other}: {line}"),
-        }
+        reference.check(&record, line);
+        *counts.entry(record.kind).or_default() += 1;
     }
     // Everything was there: the residual took part in most contacts and was off in one
     // outside its envelope and one out of contact, for both weight formats.
-    assert_eq!(extended.effects.len(), 2);
+    assert_eq!(reference.extended.effects.len(), 2);
     let used = output
         .lines()
         .filter(|l| l.contains("residual_used=1"))
@@ -308,7 +362,7 @@ fn the_c_example_matches_rusts_evaluation_bit_for_bit() {
         .filter(|l| l.contains("residual_used=0"))
         .count();
     assert_eq!((used, off), (8, 4), "{output}");
-    assert_eq!(counts["law_force"], 6);
-    assert_eq!(counts["extended_force"], 6);
-    assert_eq!(counts["check"], 6);
+    for (kind, count) in [("law_force", 6), ("extended_force", 6), ("check", 6)] {
+        assert_eq!(counts.get(kind), Some(&count), "{kind}");
+    }
 }
