@@ -138,6 +138,34 @@ static uint8_t *read_file(const char *path, size_t *len) {
     return bytes;
 }
 
+/*
+ * Reads the blob at `path`, decodes it into *residual and prints its record; the blob
+ * (malloc'd, its length in *len) or NULL after printing why.
+ */
+static uint8_t *load_residual(const char *path, const char *name, size_t *len,
+                              HcmResidual *residual, HcmResidualInfo *info) {
+    uint8_t *blob = read_file(path, len);
+    HcmStatus status = blob == NULL ? HCM_STATUS_NULL_POINTER
+                                    : hcm_residual_decode(blob, *len, residual);
+    if (status == HCM_STATUS_OK) {
+        status = hcm_residual_info(residual, info);
+    }
+    if (status != HCM_STATUS_OK) {
+        fprintf(stderr, "%s: %s\n", path, hcm_status_name(status));
+        free(blob);
+        return NULL;
+    }
+    const float *lo = info->envelope_min, *hi = info->envelope_max;
+    printf("residual file=%s bytes=%zu quantisation=%u min0=0x%08x min1=0x%08x min2=0x%08x"
+           " max0=0x%08x max1=0x%08x max2=0x%08x # delta [%.6g, %.6g] m, rate [%.6g, %.6g]"
+           " m/s, approach [%.9g, %.9g] m/s\n",
+           name, *len, (unsigned)info->quantisation, (unsigned)bits(lo[0]),
+           (unsigned)bits(lo[1]), (unsigned)bits(lo[2]), (unsigned)bits(hi[0]),
+           (unsigned)bits(hi[1]), (unsigned)bits(hi[2]), lo[0], hi[0], lo[1], hi[1], lo[2],
+           hi[2]);
+    return blob;
+}
+
 /* Prints a status check: what was tried, the code returned and its name. */
 static void check(const char *what, HcmStatus status) {
     printf("check what=%s status=%d # %s\n", what, (int)status, hcm_status_name(status));
@@ -228,24 +256,10 @@ int main(int argc, char **argv) {
     HcmResidualInfo info[2];
     for (int w = 0; w < 2; w++) {
         snprintf(path, sizeof path, "%s/%s", folder, FILES[w]);
-        blobs[w] = read_file(path, &lengths[w]);
-        HcmStatus status = blobs[w] == NULL ? HCM_STATUS_NULL_POINTER
-                           : hcm_residual_decode(blobs[w], lengths[w], &residuals[w]);
-        if (status == HCM_STATUS_OK) {
-            status = hcm_residual_info(&residuals[w], &info[w]);
-        }
-        if (status != HCM_STATUS_OK) {
-            fprintf(stderr, "%s: %s\n", path, hcm_status_name(status));
+        blobs[w] = load_residual(path, FILES[w], &lengths[w], &residuals[w], &info[w]);
+        if (blobs[w] == NULL) {
             return 1;
         }
-        const float *lo = info[w].envelope_min, *hi = info[w].envelope_max;
-        printf("residual file=%s bytes=%zu quantisation=%u min0=0x%08x min1=0x%08x min2=0x%08x"
-               " max0=0x%08x max1=0x%08x max2=0x%08x # delta [%.6g, %.6g] m, rate [%.6g, %.6g]"
-               " m/s, approach [%.9g, %.9g] m/s\n",
-               FILES[w], lengths[w], (unsigned)info[w].quantisation, (unsigned)bits(lo[0]),
-               (unsigned)bits(lo[1]), (unsigned)bits(lo[2]), (unsigned)bits(hi[0]),
-               (unsigned)bits(hi[1]), (unsigned)bits(hi[2]), lo[0], hi[0], lo[1], hi[1],
-               lo[2], hi[2]);
     }
 
     /* Contacts inside the f32 residual's envelope, one outside it in approach speed
