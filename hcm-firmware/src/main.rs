@@ -77,6 +77,57 @@ fn main() -> ! {
 /// Instructions per evaluation of each law, effect, friction, the wrench, the
 /// residual and the HCM (f32, int8), decoding, and one whole ball run.
 fn costs(counter: &cost::Counter, fixture: &Fixture, report: &mut dyn FnMut(&str, &str, u32)) {
+    law_costs(counter, report);
+    let input = fixture.hcm_inputs()[1];
+    report(
+        "residual",
+        "f32",
+        counter.instructions(|| {
+            black_box(fixture.hcm_f32.residual.evaluate(black_box(&input)));
+        }),
+    );
+    report(
+        "residual",
+        "int8",
+        counter.instructions(|| {
+            black_box(fixture.hcm_int8.residual.evaluate(black_box(&input)));
+        }),
+    );
+    report(
+        "hcm",
+        "f32",
+        counter.instructions(|| {
+            black_box(hcm_force(&fixture.hcm_f32, black_box(&input)));
+        }),
+    );
+    report(
+        "hcm",
+        "int8",
+        counter.instructions(|| {
+            black_box(hcm_force(&fixture.hcm_int8, black_box(&input)));
+        }),
+    );
+    report(
+        "decode",
+        "f32",
+        counter.instructions(|| {
+            let blob = black_box(table::BALL_F32_BLOB);
+            let decoded: Result<cases::BallResidual, _> = hcm_core::residual::decode(blob);
+            black_box(decoded.is_ok());
+        }),
+    );
+    report(
+        "ball",
+        "run",
+        counter.instructions_once(|| {
+            black_box(cases::ball::simulate(black_box(&fixture.hcm_f32)).ok());
+        }),
+    );
+}
+
+/// Instructions per evaluation of each normal law, the PM2 with each effect, STEP
+/// friction and the Eq 1 wrench.
+fn law_costs(counter: &cost::Counter, report: &mut dyn FnMut(&str, &str, u32)) {
     for kind in LawKind::ALL {
         let law = table::law(kind);
         report(
@@ -121,51 +172,6 @@ fn costs(counter: &cost::Counter, fixture: &Fixture, report: &mut dyn FnMut(&str
                 &s.arm_1,
                 &s.arm_2,
             ));
-        }),
-    );
-    let input = fixture.hcm_inputs()[1];
-    report(
-        "residual",
-        "f32",
-        counter.instructions(|| {
-            black_box(fixture.hcm_f32.residual.evaluate(black_box(&input)));
-        }),
-    );
-    report(
-        "residual",
-        "int8",
-        counter.instructions(|| {
-            black_box(fixture.hcm_int8.residual.evaluate(black_box(&input)));
-        }),
-    );
-    report(
-        "hcm",
-        "f32",
-        counter.instructions(|| {
-            black_box(hcm_force(&fixture.hcm_f32, black_box(&input)));
-        }),
-    );
-    report(
-        "hcm",
-        "int8",
-        counter.instructions(|| {
-            black_box(hcm_force(&fixture.hcm_int8, black_box(&input)));
-        }),
-    );
-    report(
-        "decode",
-        "f32",
-        counter.instructions(|| {
-            let blob = black_box(table::BALL_F32_BLOB);
-            let decoded: Result<cases::BallResidual, _> = hcm_core::residual::decode(blob);
-            black_box(decoded.is_ok());
-        }),
-    );
-    report(
-        "ball",
-        "run",
-        counter.instructions_once(|| {
-            black_box(cases::ball::simulate(black_box(&fixture.hcm_f32)).ok());
         }),
     );
 }
