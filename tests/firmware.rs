@@ -1,0 +1,301 @@
+//! The firmware (`hcm-firmware/`) on an emulated Cortex-M4F against the host.
+//!
+//! Builds and runs the firmware under QEMU (`cargo run --release` in its directory:
+//! its `.cargo/config.toml` names the target and the `qemu-system-arm` runner), and
+//! evaluates the same case table (`hcm-firmware/src/cases`) in f32 on the host twice:
+//!
+//! - with the firmware's math library: `hcm-firmware/reference`, a host binary whose
+//!   `nalgebra` has no `std`, so `powf`, `tanh`, `sqrt` come from the `libm` crate as
+//!   on the controller. Every printed bit pattern must be identical.
+//! - in this test binary, where `nalgebra`'s `std` feature (hcm-host enables it) routes
+//!   f32 `powf` and `tanh` to the C library (glibc). Those two functions round some
+//!   results differently from `libm` (by 1–2 ULP, more after the ball run's
+//!   cancellations); the values must agree to 1e-5 relative, and every one that is
+//!   not bit-identical is printed.
+//!
+//! QEMU missing is a failure, not a skip: CI installs it (`.ci/run`).
+
+#[path = "../hcm-firmware/src/cases/mod.rs"]
+mod cases;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+/// The issue's flash budget for the whole firmware (B).
+const FLASH_BUDGET: u32 = 32 * 1024;
+
+/// What the firmware printed, parsed.
+#[derive(Debug, Default)]
+struct Report {
+    /// `case GROUP.ITEM HEX…`, in order.
+    cases: Vec<(String, Vec<u32>)>,
+    /// `cost GROUP.ITEM N`: instructions per evaluation.
+    costs: Vec<(String, u32)>,
+    /// `size flash|ram|stack N` (B).
+    sizes: Vec<(String, u32)>,
+}
+
+impl Report {
+    fn size(&self, kind: &str) -> u32 {
+        let found = self.sizes.iter().find(|(k, _)| k == kind);
+        found
+            .unwrap_or_else(|| panic!("the firmware printed no `size {kind}` line"))
+            .1
+    }
+}
+
+fn firmware_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("hcm-firmware")
+}
+
+/// Runs the firmware once for all tests here; `Err` says why it could not.
+fn firmware() -> &'static Report {
+    static REPORT: OnceLock<Result<Report, String>> = OnceLock::new();
+    match REPORT.get_or_init(run_firmware) {
+        Ok(report) => report,
+        Err(why) => panic!("{why}"),
+    }
+}
+
+fn run_firmware() -> Result<Report, String> {
+    let qemu = Command::new("qemu-system-arm").arg("--version").output();
+    if !qemu.is_ok_and(|out| out.status.success()) {
+        return Err(
+            "qemu-system-arm is not installed: the firmware test needs it \
+                    (Debian: `apt-get install -y qemu-system-arm`; .ci/run installs it)"
+                .into(),
+        );
+    }
+    // Run in its directory, whose .cargo/config.toml names the target and the runner.
+    cargo_run(&firmware_dir(), &[], "firmware")
+}
+
+/// The case table on the host with the `libm` crate's math (`hcm-firmware/reference`).
+fn reference() -> &'static Report {
+    static REPORT: OnceLock<Result<Report, String>> = OnceLock::new();
+    let run = || {
+        let manifest = firmware_dir().join("reference/Cargo.toml");
+        let manifest = manifest
+            .to_str()
+            .ok_or("non-UTF-8 checkout path")?
+            .to_owned();
+        // From the root, so that the firmware's .cargo/config.toml (thumbv7em) is not read.
+        cargo_run(
+            Path::new(env!("CARGO_MANIFEST_DIR")),
+            &["--manifest-path", &manifest],
+            "reference",
+        )
+    };
+    match REPORT.get_or_init(run) {
+        Ok(report) => report,
+        Err(why) => panic!("{why}"),
+    }
+}
+
+/// `cargo run --release` in `dir` with `args`, in a target directory `name` of its own
+/// beside the tests' (a cross build would otherwise contend with the host's); parsed.
+fn cargo_run(dir: &Path, args: &[&str], name: &str) -> Result<Report, String> {
+    let target_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("..").join(name);
+    let out = Command::new(env!("CARGO"))
+        .args(["run", "--release", "--quiet"])
+        .args(args)
+        .current_dir(dir)
+        .env("CARGO_TARGET_DIR", target_dir)
+        .output()
+        .map_err(|e| format!("could not start cargo for {name}: {e}"))?;
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    if !out.status.success() {
+        return Err(format!(
+            "`cargo run --release` of the {name} failed ({}):\n{stdout}\n{}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    parse(&stdout)
+}
+
+fn parse(stdout: &str) -> Result<Report, String> {
+    let mut report = Report::default();
+    let mut ended = false;
+    for line in stdout.lines() {
+        let mut words = line.split_whitespace();
+        let (Some(kind), Some(name)) = (words.next(), words.next()) else {
+            ended |= line.trim() == "end";
+            continue;
+        };
+        let bad = || format!("unreadable firmware line `{line}`");
+        match kind {
+            "case" => {
+                let bits: Result<Vec<u32>, _> = words.map(|w| u32::from_str_radix(w, 16)).collect();
+                report.cases.push((name.into(), bits.map_err(|_| bad())?));
+            }
+            "cost" | "size" => {
+                let value = words.next().and_then(|w| w.parse().ok()).ok_or_else(bad)?;
+                let list = if kind == "cost" {
+                    &mut report.costs
+                } else {
+                    &mut report.sizes
+                };
+                list.push((name.into(), value));
+            }
+            _ => {}
+        }
+    }
+    if !ended {
+        return Err(format!("the firmware stopped before `end`:\n{stdout}"));
+    }
+    Ok(report)
+}
+
+/// The host's f32 evaluation of the same table.
+fn host_cases() -> Vec<(String, Vec<u32>)> {
+    let fixture = cases::Fixture::decode().expect("the ball's blobs decode on the host");
+    let mut out = Vec::new();
+    cases::evaluate_all(&fixture, &mut |group, item, bits| {
+        out.push((format!("{group}.{item}"), bits.to_vec()));
+    });
+    out
+}
+
+/// Every value of `a` and `b` (same table, same order) that differs: name, index and
+/// both bit patterns.
+fn differences(
+    a: &[(String, Vec<u32>)],
+    b: &[(String, Vec<u32>)],
+) -> Vec<(String, usize, u32, u32)> {
+    let names =
+        |cases: &[(String, Vec<u32>)]| cases.iter().map(|c| c.0.clone()).collect::<Vec<_>>();
+    assert_eq!(
+        names(a),
+        names(b),
+        "the two runs evaluated different tables"
+    );
+    let mut out = Vec::new();
+    for ((name, xs), (_, ys)) in a.iter().zip(b) {
+        assert_eq!(xs.len(), ys.len(), "{name}: different number of values");
+        for (i, (x, y)) in xs.iter().zip(ys).enumerate() {
+            if x != y {
+                out.push((name.clone(), i, *x, *y));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_firmware_is_bit_identical_to_the_host_with_the_same_math_library() {
+    let (target, host) = (&firmware().cases, &reference().cases);
+    let values: usize = host.iter().map(|c| c.1.len()).sum();
+    println!("{values} values in {} lines compared", host.len());
+    assert!(
+        values > 150,
+        "only {values} values: the table lost its cases"
+    );
+    let listed: Vec<String> = differences(target, host)
+        .iter()
+        .map(|(name, i, t, h)| format!("{name}[{i}]: target {t:08x}, host {h:08x}"))
+        .collect();
+    assert!(
+        listed.is_empty(),
+        "not bit-identical:\n{}",
+        listed.join("\n")
+    );
+}
+
+#[test]
+fn the_firmware_agrees_with_the_hosts_std_math_to_a_few_ulp() {
+    let (target, host) = (&firmware().cases, host_cases());
+    // Flags and counts are words, not floats: those must match exactly.
+    let is_count = |name: &str, i: usize| {
+        (name.starts_with("hcm.") && i % 2 == 1) || (name == "ball.final" && i >= 3)
+    };
+    for (name, i, t, h) in differences(target, &host) {
+        let (tf, hf) = (f32::from_bits(t), f32::from_bits(h));
+        let ulp = (i64::from(t as i32) - i64::from(h as i32)).abs();
+        println!("{name}[{i}]: target {tf:e}, host {hf:e} ({ulp} ULP)");
+        assert!(!is_count(&name, i), "{name}[{i}]: {t} ≠ {h}");
+        // The ball's final rate is ≈ 0 after cancellation: compare it absolutely (m/s).
+        let close = (tf - hf).abs() <= 1e-5 * hf.abs().max(tf.abs()) || (tf - hf).abs() < 1e-6;
+        assert!(close, "{name}[{i}]: target {tf:e}, host {hf:e}");
+    }
+}
+
+#[test]
+fn the_firmware_fits_its_flash_budget_and_reports_its_costs() {
+    let report = firmware();
+    println!("| evaluation | instructions |\n|---|---:|");
+    for (name, n) in &report.costs {
+        println!("| {name} | {n} |");
+    }
+    for kind in ["flash", "ram", "stack"] {
+        println!("{kind}: {} B", report.size(kind));
+    }
+    let expected = hcm_core::law::LawKind::ALL.map(|k| format!("law.{}", k.name()));
+    for name in expected
+        .iter()
+        .map(String::as_str)
+        .chain(["hcm.f32", "hcm.int8"])
+    {
+        let cost = report.costs.iter().find(|(n, _)| n == name);
+        let cost = cost
+            .unwrap_or_else(|| panic!("no cost printed for {name}"))
+            .1;
+        // Every evaluation executes instructions; a zero means the measurement broke.
+        assert!(
+            cost > 10,
+            "{name}: {cost} instructions is not a measurement"
+        );
+    }
+    let flash = report.size("flash");
+    assert!(
+        flash <= FLASH_BUDGET,
+        "firmware flash {flash} B > budget {FLASH_BUDGET} B"
+    );
+    let stack = report.size("stack");
+    assert!(
+        stack > 0 && stack < 64 * 1024,
+        "peak stack {stack} B: outside the painted 64 KiB, not measured"
+    );
+}
+
+#[test]
+fn the_case_table_exercises_the_residual_and_a_real_bounce() {
+    let fixture = cases::Fixture::decode().expect("the ball's blobs decode");
+    let inputs = fixture.hcm_inputs();
+    let on: Vec<bool> = inputs
+        .iter()
+        .map(|x| cases::hcm_force(&fixture.hcm_f32, x).1)
+        .collect();
+    // Four inputs inside the envelope, one apart, one with δ̇0 1 % off.
+    assert_eq!(on, [true, true, true, true, false, false]);
+    let run = cases::ball::simulate(&fixture.hcm_f32).expect("the f32 ball run completes");
+    let [touch_down, lift_off, apex] = run.events;
+    let free_fall = (2.0 * cases::table::DROP_GAP / cases::table::GRAVITY).sqrt();
+    assert!(
+        (touch_down - free_fall).abs() < 1e-5,
+        "touch-down {touch_down} s"
+    );
+    let contact = lift_off - touch_down;
+    assert!(
+        contact > 20e-6 && contact < 500e-6,
+        "contact lasted {contact} s"
+    );
+    let restitution = run.speeds[1] / run.speeds[0];
+    assert!(
+        restitution > 0.85 && restitution < 1.0,
+        "restitution {restitution}"
+    );
+    // The apex is where the rate changes sign, at about e²·gap.
+    assert!(
+        run.last[2].abs() < 1e-4,
+        "rate at the apex {} m/s",
+        run.last[2]
+    );
+    let height = run.last[1] / cases::table::DROP_GAP;
+    assert!(
+        (height - restitution * restitution).abs() < 0.01,
+        "apex {height}·gap"
+    );
+    assert!(apex > lift_off);
+}
