@@ -15,6 +15,15 @@ pub trait Real: RealField + Copy {
     /// Converts an `f64` literal (rounding to nearest for `f32`).
     fn of(value: f64) -> Self;
 
+    /// `self` raised to `exponent`, by the `libm` crate on every target.
+    ///
+    /// Why not `RealField::powf`: nalgebra takes it from `std` when any crate of the
+    /// build enables its `std` feature (the host does) and from `libm` otherwise (the
+    /// controller), and glibc's `powf` differs from `libm`'s by an ulp or two. Calling
+    /// `libm` directly keeps a law's f32 result bit-identical on the host and on the
+    /// Cortex-M4F (tests/firmware.rs).
+    fn pow(self, exponent: Self) -> Self;
+
     /// Widens (or, from `f64`, keeps) the value as an `f64`.
     fn to_f64(self) -> f64;
 
@@ -63,6 +72,11 @@ impl Real for f32 {
     }
 
     #[inline]
+    fn pow(self, exponent: Self) -> Self {
+        libm::powf(self, exponent)
+    }
+
+    #[inline]
     fn to_f64(self) -> f64 {
         self as f64
     }
@@ -74,6 +88,11 @@ impl Real for f64 {
     #[inline]
     fn of(value: f64) -> Self {
         value
+    }
+
+    #[inline]
+    fn pow(self, exponent: Self) -> Self {
+        libm::pow(self, exponent)
     }
 
     #[inline]

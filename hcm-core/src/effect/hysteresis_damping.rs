@@ -37,7 +37,7 @@ impl<T: Real> HysteresisDamping<T> {
     pub fn force(&self, contact: &Indentation<T>) -> T {
         while_touching(contact.depth, || {
             // Saturating c·δ^p first keeps ∞·0 (a huge c·δ^p at δ̇ = 0) from giving NaN.
-            let coefficient = (self.coefficient * contact.depth.powf(self.exponent)).saturate();
+            let coefficient = (self.coefficient * contact.depth.pow(self.exponent)).saturate();
             coefficient * contact.rate
         })
     }

@@ -39,7 +39,7 @@ impl<T: Real> StiffnessExponent<T> {
     #[inline]
     pub fn force(&self, depth: T, elastic_force: T) -> T {
         while_touching(depth, || {
-            let ratio = (depth / self.reference_depth).powf(self.exponent_change);
+            let ratio = (depth / self.reference_depth).pow(self.exponent_change);
             elastic_force * (ratio.saturate() - T::one())
         })
     }

@@ -630,7 +630,7 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
                 fallback
             }
         } else {
-            (T::of(0.01) / d).powf(T::of(0.2))
+            (T::of(0.01) / d).pow(T::of(0.2))
         };
         if h1.is_nan() {
             return h0;
@@ -721,7 +721,7 @@ fn step_factor<T: Real>(error: T) -> T {
     if error <= T::zero() {
         return T::of(FACTOR_MAX);
     }
-    let factor = T::of(SAFETY) * error.powf(T::of(-0.2));
+    let factor = T::of(SAFETY) * error.pow(T::of(-0.2));
     if factor > T::of(FACTOR_MAX) {
         T::of(FACTOR_MAX)
     } else if factor < T::of(FACTOR_MIN) || factor.is_nan() {

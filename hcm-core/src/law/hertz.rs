@@ -28,7 +28,7 @@ impl<T: Real> Hertz<T> {
     #[inline]
     pub fn elastic_force(stiffness: T, exponent: T, depth: T) -> T {
         if touching(depth) {
-            (stiffness * depth.powf(exponent)).saturate()
+            (stiffness * depth.pow(exponent)).saturate()
         } else {
             T::zero()
         }
