@@ -82,7 +82,7 @@ impl Activation {
     ///
     /// The one implementation: the core's inference (`f32`) and the host's training
     /// (`f64`) both call it, so the trained and the exported network cannot disagree.
-    /// tanh is the rational approximation of [`tanh::tanh`] (within 3.05e-8 of libm's
+    /// tanh is the rational approximation of [`tanh::tanh`] (within 3.2e-8 of libm's
     /// in `f64`, 3.7e-7 in `f32`) in both: training fits the function the controller
     /// evaluates, and the round trip host → blob → core differs by `f32` rounding only.
     #[inline]
