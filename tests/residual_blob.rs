@@ -426,6 +426,7 @@ fn an_approach_speed_within_the_tolerance_keeps_the_residual_on() {
     println!("δ̇0 tolerance: {tolerance:.4} m/s");
     // 1 % of the mean normalised spread of δ and δ̇ (each ±1 normalised: spread 2).
     assert!((tolerance - 0.02).abs() < 1e-12, "{tolerance}");
+    assert_eq!(&model.envelope_tolerance[..2], &[0.0, 0.0]);
     let mlp: Mlp<3, 16, 1, 2> = decode(&encode(&model, Quantisation::F32).unwrap()).unwrap();
     let law: AnyNormalLaw<f32> = Hertz {
         stiffness: 1e9,
