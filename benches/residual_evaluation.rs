@@ -128,14 +128,14 @@ impl CandleResidual {
     }
 }
 
-/// One core layer as (Wᵀ (in, out), bias (out)) tensors.
+/// One core layer as (Wᵀ (in, out), bias (out)) tensors: the core stores W column by
+/// column, which is Wᵀ row-major.
 fn layer<const IN: usize, const OUT: usize>(
     layer: &Layer<IN, OUT, F32Weights>,
     device: &Device,
 ) -> candle_core::Result<(Tensor, Tensor)> {
-    let weights = Tensor::from_slice(layer.weights.as_flattened(), (OUT, IN), device)?;
     Ok((
-        weights.t()?.contiguous()?,
+        Tensor::from_slice(layer.weights.as_flattened(), (IN, OUT), device)?,
         Tensor::from_slice(&layer.bias, OUT, device)?,
     ))
 }

@@ -2,12 +2,16 @@
 //! no_std core (`hcm_core::residual::decode`) reads it, and the core's `f32` network
 //! agrees with the host's f64 reference.
 
+use hcm_core::effect::ContactMemory;
+use hcm_core::law::{AnyNormalLaw, Hertz, Indentation};
+use hcm_core::model::{ContactModel, Evaluated};
 use hcm_core::residual::blob::{BlobContents, Shape, VERSION};
 use hcm_core::residual::{
-    decode, Activation, BlobError, F32Weights, Hidden, HiddenDepth, Int8Weights, Mlp, Quantisation,
-    WeightFormat,
+    decode, Activation, BlobError, Excursion, F32Weights, Hidden, HiddenDepth, Int8Weights, Mlp,
+    Quantisation, WeightFormat,
 };
 use hcm_host::export::{encode, seal, ExportError, ExportModel};
+use hcm_host::train::envelope_tolerance;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -39,6 +43,7 @@ fn random_model(
         output_scale: vec![OUTPUT_SCALE],
         envelope_min: ENVELOPE.iter().map(|(lo, _)| *lo).collect(),
         envelope_max: ENVELOPE.iter().map(|(_, hi)| *hi).collect(),
+        envelope_tolerance: vec![0.0; 3],
     };
     model.layers = model
         .layer_sizes()
@@ -185,8 +190,8 @@ fn a_blob_without_the_magic_is_refused() {
 
 #[test]
 fn another_format_version_is_refused() {
-    // Version 1 stored the output layer of an int8 blob as int8 too; a later version
-    // is unknown. Both are refused by name.
+    // Version 2 had no envelope tolerance (and version 1 stored the output layer of an
+    // int8 blob as int8 too); a later version is unknown. Both are refused by name.
     for found in [VERSION - 1, VERSION + 1] {
         let blob = reseal(&valid_blob(), |contents, _| contents.version = found);
         assert_eq!(
@@ -336,4 +341,161 @@ fn blob_sizes_of_the_reference_network() {
     assert!(f32_blob.len() > 1412 && f32_blob.len() < 1412 + 100);
     let saved = f32_blob.len() - int8_blob.len();
     assert!((703..=705).contains(&saved), "saved {saved} bytes");
+}
+
+/// The host network's output with libm's `tanh` in place of the shared rational one.
+fn evaluate_with_libm_tanh(model: &ExportModel, input: &[f64]) -> f64 {
+    let mut a: Vec<f64> = input
+        .iter()
+        .zip(model.input_mean.iter().zip(&model.input_scale))
+        .map(|(x, (mean, scale))| (x - mean) / scale)
+        .collect();
+    let last = model.layers.len() - 1;
+    for (l, (weights, bias)) in model.layers.iter().enumerate() {
+        a = bias
+            .iter()
+            .zip(weights.chunks_exact(a.len()))
+            .map(|(b, row)| {
+                let z = b + row.iter().zip(&a).map(|(w, x)| w * x).sum::<f64>();
+                if l < last {
+                    z.tanh()
+                } else {
+                    z
+                }
+            })
+            .collect();
+    }
+    a[0] * model.output_scale[0] + model.output_mean[0]
+}
+
+/// Largest Σ_j |w_ij| over the rows of a row-major layer with `columns` inputs.
+fn largest_row_sum(weights: &[f64], columns: usize) -> f64 {
+    weights
+        .chunks_exact(columns)
+        .map(|row| row.iter().map(|w| w.abs()).sum::<f64>())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn the_tanh_approximation_error_is_carried_into_the_round_trip_tolerance() {
+    // The core's f32 tanh is within ε = 3.7e-7 of libm's (hcm_core::residual::tanh).
+    // Through a 3-16-16-1 tanh network an error ε per activation reaches the output as
+    // at most σ_y·‖w_o‖₁·(ε + max_i ‖W_2,i‖₁·ε) (tanh' ≤ 1): that bound plus the f32
+    // round trip's 1e-6·max(|y|, σ_y) is the tolerance against a libm-tanh host.
+    let epsilon = 3.7e-7;
+    let model = random_model(2, 16, 2, Activation::Tanh);
+    let mlp: Mlp<3, 16, 1, 2> = decode(&encode(&model, Quantisation::F32).unwrap()).unwrap();
+    let hidden = largest_row_sum(&model.layers[1].0, 16);
+    let output = largest_row_sum(&model.layers[2].0, 16);
+    let carried = OUTPUT_SCALE * output * (epsilon + hidden * epsilon);
+    let (mut worst, mut worst_shared) = (0.0_f64, 0.0_f64);
+    for input in random_inputs(13, 1000) {
+        let [core] = mlp.evaluate(&input.map(|x| x as f32));
+        let libm = evaluate_with_libm_tanh(&model, &input);
+        let shared = model.evaluate(&input)[0];
+        let floor = 1e-6 * libm.abs().max(OUTPUT_SCALE);
+        worst = worst.max((f64::from(core) - libm).abs() / (floor + carried));
+        worst_shared = worst_shared.max((shared - libm).abs());
+    }
+    println!(
+        "core vs libm-tanh host: worst {worst:.2} of the tolerance (tanh bound {carried:.2e} N); \
+         shared rational vs libm in f64: {worst_shared:.2e} N"
+    );
+    assert!(worst <= 1.0, "{worst}");
+    // In f64 the shared rational is within 3.05e-8 per activation: far below f32.
+    assert!(worst_shared < OUTPUT_SCALE * output * (1.0 + hidden) * 3.1e-8);
+}
+
+/// A 3-16-16-1 residual trained (as the ball's) with δ̇0 = 1.4 m/s in every row: its
+/// envelope has zero width in δ̇0 and the tolerance of `envelope_tolerance`.
+fn constant_approach_speed_model() -> ExportModel {
+    let mut model = random_model(7, 16, 2, Activation::Tanh);
+    model.input_mean[2] = 1.4;
+    model.input_scale[2] = 1.0; // the trainer's scale for a constant column
+    model.envelope_min[2] = 1.4;
+    model.envelope_max[2] = 1.4 + 7e-13;
+    model.envelope_tolerance =
+        envelope_tolerance(&model.envelope_min, &model.envelope_max, &model.input_scale);
+    model
+}
+
+#[test]
+fn an_approach_speed_within_the_tolerance_keeps_the_residual_on() {
+    let model = constant_approach_speed_model();
+    let tolerance = model.envelope_tolerance[2];
+    println!("δ̇0 tolerance: {tolerance:.4} m/s");
+    // 1 % of the mean normalised spread of δ and δ̇ (each ±1 normalised: spread 2).
+    assert!((tolerance - 0.02).abs() < 1e-12, "{tolerance}");
+    assert_eq!(&model.envelope_tolerance[..2], &[0.0, 0.0]);
+    let mlp: Mlp<3, 16, 1, 2> = decode(&encode(&model, Quantisation::F32).unwrap()).unwrap();
+    let law: AnyNormalLaw<f32> = Hertz {
+        stiffness: 1e9,
+        exponent: 1.5,
+    }
+    .into();
+    let hybrid = ContactModel::physics(law).with_residual(mlp);
+    let force = |approach_speed: f32| {
+        let contact = Indentation {
+            depth: 1e-4,
+            rate: 0.5,
+            approach_speed,
+        };
+        let input = [1e-4, 0.5, approach_speed];
+        let (_, evaluated) = hybrid.normal_force(&contact, &ContactMemory::touch_down(), &input);
+        (evaluated, hybrid.excursion(&input))
+    };
+    // The 7th digit, and just inside the tolerance: the residual runs.
+    for speed in [
+        1.400_000_1,
+        1.4 * (1.0 - 1e-6),
+        1.4 + 0.9 * tolerance as f32,
+    ] {
+        assert_eq!(
+            force(speed),
+            (Evaluated::PhysicsAndResidual, None),
+            "{speed}"
+        );
+    }
+    // Well outside: physics only, and the report names δ̇0 (input 2) and the distance
+    // beyond the tolerated bound, in m/s.
+    for (speed, beyond) in [(1.5_f32, 0.1 - tolerance), (1.2, 0.2 - tolerance)] {
+        let (evaluated, excursion) = force(speed);
+        assert_eq!(evaluated, Evaluated::PhysicsOnly, "{speed}");
+        let Some(Excursion { input, distance }) = excursion else {
+            panic!("no excursion reported at δ̇0 = {speed}");
+        };
+        assert_eq!(input, 2);
+        assert!(
+            (f64::from(distance) - beyond).abs() < 1e-6,
+            "{distance} vs {beyond}"
+        );
+    }
+}
+
+#[test]
+fn a_negative_or_infinite_tolerance_is_refused() {
+    let mut model = constant_approach_speed_model();
+    model.envelope_tolerance[1] = -0.1;
+    assert!(matches!(
+        encode(&model, Quantisation::F32),
+        Err(ExportError::BadEnvelope { input: 1 })
+    ));
+    // A blob carrying one (written by hand) is refused by the decoder too.
+    let blob = encode(&constant_approach_speed_model(), Quantisation::F32).unwrap();
+    for bad in [-0.1_f32, f32::INFINITY, f32::NAN] {
+        let contents: BlobContents<'_> = postcard::from_bytes(&blob[..blob.len() - 4]).unwrap();
+        let mut envelope = contents.envelope.to_vec();
+        let at = envelope.len() - 4; // the last input's tolerance
+        envelope[at..].copy_from_slice(&bad.to_le_bytes());
+        let damaged = seal(&BlobContents {
+            envelope: &envelope,
+            ..contents
+        })
+        .unwrap();
+        assert_eq!(
+            decode_3_16_1_2(&damaged).unwrap_err(),
+            BlobError::BadEnvelope,
+            "{bad}"
+        );
+    }
 }

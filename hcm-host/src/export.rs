@@ -45,8 +45,10 @@ pub enum ExportError {
         /// Which scale, e.g. "input scale 1".
         what: String,
     },
-    /// An envelope minimum exceeds its maximum.
-    #[error("the envelope of input {input} has its minimum above its maximum")]
+    /// An envelope minimum exceeds its maximum, or its tolerance is negative.
+    #[error(
+        "the envelope of input {input} has its minimum above its maximum or a negative tolerance"
+    )]
     BadEnvelope {
         /// Index of the input.
         input: usize,
@@ -108,6 +110,10 @@ impl ExportModel {
         ] {
             length(what.into(), expected, values.len())?;
         }
+        if !self.envelope_tolerance.is_empty() {
+            let found = self.envelope_tolerance.len();
+            length("envelope tolerance".into(), self.inputs, found)?;
+        }
         Ok(())
     }
 }
@@ -141,6 +147,15 @@ pub fn encode(model: &ExportModel, quantisation: Quantisation) -> Result<Vec<u8>
     {
         return Err(ExportError::BadEnvelope { input });
     }
+    // A network written before the tolerance existed has none: 0 for every input.
+    let tolerance = match model.envelope_tolerance.as_slice() {
+        [] => vec![0.0; model.inputs],
+        given => given.to_vec(),
+    };
+    if let Some(input) = tolerance.iter().position(|&t| t < 0.0) {
+        return Err(ExportError::BadEnvelope { input });
+    }
+    push_f32s(&mut envelope, "envelope tolerance", &tolerance)?;
 
     let mut layers = Vec::new();
     for (index, ((weights, bias), (inputs, _))) in

@@ -24,6 +24,7 @@ pub use residual::{Correction, NoResidual, Residual};
 use crate::effect::{ContactMemory, ExtendedLaw};
 use crate::friction::VelocityStepFriction;
 use crate::law::{touching, AnyNormalLaw, Indentation};
+use crate::residual::Excursion;
 use crate::wrench::ContactWrench;
 use crate::{LawError, Real};
 use nalgebra::Vector3;
@@ -57,7 +58,7 @@ pub struct PairLoad<T: Real> {
     pub wrench: ContactWrench<T>,
     /// Σ f_n over the points, a normal-force correction included (N).
     pub normal_force: T,
-    /// Whether the residual took part.
+    /// Whether the residual took part (why not: [`ContactModel::excursion`]).
     pub evaluated: Evaluated,
 }
 
@@ -170,6 +171,16 @@ impl<T: Real, R: Residual<T>> ContactModel<T, R> {
             ),
             _ => (physics, Evaluated::PhysicsOnly),
         }
+    }
+
+    /// Which input of `residual_input` lies outside the residual's training envelope
+    /// and by how much (its unit), or `None` inside it: why a contact that
+    /// [`ContactModel::normal_force`] or [`ContactModel::pair_load`] reports as
+    /// [`Evaluated::PhysicsOnly`] got no correction. A separate call rather than a field
+    /// of every result: the check costs as much again as the envelope test, and only a
+    /// controller that logs the switch-off needs it.
+    pub fn excursion(&self, residual_input: &[T]) -> Option<Excursion> {
+        self.residual.excursion(residual_input)
     }
 
     /// The loads of a body pair touching at `points`: Eq 1 at every point, summed,

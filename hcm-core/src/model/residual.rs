@@ -7,7 +7,7 @@
 //! be trusted — outside its training envelope, on a NaN input, on an input of the
 //! wrong length — and the model then falls back on the physics alone.
 
-use crate::residual::{HiddenDepth, Mlp, WeightFormat};
+use crate::residual::{Excursion, HiddenDepth, Mlp, WeightFormat};
 use crate::Real;
 use nalgebra::Vector3;
 
@@ -45,6 +45,13 @@ pub trait Residual<T: Real> {
     /// The correction at residual input `input`, or `None` where the residual is
     /// switched off (outside its envelope, NaN, wrong input length, no residual).
     fn correction(&self, input: &[T]) -> Option<Correction<T>>;
+
+    /// Which input left the residual's training envelope and by how much, when that
+    /// is why [`Residual::correction`] is `None`; `None` inside the envelope, for an
+    /// input of the wrong length, and for a residual without an envelope.
+    fn excursion(&self, _input: &[T]) -> Option<Excursion> {
+        None
+    }
 }
 
 /// No learned part: the contact model is the physics alone.
@@ -63,12 +70,22 @@ impl<T: Real, R: Residual<T>> Residual<T> for Option<R> {
     fn correction(&self, input: &[T]) -> Option<Correction<T>> {
         self.as_ref().and_then(|r| r.correction(input))
     }
+
+    #[inline]
+    fn excursion(&self, input: &[T]) -> Option<Excursion> {
+        self.as_ref().and_then(|r| r.excursion(input))
+    }
 }
 
 impl<T: Real, R: Residual<T>> Residual<T> for &R {
     #[inline]
     fn correction(&self, input: &[T]) -> Option<Correction<T>> {
         (*self).correction(input)
+    }
+
+    #[inline]
+    fn excursion(&self, input: &[T]) -> Option<Excursion> {
+        (*self).excursion(input)
     }
 }
 
@@ -85,13 +102,7 @@ where
     crate::residual::Hidden<HIDDEN>: HiddenDepth<WIDTH, Q>,
 {
     fn correction(&self, input: &[T]) -> Option<Correction<T>> {
-        if input.len() != INPUTS {
-            return None;
-        }
-        let mut x = [0.0_f32; INPUTS];
-        for (x, value) in x.iter_mut().zip(input) {
-            *x = value.cast::<f32>();
-        }
+        let x = network_input(input)?;
         if !self.inside_envelope(&x) {
             return None;
         }
@@ -112,4 +123,20 @@ where
             _ => Correction::NormalForce(at(0)),
         })
     }
+
+    fn excursion(&self, input: &[T]) -> Option<Excursion> {
+        self.envelope.excursion(&network_input(input)?)
+    }
+}
+
+/// `input` rounded to the network's `f32`, or `None` if it is not `INPUTS` long.
+fn network_input<T: Real, const INPUTS: usize>(input: &[T]) -> Option<[f32; INPUTS]> {
+    if input.len() != INPUTS {
+        return None;
+    }
+    let mut x = [0.0_f32; INPUTS];
+    for (x, value) in x.iter_mut().zip(input) {
+        *x = value.cast::<f32>();
+    }
+    Some(x)
 }

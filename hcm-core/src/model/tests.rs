@@ -16,12 +16,13 @@ fn hertz() -> AnyNormalLaw<f32> {
 /// A residual that returns 2 N + 1000·δ (N) on δ ∈ [0, 1 mm], |δ̇| ≤ 2 m/s.
 fn model() -> ContactModel<f32, Mlp<3, 1, 1, 1>> {
     let mut residual: Mlp<3, 1, 1, 1> = Mlp::zeroed(Activation::Relu);
-    residual.input_layer.weights = [[1000.0, 0.0, 0.0]];
+    residual.input_layer.weights = [[1000.0], [0.0], [0.0]]; // column by column
     residual.output_layer.weights = [[1.0]];
     residual.output_layer.bias = [2.0];
     residual.envelope = Envelope {
         min: [0.0, -2.0, 0.0],
         max: [1e-3, 2.0, 2.0],
+        tolerance: [0.0; 3],
     };
     ContactModel::physics(hertz()).with_residual(residual)
 }
@@ -186,6 +187,7 @@ fn wrench_residual() -> Mlp<2, 1, 6, 1> {
     residual.envelope = Envelope {
         min: [-1.0, -1.0],
         max: [1.0, 1.0],
+        tolerance: [0.0; 2],
     };
     residual
 }

@@ -9,12 +9,14 @@
 //! then three byte sections whose numbers are little-endian:
 //!
 //! - `normalisation`: μ_x, σ_x (INPUTS `f32` each), μ_y, σ_y (OUTPUTS `f32` each);
-//! - `envelope`: min, max (INPUTS `f32` each), raw units;
+//! - `envelope`: min, max, tolerance (INPUTS `f32` each), raw units; the tolerance
+//!   (finite, ≥ 0) widens each input's [min, max] (version 3; version 2 had none);
 //! - `layers`: for each layer, input → hidden → … → output: the weights row-major
 //!   `[out][in]` (`f32`, or for the hidden → hidden layers of an int8 blob `i8` in
 //!   \[−127, 127\] followed by one `f32` scale per output row), then the bias `[out]`
-//!   (`f32`). The input and output layers are `f32` in both kinds (version 2; version
-//!   1 stored every layer of an int8 blob as int8).
+//!   (`f32`). The input and output layers are `f32` in both kinds (since version 2;
+//!   version 1 stored every layer of an int8 blob as int8). The decoder transposes
+//!   the weights into the core's column-by-column [`Layer`].
 //!
 //! The arrays are raw bytes in a borrowed postcard byte field, not serde sequences:
 //! decoding then borrows from the blob (nothing allocated) and works for any size
@@ -40,7 +42,7 @@ use serde::{Deserialize, Serialize, Serializer};
 pub const MAGIC: [u8; 4] = *b"HCM1";
 
 /// The blob format this crate writes and reads.
-pub const VERSION: u16 = 2;
+pub const VERSION: u16 = 3;
 
 /// The layer sizes of a network.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -184,6 +186,8 @@ where
     let not_nan = |bound: f32| !bound.is_nan();
     section.read_f32s(&mut envelope.min, not_nan, BlobError::BadEnvelope)?;
     section.read_f32s(&mut envelope.max, not_nan, BlobError::BadEnvelope)?;
+    let tolerance = |value: f32| value >= 0.0 && value.is_finite();
+    section.read_f32s(&mut envelope.tolerance, tolerance, BlobError::BadEnvelope)?;
     section.finish()?;
     if envelope
         .min
@@ -330,8 +334,13 @@ impl<'a> Reader<'a> {
         &mut self,
         layer: &mut Layer<IN, OUT, Q>,
     ) -> Result<(), BlobError> {
-        for weight in layer.weights.iter_mut().flatten() {
-            *weight = Q::weight_from_le(self.take(Q::WEIGHT_BYTES)?)?;
+        // Row-major in the blob, column by column in the layer.
+        for output in 0..OUT {
+            for column in &mut layer.weights {
+                if let Some(weight) = column.get_mut(output) {
+                    *weight = Q::weight_from_le(self.take(Q::WEIGHT_BYTES)?)?;
+                }
+            }
         }
         if Q::HAS_ROW_SCALE {
             for scale in &mut layer.row_scales {
@@ -380,13 +389,20 @@ mod tests {
             &scaling.output_mean,
             &scaling.output_scale,
         ]);
-        let envelope = le_bytes(&[&mlp.envelope.min, &mlp.envelope.max]);
+        let envelope = le_bytes(&[
+            &mlp.envelope.min,
+            &mlp.envelope.max,
+            &mlp.envelope.tolerance,
+        ]);
         let input = &mlp.input_layer;
         let output = &mlp.output_layer;
+        // The blob is row-major: W row by row.
+        let input_rows: Vec<[f32; 2]> = (0..3).filter_map(|i| input.row(i)).collect();
+        let output_rows: Vec<[f32; 3]> = output.row(0).into_iter().collect();
         let layers = le_bytes(&[
-            input.weights.as_flattened(),
+            input_rows.as_flattened(),
             &input.bias,
-            output.weights.as_flattened(),
+            output_rows.as_flattened(),
             &output.bias,
         ]);
         let contents = BlobContents {
@@ -433,7 +449,7 @@ mod tests {
     #[test]
     fn random_bytes_after_a_valid_start_are_corruption_not_truncation() {
         let (_, blob) = tiny();
-        // Magic, then version 2 as one varint byte: the rest from a fixed LCG.
+        // Magic, then the version as one varint byte: the rest from a fixed LCG.
         let mut state = 0x2545_f491_u32;
         for length in [blob.len(), 40, 600] {
             let mut bytes = blob[..5].to_vec();

@@ -28,147 +28,12 @@
 //! With one hidden layer there is no hidden → hidden layer, and an int8 network holds
 //! no int8 weights.
 
-use super::{Activation, BlobError, Quantisation};
+pub use super::envelope::{Envelope, Excursion};
+pub use super::layer::{F32Weights, Int8Weights, Layer, WeightFormat};
+
+use super::Activation;
 use crate::Real;
 use core::fmt::Debug;
-
-mod sealed {
-    pub trait Sealed {}
-    impl Sealed for super::F32Weights {}
-    impl Sealed for super::Int8Weights {}
-}
-
-/// How one layer stores its weights; implemented by [`F32Weights`] and
-/// [`Int8Weights`] only (the blob format knows exactly these two).
-pub trait WeightFormat: Copy + Debug + PartialEq + sealed::Sealed {
-    /// One stored weight.
-    type Weight: Copy + Debug + PartialEq;
-    /// One stored per-output-row scale (`()` when there is none).
-    type RowScale: Copy + Debug + PartialEq;
-    /// The blob tag of this format.
-    const KIND: Quantisation;
-    /// A zero weight.
-    const ZERO: Self::Weight;
-    /// The row scale that leaves a row unchanged.
-    const UNIT: Self::RowScale;
-    /// Bytes one weight takes in a blob.
-    const WEIGHT_BYTES: usize;
-    /// Whether a blob carries one `f32` scale per output row of each layer.
-    const HAS_ROW_SCALE: bool;
-
-    /// Σ_i row_i·x_i (times the row scale), accumulated in `f32`.
-    fn dot<const N: usize>(row: &[Self::Weight; N], scale: Self::RowScale, x: &[f32; N]) -> f32;
-
-    /// The weight stored little-endian in `raw` (`WEIGHT_BYTES` long).
-    fn weight_from_le(raw: &[u8]) -> Result<Self::Weight, BlobError>;
-
-    /// The row scale read from a blob (ignored by formats without one).
-    fn row_scale(scale: f32) -> Result<Self::RowScale, BlobError>;
-}
-
-/// Full-precision weights: every weight an `f32`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct F32Weights;
-
-/// Symmetric int8 weights: w ≈ q·scale_row with q ∈ [−127, 127] and one `f32` scale
-/// per output row; products are accumulated in `f32` and scaled once per row.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Int8Weights;
-
-impl WeightFormat for F32Weights {
-    type Weight = f32;
-    type RowScale = ();
-    const KIND: Quantisation = Quantisation::F32;
-    const ZERO: f32 = 0.0;
-    const UNIT: () = ();
-    const WEIGHT_BYTES: usize = 4;
-    const HAS_ROW_SCALE: bool = false;
-
-    #[inline]
-    fn dot<const N: usize>(row: &[f32; N], _scale: (), x: &[f32; N]) -> f32 {
-        row.iter().zip(x).fold(0.0, |sum, (w, x)| sum + w * x)
-    }
-
-    fn weight_from_le(raw: &[u8]) -> Result<f32, BlobError> {
-        let bytes: [u8; 4] = raw.try_into().map_err(|_| BlobError::Malformed)?;
-        finite(f32::from_le_bytes(bytes))
-    }
-
-    fn row_scale(_scale: f32) -> Result<(), BlobError> {
-        Ok(())
-    }
-}
-
-impl WeightFormat for Int8Weights {
-    type Weight = i8;
-    type RowScale = f32;
-    const KIND: Quantisation = Quantisation::Int8;
-    const ZERO: i8 = 0;
-    const UNIT: f32 = 1.0;
-    const WEIGHT_BYTES: usize = 1;
-    const HAS_ROW_SCALE: bool = true;
-
-    #[inline]
-    fn dot<const N: usize>(row: &[i8; N], scale: f32, x: &[f32; N]) -> f32 {
-        row.iter()
-            .zip(x)
-            .fold(0.0, |sum, (&q, x)| sum + f32::from(q) * x)
-            * scale
-    }
-
-    fn weight_from_le(raw: &[u8]) -> Result<i8, BlobError> {
-        match raw {
-            // −128 has no positive twin: the symmetric range is [−127, 127].
-            [byte] if *byte != 0x80 => Ok(i8::from_le_bytes([*byte])),
-            _ => Err(BlobError::Malformed),
-        }
-    }
-
-    fn row_scale(scale: f32) -> Result<f32, BlobError> {
-        finite(scale)
-    }
-}
-
-/// `value` if finite, else [`BlobError::NonFiniteWeight`].
-fn finite(value: f32) -> Result<f32, BlobError> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(BlobError::NonFiniteWeight)
-    }
-}
-
-/// One fully connected layer with `IN` inputs and `OUT` outputs: z = W·x + b.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Layer<const IN: usize, const OUT: usize, Q: WeightFormat = F32Weights> {
-    /// Weights, row-major `[out][in]` (dimensionless: the layer works on normalised values).
-    pub weights: [[Q::Weight; IN]; OUT],
-    /// One scale per output row (int8 only; `()` for f32).
-    pub row_scales: [Q::RowScale; OUT],
-    /// Bias, one per output.
-    pub bias: [f32; OUT],
-}
-
-impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
-    /// A layer whose weights and biases are all zero.
-    pub const fn zeroed() -> Self {
-        Layer {
-            weights: [[Q::ZERO; IN]; OUT],
-            row_scales: [Q::UNIT; OUT],
-            bias: [0.0; OUT],
-        }
-    }
-
-    /// z = W·x + b, before any activation.
-    #[inline]
-    pub fn forward(&self, x: &[f32; IN]) -> [f32; OUT] {
-        let mut z = self.bias;
-        for ((z, row), scale) in z.iter_mut().zip(&self.weights).zip(&self.row_scales) {
-            *z += Q::dot(row, *scale, x);
-        }
-        z
-    }
-}
 
 /// A hidden-layer count, as a type: `Hidden<1>`, `Hidden<2>`, `Hidden<3>` implement
 /// [`HiddenDepth`].
@@ -227,34 +92,6 @@ impl<const INPUTS: usize, const OUTPUTS: usize> Normalisation<INPUTS, OUTPUTS> {
             output_mean: [0.0; OUTPUTS],
             output_scale: [1.0; OUTPUTS],
         }
-    }
-}
-
-/// The box of inputs the network was trained on, in raw units: outside it the
-/// residual is an extrapolation and the hybrid model switches it off.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Envelope<const INPUTS: usize> {
-    /// Smallest value of each input seen in training (the input's unit).
-    pub min: [f32; INPUTS],
-    /// Largest value of each input seen in training (the input's unit).
-    pub max: [f32; INPUTS],
-}
-
-impl<const INPUTS: usize> Envelope<INPUTS> {
-    /// Every finite input is inside.
-    pub const fn unbounded() -> Self {
-        Envelope {
-            min: [-f32::MAX; INPUTS],
-            max: [f32::MAX; INPUTS],
-        }
-    }
-
-    /// True if min_i ≤ x_i ≤ max_i for every input; false if any input is NaN.
-    pub fn contains(&self, input: &[f32; INPUTS]) -> bool {
-        input
-            .iter()
-            .zip(self.min.iter().zip(&self.max))
-            .all(|(x, (min, max))| min <= x && x <= max)
     }
 }
 
@@ -334,14 +171,27 @@ where
         output
     }
 
-    /// True if every input lies inside the training envelope (NaN is outside).
+    /// True if every input lies inside the training envelope, its tolerance included
+    /// (NaN is outside).
     pub fn inside_envelope(&self, input: &[f32; INPUTS]) -> bool {
         self.envelope.contains(input)
     }
 
+    /// Which input left the training envelope and by how much, or `None` inside it.
+    pub fn excursion(&self, input: &[f32; INPUTS]) -> Option<Excursion> {
+        self.envelope.excursion(input)
+    }
+
     fn activate(&self, values: &mut [f32; WIDTH]) {
-        for value in values {
-            *value = self.activation.apply(*value);
+        // One loop per activation, not a `match` per neuron: each loop is then
+        // branch-free and runs several neurons at once in SIMD registers.
+        match self.activation {
+            Activation::Tanh => values
+                .iter_mut()
+                .for_each(|v| *v = Activation::Tanh.apply(*v)),
+            Activation::Relu => values
+                .iter_mut()
+                .for_each(|v| *v = Activation::Relu.apply(*v)),
         }
     }
 }
@@ -363,17 +213,14 @@ pub(crate) mod tests {
         mlp.envelope = Envelope {
             min: [-3.0, -5.0],
             max: [5.0, 3.0],
+            tolerance: [0.0; 2],
         };
-        mlp.input_layer = Layer {
-            weights: [[0.5, -1.0], [1.0, 1.0], [-2.0, 0.25]],
-            row_scales: [(); 3],
-            bias: [0.1, -0.2, 0.0],
-        };
-        mlp.output_layer = Layer {
-            weights: [[1.0, -0.5, 2.0]],
-            row_scales: [()],
-            bias: [0.3],
-        };
+        mlp.input_layer = Layer::from_rows(
+            [[0.5, -1.0], [1.0, 1.0], [-2.0, 0.25]],
+            [(); 3],
+            [0.1, -0.2, 0.0],
+        );
+        mlp.output_layer = Layer::from_rows([[1.0, -0.5, 2.0]], [()], [0.3]);
         mlp
     }
 
@@ -420,22 +267,22 @@ pub(crate) mod tests {
         int8.output_layer = base.output_layer;
         // Every hidden weight is a multiple of its row's scale: exact in int8.
         let bias = [0.1, -0.2, 0.05];
-        float.hidden_layers[0] = Layer {
-            weights: [[0.5, -1.0, 0.25], [1.0, 1.0, -3.0], [-2.0, 0.25, 0.75]],
-            row_scales: [(); 3],
+        float.hidden_layers[0] = Layer::from_rows(
+            [[0.5, -1.0, 0.25], [1.0, 1.0, -3.0], [-2.0, 0.25, 0.75]],
+            [(); 3],
             bias,
-        };
-        int8.hidden_layers[0] = Layer {
-            weights: [[2, -4, 1], [1, 1, -3], [-8, 1, 3]],
-            row_scales: [0.25, 1.0, 0.25],
+        );
+        int8.hidden_layers[0] = Layer::from_rows(
+            [[2, -4, 1], [1, 1, -3], [-8, 1, 3]],
+            [0.25, 1.0, 0.25],
             bias,
-        };
+        );
         for x in [[3.0, 1.0], [-1.0, 0.5], [0.0, 0.0]] {
             let ([y8], [y32]) = (int8.evaluate(&x), float.evaluate(&x));
             assert!((y8 - y32).abs() < 1e-5, "{y8} vs {y32} at {x:?}");
         }
-        // And a wrong level is seen: the int8 storage is really used.
-        int8.hidden_layers[0].weights[1][2] = -2;
+        // And a wrong level is seen: the int8 storage is really used (row 1, column 2).
+        int8.hidden_layers[0].weights[2][1] = -2;
         let ([y8], [y32]) = (int8.evaluate(&[3.0, 1.0]), float.evaluate(&[3.0, 1.0]));
         assert!((y8 - y32).abs() > 1e-3, "{y8} vs {y32}");
     }

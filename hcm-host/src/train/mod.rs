@@ -22,12 +22,14 @@
 //! the number of threads.
 
 pub mod adam;
+pub mod envelope;
 pub mod network;
 pub mod per_output;
 pub mod quantise;
 pub mod samples;
 pub mod trained;
 
+pub use envelope::envelope_tolerance;
 pub use network::{Activation, Network};
 pub use per_output::OutputNets;
 pub use quantise::{quantisation_aware, QuantiseReport};
@@ -473,7 +475,12 @@ impl Normalised {
                 .map(|c| inputs.iter().map(|row| row[c]).fold(start, pick))
                 .collect()
         };
+        let (envelope_min, envelope_max) = (
+            envelope(f64::min, f64::INFINITY),
+            envelope(f64::max, f64::NEG_INFINITY),
+        );
         Network {
+            envelope_tolerance: envelope_tolerance(&envelope_min, &envelope_max, &self.input.1),
             inputs: self.n_in,
             width: settings.width,
             outputs: self.n_out,
@@ -484,8 +491,8 @@ impl Normalised {
             input_scale: self.input.1.clone(),
             output_mean: self.output.0.clone(),
             output_scale: self.output.1.clone(),
-            envelope_min: envelope(f64::min, f64::INFINITY),
-            envelope_max: envelope(f64::max, f64::NEG_INFINITY),
+            envelope_min,
+            envelope_max,
         }
     }
 }

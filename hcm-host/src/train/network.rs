@@ -45,6 +45,11 @@ pub struct Network {
     pub envelope_min: Vec<f64>,
     /// Largest value of each input in the training data (raw units).
     pub envelope_max: Vec<f64>,
+    /// How far beyond [min, max] each input still counts as inside (raw units, ≥ 0;
+    /// rule: [`envelope_tolerance`](super::envelope_tolerance)). Empty in files written
+    /// before it existed: no tolerance.
+    #[serde(default)]
+    pub envelope_tolerance: Vec<f64>,
 }
 
 impl Network {
@@ -71,13 +76,16 @@ impl Network {
     }
 
     /// Whether every component of `input` lies within the training data's
-    /// [min, max] (false for a wrong length or NaN): outside it the network extrapolates.
+    /// [min, max] widened by its tolerance (false for a wrong length or NaN): outside
+    /// it the network extrapolates.
     pub fn inside_envelope(&self, input: &[f64]) -> bool {
+        let tolerance = |i: usize| self.envelope_tolerance.get(i).copied().unwrap_or(0.0);
         input.len() == self.inputs
             && input
                 .iter()
                 .zip(self.envelope_min.iter().zip(&self.envelope_max))
-                .all(|(x, (min, max))| min <= x && x <= max)
+                .enumerate()
+                .all(|(i, (x, (min, max)))| min - tolerance(i) <= *x && *x <= max + tolerance(i))
     }
 }
 
@@ -383,6 +391,7 @@ mod tests {
             output_scale: vec![3.0],
             envelope_min: vec![0.0, -5.0],
             envelope_max: vec![2.0, 1.0],
+            envelope_tolerance: vec![0.1, 0.0],
         };
         let x = [1.5, 0.0];
         let mut scratch = layout.scratch();
@@ -390,6 +399,9 @@ mod tests {
         assert_eq!(network.evaluate(&x), vec![y_hat * 3.0 + 10.0]);
         assert!(network.inside_envelope(&x));
         assert!(!network.inside_envelope(&[2.5, 0.0]));
+        // Within the tolerance of 0.1 beyond δ's maximum 2, not beyond it.
+        assert!(network.inside_envelope(&[2.09, 0.0]));
+        assert!(!network.inside_envelope(&[2.11, 0.0]));
         assert!(!network.inside_envelope(&[f64::NAN, 0.0]));
         assert!(!network.inside_envelope(&[1.0]));
     }

@@ -75,7 +75,8 @@ pub enum BlobError {
     NonFiniteWeight,
     /// A normalisation mean is not finite, or a scale is not finite and > 0.
     BadNormalisation,
-    /// An envelope bound is NaN, or a minimum exceeds its maximum.
+    /// An envelope bound is NaN, a minimum exceeds its maximum, or a tolerance is
+    /// negative or not finite.
     BadEnvelope,
     /// The blob's CRC is intact but its structure is not a weights blob's (a section
     /// of the wrong length for its shape, an int8 weight of −128, a header whose
@@ -140,7 +141,7 @@ impl fmt::Display for BlobError {
                 "the weights blob's normalisation has a non-finite mean or a scale that is not positive",
             ),
             BlobError::BadEnvelope => f.write_str(
-                "the weights blob's training envelope has a NaN bound or a minimum above its maximum",
+                "the weights blob's training envelope has a NaN bound, a minimum above its maximum, or a negative or non-finite tolerance",
             ),
             BlobError::Malformed => f.write_str(
                 "the weights blob is malformed: its checksum is intact, but its sections do not \

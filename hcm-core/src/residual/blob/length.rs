@@ -53,9 +53,9 @@ impl Header {
         let (inputs, width) = (size(self.shape.inputs)?, size(self.shape.width)?);
         let outputs = size(self.shape.outputs)?;
         let hidden_to_hidden = size(self.shape.hidden_layers)?.checked_sub(1)?;
-        // μ_x, σ_x, μ_y, σ_y; envelope min, max: f32 each.
+        // μ_x, σ_x, μ_y, σ_y; envelope min, max, tolerance: f32 each.
         let normalisation = inputs.checked_add(outputs)?.checked_mul(8)?;
-        let envelope = inputs.checked_mul(8)?;
+        let envelope = inputs.checked_mul(12)?;
         let hidden = layer_bytes(width, width, quantisation)?.checked_mul(hidden_to_hidden)?;
         let layers = layer_bytes(inputs, width, Quantisation::F32)?
             .checked_add(hidden)?

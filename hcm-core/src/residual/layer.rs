@@ -1,0 +1,192 @@
+//! One fully connected layer, z = W·x + b, and the two ways its weights are stored.
+//!
+//! The weights are held **column by column** (`weights[j][i]` multiplies input j into
+//! output i): z is built as b + Σ_j x_j·W[:, j], so the inner loop is one contiguous
+//! multiply-add over all OUT outputs, which the compiler runs in SIMD registers (four
+//! `f32` per SSE register on x86_64), with one independent accumulator per output.
+//! Each output still sums its inputs in order j = 0, 1, …, exactly as a row-by-row
+//! dot product does: the layout changes the speed, not a single bit of the result, and
+//! the result is the same on every target.
+//!
+//! The blob stores the weights row-major `[out][in]` (what the host trains); the
+//! decoder transposes them once ([`Layer::from_rows`] does the same for a layer built
+//! by hand).
+
+use super::{BlobError, Quantisation};
+use core::fmt::Debug;
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for super::F32Weights {}
+    impl Sealed for super::Int8Weights {}
+}
+
+/// How one layer stores its weights; implemented by [`F32Weights`] and
+/// [`Int8Weights`] only (the blob format knows exactly these two).
+pub trait WeightFormat: Copy + Debug + PartialEq + sealed::Sealed {
+    /// One stored weight.
+    type Weight: Copy + Debug + PartialEq;
+    /// One stored per-output-row scale (`()` when there is none).
+    type RowScale: Copy + Debug + PartialEq;
+    /// The blob tag of this format.
+    const KIND: Quantisation;
+    /// A zero weight.
+    const ZERO: Self::Weight;
+    /// The row scale that leaves a row unchanged.
+    const UNIT: Self::RowScale;
+    /// Bytes one weight takes in a blob.
+    const WEIGHT_BYTES: usize;
+    /// Whether a blob carries one `f32` scale per output row of each layer.
+    const HAS_ROW_SCALE: bool;
+
+    /// sum_i += column_i·x for every output i, in `f32` (before the row scale).
+    fn accumulate<const N: usize>(sum: &mut [f32; N], column: &[Self::Weight; N], x: f32);
+
+    /// An output's accumulated sum times its row scale.
+    fn scaled(sum: f32, scale: Self::RowScale) -> f32;
+
+    /// The weight stored little-endian in `raw` (`WEIGHT_BYTES` long).
+    fn weight_from_le(raw: &[u8]) -> Result<Self::Weight, BlobError>;
+
+    /// The row scale read from a blob (ignored by formats without one).
+    fn row_scale(scale: f32) -> Result<Self::RowScale, BlobError>;
+}
+
+/// Full-precision weights: every weight an `f32`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct F32Weights;
+
+/// Symmetric int8 weights: w ≈ q·scale_row with q ∈ [−127, 127] and one `f32` scale
+/// per output row; products are accumulated in `f32` and scaled once per row.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Int8Weights;
+
+impl WeightFormat for F32Weights {
+    type Weight = f32;
+    type RowScale = ();
+    const KIND: Quantisation = Quantisation::F32;
+    const ZERO: f32 = 0.0;
+    const UNIT: () = ();
+    const WEIGHT_BYTES: usize = 4;
+    const HAS_ROW_SCALE: bool = false;
+
+    #[inline]
+    fn accumulate<const N: usize>(sum: &mut [f32; N], column: &[f32; N], x: f32) {
+        for (sum, w) in sum.iter_mut().zip(column) {
+            *sum += w * x;
+        }
+    }
+
+    #[inline]
+    fn scaled(sum: f32, _scale: ()) -> f32 {
+        sum
+    }
+
+    fn weight_from_le(raw: &[u8]) -> Result<f32, BlobError> {
+        let bytes: [u8; 4] = raw.try_into().map_err(|_| BlobError::Malformed)?;
+        finite(f32::from_le_bytes(bytes))
+    }
+
+    fn row_scale(_scale: f32) -> Result<(), BlobError> {
+        Ok(())
+    }
+}
+
+impl WeightFormat for Int8Weights {
+    type Weight = i8;
+    type RowScale = f32;
+    const KIND: Quantisation = Quantisation::Int8;
+    const ZERO: i8 = 0;
+    const UNIT: f32 = 1.0;
+    const WEIGHT_BYTES: usize = 1;
+    const HAS_ROW_SCALE: bool = true;
+
+    #[inline]
+    fn accumulate<const N: usize>(sum: &mut [f32; N], column: &[i8; N], x: f32) {
+        for (sum, &q) in sum.iter_mut().zip(column) {
+            *sum += f32::from(q) * x;
+        }
+    }
+
+    #[inline]
+    fn scaled(sum: f32, scale: f32) -> f32 {
+        sum * scale
+    }
+
+    fn weight_from_le(raw: &[u8]) -> Result<i8, BlobError> {
+        match raw {
+            // −128 has no positive twin: the symmetric range is [−127, 127].
+            [byte] if *byte != 0x80 => Ok(i8::from_le_bytes([*byte])),
+            _ => Err(BlobError::Malformed),
+        }
+    }
+
+    fn row_scale(scale: f32) -> Result<f32, BlobError> {
+        finite(scale)
+    }
+}
+
+/// `value` if finite, else [`BlobError::NonFiniteWeight`].
+fn finite(value: f32) -> Result<f32, BlobError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(BlobError::NonFiniteWeight)
+    }
+}
+
+/// One fully connected layer with `IN` inputs and `OUT` outputs: z = W·x + b.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Layer<const IN: usize, const OUT: usize, Q: WeightFormat = F32Weights> {
+    /// Weights column by column, `[in][out]`: `weights[j][i]` multiplies input j into
+    /// output i (dimensionless: the layer works on normalised values).
+    pub weights: [[Q::Weight; OUT]; IN],
+    /// One scale per output row (int8 only; `()` for f32).
+    pub row_scales: [Q::RowScale; OUT],
+    /// Bias, one per output.
+    pub bias: [f32; OUT],
+}
+
+impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
+    /// A layer whose weights and biases are all zero.
+    pub const fn zeroed() -> Self {
+        Layer {
+            weights: [[Q::ZERO; OUT]; IN],
+            row_scales: [Q::UNIT; OUT],
+            bias: [0.0; OUT],
+        }
+    }
+
+    /// The layer with weights given row by row, `rows[i][j]` multiplying input j
+    /// into output i (the usual matrix W).
+    pub fn from_rows(
+        rows: [[Q::Weight; IN]; OUT],
+        row_scales: [Q::RowScale; OUT],
+        bias: [f32; OUT],
+    ) -> Self {
+        Layer {
+            weights: core::array::from_fn(|j| core::array::from_fn(|i| rows[i][j])),
+            row_scales,
+            bias,
+        }
+    }
+
+    /// Row i of W: the weights of output i, one per input.
+    pub fn row(&self, output: usize) -> Option<[Q::Weight; IN]> {
+        (output < OUT).then(|| self.weights.map(|column| column[output]))
+    }
+
+    /// z = W·x + b, before any activation.
+    #[inline]
+    pub fn forward(&self, x: &[f32; IN]) -> [f32; OUT] {
+        let mut sum = [0.0; OUT];
+        for (column, &x) in self.weights.iter().zip(x) {
+            Q::accumulate(&mut sum, column, x);
+        }
+        let mut z = self.bias;
+        for ((z, sum), scale) in z.iter_mut().zip(sum).zip(&self.row_scales) {
+            *z += Q::scaled(sum, *scale);
+        }
+        z
+    }
+}
