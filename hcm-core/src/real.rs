@@ -15,6 +15,11 @@ pub trait Real: RealField + Copy {
     /// Converts an `f64` literal (rounding to nearest for `f32`).
     fn of(value: f64) -> Self;
 
+    /// A count (a number of components, a loop index) as a float; exact below 2²⁴
+    /// (`f32`) and 2⁵³ (`f64`). Direct, so a controller without double-precision
+    /// hardware does not convert through `f64` in software.
+    fn of_count(count: usize) -> Self;
+
     /// `self` raised to `exponent`, by the `libm` crate on every target.
     ///
     /// Why not `RealField::powf`: nalgebra takes it from `std` when any crate of the
@@ -77,6 +82,11 @@ impl Real for f32 {
     }
 
     #[inline]
+    fn of_count(count: usize) -> Self {
+        count as f32
+    }
+
+    #[inline]
     fn to_f64(self) -> f64 {
         self as f64
     }
@@ -93,6 +103,11 @@ impl Real for f64 {
     #[inline]
     fn pow(self, exponent: Self) -> Self {
         libm::pow(self, exponent)
+    }
+
+    #[inline]
+    fn of_count(count: usize) -> Self {
+        count as f64
     }
 
     #[inline]

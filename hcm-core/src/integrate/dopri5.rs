@@ -473,17 +473,27 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
         let [k1, k2, k3, k4, k5, k6, k7] = &mut self.stages;
         let at = |c: f64| t + T::of(c) * h;
 
-        combine(arg, y, h, &[(A21, &*k1)]);
+        combine(arg, y, h, &[(T::of(A21), &*k1)]);
         system.derivative(at(C2), arg, k2);
-        combine(arg, y, h, &[(A31, &*k1), (A32, &*k2)]);
+        combine(arg, y, h, &[(T::of(A31), &*k1), (T::of(A32), &*k2)]);
         system.derivative(at(C3), arg, k3);
-        combine(arg, y, h, &[(A41, &*k1), (A42, &*k2), (A43, &*k3)]);
+        combine(
+            arg,
+            y,
+            h,
+            &[(T::of(A41), &*k1), (T::of(A42), &*k2), (T::of(A43), &*k3)],
+        );
         system.derivative(at(C4), arg, k4);
         combine(
             arg,
             y,
             h,
-            &[(A51, &*k1), (A52, &*k2), (A53, &*k3), (A54, &*k4)],
+            &[
+                (T::of(A51), &*k1),
+                (T::of(A52), &*k2),
+                (T::of(A53), &*k3),
+                (T::of(A54), &*k4),
+            ],
         );
         system.derivative(at(C5), arg, k5);
         combine(
@@ -491,11 +501,11 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
             y,
             h,
             &[
-                (A61, &*k1),
-                (A62, &*k2),
-                (A63, &*k3),
-                (A64, &*k4),
-                (A65, &*k5),
+                (T::of(A61), &*k1),
+                (T::of(A62), &*k2),
+                (T::of(A63), &*k3),
+                (T::of(A64), &*k4),
+                (T::of(A65), &*k5),
             ],
         );
         system.derivative(end, arg, k6);
@@ -503,19 +513,25 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
             &mut self.trial,
             y,
             h,
-            &[(B1, &*k1), (B3, &*k3), (B4, &*k4), (B5, &*k5), (B6, &*k6)],
+            &[
+                (T::of(B1), &*k1),
+                (T::of(B3), &*k3),
+                (T::of(B4), &*k4),
+                (T::of(B5), &*k5),
+                (T::of(B6), &*k6),
+            ],
         );
         system.derivative(end, &self.trial, k7);
         increment(
             arg,
             h,
             &[
-                (E1, &*k1),
-                (E3, &*k3),
-                (E4, &*k4),
-                (E5, &*k5),
-                (E6, &*k6),
-                (E7, &*k7),
+                (T::of(E1), &*k1),
+                (T::of(E3), &*k3),
+                (T::of(E4), &*k4),
+                (T::of(E5), &*k5),
+                (T::of(E6), &*k6),
+                (T::of(E7), &*k7),
             ],
         );
     }
@@ -542,12 +558,12 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
             r5,
             h,
             &[
-                (D1, &*k1),
-                (D3, &*k3),
-                (D4, &*k4),
-                (D5, &*k5),
-                (D6, &*k6),
-                (D7, &*k7),
+                (T::of(D1), &*k1),
+                (T::of(D3), &*k3),
+                (T::of(D4), &*k4),
+                (T::of(D5), &*k5),
+                (T::of(D6), &*k6),
+                (T::of(D7), &*k7),
             ],
         );
         core::mem::swap(k1, k7);
@@ -613,9 +629,9 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
             return fallback;
         }
         // (c) one explicit Euler step; (d) d2 = ‖f(t0 + h0, y1) − f(t0, y0)‖ / h0.
-        combine(&mut self.stage_state, y0, h0, &[(1.0, &*f0)]);
+        combine(&mut self.stage_state, y0, h0, &[(T::of(1.0), &*f0)]);
         system.derivative(self.time + h0, &self.stage_state, f1);
-        combine(&mut self.trial, &*f1, T::one(), &[(-1.0, &*f0)]);
+        combine(&mut self.trial, &*f1, T::one(), &[(T::of(-1.0), &*f0)]);
         let d2 = scaled_rms(&self.trial, y0, y0, rtol, atol) / h0;
         if d2.is_nan() {
             return h0;
@@ -651,12 +667,11 @@ fn all_finite<T: Real, S: OdeState<T>>(state: &S) -> bool {
 }
 
 /// Components of `out` ← h·Σ cᵢ·kᵢ.
-fn increment<T: Real, S: OdeState<T>>(out: &mut S, h: T, terms: &[(f64, &S)]) {
+fn increment<T: Real, S: OdeState<T>>(out: &mut S, h: T, terms: &[(T, &S)]) {
     for o in out.components_mut() {
         *o = T::zero();
     }
-    for (c, k) in terms {
-        let c = T::of(*c);
+    for &(c, k) in terms {
         for (o, k) in out.components_mut().iter_mut().zip(k.components()) {
             *o += c * *k;
         }
@@ -667,7 +682,7 @@ fn increment<T: Real, S: OdeState<T>>(out: &mut S, h: T, terms: &[(f64, &S)]) {
 }
 
 /// `out` ← `base` + h·Σ cᵢ·kᵢ (the sum is formed first, then added once to `base`).
-fn combine<T: Real, S: OdeState<T>>(out: &mut S, base: &S, h: T, terms: &[(f64, &S)]) {
+fn combine<T: Real, S: OdeState<T>>(out: &mut S, base: &S, h: T, terms: &[(T, &S)]) {
     out.clone_from(base);
     increment(out, h, terms);
     for (o, b) in out.components_mut().iter_mut().zip(base.components()) {
@@ -679,7 +694,7 @@ fn combine<T: Real, S: OdeState<T>>(out: &mut S, base: &S, h: T, terms: &[(f64, 
 /// (Hairer–Nørsett–Wanner eq. II.4.11). A zero v_i counts 0 even where sc_i = 0.
 fn scaled_rms<T: Real, S: OdeState<T>>(v: &S, y0: &S, y1: &S, rtol: T, atol: T) -> T {
     let mut sum = T::zero();
-    let mut count = 0_u64;
+    let mut count = 0_usize;
     let ends = y0.components().iter().zip(y1.components());
     for (v, (a, b)) in v.components().iter().zip(ends) {
         let (a, b) = (a.abs(), b.abs());
@@ -695,7 +710,7 @@ fn scaled_rms<T: Real, S: OdeState<T>>(v: &S, y0: &S, y1: &S, rtol: T, atol: T) 
     if count == 0 {
         T::zero()
     } else {
-        (sum / T::of(count as f64)).sqrt()
+        (sum / T::of_count(count)).sqrt()
     }
 }
 

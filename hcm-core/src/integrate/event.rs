@@ -68,7 +68,8 @@ pub fn locate_crossing<T: Real, S: OdeState<T>>(
     let (mut a, mut g_a) = (start, g_start);
     let (mut b, mut g_b) = (end, g_end);
     for i in 1..SCAN_INTERVALS {
-        let t = start + (end - start) * T::of(f64::from(i) / f64::from(SCAN_INTERVALS));
+        let t = start
+            + (end - start) * (T::of_count(i as usize) / T::of_count(SCAN_INTERVALS as usize));
         stepper.dense_output(t, scratch);
         let g_t = g(t, scratch);
         if g_t.is_nan() {

@@ -48,7 +48,8 @@ impl Fixture {
 
     /// The HCM's inputs [δ (m), δ̇ (m/s), δ̇0 (m/s)]: four inside the f32 residual's
     /// training envelope (at fractions of its δ and δ̇ ranges, δ̇0 at the training
-    /// value), one apart (0 N) and one whose δ̇0 is 1 % off (physics only).
+    /// value), one apart (0 N) and one whose δ̇0 is 10 % off, well beyond the envelope's
+    /// tolerance for this input constant in training (0.03 m/s): physics only.
     pub fn hcm_inputs(&self) -> [[f32; 3]; 6] {
         let envelope = &self.hcm_f32.residual.envelope;
         let at = |i: usize, fraction: f32| {
@@ -61,7 +62,7 @@ impl Fixture {
             [at(0, 0.9), at(1, 0.55), approach],
             [at(0, 0.3), at(1, 0.05), approach],
             [-1e-6, at(1, 0.5), approach],
-            [at(0, 0.5), at(1, 0.5), approach * 1.01],
+            [at(0, 0.5), at(1, 0.5), approach * 1.1],
         ]
     }
 }
