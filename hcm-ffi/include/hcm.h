@@ -177,9 +177,10 @@ typedef struct HcmHybridForce {
   float physics;
   // Whether the residual took part: in contact, and its input inside its envelope.
   bool residual_used;
-  // Bit i set: residual input i (0: δ, 1: δ̇, 2: δ̇0) lies outside the envelope's
-  // stored bounds [min_i, max_i] (or is NaN). The core decides whether the residual
-  // takes part by its own envelope rule; `residual_used` is its answer.
+  // Bit i set: residual input i (0: δ, 1: δ̇, 2: δ̇0) lies beyond the envelope's
+  // tolerated bounds [min_i − tolerance_i, max_i + tolerance_i] (or is NaN): the
+  // core's own rule, so with an input in contact, `residual_used` is 0 exactly when
+  // some bit is set.
   uint32_t outside_envelope;
 } HcmHybridForce;
 

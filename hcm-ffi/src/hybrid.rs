@@ -20,9 +20,10 @@ pub struct HcmHybridForce {
     pub physics: f32,
     /// Whether the residual took part: in contact, and its input inside its envelope.
     pub residual_used: bool,
-    /// Bit i set: residual input i (0: δ, 1: δ̇, 2: δ̇0) lies outside the envelope's
-    /// stored bounds [min_i, max_i] (or is NaN). The core decides whether the residual
-    /// takes part by its own envelope rule; `residual_used` is its answer.
+    /// Bit i set: residual input i (0: δ, 1: δ̇, 2: δ̇0) lies beyond the envelope's
+    /// tolerated bounds [min_i − tolerance_i, max_i + tolerance_i] (or is NaN): the
+    /// core's own rule, so with an input in contact, `residual_used` is 0 exactly when
+    /// some bit is set.
     pub outside_envelope: u32,
 }
 
@@ -79,13 +80,13 @@ fn evaluate<R: Residual<f32>>(
     }
 }
 
-/// The bit mask of the inputs outside `envelope`'s bounds (NaN counts as outside).
+/// The bit mask of the inputs beyond `envelope`'s tolerated bounds (NaN counts as
+/// beyond), from the core's [`Envelope::distances`].
 fn outside(envelope: &Envelope<HCM_RESIDUAL_INPUTS>, input: &[f32; HCM_RESIDUAL_INPUTS]) -> u32 {
-    let bounds = envelope.min.iter().zip(&envelope.max);
-    input
+    envelope
+        .distances(input)
         .iter()
-        .zip(bounds)
         .enumerate()
-        .filter(|(_, (x, (min, max)))| !(min <= x && x <= max))
+        .filter(|(_, distance)| **distance != 0.0)
         .fold(0, |mask, (i, _)| mask | 1 << i)
 }
