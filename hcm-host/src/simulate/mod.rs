@@ -15,7 +15,7 @@ pub use system::{ContactModes, ContactSystem, Loads};
 
 use crate::dataset::Run;
 use crate::indicators::Indicators;
-use crate::scenario::Model;
+use crate::scenario::{Model, SimulationSpec};
 use hcm_core::integrate::{locate_crossing, Dopri5, IntegrationError, OdeState, Settings};
 
 /// Event times are located to this accuracy (s).
@@ -101,6 +101,15 @@ pub enum SimulationError {
     },
 }
 
+/// The solver settings a scenario's `[simulation]` table asks for.
+fn solver_settings(spec: &SimulationSpec) -> Settings<f64> {
+    Settings {
+        max_step: spec.max_step,
+        max_steps: spec.max_steps,
+        ..Settings::new(spec.relative_tolerance, spec.absolute_tolerance)
+    }
+}
+
 /// One stretch of solver output with constant contact modes.
 #[derive(Clone)]
 pub(crate) struct Segment {
@@ -143,17 +152,12 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
             ));
         }
     }
-    let settings = Settings {
-        max_step: spec.max_step,
-        max_steps: spec.max_steps,
-        ..Settings::new(spec.relative_tolerance, spec.absolute_tolerance)
-    };
     let solver_error = |cause| SimulationError::Solver {
         scenario: model.scenario.name.clone(),
         cause,
         hint: String::new(),
     };
-    let mut stepper = Dopri5::new(&mut system, 0.0, y0.clone(), settings);
+    let mut stepper = Dopri5::new(&mut system, 0.0, y0.clone(), solver_settings(spec));
     let mut scratch = y0;
     let mut segments: Vec<Segment> = Vec::new();
     // Best grid point of each event's force, refined once the event ends.

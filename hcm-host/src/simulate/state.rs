@@ -35,21 +35,27 @@ pub struct Layout {
     len: usize,
 }
 
+/// The first component of each moving body when each takes `per_body` components in
+/// file order (None for fixed bodies), and the first component after them.
+pub(crate) fn body_slots(model: &Model, per_body: usize) -> (Vec<Option<usize>>, usize) {
+    let mut next = 0;
+    let slots = model
+        .bodies
+        .iter()
+        .map(|b| {
+            (!b.fixed).then(|| {
+                next += per_body;
+                next - per_body
+            })
+        })
+        .collect();
+    (slots, next)
+}
+
 impl Layout {
     /// The layout for `model`.
     pub fn new(model: &Model) -> Layout {
-        let mut next = 0;
-        let body_slot = model
-            .bodies
-            .iter()
-            .map(|b| {
-                (!b.fixed).then(|| {
-                    next += 1;
-                    6 * (next - 1)
-                })
-            })
-            .collect();
-        let contact_base = 6 * next;
+        let (body_slot, contact_base) = body_slots(model, 6);
         Layout {
             body_slot,
             contact_base,

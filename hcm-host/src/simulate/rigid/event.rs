@@ -126,16 +126,21 @@ impl EventTracker {
     pub fn switch(&mut self, system: &RigidSystem<'_>, c: usize, time: f64, y: &[f64]) {
         match self.open[c].take() {
             Some(e) => {
-                let i = system.layout.impulse_index(c);
-                let start = self.start_impulse[e];
-                let event = &mut self.events[e];
-                event.lift_off = Some(time);
-                event.linear_impulse = Vector3::from_fn(|k, _| y[i + k] - start[k]);
-                event.angular_impulse = Vector3::from_fn(|k, _| y[i + 3 + k] - start[3 + k]);
+                self.close(system, e, y);
+                self.events[e].lift_off = Some(time);
                 self.lift_offs += 1;
             }
             None => self.touch_down(system, c, time, y),
         }
+    }
+
+    /// Event `e`'s impulses: the integrals in `y` less those at its touch-down.
+    fn close(&mut self, system: &RigidSystem<'_>, e: usize, y: &[f64]) {
+        let start = self.start_impulse[e];
+        let event = &mut self.events[e];
+        let i = system.layout.impulse_index(event.contact);
+        event.linear_impulse = Vector3::from_fn(|k, _| y[i + k] - start[k]);
+        event.angular_impulse = Vector3::from_fn(|k, _| y[i + 3 + k] - start[3 + k]);
     }
 
     fn touch_down(&mut self, system: &RigidSystem<'_>, c: usize, time: f64, y: &[f64]) {
@@ -189,11 +194,7 @@ impl EventTracker {
     pub fn finish(&mut self, system: &RigidSystem<'_>, y: &[f64]) {
         for c in 0..self.open.len() {
             if let Some(e) = self.open[c].take() {
-                let i = system.layout.impulse_index(c);
-                let start = self.start_impulse[e];
-                let event = &mut self.events[e];
-                event.linear_impulse = Vector3::from_fn(|k, _| y[i + k] - start[k]);
-                event.angular_impulse = Vector3::from_fn(|k, _| y[i + 3 + k] - start[3 + k]);
+                self.close(system, e, y);
             }
         }
     }

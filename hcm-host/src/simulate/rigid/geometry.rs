@@ -78,9 +78,7 @@ pub fn pair_contacts(
             single(sphere_sphere::contact(c1, *r1, c2, *r2))
         }
         (Placed::Sphere(c, r), Placed::Box(b)) => single(sphere_box::contact(c, *r, b)),
-        (Placed::Sphere(c, r), Placed::Compound(parts)) => {
-            single(deepest_sphere_part(c, *r, parts))
-        }
+        (Placed::Sphere(c, r), Placed::Compound(parts)) => compound::sphere_contacts(c, *r, parts),
         (Placed::Box(b), Placed::Plane(p, n)) => box_plane::contacts(b, p, n),
         (Placed::Box(b1), Placed::Box(b2)) => box_box::contacts(b1, b2),
         (Placed::Box(b), Placed::Compound(parts)) => compound::contacts(b, parts),
@@ -102,32 +100,20 @@ pub fn pair_separation(model: &Model, contact: &Contact, pose_1: &Pose, pose_2: 
             -sphere_sphere::contact(c1, *r1, c2, *r2).depth
         }
         (Placed::Sphere(c, r), Placed::Box(b)) => -sphere_box::contact(c, *r, b).depth,
-        (Placed::Sphere(c, r), Placed::Compound(parts)) => -deepest_sphere_part(c, *r, parts).depth,
+        (Placed::Sphere(c, r), Placed::Compound(parts)) => parts
+            .iter()
+            .map(|part| -sphere_box::contact(c, *r, part).depth)
+            .fold(f64::INFINITY, |least, gap| {
+                // NaN sticks (`f64::min` would drop it).
+                if gap < least || gap.is_nan() {
+                    gap
+                } else {
+                    least
+                }
+            }),
         (Placed::Box(b), Placed::Plane(p, n)) => box_plane::separation(b, p, n),
         (Placed::Box(b1), Placed::Box(b2)) => box_box::separation(b1, b2),
         (Placed::Box(b), Placed::Compound(parts)) => compound::separation(b, parts),
         _ => f64::NAN,
     }
-}
-
-/// The sphere's contact with the part it overlaps most (feature id = part index).
-fn deepest_sphere_part(
-    center: &Vector3<f64>,
-    radius: f64,
-    parts: &[Cuboid<f64>],
-) -> ContactGeometry<f64> {
-    let mut deepest: Option<ContactGeometry<f64>> = None;
-    for (i, part) in parts.iter().enumerate() {
-        let mut g = sphere_box::contact(center, radius, part);
-        g.feature = i as u32;
-        if deepest.is_none_or(|d| g.depth > d.depth) {
-            deepest = Some(g);
-        }
-    }
-    deepest.unwrap_or(ContactGeometry {
-        depth: f64::NAN,
-        normal: Vector3::repeat(f64::NAN),
-        point: Vector3::repeat(f64::NAN),
-        feature: 0,
-    })
 }

@@ -49,17 +49,7 @@ impl Pose {
 impl RigidLayout {
     /// The layout of `model`: its moving bodies in file order, then its contacts.
     pub fn new(model: &Model) -> RigidLayout {
-        let mut next = 0;
-        let body_slot = model
-            .bodies
-            .iter()
-            .map(|b| {
-                (!b.fixed).then(|| {
-                    next += BODY_LEN;
-                    next - BODY_LEN
-                })
-            })
-            .collect();
+        let (body_slot, next) = crate::simulate::state::body_slots(model, BODY_LEN);
         RigidLayout {
             body_slot,
             contact_base: next,

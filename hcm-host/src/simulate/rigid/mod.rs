@@ -23,9 +23,9 @@ pub use geometry::{pair_contacts, pair_separation};
 pub use layout::{Pose, RigidLayout};
 pub use system::{ContactLoad, PairManifold, RigidSystem};
 
-use super::{Simulation, SimulationError};
+use super::{solver_settings, Simulation, SimulationError};
 use crate::scenario::Model;
-use hcm_core::integrate::{Dopri5, Settings};
+use hcm_core::integrate::Dopri5;
 use record::Recorder;
 
 /// Renormalise a quaternion when |‖q‖ − 1| exceeds this (–): a few f64 ulps.
@@ -67,18 +67,13 @@ pub fn simulate_rigid(model: &Model) -> Result<Simulation, SimulationError> {
     let mut system = RigidSystem::new(model, &layout);
     system.latch(&y0.0);
     let mut tracker = EventTracker::new(&system, 0.0, &y0.0);
-    let settings = Settings {
-        max_step: spec.max_step,
-        max_steps: spec.max_steps,
-        ..Settings::new(spec.relative_tolerance, spec.absolute_tolerance)
-    };
     let solver_error = |cause| SimulationError::Solver {
         scenario: model.scenario.name.clone(),
         cause,
         hint: stiction_hint(model),
     };
     let mut recorder = Recorder::new(model);
-    let mut stepper = Dopri5::new(&mut system, 0.0, y0.clone(), settings);
+    let mut stepper = Dopri5::new(&mut system, 0.0, y0.clone(), solver_settings(spec));
     let mut scratch = y0;
     let mut end = spec.end_time;
     let mut first = true;

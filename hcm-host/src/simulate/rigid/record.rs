@@ -26,7 +26,8 @@ pub struct Recorder {
     recorded: Vec<usize>,
     /// Samples by tick, one per recorded body.
     samples: BTreeMap<u64, Vec<Sample>>,
-    /// Recent steps, covering at least `margin` before the current one.
+    /// Earlier steps covering `margin` before the current one (none when the margin
+    /// is 0).
     recent: VecDeque<Step>,
 }
 
@@ -60,7 +61,6 @@ impl Recorder {
         first: bool,
     ) {
         let (start, end) = (stepper.previous_time(), stepper.time());
-        self.recent.push_back((start, end, stepper.clone()));
         while self
             .recent
             .front()
@@ -81,10 +81,25 @@ impl Recorder {
             if self.samples.contains_key(&k) || !(dense || (k >= from && k % self.stride == 0)) {
                 continue;
             }
-            if let Some(step) = self.recent.iter().find(|s| s.0 <= t && t <= s.1) {
-                let samples = sample_at(system, &step.2, t, &self.recorded);
+            // This step's own ticks from its dense output; earlier ones (the margin
+            // before a touch-down) from the steps kept for it.
+            let step = if t >= start {
+                Some(stepper)
+            } else {
+                self.recent
+                    .iter()
+                    .find(|s| s.0 <= t && t <= s.1)
+                    .map(|s| &s.2)
+            };
+            if let Some(step) = step {
+                let samples = sample_at(system, step, t, &self.recorded);
                 self.samples.insert(k, samples);
             }
+        }
+        // Kept only when a later touch-down may need samples before its step; with no
+        // margin, no step is copied.
+        if self.margin > 0.0 {
+            self.recent.push_back((start, end, stepper.clone()));
         }
     }
 

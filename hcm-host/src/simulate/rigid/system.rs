@@ -156,17 +156,30 @@ impl RigidSystem<'_> {
 
     /// Contact force and torque (N, N·m) on every body in state `y`.
     pub fn body_loads(&self, y: &[f64], out: &mut Vec<(Vector3<f64>, Vector3<f64>)>) {
+        self.sum_loads(y, out, |_, _| {});
+    }
+
+    /// Sums every contact's wrench in state `y` into `out`, one (force, torque) per
+    /// body, and hands each contact's load to `each` (the derivative's impulse rates).
+    fn sum_loads(
+        &self,
+        y: &[f64],
+        out: &mut Vec<(Vector3<f64>, Vector3<f64>)>,
+        mut each: impl FnMut(usize, &ContactLoad),
+    ) {
         out.clear();
         out.resize(
             self.model.bodies.len(),
             (Vector3::zeros(), Vector3::zeros()),
         );
         for (c, contact) in self.model.contacts.iter().enumerate() {
-            let w = self.contact_load(y, c).load.wrench;
+            let load = self.contact_load(y, c);
+            let w = &load.load.wrench;
             out[contact.body_1].0 += w.force_1;
             out[contact.body_1].1 += w.torque_1;
             out[contact.body_2].0 += w.force_2;
             out[contact.body_2].1 += w.torque_2;
+            each(c, &load);
         }
     }
 }
@@ -175,22 +188,12 @@ impl OdeSystem<f64, StateVector> for RigidSystem<'_> {
     fn derivative(&mut self, _time: f64, state: &StateVector, derivative: &mut StateVector) {
         let (y, dy) = (&state.0, &mut derivative.0);
         let mut loads = std::mem::take(&mut self.scratch);
-        loads.clear();
-        loads.resize(
-            self.model.bodies.len(),
-            (Vector3::zeros(), Vector3::zeros()),
-        );
-        for (c, contact) in self.model.contacts.iter().enumerate() {
-            let load = self.contact_load(y, c);
-            let w = &load.load.wrench;
-            loads[contact.body_1].0 += w.force_1;
-            loads[contact.body_1].1 += w.torque_1;
-            loads[contact.body_2].0 += w.force_2;
-            loads[contact.body_2].1 += w.torque_2;
-            let i = self.layout.impulse_index(c);
+        let layout = self.layout;
+        self.sum_loads(y, &mut loads, |c, load| {
+            let i = layout.impulse_index(c);
             dy[i..i + 3].copy_from_slice(load.on_mover.0.as_slice());
             dy[i + 3..i + 6].copy_from_slice(load.on_mover.1.as_slice());
-        }
+        });
         for (b, body) in self.model.bodies.iter().enumerate() {
             let (Some(s), Some(rigid)) = (self.layout.slot(b), self.layout.rigid_state(y, b))
             else {
