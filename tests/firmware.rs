@@ -6,9 +6,10 @@
 //! Every printed bit pattern must be identical, except where a value goes through
 //! `powf` (`Real::pow`): on the host that is glibc's (six times faster than the `libm`
 //! crate's the controller uses), which rounds some results an ulp or two differently.
-//! Those values are listed and may differ by at most [`POW_ULPS`]; every other value,
-//! the residual's included (its tanh is + − × ÷ only), and every count and flag must
-//! match exactly.
+//! Those values are listed and may differ by at most [`POW_ULPS`] (one evaluation) or
+//! [`RUN_ULPS`] (the end of a whole ball run, which carries such differences through
+//! every step); every other value, the residual's included (its tanh is + − × ÷ and
+//! a saturating conversion only), and every count and flag must match exactly.
 //!
 //! QEMU missing is a failure, not a skip: CI installs it (`.ci/run`).
 
@@ -22,6 +23,11 @@ use std::sync::OnceLock;
 /// Largest difference allowed between host and controller for a value computed
 /// through `powf` (ulps of f32).
 const POW_ULPS: i64 = 2;
+
+/// The same for a value at the end of a whole simulated run (ulps of f32): the
+/// apex height after the bounce integrates a lift-off speed that may already differ by
+/// an ulp; measured 6 (ball.final[1], 0.0868 m: 4.6e-8 m), so 16 (1e-6 relative).
+const RUN_ULPS: i64 = 16;
 
 /// The flash budget for the whole firmware (B).
 const FLASH_BUDGET: u32 = 32 * 1024;
@@ -192,10 +198,22 @@ fn the_firmware_is_bit_identical_to_the_host_but_for_powf() {
             !without_pow.iter().any(|p| name.starts_with(p)),
             "{name}[{i}] uses no powf and must be bit-identical"
         );
-        assert!(ulps <= POW_ULPS, "{name}[{i}]: {ulps} ulp apart");
+        if name == "ball.final" && *i == 2 {
+            // The speed at the apex, where the run stops: zero up to the event
+            // location's tolerance, so ulps mean nothing; compare against the 1.3 m/s
+            // rebound speed instead (1e-6 of it).
+            assert!((tf - hf).abs() <= 1.3e-6, "apex speed {tf} vs {hf} m/s");
+            continue;
+        }
+        let bound = if name.starts_with("ball.") {
+            RUN_ULPS
+        } else {
+            POW_ULPS
+        };
+        assert!(ulps <= bound, "{name}[{i}]: {ulps} ulp apart (≤ {bound})");
     }
     println!(
-        "{values} values in {} lines compared: {} bit-identical, {} through powf within {POW_ULPS} ulp",
+        "{values} values in {} lines compared: {} bit-identical, {} through powf within {POW_ULPS} ulp (one evaluation), {RUN_ULPS} ulp (a whole run)",
         host.len(),
         values - differing.len(),
         differing.len()

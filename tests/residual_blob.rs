@@ -378,11 +378,11 @@ fn largest_row_sum(weights: &[f64], columns: usize) -> f64 {
 
 #[test]
 fn the_tanh_approximation_error_is_carried_into_the_round_trip_tolerance() {
-    // The core's f32 tanh is within ε = 3.7e-7 of libm's (hcm_core::residual::tanh).
+    // The core's f32 tanh is within ε = 1.2e-6 of libm's (hcm_core::residual::tanh).
     // Through a 3-16-16-1 tanh network an error ε per activation reaches the output as
     // at most σ_y·‖w_o‖₁·(ε + max_i ‖W_2,i‖₁·ε) (tanh' ≤ 1): that bound plus the f32
     // round trip's 1e-6·max(|y|, σ_y) is the tolerance against a libm-tanh host.
-    let epsilon = 3.7e-7;
+    let epsilon = 1.2e-6;
     let model = random_model(2, 16, 2, Activation::Tanh);
     let mlp: Mlp<3, 16, 1, 2> = decode(&encode(&model, Quantisation::F32).unwrap()).unwrap();
     let hidden = largest_row_sum(&model.layers[1].0, 16);
@@ -402,8 +402,8 @@ fn the_tanh_approximation_error_is_carried_into_the_round_trip_tolerance() {
          shared rational vs libm in f64: {worst_shared:.2e} N"
     );
     assert!(worst <= 1.0, "{worst}");
-    // In f64 the shared rational is within 3.05e-8 per activation: far below f32.
-    assert!(worst_shared < OUTPUT_SCALE * output * (1.0 + hidden) * 3.1e-8);
+    // In f64 the shared rational is within 9.4e-7 per activation (tanh.rs).
+    assert!(worst_shared < OUTPUT_SCALE * output * (1.0 + hidden) * 9.5e-7);
 }
 
 /// A 3-16-16-1 residual trained (as the ball's) with δ̇0 = 1.4 m/s in every row: its

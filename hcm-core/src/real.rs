@@ -31,6 +31,15 @@ pub trait Real: RealField + Copy {
     /// Widens (or, from `f64`, keeps) the value as an `f64`.
     fn to_f64(self) -> f64;
 
+    /// `self` clamped to [−limit, limit] (limit > 0, same unit as `self`); NaN gives 0.
+    ///
+    /// `f32` scales to 2³¹/limit and back through Rust's saturating `as i32`: two
+    /// `vcvt` and two multiplies on a Cortex-M4F, whose FPU has no `vmin`/`vmax` (a
+    /// compare-and-select clamp takes eight instructions and two branches). It rounds
+    /// |self| < 2²⁴·limit/2³¹ down to a multiple of limit/2³¹ (3.3e-9 for limit 7),
+    /// below `f32` resolution elsewhere. `f64` (the host) compares.
+    fn clamp_magnitude(self, limit: Self) -> Self;
+
     /// Converts between float types: `f64` → `f32` rounds to nearest.
     #[inline]
     fn cast<U: Real>(self) -> U {
@@ -89,6 +98,12 @@ impl Real for f32 {
     fn to_f64(self) -> f64 {
         self as f64
     }
+
+    #[inline]
+    fn clamp_magnitude(self, limit: Self) -> Self {
+        const RANGE: f32 = 2_147_483_648.0;
+        (self * (RANGE / limit)) as i32 as f32 * (limit / RANGE)
+    }
 }
 
 impl Real for f64 {
@@ -112,5 +127,14 @@ impl Real for f64 {
     #[inline]
     fn to_f64(self) -> f64 {
         self
+    }
+
+    #[inline]
+    fn clamp_magnitude(self, limit: Self) -> Self {
+        if self.is_nan() {
+            0.0
+        } else {
+            self.clamp(-limit, limit)
+        }
     }
 }

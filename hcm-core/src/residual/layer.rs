@@ -39,8 +39,13 @@ pub trait WeightFormat: Copy + Debug + PartialEq + sealed::Sealed {
     /// Whether a blob carries one `f32` scale per output row of each layer.
     const HAS_ROW_SCALE: bool;
 
-    /// An output's accumulated sum times its row scale.
-    fn scaled(sum: f32, scale: Self::RowScale) -> f32;
+    /// The value an output's accumulator starts from: its bias where the sum needs no
+    /// scaling (f32), else 0.
+    fn start(bias: f32) -> f32;
+
+    /// The pre-activation z of an output from its accumulated sum (started at
+    /// [`WeightFormat::start`]), its bias and its row scale.
+    fn finish(sum: f32, bias: f32, scale: Self::RowScale) -> f32;
 
     /// One weight as the `f32` that [`Layer::forward`] multiplies.
     fn widen(weight: Self::Weight) -> f32;
@@ -75,8 +80,13 @@ impl WeightFormat for F32Weights {
         weight
     }
 
-    #[inline]
-    fn scaled(sum: f32, _scale: ()) -> f32 {
+    #[inline(always)]
+    fn start(bias: f32) -> f32 {
+        bias
+    }
+
+    #[inline(always)]
+    fn finish(sum: f32, _bias: f32, _scale: ()) -> f32 {
         sum
     }
 
@@ -99,9 +109,14 @@ impl WeightFormat for Int8Weights {
     const WEIGHT_BYTES: usize = 1;
     const HAS_ROW_SCALE: bool = true;
 
-    #[inline]
-    fn scaled(sum: f32, scale: f32) -> f32 {
-        sum * scale
+    #[inline(always)]
+    fn start(_bias: f32) -> f32 {
+        0.0
+    }
+
+    #[inline(always)]
+    fn finish(sum: f32, bias: f32, scale: f32) -> f32 {
+        bias + sum * scale
     }
 
     #[inline(always)]
@@ -178,15 +193,28 @@ impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
     /// input, then stored: written out so, the eight sums stay in registers even where
     /// the compiler does not unroll loops (`opt-level = "s"`, the firmware's), and one
     /// multiply-add costs a load and a `vmla` on a Cortex-M4F instead of a load, a
-    /// load, a `vmla` and a store. Each output still adds its inputs in order from 0.0,
-    /// so the result is the same, bit for bit, as the plain loop's (the remainder).
+    /// load, a `vmla` and a store. With f32 weights each sum starts from its bias (no
+    /// separate pass to add it: 16 × 9 instructions less per layer on the Cortex-M4F);
+    /// int8 sums start from 0 and are scaled before the bias is added. Outputs beyond a
+    /// multiple of eight (the remainder) are summed in the same order, so every output
+    /// gets the same bits whichever path computes it.
     #[inline]
     pub fn forward(&self, x: &[f32; IN]) -> [f32; OUT] {
-        let mut sum = [0.0; OUT];
+        let mut z = [0.0; OUT];
         let mut first = 0;
-        while let Some(block) = sum.get_mut(first..first + 8) {
-            let (mut a0, mut a1, mut a2, mut a3) = (0.0_f32, 0.0_f32, 0.0_f32, 0.0_f32);
-            let (mut a4, mut a5, mut a6, mut a7) = (0.0_f32, 0.0_f32, 0.0_f32, 0.0_f32);
+        while let (
+            Some(block),
+            Some(&[b0, b1, b2, b3, b4, b5, b6, b7]),
+            Some(&[s0, s1, s2, s3, s4, s5, s6, s7]),
+        ) = (
+            z.get_mut(first..first + 8),
+            self.bias.get(first..first + 8),
+            self.row_scales.get(first..first + 8),
+        ) {
+            let (mut a0, mut a1, mut a2, mut a3) =
+                (Q::start(b0), Q::start(b1), Q::start(b2), Q::start(b3));
+            let (mut a4, mut a5, mut a6, mut a7) =
+                (Q::start(b4), Q::start(b5), Q::start(b6), Q::start(b7));
             for (column, &x) in self.weights.iter().zip(x) {
                 if let Some(&[w0, w1, w2, w3, w4, w5, w6, w7]) = column.get(first..first + 8) {
                     a0 += Q::widen(w0) * x;
@@ -199,19 +227,27 @@ impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
                     a7 += Q::widen(w7) * x;
                 }
             }
-            block.copy_from_slice(&[a0, a1, a2, a3, a4, a5, a6, a7]);
+            block.copy_from_slice(&[
+                Q::finish(a0, b0, s0),
+                Q::finish(a1, b1, s1),
+                Q::finish(a2, b2, s2),
+                Q::finish(a3, b3, s3),
+                Q::finish(a4, b4, s4),
+                Q::finish(a5, b5, s5),
+                Q::finish(a6, b6, s6),
+                Q::finish(a7, b7, s7),
+            ]);
             first += 8;
         }
-        for (output, sum) in sum.iter_mut().enumerate().skip(first) {
+        let remainder = z.iter_mut().zip(self.bias.iter().zip(&self.row_scales));
+        for (output, (z, (&bias, &scale))) in remainder.enumerate().skip(first) {
+            let mut sum = Q::start(bias);
             for (column, &x) in self.weights.iter().zip(x) {
                 if let Some(&w) = column.get(output) {
-                    *sum += Q::widen(w) * x;
+                    sum += Q::widen(w) * x;
                 }
             }
-        }
-        let mut z = self.bias;
-        for ((z, sum), scale) in z.iter_mut().zip(sum).zip(&self.row_scales) {
-            *z += Q::scaled(sum, *scale);
+            *z = Q::finish(sum, bias, scale);
         }
         z
     }

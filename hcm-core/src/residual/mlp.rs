@@ -145,6 +145,10 @@ where
     /// NaN in any input gives NaN outputs; outputs saturate at ±`f32::MAX`. The
     /// envelope is not consulted: see [`Mlp::inside_envelope`].
     pub fn evaluate(&self, input: &[f32; INPUTS]) -> [f32; OUTPUTS] {
+        // Said here, not left to the arithmetic: the tanh activation turns NaN into 0.
+        if input.iter().any(|x| x.is_nan()) {
+            return [f32::NAN; OUTPUTS];
+        }
         let scaling = &self.normalisation;
         let mut x = *input;
         for (x, (mean, scale)) in x
@@ -160,7 +164,6 @@ where
             hidden = layer.forward(&hidden);
             self.activate(&mut hidden);
         }
-
         let mut output = self.output_layer.forward(&hidden);
         for (y, (mean, scale)) in output
             .iter_mut()
