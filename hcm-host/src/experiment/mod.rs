@@ -1,6 +1,8 @@
 //! Noise-added experiments (PM1, paper Section 4): many runs of a scenario with
-//! noise on the contact parameters (Eq 18) and on the sampled outputs (Eq 19),
-//! split into a training set S1 and a validation set S2.
+//! noise on the contact parameters (Eq 18: the law's and, in 3D, the friction's) and on
+//! the sampled outputs (Eq 19: force, torque), split into a training set S1 and a
+//! validation set S2. A 3D run's recorded state just before its first contact
+//! ([`pre_contact_states`]) is where a later stage replays it from.
 //!
 //! Every run draws from its own random stream, derived from the seed and the run's
 //! index, so the data are bit-identical for a seed whatever the number of threads.
