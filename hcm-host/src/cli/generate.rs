@@ -16,8 +16,8 @@ use std::path::{Path, PathBuf};
 ///
 /// Terms:
 ///   PM1   the scenario's contact simulated with noise, standing in for measurements:
-///         each run scatters the law's parameters (the paper's Eq 18) and adds random
-///         noise to every recorded force sample (Eq 19)
+///         each run scatters the law's (and friction's) parameters (the paper's Eq 18)
+///         and adds random noise to every recorded force (and torque) sample (Eq 19)
 ///   S1    the training set: the runs `hcm identify` and `hcm train` learn from
 ///   S2    the validation set, used only to judge models (`hcm evaluate`): a random
 ///         share of the runs, or the runs of the scenario's holdout conditions

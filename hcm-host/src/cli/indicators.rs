@@ -2,11 +2,14 @@
 
 use super::report;
 use hcm_host::dataset::Dataset;
-use hcm_host::indicators::{from_run, pair_events_from_run, summarize};
+use hcm_host::indicators::{
+    from_run, pair_events_from_run, summarize, wrench_statistics, ContactStatistics,
+};
 use hcm_host::scenario::Model;
 use std::path::PathBuf;
 
-/// Contact indicators per contact and run, with mean and standard deviation over runs.
+/// Contact indicators per contact and run, with mean and standard deviation over runs
+/// (3D scenarios: mean and its standard error per contact event).
 ///
 /// The scenario supplies what the data cannot: the bodies' shapes (to recompute the
 /// indentation δ from the recorded positions and find where it crosses zero) and
@@ -90,7 +93,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 }
 
 /// The 3D indicators (max force, max torque, linear and angular impulse, duration)
-/// per contact event and run, with mean ± std over runs per (contact, event).
+/// per contact event and run (up to 10 runs), then per (contact, event) the mean over
+/// the runs with its standard error; runs whose event count differs from the expected
+/// are listed, not averaged (see `hcm_host::indicators::wrench_statistics`).
 fn run_rigid(model: &Model, dataset: &Dataset, json: bool) -> anyhow::Result<()> {
     let mut events = Vec::new();
     let mut without_contact = Vec::new();
@@ -101,6 +106,8 @@ fn run_rigid(model: &Model, dataset: &Dataset, json: bool) -> anyhow::Result<()>
         }
         events.extend(found);
     }
+    let ids: Vec<String> = dataset.runs.iter().map(|r| r.id.clone()).collect();
+    let summary = wrench_statistics(&ids, &events);
     if json {
         let per_event: Vec<_> = events
             .iter()
@@ -111,8 +118,9 @@ fn run_rigid(model: &Model, dataset: &Dataset, json: bool) -> anyhow::Result<()>
                 })
             })
             .collect();
-        let json =
-            serde_json::json!({ "events": per_event, "runs_without_contact": without_contact });
+        let json = serde_json::json!({
+            "events": per_event, "summary": summary, "runs_without_contact": without_contact,
+        });
         println!("{}", serde_json::to_string_pretty(&json)?);
         return Ok(());
     }
@@ -122,19 +130,49 @@ fn run_rigid(model: &Model, dataset: &Dataset, json: bool) -> anyhow::Result<()>
             count(dataset.runs.len(), "run")
         );
     } else {
-        let rows: Vec<_> = events
-            .iter()
-            .map(|e| {
-                let label = format!("run `{}` {} #{}", e.run, e.contact, e.event + 1);
-                (label, e.touch_down, e.indicators, false)
-            })
-            .collect();
-        print!("{}", report::pair_event_table(&rows));
+        if dataset.runs.len() <= 10 {
+            let rows: Vec<_> = events
+                .iter()
+                .map(|e| {
+                    let label = format!("run `{}` {} #{}", e.run, e.contact, e.event + 1);
+                    (label, e.touch_down, e.indicators, false)
+                })
+                .collect();
+            print!("{}", report::pair_event_table(&rows));
+        }
+        if dataset.runs.len() > 1 {
+            println!();
+            print!("{}", report::wrench_statistics_table(&summary));
+            for contact in &summary {
+                if let Some(line) = mismatch_line(contact) {
+                    println!("{line}");
+                }
+            }
+        }
     }
     if !without_contact.is_empty() {
         println!("{}", without_contact_line(&without_contact));
     }
     Ok(())
+}
+
+/// The runs a contact's statistics leave out, with their event counts; None if none.
+fn mismatch_line(contact: &ContactStatistics) -> Option<String> {
+    if contact.mismatched_runs.is_empty() {
+        return None;
+    }
+    let listed: Vec<String> = (contact.mismatched_runs.iter())
+        .map(|m| format!("`{}` ({})", m.run, count(m.events, "event")))
+        .collect();
+    Some(format!(
+        "{}: {} of {} have {} (the most common count) and are averaged; left out, their \
+         event count differing: {}",
+        contact.contact,
+        contact.matched_runs,
+        count(contact.runs, "run"),
+        count(contact.expected_events, "event"),
+        listed.join(", ")
+    ))
 }
 
 /// `1 run without a completed contact: `0``: run ids in backquotes, as every other

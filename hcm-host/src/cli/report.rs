@@ -1,6 +1,8 @@
 //! Markdown tables shared by the subcommands.
 
-use hcm_host::indicators::{EventSummary, Indicators, WrenchIndicators};
+use hcm_host::indicators::{
+    ContactStatistics, Estimate, EventSummary, Indicators, WrenchIndicators,
+};
 use std::fmt::Write;
 
 /// One row per contact event: label, touch-down time and the indicators.
@@ -67,6 +69,37 @@ pub fn summary_table(summaries: &[EventSummary]) -> String {
             cell(s.duration)
         )
         .expect("writing to a String cannot fail");
+    }
+    out
+}
+
+/// Per 3D contact event: the mean over the matched runs ± its standard error (and the
+/// standard error as a percentage of the mean).
+pub fn wrench_statistics_table(contacts: &[ContactStatistics]) -> String {
+    let mut out = String::from(
+        "| contact | event | runs | max force (N) | max torque (N·m) | linear impulse (N·s) | angular impulse (N·m·s) | duration (s) |\n|---|---|---|---|---|---|---|---|\n",
+    );
+    let cell = |e: Estimate| {
+        if e.standard_error.is_nan() {
+            format!("{:.6e} (1 run)", e.mean)
+        } else {
+            let percent = 100.0 * e.relative_error();
+            format!("{:.6e} ± {:.2e} ({percent:.2} %)", e.mean, e.standard_error)
+        }
+    };
+    for contact in contacts {
+        for event in &contact.events {
+            let cells: Vec<String> = event.estimates().map(cell).to_vec();
+            writeln!(
+                out,
+                "| {} | {} | {} | {} |",
+                contact.contact,
+                event.event,
+                event.runs,
+                cells.join(" | ")
+            )
+            .expect("writing to a String cannot fail");
+        }
     }
     out
 }

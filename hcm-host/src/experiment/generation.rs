@@ -3,7 +3,7 @@
 //! of runs; the runs do not depend on the chunk size or the thread count, since run `i`
 //! draws from its own stream (seed, i).
 
-use super::{conditions, noisy_run, run_id, run_rng, ExperimentError};
+use super::{conditions, noisy_model, noisy_run, run_id, run_rng, ExperimentError};
 use crate::dataset::Run;
 use crate::scenario::{Model, Scenario};
 use rayon::prelude::*;
@@ -64,18 +64,30 @@ impl Generation {
 
     /// Run `index` (of [`Self::total_runs`]), simulated.
     pub fn run(&self, index: usize) -> Result<Run, ExperimentError> {
-        let (name, model) = &self.conditions[index / self.runs_per_condition];
-        let id = run_id(
-            name,
-            index % self.runs_per_condition,
-            self.runs_per_condition,
-        );
+        let (model, id) = self.condition_of(index);
         let mut rng = run_rng(self.seed, index as u64);
         let run = noisy_run(model, &mut rng).map_err(|source| ExperimentError::Simulation {
             run: id.clone(),
             source,
         })?;
         Ok(Run { id, ..run })
+    }
+
+    /// The model run `index` was simulated with: its condition's, with the run's own
+    /// noisy contact parameters (Eq 18) — the same draws [`Self::run`] makes. Without
+    /// the output noise, so simulating it gives the run's noise-free data.
+    pub fn noisy_model(&self, index: usize) -> Result<Model, ExperimentError> {
+        let (model, id) = self.condition_of(index);
+        let mut rng = run_rng(self.seed, index as u64);
+        noisy_model(model, &mut rng)
+            .map_err(|source| ExperimentError::Simulation { run: id, source })
+    }
+
+    /// The model of run `index`'s condition and the run's id.
+    fn condition_of(&self, index: usize) -> (&Model, String) {
+        let (name, model) = &self.conditions[index / self.runs_per_condition];
+        let k = index % self.runs_per_condition;
+        (model, run_id(name, k, self.runs_per_condition))
     }
 
     /// Makes every run and hands it to `each` with its index, in order. `progress` is

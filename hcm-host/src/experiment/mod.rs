@@ -1,6 +1,8 @@
 //! Noise-added experiments (PM1, paper Section 4): many runs of a scenario with
-//! noise on the contact parameters (Eq 18) and on the sampled outputs (Eq 19),
-//! split into a training set S1 and a validation set S2.
+//! noise on the contact parameters (Eq 18: the law's and, in 3D, the friction's) and on
+//! the sampled outputs (Eq 19: force, torque), split into a training set S1 and a
+//! validation set S2. A 3D run's recorded state just before its first contact
+//! ([`pre_contact_states`]) is where a later stage replays it from.
 //!
 //! Every run draws from its own random stream, derived from the seed and the run's
 //! index, so the data are bit-identical for a seed whatever the number of threads.
@@ -9,20 +11,23 @@
 //! [`ExperimentWriter`] streams them to OUT, S1 and S2.
 
 mod generation;
+mod noise;
+mod pre_contact;
 mod split;
 mod write;
 
 pub use generation::Generation;
+pub use noise::{noisy_model, noisy_run};
+pub use pre_contact::{pre_contact_states, replay_model, PreContact, PreContactError};
 pub use split::{check_split, condition_of, split, split_sizes, Holdout, Split};
 pub use write::{ExperimentWriter, Written};
 
-use crate::dataset::{DataError, Dataset, Run};
+use crate::dataset::{DataError, Dataset};
 use crate::output::{NoSpace, OutputError};
 use crate::scenario::{Model, Scenario, ScenarioError};
-use crate::simulate::{simulate, SimulationError};
+use crate::simulate::SimulationError;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, StandardNormal};
 
 /// Why an experiment could not be generated.
 #[derive(Debug, thiserror::Error)]
@@ -143,72 +148,4 @@ pub fn generate(
         Ok(())
     })?;
     Ok(Dataset { runs })
-}
-
-/// One run of PM1: contact parameters η = a + a·b·ζ (Eq 18), then output noise
-/// γ = γ0 + σ·ζ on every recorded sample (Eq 19).
-pub fn noisy_run(model: &Model, rng: &mut ChaCha8Rng) -> Result<Run, SimulationError> {
-    let mut model = model.clone();
-    for (index, contact) in model.contacts.iter_mut().enumerate() {
-        // Drawn in the order of `noise` (by name, as the scenario's table is sorted),
-        // one draw per noisy parameter.
-        for (name, b) in &contact.noise {
-            let noisy = |source| SimulationError::Noise {
-                contact: index,
-                source,
-            };
-            let law = &mut contact.model.normal.base;
-            let a = law.get(name).map_err(noisy)?;
-            law.set(name, a + a * b * normal(rng)).map_err(noisy)?;
-        }
-    }
-    let mut run = simulate(&model)?.run;
-    let e = &model.scenario.experiment;
-    for track in &mut run.bodies {
-        if e.sensor_delay > 0.0 {
-            delay_forces(&mut track.samples, e.sensor_delay);
-        }
-        for sample in &mut track.samples {
-            for (f, b) in sample.force.iter_mut().zip(e.force_offset) {
-                *f += b;
-            }
-            for (values, sigma) in [
-                (&mut sample.force[..], e.force_noise),
-                (&mut sample.torque[..], e.torque_noise),
-                (&mut sample.position[..], e.position_noise),
-                (&mut sample.velocity[..], e.velocity_noise),
-            ] {
-                if sigma > 0.0 {
-                    values.iter_mut().for_each(|v| *v += sigma * normal(rng));
-                }
-            }
-        }
-    }
-    Ok(run)
-}
-
-/// Replaces each sample's force by the force τ (s) earlier, linearly interpolated
-/// between the samples (held at the first sample's value before it): a lagging sensor.
-fn delay_forces(samples: &mut [crate::dataset::Sample], delay: f64) {
-    let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
-    let forces: Vec<[f64; 3]> = samples.iter().map(|s| s.force).collect();
-    let mut j = 0;
-    for sample in samples.iter_mut() {
-        let t = sample.time - delay;
-        while j + 1 < times.len() && times[j + 1] <= t {
-            j += 1;
-        }
-        sample.force = if t <= times[0] {
-            forces[0]
-        } else if j + 1 >= times.len() {
-            forces[j]
-        } else {
-            let s = (t - times[j]) / (times[j + 1] - times[j]);
-            std::array::from_fn(|k| forces[j][k] + s * (forces[j + 1][k] - forces[j][k]))
-        };
-    }
-}
-
-fn normal(rng: &mut ChaCha8Rng) -> f64 {
-    StandardNormal.sample(rng)
 }

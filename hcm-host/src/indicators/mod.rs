@@ -10,6 +10,7 @@ mod from_data;
 mod from_poses;
 mod summary;
 mod wrench;
+mod wrench_summary;
 
 pub use from_data::{
     contact_history, event_spans, from_run, ContactHistory, DataEvent, EventSpan, IndicatorError,
@@ -17,6 +18,9 @@ pub use from_data::{
 pub use from_poses::{pair_events_from_run, PairDataEvent};
 pub use summary::{summarize, EventSummary, Statistic};
 pub use wrench::WrenchIndicators;
+pub use wrench_summary::{
+    wrench_statistics, ContactStatistics, Estimate, EventCountMismatch, WrenchEventStatistics,
+};
 
 use serde::Serialize;
 

@@ -149,6 +149,8 @@ pub struct ContactSpec {
     pub parameters: toml::Table,
     /// Parameter noise of the noise-added experiment (Eq 18): for each named
     /// parameter, b in η = a + a·b·ζ, ζ ~ N(0, 1) drawn once per run (dimensionless).
+    /// A name is a parameter of the law or, with `friction`, one of the friction's
+    /// (`mu_static`, `mu_dynamic`, `v_static`, `v_dynamic`).
     #[serde(default)]
     pub noise: BTreeMap<String, f64>,
     /// Physical effects added to the law (`hcm_core::effect`), e.g.

@@ -91,7 +91,8 @@ pub struct Contact {
     pub model: HostContactModel,
     /// Effective mass m_e = m1·m2/(m1 + m2) (kg) of the pair.
     pub effective_mass: f64,
-    /// Parameter noise b per law parameter (Eq 18), for generated experiments.
+    /// Parameter noise b per law or friction parameter (Eq 18), for generated
+    /// experiments, sorted by name (the order of the draws).
     pub noise: Vec<(String, f64)>,
 }
 
@@ -534,18 +535,35 @@ fn pair_geometry(radius_1: Option<f64>, b1: &Body, b2: &Body) -> (f64, f64) {
     (radius, effective_mass)
 }
 
-/// Every noise entry names a parameter of the contact's law and is a relative
-/// standard deviation ≥ 0.
+/// Every noise entry names a parameter of the contact's law, or of its friction when
+/// it has friction, and is a relative standard deviation ≥ 0.
 fn check_noise(spec: &super::ContactSpec) -> Result<(), String> {
     let known = law_catalogue::entry(&spec.law)
         .map(|e| e.parameters)
         .unwrap_or(&[]);
+    let friction = &super::FrictionSpec::PARAMETERS;
     for (name, b) in &spec.noise {
-        if !known.iter().any(|p| p.name == name) {
-            let names: Vec<_> = known.iter().map(|p| p.name).collect();
+        let of_friction = friction.contains(&name.as_str());
+        if of_friction && spec.friction.is_none() {
             return Err(format!(
-                "`{name}` is not a parameter of `{}` ({})",
+                "`{name}` is a friction parameter, and this contact has no `friction`; \
+                 give it `friction = {{ mu_static, mu_dynamic, v_static, v_dynamic }}` \
+                 or leave `{name}` out of `noise`"
+            ));
+        }
+        if !of_friction && !known.iter().any(|p| p.name == name) {
+            let mut names: Vec<_> = known.iter().map(|p| p.name).collect();
+            if spec.friction.is_some() {
+                names.extend(friction);
+            }
+            return Err(format!(
+                "`{name}` is not a parameter of `{}`{} ({})",
                 spec.law,
+                if spec.friction.is_some() {
+                    " or of its friction"
+                } else {
+                    ""
+                },
                 names.join(", ")
             ));
         }

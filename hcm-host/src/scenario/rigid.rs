@@ -67,6 +67,25 @@ pub struct FrictionSpec {
 }
 
 impl FrictionSpec {
+    /// The scenario names of the friction parameters, which a contact's `noise` table
+    /// may name beside its law's (Eq 18 on friction): μ_s, μ_d (–), v_s, v_d (m/s).
+    pub const PARAMETERS: [&'static str; 4] = ["mu_static", "mu_dynamic", "v_static", "v_dynamic"];
+
+    /// The value of the friction parameter called `name` (a [`Self::PARAMETERS`] name)
+    /// in `law`, for Eq 18's noise.
+    pub fn parameter<'a>(
+        law: &'a mut VelocityStepFriction<f64>,
+        name: &str,
+    ) -> Option<&'a mut f64> {
+        match name {
+            "mu_static" => Some(&mut law.static_coefficient),
+            "mu_dynamic" => Some(&mut law.dynamic_coefficient),
+            "v_static" => Some(&mut law.stiction_speed),
+            "v_dynamic" => Some(&mut law.dynamic_speed),
+            _ => None,
+        }
+    }
+
     /// The core's friction law, checked (coefficients ≥ 0, 0 < v_s < v_d).
     pub fn law(&self) -> Result<VelocityStepFriction<f64>, String> {
         let law = VelocityStepFriction {

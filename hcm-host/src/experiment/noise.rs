@@ -1,0 +1,113 @@
+//! One run of PM1 (paper Section 4): the contact's parameters scattered (Eq 18), the
+//! scenario simulated, and noise added to what is recorded (Eq 19).
+//!
+//! Eq 18 draws η = a + a·b·ζ, ζ ~ N(0, 1), once per run for every parameter named in
+//! the contact's `noise` table: the normal law's (IMPACT's stiffness, damping, …) and,
+//! for a contact with friction, the STEP friction's (μ_s, μ_d, v_s, v_d). Eq 19 adds
+//! σ·ζ to every recorded force component (and, where asked, torque, position and
+//! velocity components), a fresh ζ per component and sample.
+
+use crate::dataset::{Run, Sample};
+use crate::scenario::{Contact, ExperimentSpec, FrictionSpec, Model};
+use crate::simulate::{simulate, SimulationError};
+use hcm_core::LawError;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
+
+/// One run of PM1: contact parameters η = a + a·b·ζ (Eq 18), then output noise
+/// γ = γ0 + σ·ζ on every recorded sample (Eq 19).
+pub fn noisy_run(model: &Model, rng: &mut ChaCha8Rng) -> Result<Run, SimulationError> {
+    let model = noisy_model(model, rng)?;
+    let mut run = simulate(&model)?.run;
+    add_output_noise(&model.scenario.experiment, &mut run, rng);
+    Ok(run)
+}
+
+/// The model of one run of PM1: every contact's noisy parameters drawn (Eq 18), in
+/// contact order; the first draws of the run's stream.
+pub fn noisy_model(model: &Model, rng: &mut ChaCha8Rng) -> Result<Model, SimulationError> {
+    let mut model = model.clone();
+    for (index, contact) in model.contacts.iter_mut().enumerate() {
+        scatter_parameters(contact, rng).map_err(|source| SimulationError::Noise {
+            contact: index,
+            source,
+        })?;
+    }
+    Ok(model)
+}
+
+/// Eq 19 and the sensor effects on a simulated run: a lagging force sensor, its
+/// offset, then σ·ζ on every force, torque, position and velocity component whose σ
+/// is set, sample by sample in time order.
+fn add_output_noise(e: &ExperimentSpec, run: &mut Run, rng: &mut ChaCha8Rng) {
+    for track in &mut run.bodies {
+        if e.sensor_delay > 0.0 {
+            delay_forces(&mut track.samples, e.sensor_delay);
+        }
+        for sample in &mut track.samples {
+            for (f, b) in sample.force.iter_mut().zip(e.force_offset) {
+                *f += b;
+            }
+            for (values, sigma) in [
+                (&mut sample.force[..], e.force_noise),
+                (&mut sample.torque[..], e.torque_noise),
+                (&mut sample.position[..], e.position_noise),
+                (&mut sample.velocity[..], e.velocity_noise),
+            ] {
+                if sigma > 0.0 {
+                    values.iter_mut().for_each(|v| *v += sigma * normal(rng));
+                }
+            }
+        }
+    }
+}
+
+/// Eq 18 on one contact: each parameter of its `noise` table (sorted by name, one draw
+/// each, so a scenario's runs draw alike whatever else changes) becomes a + a·b·ζ. A
+/// friction name acts on the contact's friction when it has one; any other name on the
+/// normal law, which refuses names it does not have. Friction scattered out of its
+/// domain (v_d below v_s, say) is refused rather than simulated.
+fn scatter_parameters(contact: &mut Contact, rng: &mut ChaCha8Rng) -> Result<(), LawError> {
+    for (name, b) in &contact.noise {
+        let zeta = normal(rng);
+        let friction = contact.model.friction.as_mut();
+        if let Some(a) = friction.and_then(|f| FrictionSpec::parameter(f, name)) {
+            *a += *a * b * zeta;
+            continue;
+        }
+        let law = &mut contact.model.normal.base;
+        let a = law.get(name)?;
+        law.set(name, a + a * b * zeta)?;
+    }
+    match &contact.model.friction {
+        Some(friction) => friction.validate(),
+        None => Ok(()),
+    }
+}
+
+/// Replaces each sample's force by the force τ (s) earlier, linearly interpolated
+/// between the samples (held at the first sample's value before it): a lagging sensor.
+fn delay_forces(samples: &mut [Sample], delay: f64) {
+    let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
+    let forces: Vec<[f64; 3]> = samples.iter().map(|s| s.force).collect();
+    let mut j = 0;
+    for sample in samples.iter_mut() {
+        let t = sample.time - delay;
+        while j + 1 < times.len() && times[j + 1] <= t {
+            j += 1;
+        }
+        sample.force = if t <= times[0] {
+            forces[0]
+        } else if j + 1 >= times.len() {
+            forces[j]
+        } else {
+            let s = (t - times[j]) / (times[j + 1] - times[j]);
+            std::array::from_fn(|k| forces[j][k] + s * (forces[j + 1][k] - forces[j][k]))
+        };
+    }
+}
+
+/// ζ ~ N(0, 1).
+fn normal(rng: &mut ChaCha8Rng) -> f64 {
+    StandardNormal.sample(rng)
+}
