@@ -200,8 +200,11 @@ fn check_same_function(
             depth * 1e6
         );
         assert!(relative <= 1e-5, "force {force} vs candle {force_candle}");
+        // candle's tanh is libm's; the core's rational one is within 1.2e-6 of it per
+        // activation, which the layers carry to the output amplified by their row sums
+        // (tests/residual_blob.rs asserts that carried bound exactly): 1e-4 here.
         assert!(
-            (residual_candle - residual).abs() <= 1e-5 * residual.abs().max(1.0),
+            (residual_candle - residual).abs() <= 1e-4 * residual.abs().max(1.0),
             "residual {residual} vs candle {residual_candle}"
         );
     }

@@ -8,6 +8,7 @@ pub mod least_squares;
 pub mod levenberg_marquardt;
 pub mod physics;
 pub mod replay;
+pub mod rigid;
 pub mod samples;
 pub mod separable;
 

@@ -1,0 +1,89 @@
+//! PM2 for a rigid body (issue 15, the peg-in-hole): the contact law's parameters but
+//! its exponent, and its STEP friction, found by the genetic algorithm so that a
+//! replay from S1's mean pre-contact state makes S1's contact events — peak force and
+//! torque, linear and angular impulse, timing — event by event.
+
+pub mod fitness;
+pub mod parameters;
+pub mod target;
+
+pub use fitness::{event_errors, fitness, replay};
+pub use parameters::RigidParameters;
+pub use target::{EventTarget, WrenchTarget};
+
+use super::genetic::{minimize, GeneticError, GeneticSettings};
+use crate::indicators::IndicatorError;
+use crate::scenario::Model;
+use std::time::Instant;
+
+/// Why a rigid identification failed.
+#[derive(Debug, thiserror::Error)]
+pub enum RigidIdentifyError {
+    /// The model has no such contact.
+    #[error("the scenario has no contact number {0}")]
+    NoSuchContact(usize),
+    /// Both bodies move, or neither does.
+    #[error("contact `{0}`: identification replays one moving body against a fixed one")]
+    NotOneMover(String),
+    /// The runs do not usually make the events asked for.
+    #[error("{wanted} contact events asked for, but the runs usually make {usual}; ask for at most {usual} or check the data against the scenario")]
+    TooFewEvents { wanted: usize, usual: usize },
+    /// The data do not match the scenario.
+    #[error(transparent)]
+    Data(#[from] IndicatorError),
+    /// A run has no usable pre-contact state.
+    #[error(transparent)]
+    PreContact(#[from] crate::experiment::PreContactError),
+    /// Bad bounds.
+    #[error("{0}")]
+    Setup(String),
+    /// The genetic algorithm failed.
+    #[error("genetic algorithm: {0}")]
+    Genetic(#[from] GeneticError),
+}
+
+/// What the identification found.
+#[derive(Clone, Debug)]
+pub struct RigidIdentification {
+    /// The scenario's model with the identified parameters (started as the scenario
+    /// says, not from the replay state).
+    pub model: Model,
+    /// The identified values (SI units), law parameters first, then friction.
+    pub parameters: Vec<(String, f64)>,
+    /// Best fitness (mean squared relative error).
+    pub fitness: f64,
+    /// Generations run.
+    pub generations: usize,
+    /// Replays simulated.
+    pub evaluations: usize,
+    /// Wall-clock time (s).
+    pub seconds: f64,
+}
+
+/// Finds contact `target.contact`'s parameters of `model` (law without exponent, and
+/// friction) by the genetic algorithm. `progress(generation, best fitness)` is called
+/// once per generation.
+pub fn identify_rigid(
+    model: &Model,
+    target: &WrenchTarget,
+    parameters: &RigidParameters,
+    settings: &GeneticSettings,
+    progress: impl FnMut(usize, f64),
+) -> Result<RigidIdentification, RigidIdentifyError> {
+    let started = Instant::now();
+    let c = target.contact;
+    let result = minimize(
+        &parameters.genetic(),
+        settings,
+        |genes| fitness(target, &parameters.apply(&target.model, c, genes)),
+        progress,
+    )?;
+    Ok(RigidIdentification {
+        model: parameters.apply(model, c, &result.best),
+        parameters: parameters.named(&result.best),
+        fitness: result.fitness,
+        generations: result.generations,
+        evaluations: result.evaluations,
+        seconds: started.elapsed().as_secs_f64(),
+    })
+}

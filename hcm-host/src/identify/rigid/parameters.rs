@@ -1,0 +1,125 @@
+//! The parameters PM2 frees on a rigid contact: the normal law's (but the exponent,
+//! which PM2 fixes) and its STEP friction's (Eq 10–11), with their search box.
+//!
+//! Friction is searched as μ_s, μ_d/μ_s, v_s and v_d/v_s, so that every point of the
+//! box is a valid law (μ_d ≤ μ_s, v_s < v_d) and none of the algorithm's budget is
+//! spent on impossible candidates.
+
+use super::RigidIdentifyError;
+use crate::identify::bounds::{Bounds, BoundsOverrides};
+use crate::identify::genetic::Bound;
+use crate::scenario::Model;
+use hcm_core::friction::VelocityStepFriction;
+
+/// The friction genes: name, lower, upper, log scale.
+const FRICTION: [(&str, f64, f64, bool); 4] = [
+    ("mu_static", 0.05, 1.0, false),
+    ("mu_ratio", 0.1, 1.0, false),
+    ("v_static", 1e-5, 1e-2, true),
+    ("v_ratio", 2.0, 1e3, true),
+];
+
+/// The free parameters of one contact and their box.
+#[derive(Clone, Debug)]
+pub struct RigidParameters {
+    /// The law's free parameters (the exponent excluded).
+    law: Bounds,
+    /// Whether the contact has friction to fit.
+    friction: bool,
+}
+
+impl RigidParameters {
+    /// The law's box (defaults, or the scenario's `[identify.bounds.<law>]`) without
+    /// `exponent`, plus friction when contact `c` has it.
+    pub fn new(
+        model: &Model,
+        c: usize,
+        overrides: &BoundsOverrides,
+    ) -> Result<RigidParameters, RigidIdentifyError> {
+        let contact = model
+            .contacts
+            .get(c)
+            .ok_or(RigidIdentifyError::NoSuchContact(c))?;
+        let name = contact.law().name();
+        let mut law =
+            Bounds::for_law(name, overrides.get(name)).map_err(RigidIdentifyError::Setup)?;
+        law.parameters.retain(|p| p.0 != "exponent");
+        Ok(RigidParameters {
+            law,
+            friction: contact.model.friction.is_some(),
+        })
+    }
+
+    /// Names of the genes, in order: the law's, then μ_s, μ_d/μ_s, v_s, v_d/v_s.
+    pub fn names(&self) -> Vec<String> {
+        let mut names: Vec<String> = self.law.free().iter().map(|n| n.to_string()).collect();
+        if self.friction {
+            names.extend(FRICTION.iter().map(|f| f.0.to_owned()));
+        }
+        names
+    }
+
+    /// The genetic algorithm's box, in [`RigidParameters::names`] order.
+    pub fn genetic(&self) -> Vec<Bound> {
+        let mut bounds = self.law.genetic();
+        if self.friction {
+            bounds.extend(
+                FRICTION
+                    .iter()
+                    .map(|&(name, lower, upper, log_scale)| Bound {
+                        name: name.to_owned(),
+                        lower,
+                        upper,
+                        log_scale,
+                    }),
+            );
+        }
+        bounds
+    }
+
+    /// `model` with contact `c`'s free parameters set to `genes` (in
+    /// [`RigidParameters::names`] order).
+    pub fn apply(&self, model: &Model, c: usize, genes: &[f64]) -> Model {
+        let mut out = model.clone();
+        let contact = &mut out.contacts[c];
+        let count = self.law.free().len();
+        let (law, friction) = genes.split_at(count.min(genes.len()));
+        contact.model.normal.base = self.law.with(&contact.model.normal.base, law);
+        if let (true, [mu_static, mu_ratio, v_static, v_ratio]) = (self.friction, friction) {
+            contact.model.friction = Some(VelocityStepFriction {
+                static_coefficient: *mu_static,
+                dynamic_coefficient: mu_static * mu_ratio,
+                stiction_speed: *v_static,
+                dynamic_speed: v_static * v_ratio,
+            });
+        }
+        out
+    }
+
+    /// The named values (SI units) of the parameters `genes` stand for: the law's, then
+    /// `mu_static`, `mu_dynamic`, `v_static`, `v_dynamic`.
+    pub fn named(&self, genes: &[f64]) -> Vec<(String, f64)> {
+        let count = self.law.free().len();
+        let mut out: Vec<(String, f64)> = self
+            .law
+            .free()
+            .iter()
+            .zip(genes)
+            .map(|(n, v)| (n.to_string(), *v))
+            .collect();
+        if let (true, Some([mu_static, mu_ratio, v_static, v_ratio])) = (
+            self.friction,
+            genes
+                .get(count..)
+                .and_then(|f| <&[f64; 4]>::try_from(f).ok()),
+        ) {
+            out.extend([
+                ("mu_static".to_owned(), *mu_static),
+                ("mu_dynamic".to_owned(), mu_static * mu_ratio),
+                ("v_static".to_owned(), *v_static),
+                ("v_dynamic".to_owned(), v_static * v_ratio),
+            ]);
+        }
+        out
+    }
+}

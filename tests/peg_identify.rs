@@ -1,0 +1,109 @@
+//! PM2 on the peg-in-hole (issue 15): the target built from S1 (events matched by
+//! order, their delays, the mean pre-contact state), a fitness that tells the
+//! generating physics from a wrong one, and the genetic algorithm fitting IMPACT with
+//! a fixed exponent other than PM1's, plus STEP friction.
+//!
+//! Run with `--nocapture` to see the fitness values and the identified parameters.
+
+use hcm_host::experiment::generate;
+use hcm_host::identify::genetic::GeneticSettings;
+use hcm_host::identify::rigid::{
+    event_errors, fitness, identify_rigid, replay, RigidParameters, WrenchTarget,
+};
+use hcm_host::scenario::{Model, Scenario};
+use std::collections::BTreeMap;
+
+fn peg() -> Scenario {
+    Scenario::load(&hcm_tests::scenario("peg_in_hole.toml"), &[]).unwrap()
+}
+
+/// `model` started like the target's replay, with the physics of `physics`.
+fn as_replay(target: &WrenchTarget, physics: &Model) -> Model {
+    hcm_host::identify::replay::with_physics(&target.model, physics)
+}
+
+#[test]
+fn the_target_and_its_fitness_tell_the_generating_physics_from_a_wrong_one() {
+    let scenario = peg();
+    let nominal = scenario.model().unwrap();
+    let data = generate(&scenario, 6, 3, || {}).unwrap();
+    let all = WrenchTarget::from_data(&nominal, &data, 0, None).unwrap();
+    assert!(all.events.len() >= 3, "two wall contacts and the bottom");
+    // The two wall contacts (Table 15's): the bottom's peak torque depends on how
+    // flat the peg lands and scatters by tens of % from run to run (measured: the
+    // nominal replay's is 62 % off the 6 runs' mean), so it is not a fitting target.
+    let target = WrenchTarget::from_data(&nominal, &data, 0, Some(2)).unwrap();
+    println!(
+        "{} events from {} runs ({} left out)",
+        target.events.len(),
+        target.runs,
+        target.left_out.len()
+    );
+    assert_eq!(target.events.len(), 2);
+    assert_eq!(target.events[0].delay, 0.0);
+    for pair in target.events.windows(2) {
+        assert!(pair[1].delay > pair[0].delay, "events in time order");
+    }
+    // The nominal physics replayed from the mean pre-contact state makes the mean
+    // events to within the 2 % parameter scatter; ten times the stiffness does not.
+    let right = fitness(&target, &as_replay(&target, &nominal));
+    let events = replay(&as_replay(&target, &nominal), 0).unwrap();
+    for (k, (t, got)) in events.iter().enumerate().take(target.events.len()) {
+        let e = event_errors(&target.events[k], got, t - events[0].0);
+        println!("event {k}: relative errors {e:.4?} (max F, max T, ∫F, ∫T, delay)");
+        assert!(e.iter().all(|e| e.abs() < 0.02), "event {k}: {e:?}");
+    }
+    let mut stiff = nominal.clone();
+    let law = &mut stiff.contacts[0].model.normal.base;
+    law.set("stiffness", 1e9).unwrap();
+    let wrong = fitness(&target, &as_replay(&target, &stiff));
+    println!("fitness: nominal {right:.3e}, stiffness × 10 {wrong:.3e}");
+    assert!(right < 1e-3, "{right}");
+    assert!(wrong > 30.0 * right, "{wrong} vs {right}");
+    // Asking for more events than the runs make is an error saying how many they make.
+    let error = WrenchTarget::from_data(&nominal, &data, 0, Some(9)).unwrap_err();
+    assert!(error.to_string().contains("usually make"), "{error}");
+}
+
+#[test]
+fn the_genetic_algorithm_fits_impact_with_a_fixed_wrong_exponent() {
+    let scenario = peg();
+    let nominal = scenario.model().unwrap();
+    let data = generate(&scenario, 4, 5, || {}).unwrap();
+    // PM2: exponent 2 instead of PM1's 1.5, everything else to be found.
+    let mut pm2 = nominal.clone();
+    let law = &mut pm2.contacts[0].model.normal.base;
+    law.set("exponent", 2.0).unwrap();
+    let target = WrenchTarget::from_data(&pm2, &data, 0, Some(2)).unwrap();
+    let parameters = RigidParameters::new(&pm2, 0, &BTreeMap::new()).unwrap();
+    assert!(!parameters.names().iter().any(|n| n == "exponent"));
+    assert_eq!(parameters.names().len(), 3 + 4, "{:?}", parameters.names());
+    let settings = GeneticSettings {
+        population: 16,
+        generations: 8,
+        seed: 2,
+        ..GeneticSettings::default()
+    };
+    let first = parameters.genetic();
+    let middle: Vec<f64> = first
+        .iter()
+        .map(|b| {
+            if b.log_scale {
+                (b.lower * b.upper).sqrt()
+            } else {
+                0.5 * (b.lower + b.upper)
+            }
+        })
+        .collect();
+    let start = fitness(&target, &parameters.apply(&target.model, 0, &middle));
+    let found = identify_rigid(&pm2, &target, &parameters, &settings, |_, _| {}).unwrap();
+    println!(
+        "fitness {start:.3e} at the box's middle → {:.3e} in {} replays, {:.1} s: {:?}",
+        found.fitness, found.evaluations, found.seconds, found.parameters
+    );
+    assert_eq!(found.model.contacts[0].law().get("exponent").unwrap(), 2.0);
+    assert!(found.fitness < 0.25 * start, "{} vs {start}", found.fitness);
+    // Its replay makes both wall contacts.
+    let replayed = replay(&as_replay(&target, &found.model), 0).unwrap();
+    assert!(replayed.len() >= 2, "{replayed:?}");
+}
