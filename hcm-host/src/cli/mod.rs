@@ -11,6 +11,7 @@ mod laws;
 mod numbers;
 mod report;
 mod reproduce;
+mod reproduce_peg;
 mod simulate;
 mod train;
 

@@ -21,15 +21,8 @@ enum ExampleArg {
     BouncingBall,
     /// The paper's Section 5.2 (Table 10): a plate hits a resting ball at ten speeds.
     FlatShot,
-}
-
-impl From<ExampleArg> for Example {
-    fn from(example: ExampleArg) -> Example {
-        match example {
-            ExampleArg::BouncingBall => Example::BouncingBall,
-            ExampleArg::FlatShot => Example::FlatShot,
-        }
-    }
+    /// The paper's Section 5.3 (Table 15): a peg falls tilted into a hole.
+    PegInHole,
 }
 
 /// Reproduce one of the paper's examples end to end, with report and figures.
@@ -58,6 +51,12 @@ impl From<ExampleArg> for Example {
 pub struct Args {
     /// Which example.
     example: ExampleArg,
+    /// Peg-in-hole: generations of the genetic algorithm that identifies PM2.
+    #[arg(long)]
+    generations: Option<usize>,
+    /// Peg-in-hole: individuals per generation of that algorithm.
+    #[arg(long)]
+    population: Option<usize>,
     /// Output directory (created): data, pm2.toml, residual blobs, report.md,
     /// results.json, figures.
     #[arg(long)]
@@ -84,7 +83,11 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let example = Example::from(args.example);
+    let example = match args.example {
+        ExampleArg::BouncingBall => Example::BouncingBall,
+        ExampleArg::FlatShot => Example::FlatShot,
+        ExampleArg::PegInHole => return super::reproduce_peg::run(args.into()),
+    };
     let settings = ReproduceSettings {
         example,
         scenario: args.scenario,
@@ -117,6 +120,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
+impl From<Args> for super::reproduce_peg::PegArgs {
+    fn from(args: Args) -> Self {
+        super::reproduce_peg::PegArgs {
+            out: args.out,
+            seed: args.seed,
+            runs: args.runs,
+            scenario: args.scenario,
+            overrides: args.overrides,
+            generations: args.generations,
+            population: args.population,
+        }
+    }
+}
+
 /// Every stage's output in `out`: S1 and S2, PM2, the trained network, its blobs and
 /// the figures (SVG and PNG).
 fn write_stages(r: &Reproduction, out: &Path) -> anyhow::Result<()> {
@@ -141,7 +158,7 @@ fn write_stages(r: &Reproduction, out: &Path) -> anyhow::Result<()> {
 
 /// One progress bar per stage on standard error (hidden when it is not a terminal).
 #[derive(Default)]
-struct Bars(Mutex<Option<ProgressBar>>);
+pub(super) struct Bars(Mutex<Option<ProgressBar>>);
 
 impl Bars {
     fn bar(&self) -> MutexGuard<'_, Option<ProgressBar>> {

@@ -22,6 +22,7 @@ mod example;
 mod export;
 mod generate;
 mod identify;
+pub mod peg;
 mod progress;
 mod quantity;
 mod report;
@@ -81,6 +82,9 @@ pub enum PipelineError {
         "the exported blob does not decode in the core: {0} (shape not the shipped 3-16-16-1?)"
     )]
     Decode(BlobError),
+    /// The rigid-body stages (peg-in-hole): PM2 or the S2 comparison failed.
+    #[error(transparent)]
+    Rigid(#[from] crate::identify::rigid::RigidIdentifyError),
     /// Stage 5: S2 holds no condition to evaluate.
     #[error("the validation data hold no condition")]
     NoValidation,

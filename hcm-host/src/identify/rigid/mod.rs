@@ -87,3 +87,20 @@ pub fn identify_rigid(
         seconds: started.elapsed().as_secs_f64(),
     })
 }
+
+/// The name of the one moving body of contact `c` (the other must be fixed).
+pub fn mover_name(model: &Model, c: usize) -> Result<String, RigidIdentifyError> {
+    let contact = model
+        .contacts
+        .get(c)
+        .ok_or(RigidIdentifyError::NoSuchContact(c))?;
+    let (b1, b2) = (&model.bodies[contact.body_1], &model.bodies[contact.body_2]);
+    match (b1.fixed, b2.fixed) {
+        (false, true) => Ok(b1.name.clone()),
+        (true, false) => Ok(b2.name.clone()),
+        _ => Err(RigidIdentifyError::NotOneMover(format!(
+            "{}–{}",
+            b1.name, b2.name
+        ))),
+    }
+}

@@ -1,0 +1,246 @@
+//! Stage 5 of the peg-in-hole: PM2, the HCM and the HCM int8 replayed from S2's mean
+//! pre-contact state, their wall contacts against S2's mean — the paper's Table 15
+//! (maximum force and torque, linear and angular impulse of contacts 1 and 2) — and
+//! the figures.
+
+use super::curves::{mean_curve, replay_curve, WrenchCurve};
+use crate::dataset::Dataset;
+use crate::figure::{Colour, Figure, Series};
+use crate::identify::replay::with_physics;
+use crate::identify::rigid::{mover_name, replay, RigidIdentifyError, WrenchTarget};
+use crate::pipeline::NamedFigure;
+use crate::scenario::Model;
+use serde::Serialize;
+
+/// Table 15's indicators: key, label, unit.
+pub const INDICATORS: [(&str, &str, &str); 4] = [
+    ("max_force", "maximum force", "N"),
+    ("max_torque", "maximum torque", "N·m"),
+    ("linear_impulse", "linear impulse", "N·s"),
+    ("angular_impulse", "angular impulse", "N·m·s"),
+];
+
+/// The paper's Table 15 errors (fractions): (contact, indicator key, PM2, HCM). The
+/// paper gives the impulses only.
+pub const PAPER: [(usize, &str, f64, f64); 4] = [
+    (1, "linear_impulse", 0.0362, 0.0145),
+    (1, "angular_impulse", 0.0425, 0.0047),
+    (2, "linear_impulse", 0.1667, 0.0052),
+    (2, "angular_impulse", 0.0297, 0.0215),
+];
+
+/// One cell row of the table: one indicator of one contact.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PegRow {
+    /// Contact number, 1-based (1 = first wall contact).
+    pub contact: usize,
+    /// Indicator key (`max_force`, …).
+    pub indicator: &'static str,
+    /// Its unit.
+    pub unit: &'static str,
+    /// S2 mean.
+    pub mean: f64,
+    /// Standard error of the S2 mean (same unit).
+    pub standard_error: f64,
+    /// Each model's value, in [`PegEvaluation::models`] order; `None` if its replay
+    /// does not make this contact.
+    pub values: Vec<Option<f64>>,
+    /// Each model's Eq 20 error |mean − value| / mean.
+    pub errors: Vec<Option<f64>>,
+    /// The paper's (PM2, HCM) errors, where it gives them.
+    pub paper: Option<(f64, f64)>,
+}
+
+/// What stage 5 finds.
+pub struct PegEvaluation {
+    /// Model labels, in column order.
+    pub models: Vec<String>,
+    /// S2 runs, and those averaged (the usual event count).
+    pub runs: (usize, usize),
+    /// The rows: contacts 1, 2, … × [`INDICATORS`].
+    pub rows: Vec<PegRow>,
+    /// Each model's and S2's curves (S2 first).
+    pub curves: Vec<(&'static str, WrenchCurve)>,
+    /// The figures.
+    pub figures: Vec<NamedFigure>,
+}
+
+/// Replays `models` (label, model with its physics) from S2's mean pre-contact state
+/// and compares their first `events` contacts of contact `c` with S2's.
+pub fn evaluate_peg(
+    models: &[(&'static str, &Model)],
+    validation: &Dataset,
+    c: usize,
+    events: usize,
+) -> Result<PegEvaluation, RigidIdentifyError> {
+    let reference = models
+        .first()
+        .map(|m| m.1)
+        .ok_or(RigidIdentifyError::NoSuchContact(c))?;
+    let target = WrenchTarget::from_data(reference, validation, c, Some(events))?;
+    let replays: Vec<_> = models
+        .iter()
+        .map(|(_, m)| replay(&with_physics(&target.model, m), c).unwrap_or_default())
+        .collect();
+    let mut rows = Vec::new();
+    for (k, event) in target.events.iter().enumerate() {
+        let s = &event.statistics;
+        let estimates = [
+            s.max_force,
+            s.max_torque,
+            s.linear_impulse,
+            s.angular_impulse,
+        ];
+        for (i, (key, _, unit)) in INDICATORS.iter().enumerate() {
+            let values: Vec<Option<f64>> = replays
+                .iter()
+                .map(|r| r.get(k).map(|(_, got)| got.values()[i]))
+                .collect();
+            let mean = estimates[i].mean;
+            rows.push(PegRow {
+                contact: k + 1,
+                indicator: key,
+                unit,
+                mean,
+                standard_error: estimates[i].standard_error,
+                errors: values
+                    .iter()
+                    .map(|v| v.map(|v| (mean - v).abs() / mean.abs()))
+                    .collect(),
+                values,
+                paper: PAPER
+                    .iter()
+                    .find(|p| p.0 == k + 1 && p.1 == *key)
+                    .map(|p| (p.2, p.3)),
+            });
+        }
+    }
+    let curves = curves(models, &target, validation, c);
+    let figures = figures(&curves);
+    Ok(PegEvaluation {
+        models: models.iter().map(|m| m.0.to_owned()).collect(),
+        runs: (target.runs, target.runs - target.left_out.len()),
+        rows,
+        curves,
+        figures,
+    })
+}
+
+/// S2's mean curve and each model's, from 2 ms before the first contact to 2 ms after
+/// the last target contact ends, every 20 µs.
+fn curves(
+    models: &[(&'static str, &Model)],
+    target: &WrenchTarget,
+    validation: &Dataset,
+    c: usize,
+) -> Vec<(&'static str, WrenchCurve)> {
+    let last = target.events.last();
+    let end = last.map_or(0.01, |e| e.delay + e.statistics.duration.mean) + 2e-3;
+    let window = (-2e-3, end, 20e-6);
+    let mover = mover_name(&target.model, c).unwrap_or_default();
+    let mut out = vec![(
+        "S2 mean",
+        mean_curve(&target.model, validation, &mover, window),
+    )];
+    for (label, model) in models {
+        let replay_model = with_physics(&target.model, model);
+        out.push((*label, replay_curve(&replay_model, c, &mover, window)));
+    }
+    out
+}
+
+/// Colours: S2 mean, then the models.
+const COLOURS: [u32; 4] = [0x333333, 0xd62728, 0x1f77b4, 0x2ca02c];
+
+/// ‖F‖ and ‖T‖ over time (S2 mean and models), their errors (S2 mean − model), and the
+/// peg's path in the x–z plane.
+fn figures(curves: &[(&'static str, WrenchCurve)]) -> Vec<NamedFigure> {
+    // The int8 HCM overlaps the f32 one at these scales: drawn in the table only.
+    let shown: Vec<&(&'static str, WrenchCurve)> = curves.iter().take(3).collect();
+    let ms = |c: &WrenchCurve| c.time.iter().map(|t| 1e3 * t).collect::<Vec<_>>();
+    let series = |pick: &dyn Fn(&WrenchCurve) -> Vec<(f64, f64)>| -> Vec<Series<'static>> {
+        shown
+            .iter()
+            .zip(COLOURS)
+            .map(|((label, curve), colour)| Series {
+                label,
+                colour: Colour::hex(colour),
+                points: pick(curve),
+            })
+            .collect()
+    };
+    let over_time = |values: fn(&WrenchCurve) -> &Vec<f64>| {
+        move |c: &WrenchCurve| ms(c).into_iter().zip(values(c).iter().copied()).collect()
+    };
+    let mean = &curves[0].1;
+    let error = |values: fn(&WrenchCurve) -> &Vec<f64>| {
+        move |c: &WrenchCurve| -> Vec<(f64, f64)> {
+            ms(c)
+                .into_iter()
+                .zip(values(mean).iter().zip(values(c)).map(|(m, v)| m - v))
+                .collect()
+        }
+    };
+    let errors_of = |pick: &dyn Fn(&WrenchCurve) -> Vec<(f64, f64)>| -> Vec<Series<'static>> {
+        let mut all = series(pick);
+        all.remove(0);
+        all
+    };
+    let force: fn(&WrenchCurve) -> &Vec<f64> = |c| &c.force;
+    let torque: fn(&WrenchCurve) -> &Vec<f64> = |c| &c.torque;
+    let t_label = "time since the first wall contact (ms)";
+    vec![
+        NamedFigure {
+            stem: "contact_force",
+            figure: Figure::new(
+                "Contact force on the peg",
+                t_label,
+                "‖F‖ (N)",
+                series(&over_time(force)),
+            ),
+        },
+        NamedFigure {
+            stem: "contact_torque",
+            figure: Figure::new(
+                "Contact torque on the peg about its centre of mass",
+                t_label,
+                "‖T‖ (N·m)",
+                series(&over_time(torque)),
+            ),
+        },
+        NamedFigure {
+            stem: "force_error",
+            figure: Figure::new(
+                "Force error: S2 mean − model",
+                t_label,
+                "‖F‖ error (N)",
+                errors_of(&error(force)),
+            )
+            .with_zero_line(),
+        },
+        NamedFigure {
+            stem: "torque_error",
+            figure: Figure::new(
+                "Torque error: S2 mean − model",
+                t_label,
+                "‖T‖ error (N·m)",
+                errors_of(&error(torque)),
+            )
+            .with_zero_line(),
+        },
+        NamedFigure {
+            stem: "peg_path",
+            figure: Figure::new(
+                "The peg's centre of mass through the hole (side view, x stretched)",
+                "x (mm)",
+                "z (mm)",
+                series(&|c: &WrenchCurve| {
+                    c.x.iter()
+                        .zip(&c.z)
+                        .map(|(x, z)| (1e3 * x, 1e3 * z))
+                        .collect()
+                }),
+            ),
+        },
+    ]
+}

@@ -1,0 +1,152 @@
+//! `hcm reproduce peg-in-hole`: the paper's third example (Section 5.3, Table 15) as
+//! a library — PM1's noisy peg runs split into S1 and S2, PM2 (IMPACT with its
+//! exponent fixed, plus STEP friction) identified on S1's wall contacts by the genetic
+//! algorithm, and every model replayed on S2: the Table 15 analog and its figures.
+
+mod curves;
+mod evaluate;
+mod report;
+
+pub use curves::{mean_curve, replay_curve, WrenchCurve};
+pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS, PAPER};
+
+use super::{experiment, PipelineError, Progress, Stage, StageTiming};
+use crate::experiment::Split;
+use crate::identify::genetic::GeneticSettings;
+use crate::identify::rigid::{
+    identify_rigid, RigidIdentification, RigidIdentifyError, RigidParameters, WrenchTarget,
+};
+use crate::scenario::{Scenario, ScenarioError};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// The peg's one contact (peg–block).
+pub const CONTACT: usize = 0;
+
+/// The scenario shipped with hcm, so that the example runs from any directory.
+pub const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/peg_in_hole.toml");
+
+/// What [`reproduce_peg`] runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PegSettings {
+    /// Scenario file; `None`: [`SHIPPED_SCENARIO`].
+    pub scenario: Option<PathBuf>,
+    /// Overrides of the scenario's values (`key=value`).
+    pub overrides: Vec<String>,
+    /// Seed of the experiment, the split, the GA and the training.
+    pub seed: u64,
+    /// Runs of PM1 (S1 + S2).
+    pub runs: usize,
+    /// Contact events compared: the first wall contacts (Table 15 has two).
+    pub events: usize,
+    /// PM2's exponent, fixed (PM1's is the scenario's).
+    pub exponent: f64,
+    /// The genetic algorithm (its seed is replaced by `seed`).
+    pub genetic: GeneticSettings,
+}
+
+impl PegSettings {
+    /// The defaults of `hcm reproduce peg-in-hole`: 400 runs (40 in S2: two standard
+    /// errors of every Table 15 cell below the paper's smallest HCM error, 0.47 %), two
+    /// wall contacts, PM2's exponent 2.0 against PM1's 1.5.
+    pub fn shipped() -> PegSettings {
+        PegSettings {
+            scenario: None,
+            overrides: Vec::new(),
+            seed: 1,
+            runs: 400,
+            events: 2,
+            exponent: 2.0,
+            genetic: GeneticSettings {
+                population: 32,
+                generations: 30,
+                ..GeneticSettings::default()
+            },
+        }
+    }
+
+    /// The scenario, overrides applied.
+    pub fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
+        match &self.scenario {
+            Some(path) => Scenario::load(path, &self.overrides),
+            None => Scenario::parse(
+                std::path::Path::new("scenarios/peg_in_hole.toml (built in)"),
+                SHIPPED_SCENARIO,
+                &self.overrides,
+            ),
+        }
+    }
+}
+
+/// Everything [`reproduce_peg`] made.
+pub struct PegReproduction {
+    /// The scenario as read.
+    pub scenario: Scenario,
+    /// S1 and S2.
+    pub sets: Split,
+    /// PM2.
+    pub pm2: RigidIdentification,
+    /// The comparison on S2.
+    pub evaluation: PegEvaluation,
+    /// Wall clock per stage (s).
+    pub timings: Vec<StageTiming>,
+}
+
+/// Runs the peg-in-hole's stages. Bit-identical results (but for the timings) for
+/// the same settings, whatever the thread count.
+pub fn reproduce_peg(
+    settings: &PegSettings,
+    progress: &dyn Progress,
+) -> Result<PegReproduction, PipelineError> {
+    let scenario = settings.load_scenario()?;
+    let model = scenario.model()?;
+    crate::experiment::check_split(&scenario, settings.runs)?;
+    let mut timings = Vec::new();
+    let mut timed = |stage: &str, clock: Instant| {
+        timings.push(StageTiming {
+            stage: stage.to_owned(),
+            seconds: clock.elapsed().as_secs_f64(),
+        })
+    };
+
+    let clock = Instant::now();
+    let sets = experiment(&scenario, settings.runs, settings.seed, progress)?;
+    timed("generate + split", clock);
+
+    let clock = Instant::now();
+    let mut pm2_start = model.clone();
+    pm2_start.contacts[CONTACT]
+        .model
+        .normal
+        .base
+        .set("exponent", settings.exponent)
+        .map_err(|e| RigidIdentifyError::Setup(format!("PM2's exponent: {e}")))?;
+    let target =
+        WrenchTarget::from_data(&pm2_start, &sets.training, CONTACT, Some(settings.events))?;
+    let parameters = RigidParameters::new(&pm2_start, CONTACT, &scenario.identify.bounds)?;
+    let genetic = GeneticSettings {
+        seed: settings.seed,
+        ..settings.genetic.clone()
+    };
+    progress.begin(Stage::Identify, genetic.generations as u64);
+    let pm2 = identify_rigid(&pm2_start, &target, &parameters, &genetic, |done, _| {
+        progress.advance(done as u64, genetic.generations as u64)
+    })?;
+    progress.end(Stage::Identify);
+    timed("identify PM2", clock);
+
+    let clock = Instant::now();
+    progress.begin(Stage::Evaluate, 1);
+    let models = [("PM2", &pm2.model)];
+    let evaluation = evaluate_peg(&models, &sets.validation, CONTACT, settings.events)?;
+    progress.end(Stage::Evaluate);
+    timed("evaluate + figures", clock);
+
+    Ok(PegReproduction {
+        scenario,
+        sets,
+        pm2,
+        evaluation,
+        timings,
+    })
+}
