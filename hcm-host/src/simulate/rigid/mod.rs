@@ -13,19 +13,22 @@
 
 mod event;
 mod geometry;
+mod jacobian;
 mod layout;
 mod memory;
 mod record;
+mod stepper;
 mod system;
 
 pub use event::{EventTracker, PairEvent};
 pub use geometry::{pair_contacts, pair_separation};
 pub use layout::{Pose, RigidLayout};
+pub use stepper::RigidStepper;
 pub use system::{ContactLoad, PairManifold, RigidSystem};
 
 use super::{solver_settings, Simulation, SimulationError};
 use crate::scenario::Model;
-use hcm_core::integrate::Dopri5;
+use hcm_core::integrate::DenseOutput;
 use record::Recorder;
 
 /// Renormalise a quaternion when |‖q‖ − 1| exceeds this (–): a few f64 ulps.
@@ -73,7 +76,7 @@ pub fn simulate_rigid(model: &Model) -> Result<Simulation, SimulationError> {
         hint: stiction_hint(model),
     };
     let mut recorder = Recorder::new(model);
-    let mut stepper = Dopri5::new(&mut system, 0.0, y0.clone(), solver_settings(spec));
+    let mut stepper = RigidStepper::new(&mut system, 0.0, y0.clone(), solver_settings(spec));
     let mut scratch = y0;
     let mut end = spec.end_time;
     let mut first = true;
@@ -106,7 +109,7 @@ pub fn simulate_rigid(model: &Model) -> Result<Simulation, SimulationError> {
         events: Vec::new(),
         pair_events: tracker.events,
         end_time: stepper.time(),
-        steps: (stepper.accepted_steps(), stepper.rejected_steps()),
+        steps: stepper.steps(),
         run: recorder.finish(model),
     })
 }
