@@ -88,11 +88,6 @@ impl EventTracker {
         tracker
     }
 
-    /// Whether some contact is in an open event.
-    pub fn any_open(&self) -> bool {
-        self.open.iter().any(Option::is_some)
-    }
-
     /// Whether contact `c` is in an open event.
     pub fn is_open(&self, c: usize) -> bool {
         self.open[c].is_some()

@@ -1,11 +1,12 @@
-//! The 3D simulator's integrator: explicit Dormand–Prince ([`Dopri5`]) out of contact,
-//! the linearly implicit RODAS ([`Rodas4`]) while a contact pair touches.
+//! The 3D simulator's integrator: explicit Dormand–Prince ([`Dopri5`]) where its steps
+//! are set by accuracy, the linearly implicit RODAS ([`Rodas4`]) where they would be
+//! set by stability.
 //!
-//! Why two: in flight the motion is smooth and cheap to evaluate, and Dopri5's six
-//! evaluations per step at 5th order are the least work; in contact, STEP friction's
-//! stiction slope makes the equations stiff (see [`super::jacobian`]) and an explicit
+//! Why two: in flight and in most contacts the motion is smooth, and Dopri5's six
+//! evaluations per step at 5th order are the least work; at stiction STEP friction's
+//! slope makes the equations stiff (see [`super::jacobian`]) and an explicit
 //! step must stay below the slip's decay time — the shipped peg's landing took 10 000
-//! Dopri5 steps of ~30 ns — while RODAS steps over it at the cost of a Jacobian per
+//! Dopri5 steps of 10–50 ns each — while RODAS steps over it at the cost of a Jacobian per
 //! step. The switch happens between steps, from the current point, so the run stays
 //! deterministic and each step's dense output is its own method's.
 
@@ -60,9 +61,9 @@ impl RigidStepper {
     }
 
     /// One accepted step towards `until` (s) by the method chosen after the last
-    /// one: RODAS after [`STIFF_STEPS`] Dopri5 steps held at the edge of its stability
-    /// region (h·ρ ≥ [`STIFF_EDGE`]); Dopri5 again once RODAS's next step is inside
-    /// that region (h·ρ(J) < [`NONSTIFF_EDGE`]). The switch happens before the step,
+    /// one: RODAS after 3 Dopri5 steps held at the edge of its stability region
+    /// (h·ρ ≥ 3); Dopri5 again once RODAS's next step is inside that region
+    /// (h·ρ(J) < 2). The switch happens before the step,
     /// so the dense output always covers the step just taken.
     pub fn step(
         &mut self,
