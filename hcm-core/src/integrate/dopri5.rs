@@ -12,6 +12,7 @@
 //! Runge–Kutta formulas", Math. Comp. 46 (1986) 135–150) in the form used by the
 //! book's DOPRI5 code (Section II.6).
 
+use super::vector::{all_finite, combine, error_norm, increment, is_finite, scaled_rms};
 use super::{IntegrationError, OdeState, OdeSystem};
 use crate::Real;
 
@@ -181,6 +182,10 @@ pub struct Dopri5<T: Real, S: OdeState<T>> {
     trial: S,
     /// Dense-output coefficients r2 … r5 of the last accepted step (CONTD5 form).
     dense: [S; 4],
+    /// h·ρ of the last attempt and of the last accepted step (–), ρ the stiffness
+    /// estimate ‖k₇ − k₆‖ / ‖y₁ − Y₆‖ (see [`Dopri5::stiffness`]).
+    attempt_stiffness: T,
+    stiffness: T,
     accepted: u64,
     rejected: u64,
 }
@@ -210,6 +215,8 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
             trial: state.clone(),
             dense: core::array::from_fn(|_| state.clone()),
             state,
+            attempt_stiffness: T::zero(),
+            stiffness: T::zero(),
             accepted: 0,
             rejected: 0,
         };
@@ -248,6 +255,16 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
     /// Steps accepted since `new`.
     pub fn accepted_steps(&self) -> u64 {
         self.accepted
+    }
+
+    /// h·ρ of the last accepted step (–): ρ = ‖k₇ − k₆‖ / ‖y₁ − Y₆‖, the two last
+    /// stages being taken at the same time, estimates the largest |λ| of ∂f/∂y
+    /// along the step (Hairer–Nørsett–Wanner, Section IV.2 of volume II, as their
+    /// DOPRI5 code's stiffness test). Near 3.3, the edge of the method's stability
+    /// region, the step is held by stability rather than accuracy: the problem is
+    /// stiff there. 0 before the first step and when ‖y₁ − Y₆‖ = 0.
+    pub fn stiffness(&self) -> T {
+        self.stiffness
     }
 
     /// Attempts rejected since `new` (error too large, or a NaN/∞ in the attempt).
@@ -522,6 +539,7 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
             ],
         );
         system.derivative(end, &self.trial, k7);
+        self.attempt_stiffness = h * stiffness_ratio(k7, k6, &self.trial, arg);
         increment(
             arg,
             h,
@@ -572,6 +590,7 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
         self.previous_time = self.time;
         self.time = end;
         self.last_step = h;
+        self.stiffness = self.attempt_stiffness;
         self.accepted = self.accepted.saturating_add(1);
     }
 
@@ -656,75 +675,20 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
     }
 }
 
-/// True when `x` is neither NaN nor ±∞.
-fn is_finite<T: Real>(x: T) -> bool {
-    x.abs() <= T::MAX
-}
-
-/// True when every component is finite (not NaN, not ±∞).
-fn all_finite<T: Real, S: OdeState<T>>(state: &S) -> bool {
-    state.components().iter().all(|x| is_finite(*x))
-}
-
-/// Components of `out` ← h·Σ cᵢ·kᵢ.
-fn increment<T: Real, S: OdeState<T>>(out: &mut S, h: T, terms: &[(T, &S)]) {
-    for o in out.components_mut() {
-        *o = T::zero();
-    }
-    for &(c, k) in terms {
-        for (o, k) in out.components_mut().iter_mut().zip(k.components()) {
-            *o += c * *k;
-        }
-    }
-    for o in out.components_mut() {
-        *o = h * *o;
-    }
-}
-
-/// `out` ← `base` + h·Σ cᵢ·kᵢ (the sum is formed first, then added once to `base`).
-fn combine<T: Real, S: OdeState<T>>(out: &mut S, base: &S, h: T, terms: &[(T, &S)]) {
-    out.clone_from(base);
-    increment(out, h, terms);
-    for (o, b) in out.components_mut().iter_mut().zip(base.components()) {
-        *o = *b + *o;
-    }
-}
-
-/// RMS over components of v_i / sc_i, sc_i = atol + rtol·max(|y0_i|, |y1_i|)
-/// (Hairer–Nørsett–Wanner eq. II.4.11). A zero v_i counts 0 even where sc_i = 0.
-fn scaled_rms<T: Real, S: OdeState<T>>(v: &S, y0: &S, y1: &S, rtol: T, atol: T) -> T {
-    let mut sum = T::zero();
-    let mut count = 0_usize;
-    let ends = y0.components().iter().zip(y1.components());
-    for (v, (a, b)) in v.components().iter().zip(ends) {
-        let (a, b) = (a.abs(), b.abs());
-        let scale = atol + rtol * if a > b { a } else { b };
-        let ratio = if *v == T::zero() {
-            T::zero()
-        } else {
-            *v / scale
-        };
-        sum += ratio * ratio;
-        count += 1;
-    }
-    if count == 0 {
+/// ‖f₁ − f₂‖ / ‖y₁ − y₂‖ (1/s), 0 when the states are equal or the ratio is NaN.
+fn stiffness_ratio<T: Real, S: OdeState<T>>(f1: &S, f2: &S, y1: &S, y2: &S) -> T {
+    let squared_distance = |a: &S, b: &S| {
+        a.components()
+            .iter()
+            .zip(b.components())
+            .fold(T::zero(), |sum, (a, b)| sum + (*a - *b) * (*a - *b))
+    };
+    let (rates, states) = (squared_distance(f1, f2), squared_distance(y1, y2));
+    let ratio = (rates / states).sqrt();
+    if states > T::zero() && ratio.is_finite() {
+        ratio
+    } else {
         T::zero()
-    } else {
-        (sum / T::of_count(count)).sqrt()
-    }
-}
-
-/// The error of an attempt (dimensionless, ≤ 1 to accept), or `None` when the error
-/// estimate or the candidate state holds a NaN or ∞.
-fn error_norm<T: Real, S: OdeState<T>>(error: &S, y0: &S, y1: &S, rtol: T, atol: T) -> Option<T> {
-    if !all_finite(error) || !all_finite(y1) {
-        return None;
-    }
-    let norm = scaled_rms(error, y0, y1, rtol, atol);
-    if norm.is_nan() {
-        None
-    } else {
-        Some(norm)
     }
 }
 

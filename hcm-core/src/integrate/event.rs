@@ -1,6 +1,6 @@
 //! Event location: where a function of the solution changes sign inside a step.
 
-use super::{Dopri5, OdeState};
+use super::{DenseOutput, OdeState};
 use crate::Real;
 
 /// Samples of g taken across the step to find the first sign change before refining.
@@ -20,7 +20,7 @@ const MAX_REFINEMENTS: u32 = 400;
 ///
 /// `g` is the caller's event function (e.g. a gap in m) of time (s) and state; it is
 /// called at the two ends of the step with the stored states and inside it with dense
-/// output (4th-order accurate, see [`Dopri5::dense_output`]), so the crossing is that
+/// output (4th-order for [`Dopri5`](super::Dopri5), 3rd for [`Rodas4`](super::Rodas4)), so the crossing is that
 /// of the interpolant, within about the integration tolerance of the true solution.
 ///
 /// - **Which side.** The returned time t* is on the far side of the crossing: g at t*
@@ -46,7 +46,7 @@ const MAX_REFINEMENTS: u32 = 400;
 /// `scratch` (any state of the right length) receives dense-output states; its
 /// content on return is unspecified.
 pub fn locate_crossing<T: Real, S: OdeState<T>>(
-    stepper: &Dopri5<T, S>,
+    stepper: &impl DenseOutput<T, S>,
     mut g: impl FnMut(T, &S) -> T,
     time_tolerance: T,
     scratch: &mut S,
@@ -151,7 +151,7 @@ fn crosses<T: Real>(g_start: T, g_end: T) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{OdeSystem, Settings};
+    use super::super::{Dopri5, OdeSystem, Settings};
     use super::*;
 
     /// y' = 1: y(t) = y0 + t, so dense output is exact.

@@ -51,14 +51,19 @@
 //! # Ok::<(), hcm_core::integrate::IntegrationError>(())
 //! ```
 
+mod dense;
 mod dopri5;
 mod error;
 mod event;
 mod hermite;
+mod rodas4;
 mod state;
+mod vector;
 
+pub use dense::DenseOutput;
 pub use dopri5::{Dopri5, Settings};
 pub use error::IntegrationError;
 pub use event::locate_crossing;
 pub use hermite::{cubic_hermite, hermite_zero};
-pub use state::{OdeState, OdeSystem};
+pub use rodas4::Rodas4;
+pub use state::{LinearlyImplicit, OdeState, OdeSystem};

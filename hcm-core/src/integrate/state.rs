@@ -61,6 +61,26 @@ pub trait OdeSystem<T: Real, S: OdeState<T>> {
     }
 }
 
+/// A system that also supplies its Jacobian, for linearly implicit (Rosenbrock)
+/// steps such as [`Rodas4`](super::Rodas4): the stepper solves with
+/// W = d·I − J, J ≈ ∂f/∂y, and never forms or stores W itself, so the system chooses
+/// the storage (a fixed array on a controller, a heap matrix on a host) and may use
+/// its structure.
+pub trait LinearlyImplicit<T: Real, S: OdeState<T>>: OdeSystem<T, S> {
+    /// Evaluates and keeps J ≈ ∂f/∂y at (`time` (s), `state`), where `derivative` =
+    /// f(time, state) is already known (a finite-difference Jacobian reuses it), and
+    /// writes ∂f/∂t into `time_rate` (zeros for an autonomous system). Called once per
+    /// step point, before any [`factor`](LinearlyImplicit::factor).
+    fn jacobian(&mut self, time: T, state: &S, derivative: &S, time_rate: &mut S);
+
+    /// Factors W = `diagonal`·I − J with the kept J (`diagonal` = 1/(h·γ), 1/s).
+    /// Returns false when W is singular or not finite: the stepper then shrinks h.
+    fn factor(&mut self, diagonal: T) -> bool;
+
+    /// `rhs` ← W⁻¹·`rhs` with the last factored W.
+    fn solve(&self, rhs: &mut S);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

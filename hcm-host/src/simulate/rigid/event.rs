@@ -2,10 +2,11 @@
 //! signed separation crosses zero, and each event's indicators.
 
 use super::geometry::pair_separation;
+use super::stepper::RigidStepper;
 use super::system::RigidSystem;
 use crate::indicators::WrenchIndicators;
 use crate::simulate::StateVector;
-use hcm_core::integrate::{locate_crossing, Dopri5};
+use hcm_core::integrate::{locate_crossing, DenseOutput};
 use nalgebra::Vector3;
 
 /// Event times are located to this accuracy (s).
@@ -98,7 +99,7 @@ impl EventTracker {
     pub fn crossings(
         &self,
         system: &RigidSystem<'_>,
-        stepper: &Dopri5<f64, StateVector>,
+        stepper: &RigidStepper,
         scratch: &mut StateVector,
     ) -> Vec<(f64, usize)> {
         let mut found = Vec::new();
@@ -164,7 +165,7 @@ impl EventTracker {
     pub fn track_peaks(
         &mut self,
         system: &RigidSystem<'_>,
-        stepper: &Dopri5<f64, StateVector>,
+        stepper: &RigidStepper,
         scratch: &mut StateVector,
         step_start: f64,
     ) {

@@ -110,6 +110,11 @@ impl RigidLayout {
         }
     }
 
+    /// Components of the moving bodies (13 each), which come first (–).
+    pub fn body_components(&self) -> usize {
+        self.contact_base
+    }
+
     /// First component of contact `c`'s impulses (linear 3, then angular 3).
     pub fn impulse_index(&self, contact: usize) -> usize {
         self.contact_base + CONTACT_LEN * contact

@@ -4,7 +4,8 @@
 //! contact's core model evaluated at every point (normal law, STEP friction on the
 //! slip ω × r included, Eq 1 with the arms, residual).
 //!
-//! It integrates with the core's adaptive Dormand–Prince solver ([`Dopri5`]),
+//! It integrates with the core's adaptive Dormand–Prince solver, switching to the
+//! linearly implicit RODAS where stiction makes the run stiff ([`RigidStepper`]),
 //! renormalising each quaternion before a step when it has drifted by more than a
 //! few ulps (as [`hcm_core::rigid::step_unit`] does for one body). Contact forces are
 //! continuous at every touch-down (each law gives 0 at δ = 0), so a new point needs no
@@ -13,28 +14,31 @@
 
 mod event;
 mod geometry;
+mod jacobian;
 mod layout;
 mod memory;
 mod record;
+mod stepper;
 mod system;
 
 pub use event::{EventTracker, PairEvent};
 pub use geometry::{pair_contacts, pair_separation};
 pub use layout::{Pose, RigidLayout};
+pub use stepper::RigidStepper;
 pub use system::{ContactLoad, PairManifold, RigidSystem};
 
 use super::{solver_settings, Simulation, SimulationError};
 use crate::scenario::Model;
-use hcm_core::integrate::Dopri5;
+use hcm_core::integrate::DenseOutput;
 use record::Recorder;
 
 /// Renormalise a quaternion when |‖q‖ − 1| exceeds this (–): a few f64 ulps.
 const DRIFT: f64 = 4.0 * f64::EPSILON;
 
-/// Below this stiction transition speed v_s (m/s) a body resting on another makes the
-/// explicit solver slow (measured in the README: a cube resting on a 10° incline costs
-/// 2.7 steps per ms at v_s = 1 mm/s, 23 at 0.1 mm/s — ADAMS's default — and 250 at
-/// 0.01 mm/s: the STEP's slope μ_s·f_n/v_s sets a time constant m·v_s/(μ_s·f_n)).
+/// Below this stiction transition speed v_s (m/s) the STEP's slope μ_s·f_n/v_s is
+/// steep enough to make a run stiff (time constant m·v_s/(μ_s·f_n)); the stiff steps
+/// ([`RigidStepper`]) keep a cube resting on a 10° incline at ~1.6 steps per ms down to
+/// v_s = 0.01 mm/s (README), so a failure below it is worth naming the cause.
 const SLOW_STICTION_SPEED: f64 = 1e-4;
 
 /// A hint for a solver failure: the friction transition speeds below
@@ -53,8 +57,8 @@ fn stiction_hint(model: &Model) -> String {
         return String::new();
     }
     format!(
-        "; stiction makes the run stiff: {} is below {SLOW_STICTION_SPEED} m/s, and the \
-         steps a resting body costs grow as 1/v_static",
+        "; stiction makes the run stiff: {} is below {SLOW_STICTION_SPEED} m/s, where the \
+         STEP law's slope at rest is steepest",
         slow.join(", ")
     )
 }
@@ -73,7 +77,7 @@ pub fn simulate_rigid(model: &Model) -> Result<Simulation, SimulationError> {
         hint: stiction_hint(model),
     };
     let mut recorder = Recorder::new(model);
-    let mut stepper = Dopri5::new(&mut system, 0.0, y0.clone(), solver_settings(spec));
+    let mut stepper = RigidStepper::new(&mut system, 0.0, y0.clone(), solver_settings(spec));
     let mut scratch = y0;
     let mut end = spec.end_time;
     let mut first = true;
@@ -106,7 +110,7 @@ pub fn simulate_rigid(model: &Model) -> Result<Simulation, SimulationError> {
         events: Vec::new(),
         pair_events: tracker.events,
         end_time: stepper.time(),
-        steps: (stepper.accepted_steps(), stepper.rejected_steps()),
+        steps: stepper.steps(),
         run: recorder.finish(model),
     })
 }

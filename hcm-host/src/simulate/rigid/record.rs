@@ -3,16 +3,16 @@
 //! elsewhere, on one grid of integer ticks.
 
 use super::event::EventTracker;
+use super::stepper::RigidStepper;
 use super::system::RigidSystem;
 use crate::dataset::{BodyTrack, Run, Sample};
 use crate::scenario::Model;
-use crate::simulate::StateVector;
-use hcm_core::integrate::Dopri5;
+use hcm_core::integrate::DenseOutput;
 use nalgebra::Vector3;
 use std::collections::{BTreeMap, VecDeque};
 
 /// One accepted step kept for sampling: (start (s), end (s), its dense output).
-type Step = (f64, f64, Dopri5<f64, StateVector>);
+type Step = (f64, f64, RigidStepper);
 
 /// Collects the samples of a run.
 pub struct Recorder {
@@ -56,7 +56,7 @@ impl Recorder {
     pub fn record_step(
         &mut self,
         system: &RigidSystem<'_>,
-        stepper: &Dopri5<f64, StateVector>,
+        stepper: &RigidStepper,
         events: &EventTracker,
         first: bool,
     ) {
@@ -136,7 +136,7 @@ fn in_window(events: &EventTracker, t: f64, margin: f64) -> bool {
 /// Every recorded body at time `t` (s) of `step`'s dense output.
 fn sample_at(
     system: &RigidSystem<'_>,
-    step: &Dopri5<f64, StateVector>,
+    step: &RigidStepper,
     t: f64,
     recorded: &[usize],
 ) -> Vec<Sample> {

@@ -5,6 +5,7 @@
 //! residual), and each contact's linear and angular impulse.
 
 use super::geometry::pair_contacts;
+use super::jacobian::Linearisation;
 use super::layout::{Pose, RigidLayout};
 use super::memory::PointMemory;
 use crate::scenario::Model;
@@ -27,6 +28,8 @@ pub struct RigidSystem<'a> {
     bodies: Vec<RigidBody<f64>>,
     /// Force and torque on each body (N, N·m), reused per evaluation.
     scratch: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// The Jacobian and factored W of the linearly implicit steps.
+    pub(super) linear: Linearisation,
 }
 
 /// A contact's touching points with their feature ids and the two bodies' poses.
@@ -67,6 +70,7 @@ impl RigidSystem<'_> {
             memory: vec![PointMemory::default(); model.contacts.len()],
             bodies,
             scratch: Vec::new(),
+            linear: Linearisation::default(),
         }
     }
 
