@@ -7,7 +7,8 @@ use super::progress_bar;
 use anyhow::Context;
 use hcm_host::output::{write_bytes, StagedDirectory};
 use hcm_host::pipeline::{
-    reproduce, Example, Pm2Method, Progress, ReproduceSettings, Reproduction, Stage, StageTiming,
+    reproduce, Example, NamedFigure, Pm2Method, Progress, ReproduceSettings, Reproduction, Stage,
+    StageTiming,
 };
 use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
@@ -144,7 +145,12 @@ fn write_stages(r: &Reproduction, out: &Path) -> anyhow::Result<()> {
     r.trained.residual.write(&out.join("residual.json"))?;
     write_bytes(&out.join("residual.bin"), &r.blobs.f32.bytes)?;
     write_bytes(&out.join("residual.int8.bin"), &r.blobs.int8.bytes)?;
-    for named in &r.figures {
+    write_figures(&r.figures, out)
+}
+
+/// Each figure as `STEM.svg` and `STEM.png` in `out`.
+pub(super) fn write_figures(figures: &[NamedFigure], out: &Path) -> anyhow::Result<()> {
+    for named in figures {
         let (svg, png) = (format!("{}.svg", named.stem), format!("{}.png", named.stem));
         write_bytes(&out.join(&svg), named.figure.svg().as_bytes())?;
         let bytes = named

@@ -2,8 +2,7 @@
 //! ([`hcm_host::pipeline::peg`]) with progress bars, its data, report, `results.json`
 //! and figures written to the output directory as one unit.
 
-use super::reproduce::Bars;
-use anyhow::Context;
+use super::reproduce::{write_figures, Bars};
 use hcm_host::output::{write_bytes, StagedDirectory};
 use hcm_host::pipeline::peg::{reproduce_peg, PegSettings};
 use hcm_host::pipeline::StageTiming;
@@ -40,15 +39,7 @@ pub fn run(args: PegArgs) -> anyhow::Result<()> {
     let clock = Instant::now();
     reproduction.sets.training.write(&out.join("s1.csv"))?;
     reproduction.sets.validation.write(&out.join("s2.csv"))?;
-    for named in &reproduction.evaluation.figures {
-        let (svg, png) = (format!("{}.svg", named.stem), format!("{}.png", named.stem));
-        write_bytes(&out.join(&svg), named.figure.svg().as_bytes())?;
-        let bytes = named
-            .figure
-            .png()
-            .with_context(|| format!("drawing {png}"))?;
-        write_bytes(&out.join(&png), &bytes)?;
-    }
+    write_figures(&reproduction.evaluation.figures, out)?;
     reproduction.timings.push(StageTiming {
         stage: "write files".into(),
         seconds: clock.elapsed().as_secs_f64(),

@@ -38,7 +38,7 @@ pub use identify::{identify_pm2, Pm2};
 pub use progress::{Progress, Silent, Stage};
 pub use results::{
     BlobSummary, NamedValue, PaperErrors, Pm2Summary, ReproduceResults, ResidualSummary,
-    StageTiming,
+    StageClock, StageTiming,
 };
 pub use setup::Setup;
 pub use train::{train_residual, Trained};
@@ -50,7 +50,6 @@ use crate::identify::IdentifyError;
 use crate::scenario::{Scenario, ScenarioError};
 use crate::train::TrainError;
 use hcm_core::residual::BlobError;
-use std::time::Instant;
 
 /// The contact of the paper's examples that PM2 and the residual model: they have one.
 pub const CONTACT: usize = 0;
@@ -122,41 +121,29 @@ pub fn reproduce(
     // S2, fails here, before minutes of generation.
     scenario.model()?;
     crate::experiment::check_split(&scenario, settings.runs)?;
-    let mut timings = Vec::new();
-    let mut timed = |stage: &str, clock: Instant| {
-        timings.push(StageTiming {
-            stage: stage.to_owned(),
-            seconds: clock.elapsed().as_secs_f64(),
-        })
-    };
+    let mut clock = StageClock::default();
     let seed = settings.seed;
-
-    let clock = Instant::now();
-    let sets = experiment(&scenario, settings.runs, seed, progress)?;
-    timed("generate + split", clock);
-
-    let clock = Instant::now();
-    let pm2 = identify_pm2(
-        &scenario,
-        path,
-        &sets.training,
-        settings.method,
-        seed,
-        progress,
-    )?;
-    timed("identify PM2", clock);
-
-    let clock = Instant::now();
-    let trained = train_residual(&pm2.model, &sets.training, seed, progress)?;
-    timed("train (+ int8 twin)", clock);
-
-    let clock = Instant::now();
-    let blobs = export_blobs(&trained.residual)?;
-    timed("export", clock);
-
-    let clock = Instant::now();
-    let evaluation = evaluate_on_s2(&pm2.model, &blobs, &sets.validation, progress)?;
-    timed("evaluate + figures", clock);
+    let sets = clock.time("generate + split", || {
+        experiment(&scenario, settings.runs, seed, progress)
+    })?;
+    let pm2 = clock.time("identify PM2", || {
+        identify_pm2(
+            &scenario,
+            path,
+            &sets.training,
+            settings.method,
+            seed,
+            progress,
+        )
+    })?;
+    let trained = clock.time("train (+ int8 twin)", || {
+        train_residual(&pm2.model, &sets.training, seed, progress)
+    })?;
+    let blobs = clock.time("export", || export_blobs(&trained.residual))?;
+    let evaluation = clock.time("evaluate + figures", || {
+        evaluate_on_s2(&pm2.model, &blobs, &sets.validation, progress)
+    })?;
+    let timings = clock.0;
 
     let setup = Setup::describe(&scenario, &sets, &evaluation.table.condition);
     let results = ReproduceResults::gather(

@@ -106,6 +106,23 @@ pub struct StageTiming {
     pub seconds: f64,
 }
 
+/// Wall-clock time per stage, in the order the stages ran.
+#[derive(Default)]
+pub struct StageClock(pub Vec<StageTiming>);
+
+impl StageClock {
+    /// Runs `stage`, records how long it took under `name`, and returns its value.
+    pub fn time<T>(&mut self, name: &str, stage: impl FnOnce() -> T) -> T {
+        let clock = std::time::Instant::now();
+        let value = stage();
+        self.0.push(StageTiming {
+            stage: name.to_owned(),
+            seconds: clock.elapsed().as_secs_f64(),
+        });
+        value
+    }
+}
+
 impl ReproduceResults {
     /// The results of the stages' values; `setup` describes the experiment.
     pub fn gather(

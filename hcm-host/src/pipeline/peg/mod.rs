@@ -10,7 +10,7 @@ mod report;
 pub use curves::{mean_curve, replay_curve, WrenchCurve};
 pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS, PAPER};
 
-use super::{experiment, PipelineError, Progress, Stage, StageTiming};
+use super::{experiment, PipelineError, Progress, Stage, StageClock, StageTiming};
 use crate::experiment::Split;
 use crate::identify::genetic::GeneticSettings;
 use crate::identify::rigid::{
@@ -18,7 +18,6 @@ use crate::identify::rigid::{
 };
 use crate::scenario::{Scenario, ScenarioError};
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// The peg's one contact (peg–block).
 pub const CONTACT: usize = 0;
@@ -92,6 +91,37 @@ pub struct PegReproduction {
     pub timings: Vec<StageTiming>,
 }
 
+/// Stage 2: PM2 — the scenario's law with its exponent fixed at `settings.exponent`,
+/// the rest (and friction) identified on S1's wall contacts by the genetic algorithm.
+fn identify_pm2(
+    settings: &PegSettings,
+    scenario: &Scenario,
+    model: &crate::scenario::Model,
+    sets: &Split,
+    progress: &dyn Progress,
+) -> Result<RigidIdentification, PipelineError> {
+    let mut start = model.clone();
+    start.contacts[CONTACT]
+        .model
+        .normal
+        .base
+        .set("exponent", settings.exponent)
+        .map_err(|e| RigidIdentifyError::Setup(format!("PM2's exponent: {e}")))?;
+    let target = WrenchTarget::from_data(&start, &sets.training, CONTACT, Some(settings.events))?;
+    let parameters = RigidParameters::new(&start, CONTACT, &scenario.identify.bounds)?;
+    let genetic = GeneticSettings {
+        seed: settings.seed,
+        ..settings.genetic.clone()
+    };
+    let generations = genetic.generations as u64;
+    progress.begin(Stage::Identify, generations);
+    let pm2 = identify_rigid(&start, &target, &parameters, &genetic, |done, _| {
+        progress.advance(done as u64, generations)
+    })?;
+    progress.end(Stage::Identify);
+    Ok(pm2)
+}
+
 /// Runs the peg-in-hole's stages. Bit-identical results (but for the timings) for
 /// the same settings, whatever the thread count.
 pub fn reproduce_peg(
@@ -101,46 +131,21 @@ pub fn reproduce_peg(
     let scenario = settings.load_scenario()?;
     let model = scenario.model()?;
     crate::experiment::check_split(&scenario, settings.runs)?;
-    let mut timings = Vec::new();
-    let mut timed = |stage: &str, clock: Instant| {
-        timings.push(StageTiming {
-            stage: stage.to_owned(),
-            seconds: clock.elapsed().as_secs_f64(),
-        })
-    };
-
-    let clock = Instant::now();
-    let sets = experiment(&scenario, settings.runs, settings.seed, progress)?;
-    timed("generate + split", clock);
-
-    let clock = Instant::now();
-    let mut pm2_start = model.clone();
-    pm2_start.contacts[CONTACT]
-        .model
-        .normal
-        .base
-        .set("exponent", settings.exponent)
-        .map_err(|e| RigidIdentifyError::Setup(format!("PM2's exponent: {e}")))?;
-    let target =
-        WrenchTarget::from_data(&pm2_start, &sets.training, CONTACT, Some(settings.events))?;
-    let parameters = RigidParameters::new(&pm2_start, CONTACT, &scenario.identify.bounds)?;
-    let genetic = GeneticSettings {
-        seed: settings.seed,
-        ..settings.genetic.clone()
-    };
-    progress.begin(Stage::Identify, genetic.generations as u64);
-    let pm2 = identify_rigid(&pm2_start, &target, &parameters, &genetic, |done, _| {
-        progress.advance(done as u64, genetic.generations as u64)
+    let mut clock = StageClock::default();
+    let sets = clock.time("generate + split", || {
+        experiment(&scenario, settings.runs, settings.seed, progress)
     })?;
-    progress.end(Stage::Identify);
-    timed("identify PM2", clock);
-
-    let clock = Instant::now();
-    progress.begin(Stage::Evaluate, 1);
-    let models = [("PM2", &pm2.model)];
-    let evaluation = evaluate_peg(&models, &sets.validation, CONTACT, settings.events)?;
-    progress.end(Stage::Evaluate);
-    timed("evaluate + figures", clock);
+    let pm2 = clock.time("identify PM2", || {
+        identify_pm2(settings, &scenario, &model, &sets, progress)
+    })?;
+    let evaluation = clock.time("evaluate + figures", || {
+        progress.begin(Stage::Evaluate, 1);
+        let models = [("PM2", &pm2.model)];
+        let evaluation = evaluate_peg(&models, &sets.validation, CONTACT, settings.events);
+        progress.end(Stage::Evaluate);
+        evaluation
+    })?;
+    let timings = clock.0;
 
     Ok(PegReproduction {
         scenario,
