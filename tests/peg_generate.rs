@@ -14,17 +14,7 @@ use hcm_host::scenario::{Model, Scenario};
 use hcm_host::simulate::simulate;
 use std::path::{Path, PathBuf};
 
-fn peg() -> Scenario {
-    Scenario::load(&hcm_tests::scenario("peg_in_hole.toml"), &[]).unwrap()
-}
-
-/// Mean and sample standard deviation.
-fn mean_std(values: &[f64]) -> (f64, f64) {
-    let n = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / n;
-    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, var.sqrt())
-}
+use hcm_tests::{mean_std, peg_in_hole as peg};
 
 /// Asserts that `values` look drawn from N(0, σ²): mean within 4 standard errors of 0,
 /// sample standard deviation within 4 of its standard errors (σ/√(2n)) of σ.

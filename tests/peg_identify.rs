@@ -10,12 +10,10 @@ use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::rigid::{
     event_errors, fitness, identify_rigid, replay, RigidParameters, WrenchTarget,
 };
-use hcm_host::scenario::{Model, Scenario};
+use hcm_host::scenario::Model;
 use std::collections::BTreeMap;
 
-fn peg() -> Scenario {
-    Scenario::load(&hcm_tests::scenario("peg_in_hole.toml"), &[]).unwrap()
-}
+use hcm_tests::peg_in_hole as peg;
 
 /// `model` started like the target's replay, with the physics of `physics`.
 fn as_replay(target: &WrenchTarget, physics: &Model) -> Model {

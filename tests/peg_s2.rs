@@ -8,21 +8,10 @@
 use hcm_host::dataset::Run;
 use hcm_host::experiment::{generate, pre_contact_states, replay_model, Generation};
 use hcm_host::indicators::{pair_events_from_run, wrench_statistics, WrenchIndicators};
-use hcm_host::scenario::Scenario;
 use hcm_host::simulate::simulate;
 use hcm_tests::cli::Hcm;
 
-fn peg() -> Scenario {
-    Scenario::load(&hcm_tests::scenario("peg_in_hole.toml"), &[]).unwrap()
-}
-
-/// Mean and sample standard deviation.
-fn mean_std(values: &[f64]) -> (f64, f64) {
-    let n = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / n;
-    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, var.sqrt())
-}
+use hcm_tests::{mean_std, peg_in_hole as peg};
 
 /// Two runs' event indicators agree within `rel` (relative), event by event.
 fn assert_events_agree(label: &str, a: &[WrenchIndicators], b: &[WrenchIndicators], rel: f64) {

@@ -12,6 +12,20 @@ pub mod rigid_reference;
 
 use std::path::{Path, PathBuf};
 
+/// The shipped peg-in-hole scenario (`scenarios/peg_in_hole.toml`), as read.
+pub fn peg_in_hole() -> hcm_host::scenario::Scenario {
+    hcm_host::scenario::Scenario::load(&scenario("peg_in_hole.toml"), &[])
+        .expect("scenarios/peg_in_hole.toml reads")
+}
+
+/// Mean and sample standard deviation (n − 1) of `values`.
+pub fn mean_std(values: &[f64]) -> (f64, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, var.sqrt())
+}
+
 /// The path of a scenario file in the workspace's `scenarios/`.
 pub fn scenario(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
