@@ -105,3 +105,59 @@ fn the_genetic_algorithm_fits_impact_with_a_fixed_wrong_exponent() {
     let replayed = replay(&as_replay(&target, &found.model), 0).unwrap();
     assert!(replayed.len() >= 2, "{replayed:?}");
 }
+
+#[test]
+fn hcm_identify_fits_a_rigid_contact_and_writes_its_friction() {
+    use hcm_tests::cli::Hcm;
+    let hcm = Hcm::new();
+    let scenario = hcm_tests::scenario("peg_in_hole.toml");
+    hcm.run("generate")
+        .opt("--scenario", &scenario)
+        .opt("--runs", "12")
+        .opt("--out", hcm.path("peg"))
+        .ok();
+    let s1 = hcm.path("peg.s1.csv");
+    let identify = |extra: &[(&str, &str)]| {
+        let mut command = hcm.run("identify");
+        command = command
+            .opt("--scenario", &scenario)
+            .opt("--data", &s1)
+            .opt("--out", hcm.path("pm2.toml"));
+        for (key, value) in extra {
+            command = command.opt(key, value);
+        }
+        command
+    };
+    // Least squares has no rigid form; the law is the scenario's.
+    let lsq = identify(&[("--law", "impact")]).fails();
+    assert!(lsq.contains("--method ga"), "{lsq}");
+    let other = identify(&[("--law", "hertz"), ("--method", "ga")]).fails();
+    assert!(
+        other.contains("keeps the scenario's law (`impact`)"),
+        "{other}"
+    );
+    let out = identify(&[
+        ("--law", "impact"),
+        ("--method", "ga"),
+        ("--exponent", "2"),
+        ("--events", "2"),
+        ("--population", "8"),
+        ("--generations", "3"),
+    ])
+    .ok();
+    assert!(out.contains("exponent fixed at 2"), "{out}");
+    let physics = hcm_host::identify::Physics::read(&hcm.path("pm2.toml")).unwrap();
+    let contact = &physics.contacts[0];
+    assert_eq!(contact.parameters["exponent"].as_float(), Some(2.0));
+    let friction = contact.friction.expect("friction identified with the law");
+    assert!(friction.mu_dynamic <= friction.mu_static && friction.v_static < friction.v_dynamic);
+    // The file applies back onto the scenario, friction included.
+    let applied = physics
+        .apply(&peg(), &hcm.path("pm2.toml"))
+        .unwrap()
+        .model()
+        .unwrap();
+    let law = applied.contacts[0].model.friction.unwrap();
+    assert_eq!(law.static_coefficient, friction.mu_static);
+    assert_eq!(law.dynamic_speed, friction.v_dynamic);
+}

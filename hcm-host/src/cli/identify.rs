@@ -57,15 +57,37 @@ pub struct Args {
     #[arg(long, default_value_t = 150)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::generations)]
     generations: usize,
+    /// Rigid contacts: fix the law's exponent at this value (PM2's; default: the
+    /// scenario's) and identify the rest.
+    #[arg(long)]
+    exponent: Option<f64>,
+    /// Rigid contacts: how many contact events to fit, from the first (default: as
+    /// many as the runs usually make).
+    #[arg(long)]
+    events: Option<usize>,
     /// Physics file to write (TOML), read by `simulate --physics` and `evaluate`.
     #[arg(long)]
     out: PathBuf,
 }
 
+impl Args {
+    /// What the rigid path needs.
+    fn into_rigid(self) -> super::identify_rigid::RigidArgs {
+        super::identify_rigid::RigidArgs {
+            data: self.data,
+            law: self.law,
+            method: self.method,
+            contact: self.contact,
+            exponent: self.exponent,
+            events: self.events,
+            out: self.out,
+        }
+    }
+}
+
 pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let model = scenario.model()?;
-    super::require_one_dimensional(&model, "identify")?;
     super::check_contact(args.contact, &model)?;
     let data = Dataset::read(&args.data)?;
     let settings = GeneticSettings {
@@ -74,6 +96,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         generations: args.generations,
         ..GeneticSettings::default()
     };
+    if model.is_rigid() {
+        return super::identify_rigid::run(&args.into_rigid(), &scenario, &model, &data, settings);
+    }
+    anyhow::ensure!(
+        args.exponent.is_none() && args.events.is_none(),
+        "--exponent and --events are for rigid (3D) contacts; scenario `{}` is 1D: bound the \
+         exponent with [identify.bounds.<law>] exponent = [lo, hi] instead",
+        scenario.name
+    );
     let method = match (args.method.as_str(), args.fitness.as_str()) {
         ("lsq", _) => Method::Lsq,
         (_, "indicators") => Method::Ga(Fitness::Indicators, settings),

@@ -6,6 +6,7 @@ mod export;
 mod force;
 mod generate;
 mod identify;
+mod identify_rigid;
 mod indicators;
 mod laws;
 mod numbers;
@@ -146,7 +147,8 @@ pub fn require_one_dimensional(
         "scenario `{}` is 3D (a box or compound body, friction, or a body that starts turned \
          or spinning), and `hcm {command}` works only on 1D scenarios so far (spheres against a \
          plane or a sphere, moving without rotation, like scenarios/bouncing_ball.toml). \
-         3D scenarios work with `hcm simulate`, `hcm generate` and `hcm indicators`",
+         3D scenarios work with `hcm simulate`, `hcm generate`, `hcm indicators`, `hcm identify` \
+         and `hcm reproduce peg-in-hole`",
         model.scenario.name
     );
     Ok(())

@@ -3,7 +3,8 @@
 
 use crate::law_catalogue::{self, LawInputError};
 use crate::output::write_atomically;
-use crate::scenario::{Model, Scenario, ScenarioError};
+
+use crate::scenario::{FrictionSpec, Model, Scenario, ScenarioError};
 use hcm_core::effect::{AirDrag, ContactEffect};
 use hcm_core::law::AnyNormalLaw;
 use hcm_core::LawError;
@@ -24,6 +25,10 @@ pub struct PhysicsContact {
     /// `extended.toml`); none for a plain identified law.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub effects: Vec<ContactEffect<f64>>,
+    /// STEP friction (Eq 10–11), identified with the law on a rigid contact; absent:
+    /// the scenario's stays.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionSpec>,
 }
 
 /// How a physics file was obtained (for people; not read back into the model).
@@ -131,6 +136,7 @@ impl Physics {
                 law: law.name().to_owned(),
                 parameters,
                 effects: Vec::new(),
+                friction: contact.model.friction.as_ref().map(FrictionSpec::of),
             }],
             bodies: Vec::new(),
             fit,
@@ -188,6 +194,12 @@ impl Physics {
                     message: format!("effects: {e}"),
                 })?;
             assignments.push(format!("contact.{index}.effects={effects}"));
+            if let Some(f) = &contact.friction {
+                assignments.push(format!(
+                    "contact.{index}.friction={{ mu_static = {:?}, mu_dynamic = {:?}, v_static = {:?}, v_dynamic = {:?} }}",
+                    f.mu_static, f.mu_dynamic, f.v_static, f.v_dynamic
+                ));
+            }
         }
         for body in &self.bodies {
             assignments.push(format!(

@@ -4,7 +4,7 @@
 
 use hcm_core::friction::VelocityStepFriction;
 use nalgebra::{Matrix3, Quaternion, SymmetricEigen, UnitQuaternion, Vector3};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// An orientation (body → world) as a scenario writes it.
 #[derive(Clone, Copy, Debug, Deserialize)]
@@ -52,8 +52,8 @@ pub struct Part {
     pub orientation: UnitQuaternion<f64>,
 }
 
-/// Velocity-based STEP friction (Eq 10–11) as a scenario writes it.
-#[derive(Clone, Copy, Debug, Deserialize)]
+/// Velocity-based STEP friction (Eq 10–11) as a scenario (or a physics file) writes it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionSpec {
     /// Static coefficient μ_s (–), reached at `v_static`.
@@ -83,6 +83,16 @@ impl FrictionSpec {
             "v_static" => Some(&mut law.stiction_speed),
             "v_dynamic" => Some(&mut law.dynamic_speed),
             _ => None,
+        }
+    }
+
+    /// The spec of the core's friction law `law`.
+    pub fn of(law: &VelocityStepFriction<f64>) -> FrictionSpec {
+        FrictionSpec {
+            mu_static: law.static_coefficient,
+            mu_dynamic: law.dynamic_coefficient,
+            v_static: law.stiction_speed,
+            v_dynamic: law.dynamic_speed,
         }
     }
 
