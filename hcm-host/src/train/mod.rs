@@ -1,7 +1,9 @@
 //! Residual training: the data-driven half of the hybrid contact model. A small
 //! multilayer perceptron ([`network`]) learns what the identified physics law (PM2)
 //! misses — for the 1D examples the normal-force error f_measured − f_PM2 from the
-//! contact's motion state [δ, δ̇, δ̇0] ([`residual_pairs`]).
+//! contact's motion state [δ, δ̇, δ̇0] ([`residual_pairs`]); for a rigid body the
+//! force and torque error from its 13 state components ([`wrench_pairs`], trained
+//! with [`wrench_settings`]).
 //!
 //! [`train`] minimises the mean squared error on normalised inputs and outputs
 //! (x̂ = (x − mean)/std, ŷ likewise, mean and std over the training rows) by
@@ -28,6 +30,8 @@ pub mod per_output;
 pub mod quantise;
 pub mod samples;
 pub mod trained;
+pub mod wrench_samples;
+pub mod wrench_settings;
 
 pub use envelope::envelope_tolerance;
 pub use network::{Activation, Network};
@@ -35,6 +39,8 @@ pub use per_output::OutputNets;
 pub use quantise::{quantisation_aware, QuantiseReport};
 pub use samples::residual_pairs;
 pub use trained::TrainedResidual;
+pub use wrench_samples::{wrench_pairs, WrenchPairs};
+pub use wrench_settings::wrench_settings;
 
 use adam::Adam;
 use network::Layout;
@@ -80,7 +86,19 @@ pub struct TrainSettings {
     /// output, merged into one block-diagonal network ([`OutputNets::PerOutput`], the
     /// paper's choice). See [`per_output`] for the measured comparison.
     pub output_nets: OutputNets,
+    /// Input columns that are the components of one vector (one unit), e.g. a
+    /// body's position, quaternion, velocity, angular velocity. A component whose
+    /// spread is below [`VECTOR_CONSTANT`] of its vector's largest counts as constant
+    /// (normalisation scale 1), as a column spread below 1e-4 of its mean does: the
+    /// peg's y, q_x, q_z, v_y, ω_x, ω_z are 0 up to rounding (its motion is planar;
+    /// standard deviations 1e-20 to 1e-10), and dividing by such a spread would turn
+    /// that rounding noise into O(1) network inputs and an envelope the simulation
+    /// leaves at once. Default: none.
+    pub input_vectors: Vec<std::ops::Range<usize>>,
 }
+
+/// Below this fraction of its vector's largest spread a component is constant.
+pub const VECTOR_CONSTANT: f64 = 1e-6;
 
 impl Default for TrainSettings {
     fn default() -> Self {
@@ -96,6 +114,7 @@ impl Default for TrainSettings {
             plateau: 5,
             seed: 0,
             output_nets: OutputNets::Joint,
+            input_vectors: Vec::new(),
         }
     }
 }
@@ -176,7 +195,7 @@ pub fn train(
     }
     let mut rng = ChaCha8Rng::seed_from_u64(settings.seed);
     let (mut training, validation) = split(inputs.len(), settings.validation_fraction, &mut rng)?;
-    let data = Normalised::new(inputs, targets, &training);
+    let data = Normalised::new(inputs, targets, &training, &settings.input_vectors);
     let layout = Layout::new(
         n_in,
         settings.width,
@@ -356,6 +375,25 @@ fn normalisation(table: &[Vec<f64>], rows: &[usize]) -> (Vec<f64>, Vec<f64>) {
     (mean, scale)
 }
 
+/// Sets to 1 the scale of each component of `vectors` whose scale (its standard
+/// deviation) is below [`VECTOR_CONSTANT`] of the largest in its vector. Ranges
+/// beyond the columns are ignored.
+fn constant_components(scale: &mut [f64], vectors: &[std::ops::Range<usize>]) {
+    for vector in vectors {
+        let Some(components) = scale.get_mut(vector.clone()) else {
+            continue;
+        };
+        // Scale 1 marks a column already found constant: not a spread.
+        let spread = |s: f64| if s == 1.0 { 0.0 } else { s };
+        let largest = components.iter().map(|s| spread(*s)).fold(0.0, f64::max);
+        for s in components.iter_mut() {
+            if spread(*s) < VECTOR_CONSTANT * largest {
+                *s = 1.0;
+            }
+        }
+    }
+}
+
 /// The rows in normalised units, flat and row-major, with the normalisation.
 struct Normalised {
     x: Vec<f64>,
@@ -367,8 +405,14 @@ struct Normalised {
 }
 
 impl Normalised {
-    fn new(inputs: &[Vec<f64>], targets: &[Vec<f64>], training: &[usize]) -> Self {
-        let input = normalisation(inputs, training);
+    fn new(
+        inputs: &[Vec<f64>],
+        targets: &[Vec<f64>],
+        training: &[usize],
+        vectors: &[std::ops::Range<usize>],
+    ) -> Self {
+        let mut input = normalisation(inputs, training);
+        constant_components(&mut input.1, vectors);
         let output = normalisation(targets, training);
         Self::with(inputs, targets, input, output)
     }
