@@ -293,14 +293,15 @@ fn the_blob_decoded_in_the_core_gives_the_host_wrench_f32_and_int8() {
                  f32 inputs with f32 constants",
                 blob.len()
             );
-            // The core normalises in f32 after rounding the input to f32: q_w ≈ 0.9988
-            // with spread σ = 8.5e-4 loses 3e-8/σ ≈ 3.5e-5 of a normalised unit to
-            // that rounding alone (measured: joint 7e-5, six networks 3.9e-4 — their
-            // near-zero outputs F_y, T_x, T_z make small denominators); 1e-6 needs the
-            // core to normalise before rounding to f32.
-            assert!(on_data < 1e-3, "{nets:?} {which}: {on_data:e}");
-            assert!(in_box < 1e-3, "{nets:?} {which}: {in_box:e}");
-            assert!(stored < 1e-5, "{nets:?} {which}: {stored:e}");
+            // Issue 15: the core's wrench within 1e-6 of the host's over the training
+            // envelope (force and torque each relative to their largest magnitude).
+            // It holds because the core normalises an f64 input before rounding it to
+            // f32 (Mlp::normalise) and training uses the f32-rounded normalisation the
+            // blob stores (measured 5.8e-7 joint f32, 6.5e-7 six networks; before:
+            // 7.2e-5 and 3.9e-4).
+            assert!(on_data < 1e-6, "{nets:?} {which}: {on_data:e}");
+            assert!(in_box < 1e-6, "{nets:?} {which}: {in_box:e}");
+            assert!(stored < 1e-6, "{nets:?} {which}: {stored:e}");
         }
         println!(
             "{nets:?} int8 twin: RMS against the f32 network {:.3} (rounded {:.3}), \

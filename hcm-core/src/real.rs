@@ -31,6 +31,13 @@ pub trait Real: RealField + Copy {
     /// Widens (or, from `f64`, keeps) the value as an `f64`.
     fn to_f64(self) -> f64;
 
+    /// An `f32` (a stored weight or scale) as `Self`, exactly. Direct, so a controller
+    /// without double-precision hardware does not convert through `f64` in software.
+    fn of_f32(value: f32) -> Self;
+
+    /// `self` rounded to `f32` (nearest); direct, for the same reason.
+    fn to_f32(self) -> f32;
+
     /// `self` clamped to [−limit, limit] (limit > 0, same unit as `self`); NaN gives 0.
     ///
     /// `f32` scales to 2³¹/limit and back through Rust's saturating `as i32`: two
@@ -100,6 +107,16 @@ impl Real for f32 {
     }
 
     #[inline]
+    fn of_f32(value: f32) -> Self {
+        value
+    }
+
+    #[inline]
+    fn to_f32(self) -> f32 {
+        self
+    }
+
+    #[inline]
     fn clamp_magnitude(self, limit: Self) -> Self {
         const RANGE: f32 = 2_147_483_648.0;
         (self * (RANGE / limit)) as i32 as f32 * (limit / RANGE)
@@ -127,6 +144,16 @@ impl Real for f64 {
     #[inline]
     fn to_f64(self) -> f64 {
         self
+    }
+
+    #[inline]
+    fn of_f32(value: f32) -> Self {
+        f64::from(value)
+    }
+
+    #[inline]
+    fn to_f32(self) -> f32 {
+        self as f32
     }
 
     #[inline]

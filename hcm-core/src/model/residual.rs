@@ -89,8 +89,9 @@ impl<T: Real, R: Residual<T>> Residual<T> for &R {
     }
 }
 
-/// The core's fixed-size network as a residual. Inputs are rounded to `f32`, the
-/// network's type. Its outputs mean, by their count: 6 → [`Correction::Wrench`]
+/// The core's fixed-size network as a residual. Inputs are normalised in their own
+/// type and then rounded to `f32`, the network's type; the envelope is checked on the
+/// inputs rounded to `f32`. Its outputs mean, by their count: 6 → [`Correction::Wrench`]
 /// (force x, y, z, then torque x, y, z), 12 → [`Correction::PairWrench`] (body 1's
 /// force and torque, then body 2's), any other count → [`Correction::NormalForce`]
 /// from the first output.
@@ -106,7 +107,10 @@ where
         if !self.inside_envelope(&x) {
             return None;
         }
-        let y = self.evaluate(&x);
+        // Normalised in T, before rounding to f32 (see Mlp::normalise); identical to
+        // `evaluate(&x)` when T is f32.
+        let raw: &[T; INPUTS] = input.try_into().ok()?;
+        let y = self.evaluate_normalised(&self.normalise(raw));
         let at = |i: usize| y.get(i).copied().unwrap_or(0.0).cast::<T>();
         let vector = |i: usize| Vector3::new(at(i), at(i + 1), at(i + 2));
         Some(match OUTPUTS {
@@ -136,7 +140,7 @@ fn network_input<T: Real, const INPUTS: usize>(input: &[T]) -> Option<[f32; INPU
     }
     let mut x = [0.0_f32; INPUTS];
     for (x, value) in x.iter_mut().zip(input) {
-        *x = value.cast::<f32>();
+        *x = value.to_f32();
     }
     Some(x)
 }

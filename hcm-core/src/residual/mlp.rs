@@ -145,20 +145,37 @@ where
     /// NaN in any input gives NaN outputs; outputs saturate at ±`f32::MAX`. The
     /// envelope is not consulted: see [`Mlp::inside_envelope`].
     pub fn evaluate(&self, input: &[f32; INPUTS]) -> [f32; OUTPUTS] {
+        self.evaluate_normalised(&self.normalise(input))
+    }
+
+    /// x̂ = (x − μ_x)/σ_x, computed in the input's own type `T` and then rounded to
+    /// `f32`: a host passing `f64` inputs keeps their precision through the
+    /// normalisation (an input whose spread is small beside its value — a unit
+    /// quaternion's w near 1 — would otherwise lose it to the rounding of the raw
+    /// value). In `f32` it is exactly [`Mlp::evaluate`]'s first step.
+    #[inline(never)]
+    pub fn normalise<T: Real>(&self, input: &[T; INPUTS]) -> [f32; INPUTS] {
+        let scaling = &self.normalisation;
+        let mut x = [0.0_f32; INPUTS];
+        for ((x, value), (mean, scale)) in x
+            .iter_mut()
+            .zip(input)
+            .zip(scaling.input_mean.iter().zip(&scaling.input_scale))
+        {
+            *x = ((*value - T::of_f32(*mean)) / T::of_f32(*scale)).to_f32();
+        }
+        x
+    }
+
+    /// The network's outputs (raw units) for already normalised inputs x̂
+    /// ([`Mlp::normalise`]); NaN in any gives NaN outputs.
+    pub fn evaluate_normalised(&self, x: &[f32; INPUTS]) -> [f32; OUTPUTS] {
         // Said here, not left to the arithmetic: the tanh activation turns NaN into 0.
-        if input.iter().any(|x| x.is_nan()) {
+        if x.iter().any(|x| x.is_nan()) {
             return [f32::NAN; OUTPUTS];
         }
         let scaling = &self.normalisation;
-        let mut x = *input;
-        for (x, (mean, scale)) in x
-            .iter_mut()
-            .zip(scaling.input_mean.iter().zip(&scaling.input_scale))
-        {
-            *x = (*x - mean) / scale;
-        }
-
-        let mut hidden = self.input_layer.forward(&x);
+        let mut hidden = self.input_layer.forward(x);
         self.activate(&mut hidden);
         for layer in self.hidden_layers.as_ref() {
             hidden = layer.forward(&hidden);

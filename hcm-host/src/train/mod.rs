@@ -351,7 +351,19 @@ fn shuffle(items: &mut [usize], rng: &mut ChaCha8Rng) {
 /// spread below 1e-4 of its mean, because the exported network runs in f32
 /// (ε ≈ 1.2e-7), where dividing by a rounding-level spread (e.g. 5e-15 for an impact
 /// speed identical in every run) would turn f32 rounding into huge inputs.
+///
+/// Both are rounded to `f32` values: the exported blob stores them as `f32`, so the host
+/// network trains and evaluates with exactly the constants the controller holds (a
+/// unit quaternion's w ≈ 0.9988 with spread 8.5e-4 would otherwise be shifted by
+/// 3e-8/8.5e-4 ≈ 4e-5 of a normalised unit by the rounding of its mean alone).
 fn normalisation(table: &[Vec<f64>], rows: &[usize]) -> (Vec<f64>, Vec<f64>) {
+    let (mean, scale) = exact_normalisation(table, rows);
+    let stored = |v: Vec<f64>| v.into_iter().map(|x| f64::from(x as f32)).collect();
+    (stored(mean), stored(scale))
+}
+
+/// Mean and standard deviation per column over `rows` (scale 1 for a constant column).
+fn exact_normalisation(table: &[Vec<f64>], rows: &[usize]) -> (Vec<f64>, Vec<f64>) {
     let columns = table[0].len();
     let n = rows.len() as f64;
     let mean: Vec<f64> = (0..columns)
