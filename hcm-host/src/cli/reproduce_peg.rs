@@ -39,6 +39,25 @@ pub fn run(args: PegArgs) -> anyhow::Result<()> {
     let clock = Instant::now();
     reproduction.sets.training.write(&out.join("s1.csv"))?;
     reproduction.sets.validation.write(&out.join("s2.csv"))?;
+    let comment = format!("PM2 of `{}` from hcm reproduce", reproduction.scenario.name);
+    let fit = hcm_host::identify::FitRecord {
+        method: "ga (contact events)".into(),
+        data: "s1.csv".into(),
+        seconds: reproduction.pm2.seconds,
+        ..Default::default()
+    };
+    let pm2 = &reproduction.pm2.model;
+    hcm_host::identify::Physics::for_contact(pm2, 0, pm2.contacts[0].law(), fit)
+        .write(&out.join("pm2.toml"), &comment)?;
+    reproduction
+        .trained
+        .residual
+        .write(&out.join("residual.json"))?;
+    write_bytes(&out.join("residual.bin"), &reproduction.blobs.f32.bytes)?;
+    write_bytes(
+        &out.join("residual.int8.bin"),
+        &reproduction.blobs.int8.bytes,
+    )?;
     write_figures(&reproduction.evaluation.figures, out)?;
     reproduction.timings.push(StageTiming {
         stage: "write files".into(),

@@ -174,11 +174,63 @@ fn indicators(
     }
     let norm = |v: &[f64; 3]| Vector3::from(*v).norm();
     let inner = &samples[inside];
+    let times: Vec<f64> = inner.iter().map(|s| s.time).collect();
+    let forces: Vec<f64> = inner.iter().map(|s| norm(&s.force)).collect();
+    let torques: Vec<f64> = inner.iter().map(|s| norm(&s.torque)).collect();
     WrenchIndicators::new(
-        inner.iter().map(|s| norm(&s.force)).fold(0.0, f64::max),
-        inner.iter().map(|s| norm(&s.torque)).fold(0.0, f64::max),
+        local_peak(&times, &forces),
+        local_peak(&times, &torques),
         [impulse[0], impulse[1], impulse[2]],
         [impulse[3], impulse[4], impulse[5]],
         lift_off - touch_down,
     )
+}
+
+/// Half-width of the peak fit, in samples (±50 µs at the contact rate of 10 µs).
+const PEAK_HALF_WIDTH: usize = 5;
+
+/// The maximum of a noisy sampled magnitude, unbiased: the vertex of the least-squares
+/// parabola through the 2·[`PEAK_HALF_WIDTH`] + 1 samples around the largest 5-sample
+/// moving average. The raw largest sample of noisy data is biased upwards (by about
+/// 1.5 σ: 0.8 % of the peg's first wall contact at σ = 0.2 N), which a noise-free
+/// model's replay does not share; the 1D indicators smooth their peak for the same
+/// reason. The window is kept short because a sliding contact's force has spikes of a
+/// few hundred µs, which a wider fit would flatten. Falls back to the largest sample
+/// when the window is short, the fit is not a cap, or its vertex lies outside.
+fn local_peak(times: &[f64], values: &[f64]) -> f64 {
+    let raw = values.iter().copied().fold(0.0, f64::max);
+    let n = values.len();
+    if n < 2 * PEAK_HALF_WIDTH + 1 {
+        return raw;
+    }
+    let average = |i: usize| {
+        let (lo, hi) = (i.saturating_sub(2), (i + 3).min(n));
+        values[lo..hi].iter().sum::<f64>() / (hi - lo) as f64
+    };
+    let centre = (0..n)
+        .max_by(|&a, &b| average(a).total_cmp(&average(b)))
+        .unwrap_or(0)
+        .clamp(PEAK_HALF_WIDTH, n - 1 - PEAK_HALF_WIDTH);
+    let window = centre - PEAK_HALF_WIDTH..centre + PEAK_HALF_WIDTH + 1;
+    let (t0, half) = (times[centre], times[window.end - 1] - times[centre]);
+    if half <= 0.0 {
+        return raw;
+    }
+    let u = |i: usize| (times[i] - t0) / half;
+    let fit = crate::numerics::linear_least_squares(window.len(), 3, |j, powers| {
+        let x = u(window.start + j);
+        powers.copy_from_slice(&[1.0, x, x * x]);
+        values[window.start + j]
+    });
+    let Ok(fit) = fit else { return raw };
+    let [c0, c1, c2] = [
+        fit.coefficients[0],
+        fit.coefficients[1],
+        fit.coefficients[2],
+    ];
+    let vertex = -c1 / (2.0 * c2);
+    if fit.rank < 3 || c2 >= 0.0 || !(u(window.start)..=u(window.end - 1)).contains(&vertex) {
+        return raw;
+    }
+    c0 + vertex * (c1 + vertex * c2)
 }

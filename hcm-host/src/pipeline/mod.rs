@@ -81,6 +81,12 @@ pub enum PipelineError {
         "the exported blob does not decode in the core: {0} (shape not the shipped 3-16-16-1?)"
     )]
     Decode(BlobError),
+    /// The peg's training rows could not be built.
+    #[error(transparent)]
+    WrenchSamples(#[from] crate::train::wrench_samples::WrenchSampleError),
+    /// A run's contact events could not be located.
+    #[error(transparent)]
+    Indicators(#[from] crate::indicators::IndicatorError),
     /// The rigid-body stages (peg-in-hole): PM2 or the S2 comparison failed.
     #[error(transparent)]
     Rigid(#[from] crate::identify::rigid::RigidIdentifyError),

@@ -55,7 +55,11 @@ pub fn round_trip_error_over(
         }
     }
     // One output, or vectors of three (force, torque, …).
-    let group = if network.outputs.is_multiple_of(3) { 3 } else { 1 };
+    let group = if network.outputs.is_multiple_of(3) {
+        3
+    } else {
+        1
+    };
     let most = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
     worst
         .chunks(group)

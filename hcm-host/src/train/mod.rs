@@ -89,11 +89,13 @@ pub struct TrainSettings {
     /// Input columns that are the components of one vector (one unit), e.g. a
     /// body's position, quaternion, velocity, angular velocity. A component whose
     /// spread is below [`VECTOR_CONSTANT`] of its vector's largest counts as constant
-    /// (normalisation scale 1), as a column spread below 1e-4 of its mean does: the
-    /// peg's y, q_x, q_z, v_y, ω_x, ω_z are 0 up to rounding (its motion is planar;
-    /// standard deviations 1e-20 to 1e-10), and dividing by such a spread would turn
-    /// that rounding noise into O(1) network inputs and an envelope the simulation
-    /// leaves at once. Default: none.
+    /// and is normalised by that largest spread, its vector's scale: the peg's y, q_x,
+    /// q_z, v_y, ω_x, ω_z are 0 up to rounding (its motion is planar; standard
+    /// deviations 1e-20 to 1e-10), and dividing by such a spread would turn that
+    /// rounding noise into O(1) network inputs and an envelope the simulation leaves
+    /// at once. With the vector's scale, their envelope tolerance
+    /// ([`envelope_tolerance`]) is a fraction of the vector's own spread (ω_z may reach
+    /// 0.14 rad/s where ω_y spans 5 rad/s), in the vector's unit. Default: none.
     pub input_vectors: Vec<std::ops::Range<usize>>,
 }
 
@@ -387,9 +389,9 @@ fn exact_normalisation(table: &[Vec<f64>], rows: &[usize]) -> (Vec<f64>, Vec<f64
     (mean, scale)
 }
 
-/// Sets to 1 the scale of each component of `vectors` whose scale (its standard
-/// deviation) is below [`VECTOR_CONSTANT`] of the largest in its vector. Ranges
-/// beyond the columns are ignored.
+/// Gives each component of `vectors` whose scale (its standard deviation) is below
+/// [`VECTOR_CONSTANT`] of the largest in its vector that largest scale (rounded to
+/// `f32`, as every stored constant). Ranges beyond the columns are ignored.
 fn constant_components(scale: &mut [f64], vectors: &[std::ops::Range<usize>]) {
     for vector in vectors {
         let Some(components) = scale.get_mut(vector.clone()) else {
@@ -398,9 +400,14 @@ fn constant_components(scale: &mut [f64], vectors: &[std::ops::Range<usize>]) {
         // Scale 1 marks a column already found constant: not a spread.
         let spread = |s: f64| if s == 1.0 { 0.0 } else { s };
         let largest = components.iter().map(|s| spread(*s)).fold(0.0, f64::max);
+        let vector_scale = if largest > 0.0 {
+            f64::from(largest as f32)
+        } else {
+            1.0
+        };
         for s in components.iter_mut() {
             if spread(*s) < VECTOR_CONSTANT * largest {
-                *s = 1.0;
+                *s = vector_scale;
             }
         }
     }

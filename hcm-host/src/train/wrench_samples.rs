@@ -49,6 +49,8 @@ pub struct WrenchPairs {
     pub targets: Vec<Vec<f64>>,
     /// Index in the data's runs of each row's run (to hold out whole runs).
     pub runs: Vec<usize>,
+    /// Time of each row's sample (s).
+    pub times: Vec<f64>,
 }
 
 /// Why the pairs cannot be built.
@@ -92,7 +94,7 @@ pub fn wrench_pairs(
     let layout = RigidLayout::new(&model);
     // Per run in parallel, collected in run order: the rows do not depend on the
     // number of threads.
-    let per_run: Vec<Vec<(Vec<f64>, Vec<f64>)>> = tracks
+    let per_run: Vec<Vec<(Vec<f64>, Vec<f64>, f64)>> = tracks
         .par_iter()
         .map(|track| {
             let system = RigidSystem::new(&model, &layout);
@@ -100,16 +102,17 @@ pub fn wrench_pairs(
             track
                 .samples
                 .iter()
-                .filter_map(|s| pair(&system, &mut y, mover, c, s))
+                .filter_map(|s| pair(&system, &mut y, mover, c, s).map(|(x, t)| (x, t, s.time)))
                 .collect()
         })
         .collect();
     let mut pairs = WrenchPairs::default();
     for (run, rows) in per_run.into_iter().enumerate() {
-        for (input, target) in rows {
+        for (input, target, time) in rows {
             pairs.inputs.push(input);
             pairs.targets.push(target);
             pairs.runs.push(run);
+            pairs.times.push(time);
         }
     }
     Ok(pairs)

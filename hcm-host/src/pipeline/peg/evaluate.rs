@@ -51,6 +51,41 @@ pub struct PegRow {
     pub paper: Option<(f64, f64)>,
 }
 
+impl PegRow {
+    /// The S2 mean's standard error as a share of it (–).
+    pub fn relative_standard_error(&self) -> f64 {
+        self.standard_error / self.mean.abs()
+    }
+
+    /// Whether model `m`'s error is below model `reference`'s (false if either made
+    /// no such contact).
+    pub fn beats(&self, m: usize, reference: usize) -> bool {
+        match (
+            self.errors.get(m).copied().flatten(),
+            self.errors.get(reference).copied().flatten(),
+        ) {
+            (Some(a), Some(b)) => a < b,
+            _ => false,
+        }
+    }
+
+    /// How model `m`'s error compares with what the issue asks (at or below the paper's
+    /// HCM error, or within two S2 standard errors): `"≤ paper"`, `"≤ 2 SE"`,
+    /// `"neither"`, or `"no contact"`.
+    pub fn verdict(&self, m: usize) -> &'static str {
+        let Some(error) = self.errors.get(m).copied().flatten() else {
+            return "no contact";
+        };
+        if self.paper.is_some_and(|(_, hcm)| error <= hcm) {
+            "≤ paper"
+        } else if error <= 2.0 * self.relative_standard_error() {
+            "≤ 2 SE"
+        } else {
+            "neither"
+        }
+    }
+}
+
 /// What stage 5 finds.
 pub struct PegEvaluation {
     /// Model labels, in column order.
