@@ -94,7 +94,7 @@ pub fn wrench_pairs(
     let layout = RigidLayout::new(&model);
     // Per run in parallel, collected in run order: the rows do not depend on the
     // number of threads.
-    let per_run: Vec<Vec<(Vec<f64>, Vec<f64>, f64)>> = tracks
+    let per_run: Vec<Vec<Row>> = tracks
         .par_iter()
         .map(|track| {
             let system = RigidSystem::new(&model, &layout);
@@ -152,6 +152,9 @@ pub fn contact_wrench(
     let load = system.contact_load(y, c);
     (load.points > 0).then_some(load.on_mover)
 }
+
+/// One training row: input, target, sample time (s).
+type Row = (Vec<f64>, Vec<f64>, f64);
 
 /// One row, or `None` when the sample does not touch.
 fn pair(
