@@ -1,47 +1,71 @@
-//! `hcm reproduce peg-in-hole` in small (issue 15): the whole pipeline on a few runs
-//! with a short genetic algorithm and a small network — the HCM beats PM2 on the
-//! linear and angular impulse of both wall contacts, and the results are bit-identical
-//! on 1 and 2 threads.
+//! `hcm reproduce peg-in-hole` as a test (issue 15): the shipped pipeline (400 runs)
+//! makes an HCM that beats PM2 on the linear and angular impulse of both wall contacts
+//! with blobs that round-trip through the core within 1e-6; and a smaller one (100
+//! runs) is bit-identical on 1 and 2 threads.
+//!
+//! Smaller runs do not make the first claim: with 90 S1 runs instead of 360 the error
+//! model's second wall contact drifts (measured on seed 3: HCM 3.2 % against PM2's
+//! 5.0 % on its linear impulse, but 3.2 % against 0.5 % on its angular impulse), so the
+//! claim is tested at the shipped size (about a minute).
 
-use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::pipeline::peg::{reproduce_peg, PegReproduction, PegSettings};
 use hcm_host::pipeline::Silent;
 
-/// 40 runs (36 in S1), a 12 × 8 genetic algorithm.
-fn small() -> PegSettings {
+fn settings(runs: usize) -> PegSettings {
     PegSettings {
         scenario: Some(hcm_tests::scenario("peg_in_hole.toml")),
-        runs: 40,
-        seed: 3,
-        genetic: GeneticSettings {
-            population: 12,
-            generations: 8,
-            ..GeneticSettings::default()
-        },
+        runs,
         ..PegSettings::shipped()
     }
 }
 
-fn on_threads(threads: usize) -> PegReproduction {
+fn on_threads(threads: usize, settings: &PegSettings) -> PegReproduction {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap();
-    pool.install(|| reproduce_peg(&small(), &Silent).unwrap())
+    pool.install(|| reproduce_peg(settings, &Silent).unwrap())
 }
 
 #[test]
-fn the_small_pipeline_is_bit_identical_on_one_and_two_threads() {
-    let (one, two) = (on_threads(1), on_threads(2));
-    assert_eq!(one.pm2.parameters, two.pm2.parameters);
-    assert_eq!(one.pm2.fitness.to_bits(), two.pm2.fitness.to_bits());
-    assert_eq!(one.evaluation.rows, two.evaluation.rows);
-    assert_eq!(one.sets, two.sets);
-    println!("{}", one.markdown());
+fn the_shipped_pipeline_makes_an_hcm_that_beats_pm2_on_both_wall_contacts() {
+    let r = reproduce_peg(&settings(400), &Silent).unwrap();
+    println!("{}", r.markdown());
     // Table 15's two wall contacts × four indicators, every model making both.
-    assert_eq!(one.evaluation.rows.len(), 8);
-    for row in &one.evaluation.rows {
+    assert_eq!(r.evaluation.rows.len(), 8);
+    for row in &r.evaluation.rows {
         assert!(row.values.iter().all(Option::is_some), "{row:?}");
         assert!(row.standard_error > 0.0 && row.mean > 0.0, "{row:?}");
+        // Columns: PM2, HCM, HCM int8.
+        if row.indicator.ends_with("impulse") {
+            assert!(row.beats(1, 0), "HCM not better than PM2: {row:?}");
+            assert!(row.beats(2, 0), "HCM int8 not better than PM2: {row:?}");
+        }
     }
+    // Both blobs decode in the core and give the host's wrench within 1e-6.
+    assert!(
+        r.blobs.f32.round_trip_error < 1e-6,
+        "{}",
+        r.blobs.f32.round_trip_error
+    );
+    assert!(
+        r.blobs.int8.round_trip_error < 1e-6,
+        "{}",
+        r.blobs.int8.round_trip_error
+    );
+}
+
+#[test]
+fn the_pipeline_is_bit_identical_on_one_and_two_threads() {
+    let small = PegSettings {
+        seed: 3,
+        ..settings(100)
+    };
+    let (one, two) = (on_threads(1, &small), on_threads(2, &small));
+    assert_eq!(one.pm2.parameters, two.pm2.parameters);
+    assert_eq!(one.pm2.fitness.to_bits(), two.pm2.fitness.to_bits());
+    assert_eq!(one.sets, two.sets);
+    assert_eq!(one.blobs.f32.bytes, two.blobs.f32.bytes);
+    assert_eq!(one.blobs.int8.bytes, two.blobs.int8.bytes);
+    assert_eq!(one.evaluation.rows, two.evaluation.rows);
 }

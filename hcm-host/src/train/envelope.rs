@@ -51,6 +51,44 @@ pub fn envelope_tolerance(min: &[f64], max: &[f64], scale: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// `tolerance` (from [`envelope_tolerance`]) with every component of each of `vectors`
+/// — varying or not — given ρ·S·σ_v, σ_v the largest scale in its vector (its unit).
+///
+/// Why vectors differ: a state vector's components move together, and a replay that
+/// differs from every training run by a hair (the HCM's own prediction error) takes
+/// them past their training range at once — the peg tilting 5e-6 beyond the largest
+/// q_y seen, at the end of its second wall contact, switched the residual off for the
+/// rest of that contact (145 of 348 samples; measured). A tolerance of ρ·S·σ_v is
+/// about 1–3 % of the vector's range (peg: 0.28 mm, 6e-4 of a quaternion, 3.6 mm/s,
+/// 0.14 rad/s) and the same rule as a constant component's. Inputs outside any vector
+/// (the 1D residual's δ, δ̇, δ̇0) keep [`envelope_tolerance`]'s rule.
+pub fn vector_tolerance(
+    mut tolerance: Vec<f64>,
+    min: &[f64],
+    max: &[f64],
+    scale: &[f64],
+    vectors: &[std::ops::Range<usize>],
+) -> Vec<f64> {
+    if vectors.is_empty() {
+        return tolerance;
+    }
+    let spread: Vec<f64> = (min.iter().zip(max).zip(scale))
+        .map(|((min, max), scale)| (max - min) / scale)
+        .filter(|s| s.is_finite() && *s > CONSTANT_SPREAD)
+        .collect();
+    let mean_spread = spread.iter().sum::<f64>() / spread.len().max(1) as f64;
+    for vector in vectors {
+        let (Some(scales), Some(slots)) =
+            (scale.get(vector.clone()), tolerance.get_mut(vector.clone()))
+        else {
+            continue;
+        };
+        let largest = scales.iter().copied().fold(0.0, f64::max);
+        slots.fill(TOLERANCE_FRACTION * mean_spread * largest);
+    }
+    tolerance
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -71,5 +109,15 @@ mod tests {
         assert_eq!(&tolerance[..2], &[0.0, 0.0]);
         // Nothing varies: no tolerance at all.
         assert_eq!(envelope_tolerance(&[1.0], &[1.0], &[1.0]), vec![0.0]);
+        // Inputs 1..3 as one vector: both get ρ·S·(largest scale of the two); input 0
+        // keeps its rule.
+        let vectors = [1..3];
+        let tolerance = vector_tolerance(tolerance, &min, &max, &scale, &vectors);
+        assert_eq!(tolerance[0], 0.0);
+        assert!(
+            (tolerance[1] - 0.01 * spread * 1.0).abs() < 1e-12,
+            "{tolerance:?}"
+        );
+        assert_eq!(tolerance[1], tolerance[2]);
     }
 }
