@@ -111,7 +111,7 @@ mod tests {
         assert_eq!(envelope_tolerance(&[1.0], &[1.0], &[1.0]), vec![0.0]);
         // Inputs 1..3 as one vector: both get ρ·S·(largest scale of the two); input 0
         // keeps its rule.
-        let vectors = [1..3];
+        let vectors = [std::ops::Range { start: 1, end: 3 }];
         let tolerance = vector_tolerance(tolerance, &min, &max, &scale, &vectors);
         assert_eq!(tolerance[0], 0.0);
         assert!(

@@ -4,7 +4,7 @@
 //!
 //! Outputs the network does not predict (R² < 0.1: by the setup's symmetry the
 //! out-of-plane force and torques are sensor noise alone) are fixed at zero
-//! ([`explained`]).
+//! (`crate::train::explained`).
 //!
 //! Only the samples of the contact events PM2 was fitted on and the HCM is judged on
 //! (Table 15's two wall contacts) are training rows. The bottom landing (about 1 kN,
@@ -17,7 +17,7 @@ use crate::dataset::Dataset;
 use crate::indicators::pair_events_from_run;
 use crate::pipeline::{PipelineError, Progress, Stage};
 use crate::scenario::Model;
-use crate::train::explained::{self, explained_variance, silence_outputs, EXPLAINED_MIN};
+use crate::train::explained::{explained_variance, silence_outputs, EXPLAINED_MIN};
 use crate::train::{
     quantisation_aware, train, wrench_pairs, wrench_settings, OutputNets, QuantiseReport,
     TrainReport, TrainedResidual, WrenchPairs,
@@ -38,7 +38,7 @@ pub struct PegTrained {
     pub int8: QuantiseReport,
     /// R² of each output on the training rows (force x y z, torque x y z).
     pub explained: Vec<f64>,
-    /// Outputs fixed at zero: R² below [`EXPLAINED_MIN`] (see [`explained`]).
+    /// Outputs fixed at zero: R² below [`EXPLAINED_MIN`] (see `crate::train::explained`).
     pub silenced: Vec<usize>,
 }
 
