@@ -10,7 +10,7 @@ mod train;
 
 pub use curves::{mean_curve, replay_curve, WrenchCurve};
 pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS, PAPER};
-pub use train::{train_peg_residual, PegTrained};
+pub use train::{train_peg_residual, wall_contact_pairs, PegTrained};
 
 use super::{
     experiment, export_blobs, Blob, Blobs, PipelineError, Progress, Stage, StageClock, StageTiming,

@@ -51,7 +51,7 @@ pub fn train_peg_residual(
     seed: u64,
     progress: &dyn Progress,
 ) -> Result<PegTrained, PipelineError> {
-    let pairs = wall_rows(pm2, training, events)?;
+    let pairs = wall_contact_pairs(pm2, training, events)?;
     let settings = wrench_settings(OutputNets::Joint, seed);
     let epochs = settings.max_epochs as u64;
     progress.begin(Stage::Train, epochs);
@@ -80,9 +80,13 @@ pub fn train_peg_residual(
     })
 }
 
-/// The training pairs of S1 whose samples come before each run's event number
+/// The training pairs of `data` whose samples come before each run's event number
 /// `events` (0-based: the first after the fitted ones) touches down.
-fn wall_rows(pm2: &Model, data: &Dataset, events: usize) -> Result<WrenchPairs, PipelineError> {
+pub fn wall_contact_pairs(
+    pm2: &Model,
+    data: &Dataset,
+    events: usize,
+) -> Result<WrenchPairs, PipelineError> {
     let all = wrench_pairs(pm2, data, CONTACT)?;
     let mut ends = Vec::with_capacity(data.runs.len());
     for run in &data.runs {
