@@ -198,6 +198,24 @@ impl PegReproduction {
              int8 twin: RMS {:.4} against the f32 network after fine-tuning ({:.4} plainly rounded).\n",
             t.rows, t.report.epochs, t.report.best_epoch, t.report.validation_loss, t.report.seconds, t.int8.tuned_rms, t.int8.rounded_rms
         );
+        const OUTPUTS: [&str; 6] = ["F_x", "F_y", "F_z", "T_x", "T_y", "T_z"];
+        let explained: Vec<String> = (OUTPUTS.iter().zip(&t.explained))
+            .map(|(name, r2)| format!("{name} {r2:.3}"))
+            .collect();
+        let silenced: Vec<&str> = (t.silenced.iter())
+            .filter_map(|&k| OUTPUTS.get(k).copied())
+            .collect();
+        let silenced = if silenced.is_empty() {
+            "none".to_owned()
+        } else {
+            silenced.join(", ")
+        };
+        let _ = writeln!(
+            md,
+            "Share of each target's variance the network explains on its training rows (R²): {}. \
+             Fixed at zero (R² < 0.1: no signal beyond the sensor noise): {silenced}.\n",
+            explained.join(", ")
+        );
         let _ = writeln!(
             md,
             "| blob | bytes | round trip (core vs host, relative) |\n|---|---|---|"
