@@ -155,15 +155,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         println!("  note: {note}");
     }
     let physics = Physics::for_contact(&model, args.contact, &result.law, fit);
+    write_physics(&physics, &scenario.name, &args.out)
+}
+
+/// Writes `physics` (PM2 of scenario `name`) to `out` and says so.
+pub(super) fn write_physics(
+    physics: &Physics,
+    name: &str,
+    out: &std::path::Path,
+) -> anyhow::Result<()> {
     physics
         .write(
-            &args.out,
-            &format!(
-                "PM2 of scenario `{}` identified by hcm identify",
-                scenario.name
-            ),
+            out,
+            &format!("PM2 of scenario `{name}` identified by hcm identify"),
         )
-        .with_context(|| format!("writing {}", args.out.display()))?;
-    println!("wrote {}", args.out.display());
+        .with_context(|| format!("writing {}", out.display()))?;
+    println!("wrote {}", out.display());
     Ok(())
 }

@@ -106,15 +106,5 @@ pub fn run(
         notes,
     };
     let physics = Physics::for_contact(&found.model, c, found.model.contacts[c].law(), fit);
-    physics
-        .write(
-            &args.out,
-            &format!(
-                "PM2 of scenario `{}` identified by hcm identify",
-                scenario.name
-            ),
-        )
-        .with_context(|| format!("writing {}", args.out.display()))?;
-    println!("wrote {}", args.out.display());
-    Ok(())
+    super::identify::write_physics(&physics, &scenario.name, &args.out)
 }
