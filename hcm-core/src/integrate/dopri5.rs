@@ -12,6 +12,7 @@
 //! Runge–Kutta formulas", Math. Comp. 46 (1986) 135–150) in the form used by the
 //! book's DOPRI5 code (Section II.6).
 
+use super::interval::{next_interval, step_cap};
 use super::vector::{all_finite, combine, error_norm, increment, is_finite, scaled_rms};
 use super::{IntegrationError, OdeState, OdeSystem};
 use crate::Real;
@@ -320,7 +321,7 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
             ..
         } = self.settings;
         // (t, y) stay put until an attempt is accepted, and so does the cap.
-        let cap = self.step_cap(system);
+        let cap = step_cap(&self.settings, system.step_limit(self.time, &self.state));
         // Whether the last rejection was caused by a NaN/∞ (decides the error kind).
         let mut non_finite = false;
         // Whether this call rejected an attempt (then the step may not grow).
@@ -334,18 +335,8 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
                 });
             }
             let guess = self.next_step;
-            let wanted = if guess < cap { guess } else { cap };
-            let remaining = until - self.time;
-            let (h, end) = if remaining <= wanted * T::of(1.01) && remaining <= cap {
-                (remaining, until)
-            } else if wanted < min_step {
-                return Err(self.too_small(wanted, non_finite));
-            } else {
-                (wanted, self.time + wanted)
-            };
-            if end.is_nan() || end <= self.time || h.is_nan() || h <= T::zero() {
-                return Err(self.too_small(h, non_finite));
-            }
+            let (h, end) =
+                next_interval(&self.settings, self.time, guess, (cap, until), non_finite)?;
             let clamped = h < guess;
 
             self.attempt(system, h, end);
@@ -449,36 +440,6 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
         self.last_step = T::zero();
         let [k1, ..] = &mut self.stages;
         system.derivative(time, &self.state, k1);
-    }
-
-    /// Longest step (s) allowed from the current point: min(max_step, step_limit),
-    /// floored at min_step (NaN limits ignored).
-    fn step_cap(&self, system: &impl OdeSystem<T, S>) -> T {
-        let mut cap = self.settings.max_step;
-        if !is_finite(cap) {
-            cap = T::MAX;
-        }
-        let limit = system.step_limit(self.time, &self.state);
-        if limit < cap {
-            cap = limit;
-        }
-        if cap < self.settings.min_step {
-            cap = self.settings.min_step;
-        }
-        cap
-    }
-
-    /// The error for a step `h` (s) that cannot be taken.
-    fn too_small(&self, h: T, non_finite: bool) -> IntegrationError {
-        let time = self.time.to_f64();
-        if non_finite {
-            IntegrationError::NonFinite { time }
-        } else {
-            IntegrationError::StepTooSmall {
-                time,
-                step: h.to_f64(),
-            }
-        }
     }
 
     /// One attempt of length `h` (s) ending at `end` (s): fills k2 … k7, the candidate
@@ -598,7 +559,7 @@ impl<T: Real, S: OdeState<T>> Dopri5<T, S> {
     /// (Hairer–Nørsett–Wanner II.4, steps a–f, with the RMS norm); bounded by the step
     /// cap, floored at min_step, and finite and > 0 whatever the inputs.
     fn initial_step(&mut self, system: &mut impl OdeSystem<T, S>) -> T {
-        let cap = self.step_cap(system);
+        let cap = step_cap(&self.settings, system.step_limit(self.time, &self.state));
         let min = |a: T, b: T| if a < b { a } else { b };
         let chosen = if self.settings.initial_step > T::zero() {
             min(self.settings.initial_step, cap)

@@ -56,6 +56,7 @@ mod dopri5;
 mod error;
 mod event;
 mod hermite;
+mod interval;
 mod rodas4;
 mod state;
 mod vector;

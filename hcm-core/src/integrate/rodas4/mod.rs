@@ -19,6 +19,7 @@ mod tableau;
 mod tests;
 
 use super::dopri5::Settings;
+use super::interval::{next_interval, step_cap};
 use super::vector::{all_finite, error_norm, is_finite};
 use super::{DenseOutput, IntegrationError, LinearlyImplicit, OdeState};
 use crate::Real;
@@ -159,7 +160,13 @@ impl<T: Real, S: OdeState<T>> Rodas4<T, S> {
                     steps: attempts,
                 });
             }
-            let (h, end) = self.next_interval(cap, until, non_finite)?;
+            let (h, end) = next_interval(
+                &self.settings,
+                self.time,
+                self.next_step,
+                (cap, until),
+                non_finite,
+            )?;
             let error = if system.factor(T::one() / (h * T::of(GAMMA))) {
                 self.attempt(system, h, end);
                 let settings = &self.settings;
@@ -186,45 +193,6 @@ impl<T: Real, S: OdeState<T>> Rodas4<T, S> {
             }
             self.rejected = self.rejected.saturating_add(1);
             rejected_here = true;
-        }
-    }
-
-    /// The next attempt's length h (s) and end time (s), as [`Dopri5`](super::Dopri5)
-    /// chooses them, or the error for a step too small to take.
-    fn next_interval(
-        &self,
-        cap: T,
-        until: T,
-        non_finite: bool,
-    ) -> Result<(T, T), IntegrationError> {
-        let wanted = if self.next_step < cap {
-            self.next_step
-        } else {
-            cap
-        };
-        let remaining = until - self.time;
-        let (h, end) = if remaining <= wanted * T::of(1.01) && remaining <= cap {
-            (remaining, until)
-        } else if wanted < self.settings.min_step {
-            return Err(self.too_small(wanted, non_finite));
-        } else {
-            (wanted, self.time + wanted)
-        };
-        if end.is_nan() || end <= self.time || h.is_nan() || h <= T::zero() {
-            return Err(self.too_small(h, non_finite));
-        }
-        Ok((h, end))
-    }
-
-    fn too_small(&self, h: T, non_finite: bool) -> IntegrationError {
-        let time = self.time.to_f64();
-        if non_finite {
-            IntegrationError::NonFinite { time }
-        } else {
-            IntegrationError::StepTooSmall {
-                time,
-                step: h.to_f64(),
-            }
         }
     }
 
@@ -409,19 +377,4 @@ fn clamp_factor<T: Real>(factor: T) -> T {
     } else {
         factor
     }
-}
-
-/// Longest step (s): min(max_step, `limit`), floored at min_step, NaN ignored.
-fn step_cap<T: Real>(settings: &Settings<T>, limit: T) -> T {
-    let mut cap = settings.max_step;
-    if !is_finite(cap) {
-        cap = T::MAX;
-    }
-    if limit < cap {
-        cap = limit;
-    }
-    if cap < settings.min_step {
-        cap = settings.min_step;
-    }
-    cap
 }
