@@ -414,8 +414,12 @@ fn constant_approach_speed_model() -> ExportModel {
     model.input_scale[2] = 1.0; // the trainer's scale for a constant column
     model.envelope_min[2] = 1.4;
     model.envelope_max[2] = 1.4 + 7e-13;
-    model.envelope_tolerance =
-        envelope_tolerance(&model.envelope_min, &model.envelope_max, &model.input_scale);
+    model.envelope_tolerance = envelope_tolerance(
+        &model.envelope_min,
+        &model.envelope_max,
+        &model.input_scale,
+        &[],
+    );
     model
 }
 

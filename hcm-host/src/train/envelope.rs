@@ -26,8 +26,23 @@ const CONSTANT_SPREAD: f64 = 1e-6;
 
 /// tolerance_i = ρ·S·σ_i for a constant input, 0 for one that varies (raw units, ≥ 0),
 /// for inputs with training range [min, max] and normalisation scale σ (one value per
-/// input each).
-pub fn envelope_tolerance(min: &[f64], max: &[f64], scale: &[f64]) -> Vec<f64> {
+/// input each); every component of each of `vectors` — varying or not — gets ρ·S·σ_v,
+/// σ_v the largest scale in its vector (its unit).
+///
+/// Why vectors differ: a state vector's components move together, and a replay that
+/// differs from every training run by a hair (the HCM's own prediction error) takes
+/// them past their training range at once — the peg tilting 5e-6 beyond the largest
+/// q_y seen, at the end of its second wall contact, switched the residual off for the
+/// rest of that contact (145 of 348 samples; measured). A tolerance of ρ·S·σ_v is
+/// about 1–3 % of the vector's range (peg: 0.28 mm, 6e-4 of a quaternion, 3.6 mm/s,
+/// 0.14 rad/s) and the same rule as a constant component's. Inputs outside any vector
+/// (the 1D residual's δ, δ̇, δ̇0) keep the rule for single inputs.
+pub fn envelope_tolerance(
+    min: &[f64],
+    max: &[f64],
+    scale: &[f64],
+    vectors: &[std::ops::Range<usize>],
+) -> Vec<f64> {
     let spread: Vec<f64> = min
         .iter()
         .zip(max)
@@ -41,42 +56,14 @@ pub fn envelope_tolerance(min: &[f64], max: &[f64], scale: &[f64]) -> Vec<f64> {
     } else {
         spreads.iter().sum::<f64>() / spreads.len() as f64
     };
-    scale
+    let mut tolerance: Vec<f64> = scale
         .iter()
         .zip(&spread)
         .map(|(scale, spread)| match varies(*spread) {
             true => 0.0,
             false => TOLERANCE_FRACTION * mean_spread * scale,
         })
-        .collect()
-}
-
-/// `tolerance` (from [`envelope_tolerance`]) with every component of each of `vectors`
-/// — varying or not — given ρ·S·σ_v, σ_v the largest scale in its vector (its unit).
-///
-/// Why vectors differ: a state vector's components move together, and a replay that
-/// differs from every training run by a hair (the HCM's own prediction error) takes
-/// them past their training range at once — the peg tilting 5e-6 beyond the largest
-/// q_y seen, at the end of its second wall contact, switched the residual off for the
-/// rest of that contact (145 of 348 samples; measured). A tolerance of ρ·S·σ_v is
-/// about 1–3 % of the vector's range (peg: 0.28 mm, 6e-4 of a quaternion, 3.6 mm/s,
-/// 0.14 rad/s) and the same rule as a constant component's. Inputs outside any vector
-/// (the 1D residual's δ, δ̇, δ̇0) keep [`envelope_tolerance`]'s rule.
-pub fn vector_tolerance(
-    mut tolerance: Vec<f64>,
-    min: &[f64],
-    max: &[f64],
-    scale: &[f64],
-    vectors: &[std::ops::Range<usize>],
-) -> Vec<f64> {
-    if vectors.is_empty() {
-        return tolerance;
-    }
-    let spread: Vec<f64> = (min.iter().zip(max).zip(scale))
-        .map(|((min, max), scale)| (max - min) / scale)
-        .filter(|s| s.is_finite() && *s > CONSTANT_SPREAD)
         .collect();
-    let mean_spread = spread.iter().sum::<f64>() / spread.len().max(1) as f64;
     for vector in vectors {
         let (Some(scales), Some(slots)) =
             (scale.get(vector.clone()), tolerance.get_mut(vector.clone()))
@@ -100,7 +87,7 @@ mod tests {
         let max = [60e-6, 1.4, 1.4 + 7e-13];
         let scale = [17e-6, 0.8, 1.0];
         let spread = (60.0 / 17.0 + 2.8 / 0.8) / 2.0;
-        let tolerance = envelope_tolerance(&min, &max, &scale);
+        let tolerance = envelope_tolerance(&min, &max, &scale, &[]);
         assert!(
             (tolerance[2] - 0.01 * spread).abs() < 1e-12,
             "{tolerance:?}"
@@ -108,11 +95,11 @@ mod tests {
         // The varying inputs keep their training range.
         assert_eq!(&tolerance[..2], &[0.0, 0.0]);
         // Nothing varies: no tolerance at all.
-        assert_eq!(envelope_tolerance(&[1.0], &[1.0], &[1.0]), vec![0.0]);
+        assert_eq!(envelope_tolerance(&[1.0], &[1.0], &[1.0], &[]), vec![0.0]);
         // Inputs 1..3 as one vector: both get ρ·S·(largest scale of the two); input 0
         // keeps its rule.
         let vectors = [std::ops::Range { start: 1, end: 3 }];
-        let tolerance = vector_tolerance(tolerance, &min, &max, &scale, &vectors);
+        let tolerance = envelope_tolerance(&min, &max, &scale, &vectors);
         assert_eq!(tolerance[0], 0.0);
         assert!(
             (tolerance[1] - 0.01 * spread * 1.0).abs() < 1e-12,

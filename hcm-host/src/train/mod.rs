@@ -34,7 +34,7 @@ pub mod trained;
 pub mod wrench_samples;
 pub mod wrench_settings;
 
-pub use envelope::{envelope_tolerance, vector_tolerance};
+pub use envelope::envelope_tolerance;
 pub use network::{Activation, Network};
 pub use per_output::OutputNets;
 pub use quantise::{quantisation_aware, QuantiseReport};
@@ -544,8 +544,7 @@ impl Normalised {
             envelope(f64::max, f64::NEG_INFINITY),
         );
         Network {
-            envelope_tolerance: vector_tolerance(
-                envelope_tolerance(&envelope_min, &envelope_max, &self.input.1),
+            envelope_tolerance: envelope_tolerance(
                 &envelope_min,
                 &envelope_max,
                 &self.input.1,
