@@ -2,6 +2,10 @@
 
 use nalgebra::RealField;
 
+// Compiled on the host too, where its tests run against `f64`.
+#[cfg_attr(not(target_os = "none"), allow(dead_code))]
+mod pow;
+
 /// A float type a contact law can be evaluated in: `f32` (controller) or `f64`
 /// (host simulation).
 ///
@@ -20,12 +24,15 @@ pub trait Real: RealField + Copy {
     /// hardware does not convert through `f64` in software.
     fn of_count(count: usize) -> Self;
 
-    /// `self` raised to `exponent` (nalgebra's `powf`): on a controller (no `std`) the
-    /// `libm` crate's, on the host the platform's (glibc), which is about six times
-    /// faster there (x86-64: 5 ns against 30 ns per call, `cargo bench --bench
-    /// law_evaluation`) and may round an ulp or two differently — the one reason a
-    /// law's f32 result on the host can differ from the controller's
-    /// (tests/firmware.rs lists each such value).
+    /// `self` raised to `exponent`, C99 `pow` semantics. On a bare-metal controller
+    /// (`target_os = "none"`) `f32` uses the core's own pow (`real/pow.rs`: `f32`
+    /// `+ − × ÷` and bit operations only, within one ulp; the `libm` crate's `powf`
+    /// computes in software `f64` on a single-precision FPU, 60 instructions more per
+    /// call on the Cortex-M4F). Everywhere else, and for `f64`, nalgebra's `powf`, i.e.
+    /// the platform's (glibc), which is faster on the host (x86-64: 5 ns against about
+    /// 30 ns per call). Each rounds within an ulp, so the two may differ by an ulp or
+    /// two — the one reason a law's f32 result on the host can differ from the
+    /// controller's (tests/firmware.rs lists each such value).
     fn pow(self, exponent: Self) -> Self;
 
     /// Widens (or, from `f64`, keeps) the value as an `f64`.
@@ -38,14 +45,16 @@ pub trait Real: RealField + Copy {
     /// `self` rounded to `f32` (nearest); direct, for the same reason.
     fn to_f32(self) -> f32;
 
-    /// `self` clamped to [−limit, limit] (limit > 0, same unit as `self`); NaN gives 0.
+    /// `self` clamped to [−limit, limit] (limit > 0, same unit as `self`), times
+    /// `scale` (the scale's unit); NaN gives 0.
     ///
     /// `f32` scales to 2³¹/limit and back through Rust's saturating `as i32`: two
     /// `vcvt` and two multiplies on a Cortex-M4F, whose FPU has no `vmin`/`vmax` (a
-    /// compare-and-select clamp takes eight instructions and two branches). It rounds
-    /// |self| < 2²⁴·limit/2³¹ down to a multiple of limit/2³¹ (3.3e-9 for limit 7),
-    /// below `f32` resolution elsewhere. `f64` (the host) compares.
-    fn clamp_magnitude(self, limit: Self) -> Self;
+    /// compare-and-select clamp takes eight instructions and two branches); `scale`
+    /// rides on the multiply back, for free. It rounds |self| < 2²⁴·limit/2³¹ down to a
+    /// multiple of limit/2³¹ (3.3e-9 for limit 7), below `f32` resolution elsewhere.
+    /// `f64` (the host) compares, then multiplies.
+    fn clamp_magnitude_scaled(self, limit: Self, scale: Self) -> Self;
 
     /// Converts between float types: `f64` → `f32` rounds to nearest.
     #[inline]
@@ -93,7 +102,11 @@ impl Real for f32 {
 
     #[inline]
     fn pow(self, exponent: Self) -> Self {
-        nalgebra::ComplexField::powf(self, exponent)
+        #[cfg(target_os = "none")]
+        let power = pow::powf(self, exponent);
+        #[cfg(not(target_os = "none"))]
+        let power = nalgebra::ComplexField::powf(self, exponent);
+        power
     }
 
     #[inline]
@@ -117,9 +130,9 @@ impl Real for f32 {
     }
 
     #[inline]
-    fn clamp_magnitude(self, limit: Self) -> Self {
+    fn clamp_magnitude_scaled(self, limit: Self, scale: Self) -> Self {
         const RANGE: f32 = 2_147_483_648.0;
-        (self * (RANGE / limit)) as i32 as f32 * (limit / RANGE)
+        (self * (RANGE / limit)) as i32 as f32 * (limit * scale / RANGE)
     }
 }
 
@@ -157,11 +170,11 @@ impl Real for f64 {
     }
 
     #[inline]
-    fn clamp_magnitude(self, limit: Self) -> Self {
+    fn clamp_magnitude_scaled(self, limit: Self, scale: Self) -> Self {
         if self.is_nan() {
             0.0
         } else {
-            self.clamp(-limit, limit)
+            self.clamp(-limit, limit) * scale
         }
     }
 }

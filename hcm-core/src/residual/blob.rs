@@ -343,8 +343,14 @@ impl<'a> Reader<'a> {
             }
         }
         if Q::HAS_ROW_SCALE {
-            for scale in &mut layer.row_scales {
-                *scale = Q::row_scale(self.read_f32()?)?;
+            // Each row's levels times its scale, once, here (see `WeightFormat`).
+            for output in 0..OUT {
+                let scale = Q::row_scale(self.read_f32()?)?;
+                for column in &mut layer.weights {
+                    if let Some(weight) = column.get_mut(output) {
+                        *weight *= scale;
+                    }
+                }
             }
         }
         let finite = |value: f32| value.is_finite();

@@ -14,6 +14,7 @@
 
 use super::{BlobError, Quantisation};
 use core::fmt::Debug;
+use core::marker::PhantomData;
 
 mod sealed {
     pub trait Sealed {}
@@ -21,113 +22,69 @@ mod sealed {
     impl Sealed for super::Int8Weights {}
 }
 
-/// How one layer stores its weights; implemented by [`F32Weights`] and
+/// How a blob stores one layer's weights; implemented by [`F32Weights`] and
 /// [`Int8Weights`] only (the blob format knows exactly these two).
+///
+/// Decoded, every layer holds `f32` weights and runs the same kernel: an int8 layer's
+/// weight is its level times its row's scale, q·s, rounded to `f32` once at decoding.
+/// int8 is a storage format — a quarter of the blob and of the flash that embeds it —
+/// not an arithmetic: on the two targets hcm runs on, integer arithmetic is slower than
+/// the `f32` kernel, not faster. On the Cortex-M4F an int8 product computed at run time
+/// costs a load, a move to the FPU and a conversion before the same `vmla`
+/// (4 instructions for the f32 kernel's 2; integer multiply-adds need the activations
+/// quantised and the sums converted back, and the dual 16-bit `smlad` is out of reach
+/// of stable Rust without `unsafe`); the x86-64 baseline (SSE2) has no int8 dot
+/// product. Folded, an int8 network costs exactly what an f32 one does, and is never
+/// slower (README, "The controller").
 pub trait WeightFormat: Copy + Debug + PartialEq + sealed::Sealed {
-    /// One stored weight.
-    type Weight: Copy + Debug + PartialEq;
-    /// One stored per-output-row scale (`()` when there is none).
-    type RowScale: Copy + Debug + PartialEq;
     /// The blob tag of this format.
     const KIND: Quantisation;
-    /// A zero weight.
-    const ZERO: Self::Weight;
-    /// The row scale that leaves a row unchanged.
-    const UNIT: Self::RowScale;
     /// Bytes one weight takes in a blob.
     const WEIGHT_BYTES: usize;
     /// Whether a blob carries one `f32` scale per output row of each layer.
     const HAS_ROW_SCALE: bool;
 
-    /// The value an output's accumulator starts from: its bias where the sum needs no
-    /// scaling (f32), else 0.
-    fn start(bias: f32) -> f32;
+    /// The weight (f32) or level (int8, as an exact `f32`) stored little-endian in
+    /// `raw` (`WEIGHT_BYTES` long).
+    fn weight_from_le(raw: &[u8]) -> Result<f32, BlobError>;
 
-    /// The pre-activation z of an output from its accumulated sum (started at
-    /// [`WeightFormat::start`]), its bias and its row scale.
-    fn finish(sum: f32, bias: f32, scale: Self::RowScale) -> f32;
-
-    /// One weight as the `f32` that [`Layer::forward`] multiplies.
-    fn widen(weight: Self::Weight) -> f32;
-
-    /// The weight stored little-endian in `raw` (`WEIGHT_BYTES` long).
-    fn weight_from_le(raw: &[u8]) -> Result<Self::Weight, BlobError>;
-
-    /// The row scale read from a blob (ignored by formats without one).
-    fn row_scale(scale: f32) -> Result<Self::RowScale, BlobError>;
+    /// A row scale read from a blob, checked (formats without one never read it).
+    fn row_scale(scale: f32) -> Result<f32, BlobError>;
 }
 
 /// Full-precision weights: every weight an `f32`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct F32Weights;
 
-/// Symmetric int8 weights: w ≈ q·scale_row with q ∈ [−127, 127] and one `f32` scale
-/// per output row; products are accumulated in `f32` and scaled once per row.
+/// Symmetric int8 weights: w = q·s_row with q ∈ [−127, 127] and one `f32` scale per
+/// output row, folded into `f32` weights when decoded (see [`WeightFormat`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Int8Weights;
 
 impl WeightFormat for F32Weights {
-    type Weight = f32;
-    type RowScale = ();
     const KIND: Quantisation = Quantisation::F32;
-    const ZERO: f32 = 0.0;
-    const UNIT: () = ();
     const WEIGHT_BYTES: usize = 4;
     const HAS_ROW_SCALE: bool = false;
-
-    #[inline(always)]
-    fn widen(weight: f32) -> f32 {
-        weight
-    }
-
-    #[inline(always)]
-    fn start(bias: f32) -> f32 {
-        bias
-    }
-
-    #[inline(always)]
-    fn finish(sum: f32, _bias: f32, _scale: ()) -> f32 {
-        sum
-    }
 
     fn weight_from_le(raw: &[u8]) -> Result<f32, BlobError> {
         let bytes: [u8; 4] = raw.try_into().map_err(|_| BlobError::Malformed)?;
         finite(f32::from_le_bytes(bytes))
     }
 
-    fn row_scale(_scale: f32) -> Result<(), BlobError> {
-        Ok(())
+    fn row_scale(scale: f32) -> Result<f32, BlobError> {
+        Ok(scale)
     }
 }
 
 impl WeightFormat for Int8Weights {
-    type Weight = i8;
-    type RowScale = f32;
     const KIND: Quantisation = Quantisation::Int8;
-    const ZERO: i8 = 0;
-    const UNIT: f32 = 1.0;
     const WEIGHT_BYTES: usize = 1;
     const HAS_ROW_SCALE: bool = true;
 
-    #[inline(always)]
-    fn start(_bias: f32) -> f32 {
-        0.0
-    }
-
-    #[inline(always)]
-    fn finish(sum: f32, bias: f32, scale: f32) -> f32 {
-        bias + sum * scale
-    }
-
-    #[inline(always)]
-    fn widen(weight: i8) -> f32 {
-        f32::from(weight)
-    }
-
-    fn weight_from_le(raw: &[u8]) -> Result<i8, BlobError> {
+    fn weight_from_le(raw: &[u8]) -> Result<f32, BlobError> {
         match raw {
             // −128 has no positive twin: the symmetric range is [−127, 127].
-            [byte] if *byte != 0x80 => Ok(i8::from_le_bytes([*byte])),
+            [byte] if *byte != 0x80 => Ok(f32::from(i8::from_le_bytes([*byte]))),
             _ => Err(BlobError::Malformed),
         }
     }
@@ -146,44 +103,41 @@ fn finite(value: f32) -> Result<f32, BlobError> {
     }
 }
 
-/// One fully connected layer with `IN` inputs and `OUT` outputs: z = W·x + b.
+/// One fully connected layer with `IN` inputs and `OUT` outputs: z = W·x + b; `Q`
+/// records how its blob stored the weights.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Layer<const IN: usize, const OUT: usize, Q: WeightFormat = F32Weights> {
     /// Weights column by column, `[in][out]`: `weights[j][i]` multiplies input j into
-    /// output i (dimensionless: the layer works on normalised values).
-    pub weights: [[Q::Weight; OUT]; IN],
-    /// One scale per output row (int8 only; `()` for f32).
-    pub row_scales: [Q::RowScale; OUT],
+    /// output i (dimensionless: the layer works on normalised values). For int8, q·s.
+    pub weights: [[f32; OUT]; IN],
     /// Bias, one per output.
     pub bias: [f32; OUT],
+    /// The storage format the weights came from.
+    pub format: PhantomData<Q>,
 }
 
 impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
     /// A layer whose weights and biases are all zero.
     pub const fn zeroed() -> Self {
         Layer {
-            weights: [[Q::ZERO; OUT]; IN],
-            row_scales: [Q::UNIT; OUT],
+            weights: [[0.0; OUT]; IN],
             bias: [0.0; OUT],
+            format: PhantomData,
         }
     }
 
     /// The layer with weights given row by row, `rows[i][j]` multiplying input j
     /// into output i (the usual matrix W).
-    pub fn from_rows(
-        rows: [[Q::Weight; IN]; OUT],
-        row_scales: [Q::RowScale; OUT],
-        bias: [f32; OUT],
-    ) -> Self {
+    pub fn from_rows(rows: [[f32; IN]; OUT], bias: [f32; OUT]) -> Self {
         Layer {
             weights: core::array::from_fn(|j| core::array::from_fn(|i| rows[i][j])),
-            row_scales,
             bias,
+            format: PhantomData,
         }
     }
 
     /// Row i of W: the weights of output i, one per input.
-    pub fn row(&self, output: usize) -> Option<[Q::Weight; IN]> {
+    pub fn row(&self, output: usize) -> Option<[f32; IN]> {
         (output < OUT).then(|| self.weights.map(|column| column[output]))
     }
 
@@ -193,62 +147,92 @@ impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
     /// input, then stored: written out so, the eight sums stay in registers even where
     /// the compiler does not unroll loops (`opt-level = "s"`, the firmware's), and one
     /// multiply-add costs a load and a `vmla` on a Cortex-M4F instead of a load, a
-    /// load, a `vmla` and a store. With f32 weights each sum starts from its bias (no
-    /// separate pass to add it: 16 × 9 instructions less per layer on the Cortex-M4F);
-    /// int8 sums start from 0 and are scaled before the bias is added. Outputs beyond a
-    /// multiple of eight (the remainder) are summed in the same order, so every output
-    /// gets the same bits whichever path computes it.
+    /// load, a `vmla` and a store. Each sum starts from its bias (no separate pass to
+    /// add it). Outputs beyond a multiple of eight (the remainder) are summed in the
+    /// same order, so every output gets the same bits whichever path computes it.
     #[inline]
     pub fn forward(&self, x: &[f32; IN]) -> [f32; OUT] {
-        let mut z = [0.0; OUT];
-        let mut first = 0;
-        while let (
-            Some(block),
-            Some(&[b0, b1, b2, b3, b4, b5, b6, b7]),
-            Some(&[s0, s1, s2, s3, s4, s5, s6, s7]),
-        ) = (
-            z.get_mut(first..first + 8),
-            self.bias.get(first..first + 8),
-            self.row_scales.get(first..first + 8),
-        ) {
-            let (mut a0, mut a1, mut a2, mut a3) =
-                (Q::start(b0), Q::start(b1), Q::start(b2), Q::start(b3));
-            let (mut a4, mut a5, mut a6, mut a7) =
-                (Q::start(b4), Q::start(b5), Q::start(b6), Q::start(b7));
-            for (column, &x) in self.weights.iter().zip(x) {
-                if let Some(&[w0, w1, w2, w3, w4, w5, w6, w7]) = column.get(first..first + 8) {
-                    a0 += Q::widen(w0) * x;
-                    a1 += Q::widen(w1) * x;
-                    a2 += Q::widen(w2) * x;
-                    a3 += Q::widen(w3) * x;
-                    a4 += Q::widen(w4) * x;
-                    a5 += Q::widen(w5) * x;
-                    a6 += Q::widen(w6) * x;
-                    a7 += Q::widen(w7) * x;
-                }
-            }
-            block.copy_from_slice(&[
-                Q::finish(a0, b0, s0),
-                Q::finish(a1, b1, s1),
-                Q::finish(a2, b2, s2),
-                Q::finish(a3, b3, s3),
-                Q::finish(a4, b4, s4),
-                Q::finish(a5, b5, s5),
-                Q::finish(a6, b6, s6),
-                Q::finish(a7, b7, s7),
-            ]);
-            first += 8;
-        }
-        let remainder = z.iter_mut().zip(self.bias.iter().zip(&self.row_scales));
-        for (output, (z, (&bias, &scale))) in remainder.enumerate().skip(first) {
-            let mut sum = Q::start(bias);
-            for (column, &x) in self.weights.iter().zip(x) {
-                if let Some(&w) = column.get(output) {
-                    sum += Q::widen(w) * x;
-                }
-            }
-            *z = Q::finish(sum, bias, scale);
-        }
-        z
+        self.forward_activated(x, |z| z)
     }
+
+    /// a(W·x + b): [`Layer::forward`] with the activation `a` applied to each output
+    /// while its sum is still in a register (on the Cortex-M4F a store, a load and a
+    /// separate loop less per neuron).
+    #[inline]
+    pub fn forward_activated(&self, x: &[f32; IN], activation: impl Fn(f32) -> f32) -> [f32; OUT] {
+        affine(&self.weights, &self.bias, x, activation)
+    }
+}
+
+impl<const IN: usize, const OUT: usize> Layer<IN, OUT, Int8Weights> {
+    /// The int8 layer with levels q given row by row (`levels[i][j]` for input j into
+    /// output i) and one scale per output row (dimensionless): weights q·s in `f32`,
+    /// exactly what decoding the blob gives.
+    pub fn from_levels(levels: [[i8; IN]; OUT], scales: [f32; OUT], bias: [f32; OUT]) -> Self {
+        let rows = core::array::from_fn(|i| levels[i].map(|q| f32::from(q) * scales[i]));
+        Layer::from_rows(rows, bias)
+    }
+}
+
+/// a(W·x + b) for one layer, its weights column by column (see [`Layer::forward`]).
+///
+/// The input count is a slice length, not a const generic, and the storage format is
+/// not a parameter: every layer with the same output count and activation — a 3-16
+/// input layer, a 16-16 hidden layer, f32 or int8 — shares one copy of this code,
+/// which keeps the eight activations inlined per block within the firmware's flash.
+#[inline(never)]
+fn affine<const OUT: usize, A: Fn(f32) -> f32>(
+    weights: &[[f32; OUT]],
+    bias: &[f32; OUT],
+    x: &[f32],
+    activation: A,
+) -> [f32; OUT] {
+    // Every element is overwritten; starting from a copy of the bias rather than zeros
+    // spares a call to `memset` (40 instructions for 16 outputs on the Cortex-M4F).
+    let mut z = *bias;
+    let mut first = 0;
+    while let (Some(block), Some(&[b0, b1, b2, b3, b4, b5, b6, b7])) =
+        (z.get_mut(first..first + 8), bias.get(first..first + 8))
+    {
+        let (mut a0, mut a1, mut a2, mut a3) = (b0, b1, b2, b3);
+        let (mut a4, mut a5, mut a6, mut a7) = (b4, b5, b6, b7);
+        for (column, &x) in weights.iter().zip(x) {
+            if let Some(&[w0, w1, w2, w3, w4, w5, w6, w7]) = column.get(first..first + 8) {
+                a0 += w0 * x;
+                a1 += w1 * x;
+                a2 += w2 * x;
+                a3 += w3 * x;
+                a4 += w4 * x;
+                a5 += w5 * x;
+                a6 += w6 * x;
+                a7 += w7 * x;
+            }
+        }
+        block.copy_from_slice(&[
+            activation(a0),
+            activation(a1),
+            activation(a2),
+            activation(a3),
+            activation(a4),
+            activation(a5),
+            activation(a6),
+            activation(a7),
+        ]);
+        first += 8;
+    }
+    // Indexed by a range below OUT, so every `get` is known to succeed (an
+    // `enumerate().skip(first)` walked the first outputs again, one by one).
+    for output in first..OUT {
+        let (Some(z), Some(&bias)) = (z.get_mut(output), bias.get(output)) else {
+            break;
+        };
+        let mut sum = bias;
+        for (column, &x) in weights.iter().zip(x) {
+            if let Some(&w) = column.get(output) {
+                sum += w * x;
+            }
+        }
+        *z = activation(sum);
+    }
+    z
 }

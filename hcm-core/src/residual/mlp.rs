@@ -16,9 +16,9 @@
 //! width × width layers, so no storage is wasted on unused layers.
 //!
 //! The hidden → hidden layers' weights (WIDTH × WIDTH each, the bulk of a network) are
-//! stored as `f32` ([`F32Weights`]) or as `i8` with one `f32` scale per output row
-//! ([`Int8Weights`], a quarter of the flash); the format is a type parameter rather
-//! than an enum so that an int8 network does not reserve room for f32 weights. The
+//! stored in the blob as `f32` ([`F32Weights`]) or as `i8` with one `f32` scale per
+//! output row ([`Int8Weights`], a quarter of the blob); decoded, both are `f32`
+//! weights and run the same code (int8's are q·s: see [`WeightFormat`]). The
 //! input layer (INPUTS weights per row) and the linear output layer are always `f32`:
 //! a per-row scale over only a few input weights rounds the small ones by up to
 //! 100 %, and the output layer's rounding reaches the output undamped. Measured on the
@@ -175,12 +175,11 @@ where
             return [f32::NAN; OUTPUTS];
         }
         let scaling = &self.normalisation;
-        let mut hidden = self.input_layer.forward(x);
-        self.activate(&mut hidden);
-        for layer in self.hidden_layers.as_ref() {
-            hidden = layer.forward(&hidden);
-            self.activate(&mut hidden);
-        }
+        // One pass per activation, not a `match` per neuron: each is branch-free.
+        let hidden = match self.activation {
+            Activation::Tanh => self.hidden_pass(x, tanh_f32),
+            Activation::Relu => self.hidden_pass(x, relu_f32),
+        };
         let mut output = self.output_layer.forward(&hidden);
         for (y, (mean, scale)) in output
             .iter_mut()
@@ -202,18 +201,30 @@ where
         self.envelope.excursion(input)
     }
 
-    fn activate(&self, values: &mut [f32; WIDTH]) {
-        // One loop per activation, not a `match` per neuron: each loop is then
-        // branch-free and runs several neurons at once in SIMD registers.
-        match self.activation {
-            Activation::Tanh => values
-                .iter_mut()
-                .for_each(|v| *v = Activation::Tanh.apply(*v)),
-            Activation::Relu => values
-                .iter_mut()
-                .for_each(|v| *v = Activation::Relu.apply(*v)),
+    /// The last hidden layer's activations for normalised inputs x̂.
+    #[inline]
+    fn hidden_pass(
+        &self,
+        x: &[f32; INPUTS],
+        activation: impl Fn(f32) -> f32 + Copy,
+    ) -> [f32; WIDTH] {
+        let mut hidden = self.input_layer.forward_activated(x, activation);
+        for layer in self.hidden_layers.as_ref() {
+            hidden = layer.forward_activated(&hidden, activation);
         }
+        hidden
     }
+}
+
+/// tanh of one `f32` pre-activation; a function item, so every network and layer
+/// shares the same instance of [`Layer::forward_activated`].
+fn tanh_f32(z: f32) -> f32 {
+    Activation::Tanh.apply(z)
+}
+
+/// relu of one `f32` pre-activation (see [`tanh_f32`]).
+fn relu_f32(z: f32) -> f32 {
+    Activation::Relu.apply(z)
 }
 
 #[cfg(test)]
@@ -235,12 +246,9 @@ pub(crate) mod tests {
             max: [5.0, 3.0],
             tolerance: [0.0; 2],
         };
-        mlp.input_layer = Layer::from_rows(
-            [[0.5, -1.0], [1.0, 1.0], [-2.0, 0.25]],
-            [(); 3],
-            [0.1, -0.2, 0.0],
-        );
-        mlp.output_layer = Layer::from_rows([[1.0, -0.5, 2.0]], [()], [0.3]);
+        mlp.input_layer =
+            Layer::from_rows([[0.5, -1.0], [1.0, 1.0], [-2.0, 0.25]], [0.1, -0.2, 0.0]);
+        mlp.output_layer = Layer::from_rows([[1.0, -0.5, 2.0]], [0.3]);
         mlp
     }
 
@@ -289,10 +297,9 @@ pub(crate) mod tests {
         let bias = [0.1, -0.2, 0.05];
         float.hidden_layers[0] = Layer::from_rows(
             [[0.5, -1.0, 0.25], [1.0, 1.0, -3.0], [-2.0, 0.25, 0.75]],
-            [(); 3],
             bias,
         );
-        int8.hidden_layers[0] = Layer::from_rows(
+        int8.hidden_layers[0] = Layer::from_levels(
             [[2, -4, 1], [1, 1, -3], [-8, 1, 3]],
             [0.25, 1.0, 0.25],
             bias,
@@ -302,7 +309,7 @@ pub(crate) mod tests {
             assert!((y8 - y32).abs() < 1e-5, "{y8} vs {y32} at {x:?}");
         }
         // And a wrong level is seen: the int8 storage is really used (row 1, column 2).
-        int8.hidden_layers[0].weights[2][1] = -2;
+        int8.hidden_layers[0].weights[2][1] = -2.0;
         let ([y8], [y32]) = (int8.evaluate(&[3.0, 1.0]), float.evaluate(&[3.0, 1.0]));
         assert!((y8 - y32).abs() > 1e-3, "{y8} vs {y32}");
     }
