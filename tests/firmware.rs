@@ -29,6 +29,10 @@ const POW_ULPS: i64 = 2;
 /// an ulp; measured 6 (ball.final[1], 0.0868 m: 4.6e-8 m), so 16 (1e-6 relative).
 const RUN_ULPS: i64 = 16;
 
+/// The budget for one HCM f32 evaluation (law + 3-16-16-1 residual) on the
+/// Cortex-M4F (instructions).
+const HCM_F32_BUDGET: u32 = 2_000;
+
 /// The flash budget for the whole firmware (B).
 const FLASH_BUDGET: u32 = 32 * 1024;
 
@@ -246,6 +250,28 @@ fn the_firmware_fits_its_flash_budget_and_reports_its_costs() {
             "{name}: {cost} instructions is not a measurement"
         );
     }
+    // The targets on the Cortex-M4F. Instruction counts under `-icount` are a
+    // property of the code, not of the machine's load: the same build counts the same.
+    let cost = |name: &str| {
+        report
+            .costs
+            .iter()
+            .find(|(n, _)| n == name)
+            .map_or(u32::MAX, |c| c.1)
+    };
+    assert!(
+        cost("hcm.f32") <= HCM_F32_BUDGET,
+        "HCM f32: {} instructions > {HCM_F32_BUDGET}",
+        cost("hcm.f32")
+    );
+    // int8 runs the f32 kernel on weights folded at decoding: never dearer (the two
+    // counts differ only by SysTick's rounding, a fraction of an instruction).
+    assert!(
+        cost("hcm.int8") <= cost("hcm.f32") + 1,
+        "HCM int8 {} instructions > f32 {}",
+        cost("hcm.int8"),
+        cost("hcm.f32")
+    );
     let flash = report.size("flash");
     assert!(
         flash <= FLASH_BUDGET,

@@ -143,13 +143,16 @@ impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
 
     /// z = W·x + b, before any activation.
     ///
-    /// Outputs are summed eight at a time in eight named accumulators, over every
-    /// input, then stored: written out so, the eight sums stay in registers even where
-    /// the compiler does not unroll loops (`opt-level = "s"`, the firmware's), and one
+    /// Outputs are summed sixteen at a time in sixteen named accumulators, over every
+    /// input, then stored: written out so, the sums stay in registers even where the
+    /// compiler does not unroll loops (`opt-level = "s"`, the firmware's), and one
     /// multiply-add costs a load and a `vmla` on a Cortex-M4F instead of a load, a
-    /// load, a `vmla` and a store. Each sum starts from its bias (no separate pass to
-    /// add it). Outputs beyond a multiple of eight (the remainder) are summed in the
-    /// same order, so every output gets the same bits whichever path computes it.
+    /// load, a `vmla` and a store; sixteen rather than eight halve the loop's counting
+    /// per multiply-add (the residual's widths, 16, 32 and 48, are multiples of it).
+    /// Each sum starts from its bias (no separate pass to add it). Outputs beyond a
+    /// multiple of sixteen (the remainder: a 6-output wrench layer) are summed one by
+    /// one in the same order, so every output gets the same bits whichever path
+    /// computes it.
     #[inline]
     pub fn forward(&self, x: &[f32; IN]) -> [f32; OUT] {
         self.forward_activated(x, |z| z)
@@ -174,6 +177,9 @@ impl<const IN: usize, const OUT: usize> Layer<IN, OUT, Int8Weights> {
     }
 }
 
+/// Outputs summed together in registers (see [`Layer::forward`]).
+const BLOCK: usize = 16;
+
 /// a(W·x + b) for one layer, its weights column by column (see [`Layer::forward`]).
 ///
 /// The input count is a slice length, not a const generic, and the storage format is
@@ -191,13 +197,21 @@ fn affine<const OUT: usize, A: Fn(f32) -> f32>(
     // spares a call to `memset` (40 instructions for 16 outputs on the Cortex-M4F).
     let mut z = *bias;
     let mut first = 0;
-    while let (Some(block), Some(&[b0, b1, b2, b3, b4, b5, b6, b7])) =
-        (z.get_mut(first..first + 8), bias.get(first..first + 8))
-    {
+    while let (
+        Some(block),
+        Some(&[b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15]),
+    ) = (
+        z.get_mut(first..first + BLOCK),
+        bias.get(first..first + BLOCK),
+    ) {
         let (mut a0, mut a1, mut a2, mut a3) = (b0, b1, b2, b3);
         let (mut a4, mut a5, mut a6, mut a7) = (b4, b5, b6, b7);
+        let (mut a8, mut a9, mut a10, mut a11) = (b8, b9, b10, b11);
+        let (mut a12, mut a13, mut a14, mut a15) = (b12, b13, b14, b15);
         for (column, &x) in weights.iter().zip(x) {
-            if let Some(&[w0, w1, w2, w3, w4, w5, w6, w7]) = column.get(first..first + 8) {
+            if let Some(&[w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, w15]) =
+                column.get(first..first + BLOCK)
+            {
                 a0 += w0 * x;
                 a1 += w1 * x;
                 a2 += w2 * x;
@@ -206,6 +220,14 @@ fn affine<const OUT: usize, A: Fn(f32) -> f32>(
                 a5 += w5 * x;
                 a6 += w6 * x;
                 a7 += w7 * x;
+                a8 += w8 * x;
+                a9 += w9 * x;
+                a10 += w10 * x;
+                a11 += w11 * x;
+                a12 += w12 * x;
+                a13 += w13 * x;
+                a14 += w14 * x;
+                a15 += w15 * x;
             }
         }
         block.copy_from_slice(&[
@@ -217,8 +239,16 @@ fn affine<const OUT: usize, A: Fn(f32) -> f32>(
             activation(a5),
             activation(a6),
             activation(a7),
+            activation(a8),
+            activation(a9),
+            activation(a10),
+            activation(a11),
+            activation(a12),
+            activation(a13),
+            activation(a14),
+            activation(a15),
         ]);
-        first += 8;
+        first += BLOCK;
     }
     // Indexed by a range below OUT, so every `get` is known to succeed (an
     // `enumerate().skip(first)` walked the first outputs again, one by one).
