@@ -177,6 +177,48 @@ impl<const IN: usize, const OUT: usize> Layer<IN, OUT, Int8Weights> {
     }
 }
 
+/// The activation of a block's sums, stored in `block` (same bits either way).
+///
+/// On a bare-metal controller (`target_os = "none"`: no SIMD, one FPU) each sum is
+/// activated while still in a register — sixteen inlined activations, a store, a load
+/// and a loop pass less per neuron (−140 instructions per 3-16-16-1 evaluation on the
+/// Cortex-M4F). Elsewhere the sums are stored first and activated in one loop over
+/// the block, which the compiler runs four or eight neurons at a time in SIMD
+/// registers (inlined per sum, the x86-64 host evaluated them one by one: 2.4× slower).
+#[inline(always)]
+fn activate_block(block: &mut [f32], sums: [f32; BLOCK], activation: &impl Fn(f32) -> f32) {
+    #[cfg(target_os = "none")]
+    {
+        // Written out: `sums.map(activation)` stays a loop at `opt-level = "s"`.
+        let [a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12, a13, a14, a15] = sums;
+        block.copy_from_slice(&[
+            activation(a0),
+            activation(a1),
+            activation(a2),
+            activation(a3),
+            activation(a4),
+            activation(a5),
+            activation(a6),
+            activation(a7),
+            activation(a8),
+            activation(a9),
+            activation(a10),
+            activation(a11),
+            activation(a12),
+            activation(a13),
+            activation(a14),
+            activation(a15),
+        ]);
+    }
+    #[cfg(not(target_os = "none"))]
+    {
+        block.copy_from_slice(&sums);
+        for value in block {
+            *value = activation(*value);
+        }
+    }
+}
+
 /// Outputs summed together in registers (see [`Layer::forward`]).
 const BLOCK: usize = 16;
 
@@ -230,24 +272,10 @@ fn affine<const OUT: usize, A: Fn(f32) -> f32>(
                 a15 += w15 * x;
             }
         }
-        block.copy_from_slice(&[
-            activation(a0),
-            activation(a1),
-            activation(a2),
-            activation(a3),
-            activation(a4),
-            activation(a5),
-            activation(a6),
-            activation(a7),
-            activation(a8),
-            activation(a9),
-            activation(a10),
-            activation(a11),
-            activation(a12),
-            activation(a13),
-            activation(a14),
-            activation(a15),
-        ]);
+        let sums = [
+            a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12, a13, a14, a15,
+        ];
+        activate_block(block, sums, &activation);
         first += BLOCK;
     }
     // Indexed by a range below OUT, so every `get` is known to succeed (an

@@ -217,12 +217,15 @@ where
 }
 
 /// tanh of one `f32` pre-activation; a function item, so every network and layer
-/// shares the same instance of [`Layer::forward_activated`].
+/// shares the same instance of [`Layer::forward_activated`]. `#[inline]`: without it,
+/// another crate (the host's simulator, a benchmark) calls it once per neuron.
+#[inline]
 fn tanh_f32(z: f32) -> f32 {
     Activation::Tanh.apply(z)
 }
 
 /// relu of one `f32` pre-activation (see [`tanh_f32`]).
+#[inline]
 fn relu_f32(z: f32) -> f32 {
     Activation::Relu.apply(z)
 }
