@@ -4,8 +4,9 @@
 //! its `.cargo/config.toml` names the target and the `qemu-system-arm` runner), and
 //! evaluates the same case table (`hcm-firmware/src/cases`) in f32 in this test binary.
 //! Every printed bit pattern must be identical, except where a value goes through
-//! `powf` (`Real::pow`): on the host that is glibc's (six times faster than the `libm`
-//! crate's the controller uses), which rounds some results an ulp or two differently.
+//! `powf` (`Real::pow`): on the host that is glibc's (several times faster there than
+//! the core's own `f32` pow the bare-metal controller uses); each is within an ulp, so
+//! the two may round a result an ulp or two apart (measured: none of the 198 does).
 //! Those values are listed and may differ by at most [`POW_ULPS`] (one evaluation) or
 //! [`RUN_ULPS`] (the end of a whole ball run, which carries such differences through
 //! every step); every other value, the residual's included (its tanh is + − × ÷ and
