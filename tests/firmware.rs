@@ -16,6 +16,8 @@
 
 #[path = "../hcm-firmware/src/cases/mod.rs"]
 mod cases;
+#[path = "../hcm-firmware/src/peg/mod.rs"]
+mod peg;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -65,6 +67,17 @@ fn firmware_dir() -> PathBuf {
 fn firmware() -> &'static Report {
     static REPORT: OnceLock<Result<Report, String>> = OnceLock::new();
     match REPORT.get_or_init(run_firmware) {
+        Ok(report) => report,
+        Err(why) => panic!("{why}"),
+    }
+}
+
+/// Runs the peg's image (`--bin peg`) once for all tests here.
+fn peg_firmware() -> &'static Report {
+    static REPORT: OnceLock<Result<Report, String>> = OnceLock::new();
+    let run =
+        || run_firmware().and_then(|_| cargo_run(&firmware_dir(), &["--bin", "peg"], "firmware"));
+    match REPORT.get_or_init(run) {
         Ok(report) => report,
         Err(why) => panic!("{why}"),
     }
@@ -324,4 +337,93 @@ fn the_case_table_exercises_the_residual_and_a_real_bounce() {
         "apex {height}·gap"
     );
     assert!(apex > lift_off);
+}
+
+/// The host's f32 evaluation of the peg's table.
+fn host_peg_cases() -> Vec<(String, Vec<u32>)> {
+    let fixture = peg::PegFixture::decode().expect("the peg's blobs decode on the host");
+    let mut out = Vec::new();
+    peg::evaluate_all(&fixture, &mut |group, item, bits| {
+        out.push((format!("{group}.{item}"), bits.to_vec()));
+    });
+    out
+}
+
+#[test]
+fn the_peg_image_evaluates_the_peg_hcm_as_the_host_does() {
+    let (target, host) = (&peg_firmware().cases, host_peg_cases());
+    // The table exercises what it should: points and the residual in the four wall
+    // states, no point in flight, physics only outside the envelope (host values).
+    let word = |name: &str, i: usize| {
+        host.iter()
+            .find(|(n, _)| n == name)
+            .map_or(u32::MAX, |(_, bits)| bits[i])
+    };
+    let names = peg::STATE_NAMES;
+    let on: Vec<u32> = names
+        .iter()
+        .map(|s| word(&format!("peg_f32.{s}"), 8))
+        .collect();
+    let points: Vec<u32> = names
+        .iter()
+        .map(|s| word(&format!("peg_f32.{s}"), 7))
+        .collect();
+    assert_eq!(on, [1, 1, 1, 1, 0, 0], "residual on per state");
+    assert!(
+        points[..4].iter().all(|&p| p > 0) && points[4] == 0 && points[5] > 0,
+        "touching points per state: {points:?}"
+    );
+    let differing = differences(target, &host);
+    for (name, i, t, h) in &differing {
+        let (tf, hf) = (f32::from_bits(*t), f32::from_bits(*h));
+        println!("{name}[{i}]: target {t:08x} ({tf:e}), host {h:08x} ({hf:e})");
+        // The inputs and the residual's outputs involve no pow: bit for bit.
+        assert!(
+            name.starts_with("peg_f32.") || name.starts_with("peg_int8."),
+            "{name}[{i}] uses no powf and must be bit-identical"
+        );
+        assert!(*i < 7, "{name}[{i}] is a count or flag: {t} ≠ {h}");
+        // A force or torque through IMPACT's δ^2.2: within 1e-6 of the line's largest
+        // component (summed over points, an ulp of one point's force can move a
+        // near-zero component by more ulps of its own).
+        let line = &host.iter().find(|(n, _)| n == name).expect("same table").1;
+        let scale = line[..6]
+            .iter()
+            .map(|b| f32::from_bits(*b).abs())
+            .fold(0.0_f32, f32::max);
+        assert!(
+            (tf - hf).abs() <= 1e-6 * scale.max(f32::MIN_POSITIVE),
+            "{name}[{i}]: {tf} vs {hf}"
+        );
+    }
+    let values: usize = host.iter().map(|c| c.1.len()).sum();
+    println!(
+        "peg: {values} values in {} lines compared, {} bit-identical",
+        host.len(),
+        values - differing.len()
+    );
+    let report = peg_firmware();
+    for (name, n) in &report.costs {
+        println!("| {name} | {n} |");
+    }
+    for kind in ["flash", "ram", "stack"] {
+        println!("peg image {kind}: {} B", report.size(kind));
+    }
+    let cost = |name: &str| {
+        report
+            .costs
+            .iter()
+            .find(|(n, _)| n == name)
+            .map_or(u32::MAX, |c| c.1)
+    };
+    assert!(
+        (10..u32::MAX).contains(&cost("peg_hcm.f32")),
+        "no measurement of the peg HCM"
+    );
+    assert!(
+        cost("peg_hcm.int8") <= cost("peg_hcm.f32") + 1,
+        "peg HCM int8 {} > f32 {}",
+        cost("peg_hcm.int8"),
+        cost("peg_hcm.f32")
+    );
 }

@@ -173,3 +173,50 @@ fn every_truncation_is_refused_as_cut_short() {
         assert_eq!(decode(&longer, &mut residual), HcmStatus::BlobTrailingBytes);
     }
 }
+
+/// The peg-in-hole's blobs (13-32-32-6 wrench networks): the C API's model holds the
+/// ball's 3-16-16-1 shape, so an intact peg blob is answered "wrong shape", and every
+/// single-bit flip and every cut with an error code as well — never a crash, never a
+/// usable model.
+#[test]
+fn the_pegs_blobs_are_refused_with_an_error_code_however_damaged() {
+    let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples/blobs");
+    for file in ["peg_in_hole.f32.hcm", "peg_in_hole.int8.hcm"] {
+        let path = folder.join(file);
+        let blob = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let mut residual = zeroed();
+        assert_eq!(
+            decode(&blob, &mut residual),
+            HcmStatus::BlobWrongShape,
+            "{file}"
+        );
+        let mut counts: BTreeMap<String, usize> = BTreeMap::new();
+        let mut damaged = blob.clone();
+        for at in 0..blob.len() {
+            for bit in 0..8 {
+                damaged[at] ^= 1 << bit;
+                let status = decode(&damaged, &mut residual);
+                damaged[at] ^= 1 << bit;
+                assert!(
+                    status as i32 >= 16,
+                    "{file}: byte {at} bit {bit}: {status:?}"
+                );
+                *counts.entry(name(status)).or_default() += 1;
+            }
+        }
+        for length in 0..blob.len() {
+            let cut = blob[..length].to_vec();
+            assert_eq!(
+                decode(&cut, &mut residual),
+                HcmStatus::BlobTruncated,
+                "{file}: length {length}"
+            );
+        }
+        assert_eq!(evaluate(&residual), HcmStatus::NotDecoded, "{file}");
+        println!(
+            "{file}: {} bytes, intact HCM_STATUS_BLOB_WRONG_SHAPE, {} flips: {counts:?}, every cut BLOB_TRUNCATED",
+            blob.len(),
+            8 * blob.len()
+        );
+    }
+}
