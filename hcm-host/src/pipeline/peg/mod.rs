@@ -168,7 +168,14 @@ pub fn reproduce_peg(
             hcm
         };
         let (hcm, hcm_int8) = (with_residual(&blobs.f32), with_residual(&blobs.int8));
-        let models = [("PM2", &pm2.model), ("HCM", &hcm), ("HCM int8", &hcm_int8)];
+        // PM1 at its nominal parameters: the true physics of a mean run, the floor of
+        // any deterministic model on an indicator that is not linear in the scatter.
+        let models = [
+            ("PM2", &pm2.model),
+            ("HCM", &hcm),
+            ("HCM int8", &hcm_int8),
+            ("PM1 nominal", &model),
+        ];
         let evaluation = evaluate_peg(&models, &sets.validation, CONTACT, settings.events);
         progress.end(Stage::Evaluate);
         evaluation

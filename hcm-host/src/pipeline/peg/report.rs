@@ -187,7 +187,9 @@ impl PegReproduction {
         }
         let _ = writeln!(md, "\nError: the paper's Eq 20, |S2 mean − model| / S2 mean. Std. error: s/√n of the S2 mean, as a share of it. \
              Last column: the HCM's error at or below the paper's HCM error (`≤ paper`), else within two standard errors of the S2 mean (`≤ 2 SE`: \
-             as close as the S2 runs can tell), else `neither`.\n");
+             as close as the S2 runs can tell), else `neither`. \
+             PM1 nominal: the scenario's own laws at their nominal (unscattered) parameters, replayed like the models — the true physics of a mean run. \
+             What it misses is what no single deterministic replay can make: the S2 mean of each run's peak is not the peak of a mean run.\n");
         let t = &self.trained;
         let _ = writeln!(md, "## The error model (Eq 12)\n");
         let _ = writeln!(
