@@ -104,6 +104,35 @@ fn a_lagging_force_sensor_is_named_with_its_delay() {
 }
 
 #[test]
+fn large_sensor_delays_are_named_with_finite_intervals() {
+    // 5 and 10 µs on a ≈ 110 µs contact: far beyond the first order −τ·df/dt the linear
+    // selection ranks by; the decision re-fits the delay itself.
+    for delay in [5e-6, 10e-6] {
+        let (_, fit) = selected(&format!("experiment.sensor_delay={delay}"), 12, 3);
+        let found = causes(&fit);
+        assert_eq!(found.len(), 1, "{delay}: {found:?}");
+        assert_eq!(found[0].0, "sensor_delay", "{found:?}");
+        assert!((found[0].1[0] - delay).abs() < 0.05 * delay, "{found:?}");
+        let ci = fit.causes[0].parameters[0].ci;
+        assert!(
+            ci.0.is_finite() && ci.1.is_finite() && ci.0 < delay && delay < ci.1,
+            "{ci:?}"
+        );
+    }
+}
+
+#[test]
+fn an_offset_of_a_tenth_of_the_peak_force_is_named() {
+    // The ball's peak is ≈ 2.9 kN: 290 N.
+    finds(
+        "experiment.force_offset=[0.0, 0.0, 290.0]",
+        "force_offset",
+        290.0,
+        0.05,
+    );
+}
+
+#[test]
 fn two_hidden_effects_are_both_named_and_nothing_else() {
     let (base, data) = {
         let truth = model(

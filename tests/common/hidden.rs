@@ -2,7 +2,8 @@
 //! stepwise selection and joint re-fit name from them, shared by the diagnose tests.
 
 use hcm_host::dataset::Dataset;
-use hcm_host::diagnose::select::{refit, select, Refit, Selection};
+use hcm_host::diagnose::naming::name_causes;
+use hcm_host::diagnose::select::{select, Refit, Selection};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
 use hcm_host::scenario::{Model, Scenario};
@@ -40,16 +41,18 @@ pub fn hidden(effect: &str, runs: usize, seed: u64) -> (Model, Dataset) {
     )
 }
 
-/// What the stepwise selection and joint re-fit make of `runs` runs with `effect`
-/// hidden (see [`hidden`]).
+/// What `hcm diagnose` makes of `runs` runs with `effect` hidden (see [`hidden`]): the
+/// linear stepwise selection (its first-order ranking) and the re-fit of the causes the
+/// decision names (`diagnose::naming`: nonlinear steps, named only if the residual
+/// left is noise).
 pub fn selected(effect: &str, runs: usize, seed: u64) -> (Selection, Refit) {
     let (base, data) = hidden(effect, runs, seed);
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
     let law = base.contacts[0].model.normal.clone();
     let selection = select(&samples, &law, sigma);
-    let fit = refit(&samples, &law, &selection.chosen, sigma);
-    (selection, fit)
+    let naming = name_causes(&samples, &law, sigma);
+    (selection, naming.fit)
 }
 
 /// The named causes of a re-fit, each as (effect name, parameter values, share).

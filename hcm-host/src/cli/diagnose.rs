@@ -158,6 +158,8 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
         "runs": d.runs,
         "base_parameters": d.base_parameters,
         "selection": d.selection,
+        "naming": d.naming,
+        "not_accepted": d.not_accepted,
         "before": d.before,
         "after": d.after,
         "gain": d.gain,
@@ -324,6 +326,27 @@ fn report(d: &Diagnosis, figures: &[&str]) -> String {
             s.bic.1,
             s.share,
             s.accepted
+        );
+    }
+    let _ = writeln!(md, "\nThe decision, on full re-fits (each step adds every effect not yet named to the model, re-fits base and effects together, and takes the best if it passes the information criterion with determined parameters; a cause is named only if the residual then holds nothing but noise):\n\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|");
+    for t in &d.naming {
+        let _ = writeln!(
+            md,
+            "| {} | {:.4e} → {:.4e} | {:.1} vs {:.1} | {} | {} |",
+            t.effect, t.rss.0, t.rss.1, t.bic.0, t.bic.1, t.determined, t.accepted
+        );
+    }
+    for n in &d.not_accepted {
+        let parameters = n
+            .parameters
+            .iter()
+            .map(|p| format!("{} = {:.4e}", p.name, p.value))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let _ = writeln!(
+            md,
+            "\nNot accepted: `{}` ({parameters}): {}.",
+            n.effect, n.reason
         );
     }
     let _ = writeln!(md, "\n## 3. The extended model\n\n`extended.toml`: base law with re-fitted parameters ({}) plus the physical effects; `simulate`, `evaluate` and the core read it.\n",

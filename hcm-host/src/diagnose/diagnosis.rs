@@ -2,8 +2,9 @@
 //! model and its gain — the data behind `DIR/report.md` and `DIR/diagnosis.json`.
 
 use super::gain::{gain, group_table, holdout, GainTable, Holdout, Judged};
+use super::naming::{name_causes, NotAccepted, Trial};
 use super::noise::{noise_floor, NoiseFloor};
-use super::select::{refit, select, Cause, Fitted, Step, MIN_SHARE};
+use super::select::{select, Cause, Fitted, Step};
 use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
 use super::{contact_samples, ContactSamples};
@@ -53,8 +54,12 @@ pub struct Diagnosis {
     pub before: Structure,
     /// What is left with the extended model (training runs).
     pub after: Structure,
-    /// The forward selection's steps.
+    /// The linear forward selection's steps (first-order ranking, for the report).
     pub selection: Vec<Step>,
+    /// The decision's steps: at each, the best re-fitted trial (see `naming`).
+    pub naming: Vec<Trial>,
+    /// Causes considered and not named, with why.
+    pub not_accepted: Vec<NotAccepted>,
     /// Named causes with parameters, 95 % intervals and shares.
     pub causes: Vec<Cause>,
     /// Air drag fitted from the flight motion of body 1 (its `share` is of the flight
@@ -116,24 +121,12 @@ pub fn diagnose(
     let sigma = noise.sigma;
     let law = base.contacts[c].model.normal.clone();
     let before = residual_structure(&samples, &samples.model_force(&law), sigma);
+    // The linear stepwise selection, for the report: what the residual's shape
+    // suggests at first order. The decision is taken on full re-fits (`naming`).
     let selection = select(&samples, &law, sigma);
-    let chosen = if before.structured {
-        selection.chosen.clone()
-    } else {
-        Vec::new()
-    };
-    let mut chosen = chosen;
-    let mut fit = refit(&samples, &law, &chosen, sigma);
-    // An effect that entered on the linearised residual but explains less than the
-    // minimum share once everything is re-fitted is not named: drop the weakest, re-fit.
-    while let Some(k) = (0..fit.causes.len())
-        .filter(|&k| fit.causes[k].share < MIN_SHARE)
-        .min_by(|&a, &b| fit.causes[a].share.total_cmp(&fit.causes[b].share))
-    {
-        chosen.remove(k);
-        fit = refit(&samples, &law, &chosen, sigma);
-    }
-    let after = residual_structure(&samples, &fit.sensor.reads(&samples, &fit.law), sigma);
+    let naming = name_causes(&samples, &law, sigma);
+    let fit = naming.fit.clone();
+    let after = naming.after.clone();
     let mut causes = fit.causes;
     let body = &base.bodies[base.contacts[c].body_1];
     let drag = super::drag::fit_drag(&samples, body.mass);
@@ -152,7 +145,7 @@ pub fn diagnose(
             share: d.share,
         });
     }
-    let unexplained_share = if after.structured {
+    let unexplained_share = if naming.unexplained {
         fit.left_share
     } else {
         0.0
@@ -210,6 +203,8 @@ pub fn diagnose(
         before,
         after,
         selection: selection.steps,
+        naming: naming.steps,
+        not_accepted: naming.not_accepted,
         causes,
         drag,
         drag_body: body.name.clone(),
