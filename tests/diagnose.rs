@@ -275,3 +275,57 @@ fn structure_no_catalogued_effect_explains_is_unexplained_not_misnamed() {
     );
     assert!(d.causes.is_empty(), "{:?}", d.causes);
 }
+
+/// What `diagnose` answers on `runs` of the ball with `overrides` and a hidden viscous
+/// damping of 40 N·s/m that good data would show.
+fn verdict_on(overrides: &str) -> hcm_host::diagnose::Diagnosis {
+    use hcm_host::diagnose::{diagnose, DiagnoseSettings};
+    let truth = model(
+        "bouncing_ball.toml",
+        &[
+            "contact.0.noise={}".to_owned(),
+            "contact.0.effects=[{ viscous_damping = { coefficient = 40.0 } }]".to_owned(),
+            overrides.to_owned(),
+        ],
+    );
+    let data = generate(&truth.scenario, 12, 3, || {}).unwrap();
+    let base = model("bouncing_ball.toml", &["contact.0.noise={}".to_owned()]);
+    let settings = DiagnoseSettings {
+        hcm_epochs: 2,
+        ..DiagnoseSettings::default()
+    };
+    diagnose(&base, &data, &settings).unwrap()
+}
+
+#[test]
+fn data_that_cannot_show_a_shape_get_a_verdict_not_a_cause() {
+    // The force at 50 kHz: five samples over the 110 µs contact.
+    let coarse = verdict_on("record.contact_sample_period=2e-5");
+    println!("{:?}", coarse.data_quality);
+    assert!(!coarse.data_quality.sufficient);
+    assert!(coarse.causes.is_empty(), "{:?}", coarse.causes);
+    assert!(
+        coarse.data_quality.reasons[0].contains("too few force samples per contact"),
+        "{:?}",
+        coarse.data_quality.reasons
+    );
+    // A force noise of 600 N against a 2.9 kN peak (≈ 5 σ).
+    let noisy = verdict_on("experiment.force_noise=600.0");
+    println!("{:?}", noisy.data_quality);
+    assert!(!noisy.data_quality.sufficient);
+    assert!(noisy.causes.is_empty(), "{:?}", noisy.causes);
+    assert!(
+        noisy
+            .data_quality
+            .reasons
+            .iter()
+            .any(|r| r.contains("too noisy")),
+        "{:?}",
+        noisy.data_quality.reasons
+    );
+    // The same effect in good data: sufficient, and named.
+    let good = verdict_on("experiment.force_noise=15.0");
+    assert!(good.data_quality.sufficient, "{:?}", good.data_quality);
+    let names: Vec<&str> = good.causes.iter().map(|c| c.effect).collect();
+    assert_eq!(names, ["viscous_damping"]);
+}

@@ -159,6 +159,7 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
         "base_parameters": d.base_parameters,
         "selection": d.selection,
         "naming": d.naming,
+        "data_quality": d.data_quality,
         "not_accepted": d.not_accepted,
         "before": d.before,
         "after": d.after,
@@ -205,6 +206,9 @@ fn gain_takeaway(gain: &[hcm_host::diagnose::gain::GainTable]) -> Option<String>
 
 /// The one-line answer: the named causes, "none", or "unexplained".
 fn answer(d: &Diagnosis) -> String {
+    if !d.data_quality.sufficient {
+        return format!("insufficient data ({})", d.data_quality.reasons.join("; "));
+    }
     let mut parts: Vec<String> = d.causes.iter().map(|c| c.effect.to_owned()).collect();
     if d.unexplained_share > 0.0 {
         parts.push(format!(

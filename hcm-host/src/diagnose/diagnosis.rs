@@ -2,8 +2,9 @@
 //! model and its gain — the data behind `DIR/report.md` and `DIR/diagnosis.json`.
 
 use super::gain::{gain, group_table, holdout, GainTable, Holdout, Judged};
-use super::naming::{name_causes, NotAccepted, Trial};
+use super::naming::{name_causes, unnamed, NotAccepted, Trial};
 use super::noise::{noise_floor, NoiseFloor};
+use super::quality::{assess, DataQuality};
 use super::select::{select, Cause, Fitted, Step};
 use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
@@ -48,6 +49,8 @@ impl Default for DiagnoseSettings {
 pub struct Diagnosis {
     /// Noise floor of the force signal.
     pub noise: NoiseFloor,
+    /// Whether the data can support a diagnosis (if not, nothing is named).
+    pub data_quality: DataQuality,
     /// Training and held-out runs.
     pub runs: RunSplit,
     /// What is wrong with the base model (training runs).
@@ -124,7 +127,13 @@ pub fn diagnose(
     // The linear stepwise selection, for the report: what the residual's shape
     // suggests at first order. The decision is taken on full re-fits (`naming`).
     let selection = select(&samples, &law, sigma);
-    let naming = name_causes(&samples, &law, sigma);
+    // Data that cannot show a shape get no cause, only the reasons why.
+    let quality = assess(&samples, sigma);
+    let naming = if quality.sufficient {
+        name_causes(&samples, &law, sigma)
+    } else {
+        unnamed(&samples, &law, sigma)
+    };
     let fit = naming.fit.clone();
     let after = naming.after.clone();
     let mut causes = fit.causes;
@@ -195,6 +204,7 @@ pub fn diagnose(
     let base_structured = before.structured;
     Ok(Diagnosis {
         noise,
+        data_quality: quality,
         runs: RunSplit {
             training: training.len(),
             held_out: held_out.len(),

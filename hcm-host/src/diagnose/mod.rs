@@ -13,6 +13,7 @@ pub mod diagnosis;
 pub mod gain;
 pub mod naming;
 pub mod noise;
+pub mod quality;
 pub mod select;
 pub mod sensor;
 pub mod structure;

@@ -238,6 +238,21 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
     }
 }
 
+/// No decision at all: the base law re-fitted alone, nothing named, nothing tried (for
+/// data that cannot support a diagnosis, `super::quality`).
+pub fn unnamed(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Naming {
+    let fit = refit(samples, base, &[], sigma);
+    let after = structure_of(samples, &fit, sigma);
+    Naming {
+        chosen: Vec::new(),
+        fit,
+        steps: Vec::new(),
+        not_accepted: Vec::new(),
+        after,
+        unexplained: false,
+    }
+}
+
 /// The best trial of a step that stopped, as not accepted.
 fn rejected(trial: &Refit, t: &Trial, sigma: f64) -> NotAccepted {
     let _ = sigma;

@@ -1,0 +1,87 @@
+//! Whether the data can support a diagnosis at all, checked before anything is named.
+//!
+//! A diagnosis reads the shape of the force residual over each contact; data that
+//! cannot show a shape must not be given a cause. Three things make that impossible,
+//! each with a floor chosen from what the selection needs:
+//! - too few force samples per contact: the structure test bins the residual over the
+//!   contact in up to 20 phase bins, and an effect's column must vary within the
+//!   contact; below [`MIN_CONTACT_SAMPLES`] per contact (median over runs) a 110 µs
+//!   impact recorded at 50 kHz, say, is a handful of points;
+//! - too noisy a force: below a peak-to-noise ratio of [`MIN_PEAK_TO_NOISE`], an effect
+//!   at a few % of the peak is under the noise in every sample;
+//! - too few contacts: fewer than [`MIN_CONTACTS`] runs with a contact leave nothing to
+//!   cross-check a cause on.
+
+use super::ContactSamples;
+use serde::Serialize;
+
+/// Least median number of force samples per contact (–).
+pub const MIN_CONTACT_SAMPLES: usize = 20;
+/// Least median peak force / noise σ (–).
+pub const MIN_PEAK_TO_NOISE: f64 = 10.0;
+/// Least number of runs with a contact (–).
+pub const MIN_CONTACTS: usize = 2;
+
+/// The verdict on the data, with the figures behind it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DataQuality {
+    /// Whether a diagnosis may name anything.
+    pub sufficient: bool,
+    /// Why not, one sentence each (empty when sufficient).
+    pub reasons: Vec<String>,
+    /// Runs with at least one sample in contact.
+    pub contacts: usize,
+    /// Median number of force samples in contact per such run.
+    pub samples_per_contact: usize,
+    /// Median over those runs of the peak measured force over σ (–).
+    pub peak_to_noise: f64,
+}
+
+/// The median of `values` (0 for none).
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values.get(values.len() / 2).copied().unwrap_or(0.0)
+}
+
+/// Checks `samples` (noise σ in N) against the floors of the module documentation.
+pub fn assess(samples: &ContactSamples, sigma: f64) -> DataQuality {
+    let runs = samples.run.iter().copied().max().map_or(0, |r| r + 1);
+    let mut counts = vec![0_usize; runs];
+    let mut peaks = vec![0.0_f64; runs];
+    for i in (0..samples.len()).filter(|&i| samples.in_contact[i]) {
+        let r = samples.run[i];
+        counts[r] += 1;
+        peaks[r] = peaks[r].max(samples.measured[i].abs());
+    }
+    let touched: Vec<usize> = (0..runs).filter(|&r| counts[r] > 0).collect();
+    let samples_per_contact = median(touched.iter().map(|&r| counts[r] as f64).collect()) as usize;
+    let peak_to_noise = median(touched.iter().map(|&r| peaks[r] / sigma).collect());
+    let mut reasons = Vec::new();
+    if touched.len() < MIN_CONTACTS {
+        reasons.push(format!(
+            "too few contacts: {} run(s) touch, at least {MIN_CONTACTS} are needed",
+            touched.len()
+        ));
+    }
+    if samples_per_contact < MIN_CONTACT_SAMPLES {
+        reasons.push(format!(
+            "too few force samples per contact: {samples_per_contact} (median), at least \
+             {MIN_CONTACT_SAMPLES} are needed to see the residual's shape — sample the force \
+             faster"
+        ));
+    }
+    // NaN (σ = 0) is not a ratio to trust either.
+    if peak_to_noise.is_nan() || peak_to_noise < MIN_PEAK_TO_NOISE {
+        reasons.push(format!(
+            "force too noisy: its peak is {peak_to_noise:.1} σ (median), at least \
+             {MIN_PEAK_TO_NOISE} σ are needed for an effect of a few % of it to show"
+        ));
+    }
+    DataQuality {
+        sufficient: reasons.is_empty(),
+        reasons,
+        contacts: touched.len(),
+        samples_per_contact,
+        peak_to_noise,
+    }
+}
