@@ -8,6 +8,7 @@
 pub mod cli;
 pub mod hidden;
 pub mod reference;
+pub mod rig;
 pub mod rigid_reference;
 
 use std::path::{Path, PathBuf};

@@ -1,0 +1,619 @@
+//! `hcm diagnose` on data from an independent rig (tests/common/rig.rs: its own laws,
+//! fixed-step RK4, a force sensor at its own rate, motion at the force rows or at a
+//! camera's frames) — issue 16's must-show list. The rig is first checked against hcm's
+//! own simulator; then each case says what diagnose must answer.
+
+use hcm_host::dataset::Dataset;
+use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
+use hcm_host::scenario::Model;
+use hcm_host::simulate::simulate;
+use hcm_tests::hidden::model;
+use hcm_tests::rig::{Base, Motion, Physical, Recording, Resonance, Rig};
+
+/// Runs per data set (a quarter is held out for the gain).
+const RUNS: usize = 16;
+/// Concrete ground (E (Pa), ν (–)), as in the paper's ball.
+const CONCRETE: (f64, f64) = (2.5193e10, 0.25);
+/// Aluminium ground (E (Pa), ν (–)).
+const ALUMINIUM: (f64, f64) = (7.0e10, 0.33);
+
+/// The paper's steel ball (r = 12.7 mm) on concrete, 2 % scatter of the impact speed.
+fn ball() -> Rig {
+    Rig {
+        speed_scatter: 0.02,
+        ..Rig::steel_ball(0.0127, CONCRETE)
+    }
+}
+
+/// A 5 mm steel ball on aluminium at 0.8 m/s (peak ≈ 240 N), the sensor's noise
+/// σ_f = 2 N (0.8 % of the peak, as the paper's ball's 15 N is of its 2.1 kN).
+fn small() -> Rig {
+    let mut rig = Rig {
+        impact_speed: 0.8,
+        speed_scatter: 0.02,
+        ..Rig::steel_ball(0.005, ALUMINIUM)
+    };
+    rig.sensor.noise = 2.0;
+    rig
+}
+
+/// The scenario hcm diagnoses with: the rig's ball and its base law with the rig's
+/// own parameters (what a user who identified them first would hold).
+fn base_model(rig: &Rig) -> Model {
+    base_model_with(rig, &[])
+}
+
+/// [`base_model`] with `extra` scenario overrides.
+fn base_model_with(rig: &Rig, extra: &[String]) -> Model {
+    let (k, n) = (rig.stiffness(), rig.exponent);
+    let (law, parameters) = match rig.base {
+        Base::Hertz => (
+            "hertz",
+            format!("{{ stiffness = {k:e}, exponent = {n:e} }}"),
+        ),
+        Base::LankaraniNikravesh(e) => (
+            "lankarani_nikravesh",
+            format!("{{ stiffness = {k:e}, exponent = {n:e}, restitution = {e:e} }}"),
+        ),
+        Base::HuntCrossley(chi) => (
+            "hunt_crossley",
+            format!("{{ stiffness = {k:e}, exponent = {n:e}, damping = {chi:e} }}"),
+        ),
+    };
+    let mut overrides = vec![
+        "contact.0.noise={}".to_owned(),
+        format!("contact.0.law={law}"),
+        format!("contact.0.parameters={parameters}"),
+        format!("body.ball.mass={:e}", rig.mass),
+        format!(
+            "body.ball.shape={{ sphere = {{ radius = {:e} }} }}",
+            rig.radius
+        ),
+        format!("gravity=[0.0, 0.0, {:e}]", -rig.gravity),
+    ];
+    overrides.extend_from_slice(extra);
+    model("bouncing_ball.toml", &overrides)
+}
+
+/// The recording read back as `hcm diagnose` reads a file.
+fn read(recording: &Recording) -> Dataset {
+    Dataset::from_reader("rig.csv", recording.csv.as_bytes()).expect("the rig's CSV reads")
+}
+
+/// What `hcm diagnose` answers on `runs` runs of `rig` (seed `seed`), printed.
+fn diagnosed(label: &str, rig: &Rig, seed: u64) -> Diagnosis {
+    let data = read(&rig.record(RUNS, seed));
+    let settings = DiagnoseSettings {
+        hcm_epochs: 2,
+        ..DiagnoseSettings::default()
+    };
+    let d = diagnose(&base_model(rig), &data, &settings).expect("diagnose runs");
+    println!(
+        "{label}: σ = {:.2} N, structured {}, unexplained {:.3}",
+        d.noise.sigma, d.base_structured, d.unexplained_share
+    );
+    for c in &d.causes {
+        let p: Vec<_> = c
+            .parameters
+            .iter()
+            .map(|p| {
+                format!(
+                    "{} {:.4e} [{:.4e}, {:.4e}]",
+                    p.name, p.value, p.ci.0, p.ci.1
+                )
+            })
+            .collect();
+        println!(
+            "  named {} share {:.3}: {}",
+            c.effect,
+            c.share,
+            p.join(", ")
+        );
+    }
+    for s in &d.selection {
+        println!(
+            "  step {} {}{}: share {:.4}, ΔRSS/σ² {:.1} vs {:.1}, cv {:.4e} → {:.4e}, accepted {}",
+            s.action,
+            s.effect,
+            s.shape.map_or(String::new(), |p| format!(" p={p}")),
+            s.share,
+            s.bic.0,
+            s.bic.1,
+            s.cv_rss.0,
+            s.cv_rss.1,
+            s.accepted
+        );
+    }
+    d
+}
+
+/// The names diagnose gave, in its order.
+fn names(d: &Diagnosis) -> Vec<&'static str> {
+    d.causes.iter().map(|c| c.effect).collect()
+}
+
+/// Asserts that `effect` alone is named, its parameter `index` within `tolerance`
+/// (relative) of `truth`, with a finite 95 % interval.
+fn named_alone(d: &Diagnosis, effect: &str, index: usize, truth: f64, tolerance: f64) {
+    assert_eq!(names(d), [effect], "{:#?}", d.causes);
+    let p = &d.causes[0].parameters[index];
+    assert!(
+        (p.value - truth).abs() <= tolerance * truth.abs(),
+        "{effect} {}: {} vs true {truth}",
+        p.name,
+        p.value
+    );
+    assert!(
+        p.ci.0.is_finite() && p.ci.1.is_finite() && p.ci.0 < p.ci.1,
+        "{effect} {} interval {:?}",
+        p.name,
+        p.ci
+    );
+}
+
+// ---------------------------------------------------------------------------------
+// The rig against hcm's simulator and the closed form.
+
+/// The same impact simulated by hcm: the ball released 100 µm above the plane with the
+/// speed that brings it down at `speed` (m/s).
+fn hcm_impact(rig: &Rig, speed: f64) -> hcm_host::simulate::ContactEvent {
+    let gap = 1e-4;
+    let start = -(speed * speed - 2.0 * rig.gravity * gap).sqrt();
+    let m = base_model_with(
+        rig,
+        &[
+            format!("body.ball.position=[0.0, 0.0, {:e}]", rig.radius + gap),
+            format!("body.ball.velocity=[0.0, 0.0, {start:e}]"),
+        ],
+    );
+    let simulation = simulate(&m).unwrap();
+    simulation.events[0].clone()
+}
+
+#[test]
+fn the_rig_agrees_with_hcms_simulator_on_a_plain_impact() {
+    let cases = [
+        ("steel 12.7 mm on concrete, LN e = 0.9", ball()),
+        (
+            "steel 5 mm on aluminium, Hunt–Crossley χ = 0.2 s/m",
+            Rig {
+                base: Base::HuntCrossley(0.2),
+                impact_speed: 0.8,
+                ..Rig::steel_ball(0.005, ALUMINIUM)
+            },
+        ),
+    ];
+    for (label, rig) in cases {
+        let speed = rig.impact_speed;
+        let ours = rig.impact(speed);
+        let peak = ours.force.iter().copied().fold(0.0, f64::max);
+        let theirs = hcm_impact(&rig, speed);
+        let figures = [
+            ("peak force", peak, theirs.max_force),
+            (
+                "duration",
+                ours.lift_off,
+                theirs.lift_off.unwrap() - theirs.touch_down,
+            ),
+            (
+                "restitution",
+                ours.separation_speed / speed,
+                theirs.separation_speed / theirs.approach_speed,
+            ),
+        ];
+        for (name, a, b) in figures {
+            let error = (a / b - 1.0).abs();
+            println!("{label}: {name} rig {a:.6e}, hcm {b:.6e}, {:.2e}", error);
+            assert!(error < 1e-3, "{label}: {name} rig {a} vs hcm {b}");
+        }
+    }
+}
+
+#[test]
+fn the_rigs_hertz_impact_matches_the_closed_form() {
+    // Without gravity and damping: δ_max = (5·m·v²/(4·k))^(2/5), T = 2.9432·δ_max/v.
+    let rig = Rig {
+        base: Base::Hertz,
+        gravity: 0.0,
+        ..Rig::steel_ball(0.0127, CONCRETE)
+    };
+    let (v, k) = (rig.impact_speed, rig.stiffness());
+    let contact = rig.impact(v);
+    let max_depth = (5.0 * rig.mass * v * v / (4.0 * k)).powf(0.4);
+    let deepest = contact.depth.iter().copied().fold(0.0, f64::max);
+    let peak = contact.force.iter().copied().fold(0.0, f64::max);
+    println!(
+        "δ_max {deepest:.6e} (closed {max_depth:.6e}), T {:.6e} s, e {:.9}",
+        contact.lift_off,
+        contact.separation_speed / v
+    );
+    assert!((deepest / max_depth - 1.0).abs() < 1e-6);
+    assert!((peak / (k * max_depth.powf(1.5)) - 1.0).abs() < 1e-5);
+    assert!((contact.lift_off / (2.943_2 * max_depth / v) - 1.0).abs() < 1e-4);
+    assert!((contact.separation_speed / v - 1.0).abs() < 1e-9);
+}
+
+#[test]
+fn a_recording_is_deterministic_and_carries_its_truth() {
+    let rig = Rig {
+        sensor: hcm_tests::rig::Sensor {
+            delay: 5e-6,
+            offset: 20.0,
+            ..ball().sensor
+        },
+        ..ball()
+    };
+    let a = rig.record(3, 7);
+    assert_eq!(a.csv, rig.record(3, 7).csv);
+    assert_ne!(a.csv, rig.record(3, 8).csv);
+    let data = read(&a);
+    assert_eq!(data.runs.len(), 3);
+    for (run, truth) in data.runs.iter().zip(&a.runs) {
+        let samples = &run.bodies[0].samples;
+        // The ball is apart before touch-down and after lift-off, and δ_max is reached.
+        let depth = |s: &hcm_host::dataset::Sample| rig.radius - s.position[2];
+        for s in samples {
+            let inside = s.time > truth.touch_down && s.time < truth.lift_off;
+            assert_eq!(depth(s) > 0.0, inside, "run {} t = {}", truth.id, s.time);
+        }
+        let deepest = samples.iter().map(depth).fold(0.0, f64::max);
+        assert!(deepest <= truth.max_depth && deepest > 0.999 * truth.max_depth);
+        // In flight the sensor reads its offset; the largest reading comes τ late.
+        let flight: Vec<f64> = samples
+            .iter()
+            .filter(|s| s.time < truth.touch_down)
+            .map(|s| s.force[2])
+            .collect();
+        let mean = flight.iter().sum::<f64>() / flight.len() as f64;
+        assert!((mean - 20.0).abs() < 5.0 * 15.0 / (flight.len() as f64).sqrt());
+        println!(
+            "run {}: touch-down {:.3e} s, v0 {:.4} m/s, δ_max {:.3e} m, peak {:.1} N",
+            truth.id, truth.touch_down, truth.impact_speed, truth.max_depth, truth.peak_force
+        );
+    }
+}
+
+#[test]
+fn camera_rows_leave_the_force_cells_empty_and_force_rows_the_motion_cells() {
+    let rig = Rig {
+        motion: Motion::Camera {
+            frame_rate: 20e3,
+            position_noise: 3e-6,
+            velocity_noise: None,
+        },
+        ..ball()
+    };
+    let recording = rig.record(2, 1);
+    let (mut camera, mut force) = (0, 0);
+    for line in recording.csv.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells.len(), 22, "{line}");
+        let motion_empty = cells[3..16].iter().all(|c| c.is_empty());
+        let force_empty = cells[16..22].iter().all(|c| c.is_empty());
+        assert!(motion_empty != force_empty, "{line}");
+        if force_empty {
+            camera += 1;
+            assert!(
+                cells[5].parse::<f64>().is_ok() && cells[12].is_empty(),
+                "{line}"
+            );
+        } else {
+            force += 1;
+        }
+    }
+    let span: f64 = recording.runs.iter().map(|r| r.lift_off + 100e-6).sum();
+    println!("{camera} camera rows, {force} force rows over {span:.3e} s");
+    assert!((camera as f64 - span * 20e3).abs() <= 2.0 * 2.0);
+    assert!((force as f64 - span * 1e6).abs() <= 2.0 * 2.0);
+}
+
+// ---------------------------------------------------------------------------------
+// Sensor delays of 2, 5 and 10 µs.
+
+fn delayed(delay: f64) -> Rig {
+    let mut rig = ball();
+    rig.sensor.delay = delay;
+    rig
+}
+
+#[test]
+#[ignore = "issue 16: nothing named, unexplained 100 %: the selection takes hysteresis_damping p = 0.5 (≈ −τ·df/dt), the re-fit drops it"]
+fn a_2_us_sensor_delay_is_named_with_its_value() {
+    let d = diagnosed("delay 2 µs", &delayed(2e-6), 11);
+    named_alone(&d, "sensor_delay", 0, 2e-6, 0.1);
+}
+
+#[test]
+#[ignore = "issue 16: nothing named, unexplained 100 %: hysteresis_damping p = 0.5 and adhesion enter the selection, the re-fit drops them"]
+fn a_5_us_sensor_delay_is_named_with_its_value() {
+    let d = diagnosed("delay 5 µs", &delayed(5e-6), 12);
+    named_alone(&d, "sensor_delay", 0, 5e-6, 0.1);
+}
+
+#[test]
+#[ignore = "issue 16: nothing named, unexplained 100 %: plasticity enters the selection (share 0.94), the re-fit drops it"]
+fn a_10_us_sensor_delay_is_named_with_its_value() {
+    let d = diagnosed("delay 10 µs", &delayed(10e-6), 13);
+    named_alone(&d, "sensor_delay", 0, 10e-6, 0.1);
+}
+
+// ---------------------------------------------------------------------------------
+// Out of the catalogue: a decaying ringing of the sensor mount.
+
+#[test]
+#[ignore = "issue 16: names stiffness_exponent (share 0.67) and viscous_damping (0.05), unexplained 0.28"]
+fn a_ringing_sensor_mount_is_unexplained_and_nothing_is_named() {
+    let mut rig = ball();
+    let peak = rig
+        .impact(rig.impact_speed)
+        .force
+        .iter()
+        .copied()
+        .fold(0.0, f64::max);
+    rig.sensor.resonance = Some(Resonance {
+        amplitude: 0.05 * peak,
+        decay: 60e-6,
+        frequency: 40e3,
+    });
+    let d = diagnosed("resonance 5 % at 40 kHz", &rig, 21);
+    assert!(d.causes.is_empty(), "{:#?}", d.causes);
+    assert!(
+        d.unexplained_share > 0.5,
+        "unexplained {}",
+        d.unexplained_share
+    );
+}
+
+// ---------------------------------------------------------------------------------
+// No effect.
+
+#[test]
+fn no_hidden_effect_names_none() {
+    let small = Rig {
+        base: Base::HuntCrossley(0.2),
+        ..small()
+    };
+    for (label, rig, seed) in [
+        ("none, steel on concrete", ball(), 31),
+        ("none, 5 mm on aluminium", small, 32),
+    ] {
+        let d = diagnosed(label, &rig, seed);
+        assert!(d.causes.is_empty(), "{label}: {:#?}", d.causes);
+        assert_eq!(d.unexplained_share, 0.0, "{label}");
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// Each catalogued effect at 0.5 % and at 5 % of the peak force.
+
+/// A catalogued effect to hide.
+#[derive(Clone, Copy, Debug)]
+enum Effect {
+    Viscous,
+    Hysteresis,
+    StiffnessExponent,
+    Adhesion,
+    Plasticity,
+    Offset,
+    Delay,
+}
+
+/// The plain impact of `rig` at its mean speed: (peak force (N), δ_max (m), nodes).
+fn plain(rig: &Rig) -> (f64, f64, hcm_tests::rig::Contact) {
+    let clean = Rig {
+        effects: Vec::new(),
+        ..rig.clone()
+    };
+    let c = clean.impact(rig.impact_speed);
+    let peak = c.force.iter().copied().fold(0.0, f64::max);
+    let deepest = c.depth.iter().copied().fold(0.0, f64::max);
+    (peak, deepest, c)
+}
+
+/// The largest |g| over the plain impact's nodes `i` (with δ > 0) of `g(δ, δ̇, f, i)`.
+fn largest(c: &hcm_tests::rig::Contact, g: impl Fn(f64, f64, f64, usize) -> f64) -> f64 {
+    (1..c.depth.len())
+        .filter(|&i| c.depth[i] > 0.0)
+        .map(|i| g(c.depth[i], c.rate[i], c.force[i], i).abs())
+        .fold(0.0, f64::max)
+}
+
+/// `rig` with `effect` hidden at a strength whose term peaks at `share` of the plain
+/// peak force (at first order), and (catalogue name, checked parameter, its true value).
+fn hide(mut rig: Rig, effect: Effect, share: f64) -> (Rig, &'static str, usize, f64) {
+    let (peak, deepest, c) = plain(&rig);
+    let target = share * peak;
+    let (k, n, v0) = (rig.stiffness(), rig.exponent, rig.impact_speed);
+    let (name, index, truth) = match effect {
+        Effect::Viscous => {
+            let coefficient = target / v0;
+            rig.effects.push(Physical::Viscous(coefficient));
+            ("viscous_damping", 0, coefficient)
+        }
+        Effect::Hysteresis => {
+            let coefficient = target / largest(&c, |d, v, _, _| d.sqrt() * v);
+            rig.effects.push(Physical::Hysteresis(coefficient, 0.5));
+            ("hysteresis_damping", 1, 0.5)
+        }
+        Effect::StiffnessExponent => {
+            let change = target / largest(&c, |d, _, _, _| k * d.powf(n) * (d / deepest).ln());
+            rig.effects
+                .push(Physical::StiffnessExponent(change, deepest));
+            ("stiffness_exponent", 0, change)
+        }
+        Effect::Adhesion => {
+            rig.effects.push(Physical::Adhesion(target));
+            ("adhesion", 0, target)
+        }
+        Effect::Plasticity => {
+            let slope = largest(&c, |d, v, _, _| {
+                if v < 0.0 {
+                    (deepest - d) * n * k * d.powf(n - 1.0)
+                } else {
+                    0.0
+                }
+            });
+            rig.effects.push(Physical::Plasticity(target / slope));
+            ("plasticity", 0, target / slope)
+        }
+        Effect::Offset => {
+            rig.sensor.offset = target;
+            ("force_offset", 0, target)
+        }
+        Effect::Delay => {
+            let h = c.step;
+            let rate = largest(&c, |_, _, f, i| (f - c.force[i - 1]) / h);
+            rig.sensor.delay = target / rate;
+            ("sensor_delay", 0, target / rate)
+        }
+    };
+    (rig, name, index, truth)
+}
+
+/// Hides `effect` at `share` of the peak force in the paper's ball and checks that it
+/// alone is named, its parameter within `tolerance`.
+fn catalogued(effect: Effect, share: f64, seed: u64, tolerance: f64) {
+    let (rig, name, index, truth) = hide(ball(), effect, share);
+    let label = format!("{effect:?} at {:.1} % (true {truth:.4e})", 100.0 * share);
+    let d = diagnosed(&label, &rig, seed);
+    named_alone(&d, name, index, truth, tolerance);
+}
+
+macro_rules! catalogued {
+    ($($(#[$meta:meta])* $test:ident: $effect:ident, $share:expr, $seed:expr, $tolerance:expr;)*) => {
+        $(
+            $(#[$meta])*
+            #[test]
+            fn $test() {
+                catalogued(Effect::$effect, $share, $seed, $tolerance);
+            }
+        )*
+    };
+}
+
+catalogued! {
+    viscous_damping_at_5_percent_is_named: Viscous, 0.05, 41, 0.15;
+    viscous_damping_at_half_a_percent_is_named: Viscous, 0.005, 42, 0.3;
+    hysteresis_damping_at_5_percent_is_named: Hysteresis, 0.05, 43, 0.4;
+    #[ignore = "issue 16: named, but its exponent 1.22 [0.94, 1.51] vs 0.5 (coefficient interval across 0)"]
+    hysteresis_damping_at_half_a_percent_is_named: Hysteresis, 0.005, 44, 0.4;
+    stiffness_exponent_at_5_percent_is_named: StiffnessExponent, 0.05, 45, 0.15;
+    #[ignore = "issue 16: nothing named (Δ = 0.02 is k·δ^(n+Δ): the base's free exponent n absorbs all but its damping part)"]
+    stiffness_exponent_at_half_a_percent_is_named: StiffnessExponent, 0.005, 46, 0.3;
+    adhesion_at_5_percent_is_named: Adhesion, 0.05, 47, 0.15;
+    adhesion_at_half_a_percent_is_named: Adhesion, 0.005, 48, 0.3;
+    plasticity_at_5_percent_is_named: Plasticity, 0.05, 49, 0.15;
+    plasticity_at_half_a_percent_is_named: Plasticity, 0.005, 50, 0.3;
+    force_offset_at_5_percent_is_named: Offset, 0.05, 51, 0.15;
+    force_offset_at_half_a_percent_is_named: Offset, 0.005, 52, 0.3;
+    #[ignore = "issue 16: nothing named, unexplained 100 % (τ = 2.4 µs: as the 2 µs delay)"]
+    sensor_delay_at_5_percent_is_named: Delay, 0.05, 53, 0.15;
+    sensor_delay_at_half_a_percent_is_named: Delay, 0.005, 54, 0.3;
+}
+
+// ---------------------------------------------------------------------------------
+// Two effects of different kinds, another ball and ground.
+
+#[test]
+fn viscous_damping_and_a_force_offset_are_both_named_on_a_small_ball_on_aluminium() {
+    let (rig, _, _, coefficient) = hide(small(), Effect::Viscous, 0.05);
+    let (rig, _, _, offset) = hide(rig, Effect::Offset, 0.05);
+    let d = diagnosed("viscous 5 % + offset 5 %, 5 mm on aluminium", &rig, 61);
+    let mut found = names(&d);
+    found.sort();
+    assert_eq!(
+        found,
+        ["force_offset", "viscous_damping"],
+        "{:#?}",
+        d.causes
+    );
+    for c in &d.causes {
+        let truth = if c.effect == "force_offset" {
+            offset
+        } else {
+            coefficient
+        };
+        let value = c.parameters[0].value;
+        assert!(
+            (value / truth - 1.0).abs() < 0.15,
+            "{}: {value} vs {truth}",
+            c.effect
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// How the rig samples: force at 100 kHz; motion filmed at 20 kfps.
+
+/// The paper's ball with its force sampled at 100 kHz.
+fn at_100_khz() -> Rig {
+    let mut rig = ball();
+    rig.sensor.rate = 100e3;
+    rig.margin = 300e-6;
+    rig
+}
+
+#[test]
+fn no_effect_at_100_khz_names_none() {
+    let d = diagnosed("none at 100 kHz", &at_100_khz(), 71);
+    assert!(d.causes.is_empty(), "{:#?}", d.causes);
+}
+
+#[test]
+fn viscous_damping_at_100_khz_is_named() {
+    let (rig, name, index, truth) = hide(at_100_khz(), Effect::Viscous, 0.05);
+    let d = diagnosed("viscous 5 % at 100 kHz", &rig, 72);
+    named_alone(&d, name, index, truth, 0.15);
+}
+
+/// The paper's ball filmed at 20 kfps with 3 µm of position noise, splined onto the
+/// force rows.
+fn filmed() -> Rig {
+    Rig {
+        motion: Motion::CameraSplined {
+            frame_rate: 20e3,
+            position_noise: 3e-6,
+        },
+        ..ball()
+    }
+}
+
+#[test]
+fn filmed_motion_without_an_effect_names_nothing() {
+    let d = diagnosed("none, filmed 20 kfps splined", &filmed(), 81);
+    assert!(d.causes.is_empty(), "{:#?}", d.causes);
+}
+
+#[test]
+#[ignore = "issue 16: nothing named but unexplained 100 % (the splined motion misses the contact), not none"]
+fn filmed_motion_without_an_effect_is_answered_none() {
+    let d = diagnosed("none, filmed 20 kfps splined", &filmed(), 81);
+    assert!(d.causes.is_empty(), "{:#?}", d.causes);
+    assert_eq!(d.unexplained_share, 0.0);
+}
+
+#[test]
+#[ignore = "issue 16: names plasticity (ρ = 0.153, share 0.49), unexplained 0.51"]
+fn filmed_motion_with_viscous_damping_names_it() {
+    let (rig, name, index, truth) = hide(filmed(), Effect::Viscous, 0.05);
+    let d = diagnosed("viscous 5 %, filmed 20 kfps splined", &rig, 82);
+    named_alone(&d, name, index, truth, 0.15);
+}
+
+#[test]
+#[ignore = "issue 16: the dataset reader rejects an empty cell (line 2, px)"]
+fn camera_frames_with_empty_cells_are_read_and_diagnosed() {
+    let rig = Rig {
+        motion: Motion::Camera {
+            frame_rate: 20e3,
+            position_noise: 3e-6,
+            velocity_noise: None,
+        },
+        ..ball()
+    };
+    let recording = rig.record(RUNS, 83);
+    let data = Dataset::from_reader("camera.csv", recording.csv.as_bytes());
+    let data = data.expect("empty cells read as not sampled");
+    let d = diagnose(&base_model(&rig), &data, &DiagnoseSettings::default()).unwrap();
+    assert!(d.causes.is_empty(), "{:#?}", d.causes);
+}
