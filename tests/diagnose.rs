@@ -190,6 +190,10 @@ fn the_extended_model_halves_the_held_out_excess_error() {
         let d = diagnose(&base, &data, &DiagnoseSettings::default()).unwrap();
         let excess = |m: &str| row(&d.gain[0], m).excess_rmse;
         println!(
+            "  naming {:?}\n  not accepted {:?}",
+            d.naming, d.not_accepted
+        );
+        println!(
             "{effect}: held-out excess RMSE base {:.2} N, extended {:.2} N, HCM {:.2} N",
             excess("base"),
             excess("extended"),

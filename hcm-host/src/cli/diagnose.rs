@@ -161,6 +161,7 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
         "naming": d.naming,
         "data_quality": d.data_quality,
         "not_accepted": d.not_accepted,
+        "ambiguous": d.ambiguous,
         "before": d.before,
         "after": d.after,
         "gain": d.gain,
@@ -210,6 +211,12 @@ fn answer(d: &Diagnosis) -> String {
         return format!("insufficient data ({})", d.data_quality.reasons.join("; "));
     }
     let mut parts: Vec<String> = d.causes.iter().map(|c| c.effect.to_owned()).collect();
+    if !d.ambiguous.is_empty() {
+        parts.push(format!(
+            "ambiguous ({}: the data cannot tell which)",
+            d.ambiguous.join(" or ")
+        ));
+    }
     if d.unexplained_share > 0.0 {
         parts.push(format!(
             "unexplained ({:.0} %)",

@@ -12,7 +12,14 @@
 //! 1. its RSS drop passes the information criterion with the measured noise σ:
 //!    ΔRSS/σ² > ln(n) per added parameter (BIC), and
 //! 2. its parameters are determined by the data: every 95 % interval is finite (a
-//!    singular covariance means the data cannot tell its strength, so it is not named).
+//!    singular covariance means the data cannot tell its strength, so it is not named),
+//!    and
+//! 3. the data tell it from every other cause: the best trial of another family scores
+//!    worse by at least [`EVIDENCE`]. Else the steps stop, the answer names neither
+//!    ("ambiguous") and both are reported as not accepted; the better one stays in the
+//!    extended model as a provisional term, which predicts what either would (at 1 %
+//!    of the peak a stiffness-exponent change and an adhesion fit a ball's contacts
+//!    within 0.3 of each other's criterion).
 //!
 //! A backward pass then drops any effect the later ones made redundant (its removal
 //! costs less than the criterion). Steps stop when the residual left is
@@ -85,6 +92,26 @@ pub struct Naming {
     pub after: Structure,
     /// Whether structure is left that no named cause explains.
     pub unexplained: bool,
+    /// Two causes the data cannot tell apart (empty otherwise): neither is named; the
+    /// better one stays in `fit` as a provisional term, so that the extended model still
+    /// predicts what both would, without claiming which it is.
+    pub ambiguous: Vec<&'static str>,
+    /// That provisional term.
+    pub provisional: Option<(Candidate, f64)>,
+}
+
+/// How much lower a cause's information criterion must be than that of the best cause
+/// of another family for the data to tell them apart (–): a difference above 10 is
+/// "very strong" evidence on the scale of Kass & Raftery (1995, *Bayes factors*, JASA
+/// 90), a posterior odds of about 150 : 1.
+pub const EVIDENCE: f64 = 10.0;
+
+/// Whether two effects are one family, where naming either names the same physics:
+/// viscous damping is hysteresis damping with p = 0.
+fn same_family(a: Candidate, b: Candidate) -> bool {
+    let damping =
+        |c: Candidate| matches!(c, Candidate::ViscousDamping | Candidate::HysteresisDamping);
+    a == b || (damping(a) && damping(b))
 }
 
 /// Every (effect, start shape) the catalogue offers for one trial.
@@ -124,6 +151,8 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
     let mut after = structure_of(samples, &fit, sigma);
     let mut steps = Vec::new();
     let mut not_accepted = Vec::new();
+    let mut ambiguous = Vec::new();
+    let mut provisional = None;
     while after.structured && chosen.len() < MAX_CAUSES {
         let trials: Vec<((Candidate, f64), Refit)> = options(&chosen)
             .into_par_iter()
@@ -170,6 +199,37 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
             }
             break;
         };
+        // The data must tell it from every other single cause: the best rival of
+        // another family must score worse by the margin, else the answer would be a
+        // coin toss between two names.
+        let rival = order
+            .iter()
+            .copied()
+            .find(|&m| !same_family(trials[m].0 .0, trials[k].0 .0) && judge(m).determined);
+        if let Some(m) = rival.filter(|&m| criterion(m) - criterion(k) < EVIDENCE) {
+            let (best, other) = (judge(k), judge(m));
+            let gap = criterion(m) - criterion(k);
+            let why = |a: &str, b: &str| {
+                format!(
+                    "the data cannot tell `{a}` from `{b}`: their information criteria differ \
+                     by {gap:.1}, less than {EVIDENCE}"
+                )
+            };
+            not_accepted.push(NotAccepted {
+                reason: why(best.effect, other.effect),
+                ..rejected(&trials[k].1, &best, sigma)
+            });
+            not_accepted.push(NotAccepted {
+                reason: why(other.effect, best.effect),
+                ..rejected(&trials[m].1, &other, sigma)
+            });
+            ambiguous = vec![best.effect, other.effect];
+            provisional = Some(trials[k].0);
+            steps.push(best);
+            fit = trials[k].1.clone();
+            after = structure_of(samples, &fit, sigma);
+            break;
+        }
         let mut t = judge(k);
         t.accepted = true;
         steps.push(t);
@@ -186,6 +246,7 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
             .map(|k| {
                 let mut fewer = chosen.clone();
                 fewer.remove(k);
+                fewer.extend(provisional);
                 (k, refit(samples, base, &fewer, sigma))
             })
             .collect();
@@ -212,8 +273,8 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
         after = structure_of(samples, &fit, sigma);
     }
     let unexplained = after.structured;
-    if unexplained && !chosen.is_empty() {
-        for cause in &fit.causes {
+    if unexplained && !(chosen.is_empty() && provisional.is_none()) {
+        for cause in fit.causes.iter().take(chosen.len()) {
             not_accepted.push(NotAccepted {
                 effect: cause.effect,
                 parameters: cause.parameters.clone(),
@@ -225,6 +286,7 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
             });
         }
         chosen.clear();
+        provisional = None;
         fit = refit(samples, base, &chosen, sigma);
         after = structure_of(samples, &fit, sigma);
     }
@@ -235,6 +297,8 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
         not_accepted,
         after,
         unexplained,
+        ambiguous,
+        provisional,
     }
 }
 
@@ -250,6 +314,8 @@ pub fn unnamed(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) ->
         not_accepted: Vec::new(),
         after,
         unexplained: false,
+        ambiguous: Vec::new(),
+        provisional: None,
     }
 }
 
