@@ -6,7 +6,7 @@ use std::fs;
 use std::io::Write;
 use std::path::Path;
 
-use hcm_host::dataset::{schema, BodyTrack, DataError, Dataset, Run, Sample};
+use hcm_host::dataset::{schema, BodyTrack, Channel, DataError, Dataset, Run, Sample};
 use hcm_host::output::{write_atomically, OutputError};
 
 /// The header, spelled out so that a change to the schema shows up here too.
@@ -376,7 +376,7 @@ fn a_non_numeric_cell_is_refused_with_its_text() {
 }
 
 #[test]
-fn an_empty_cell_is_refused() {
+fn an_empty_cell_in_a_channel_otherwise_filled_is_refused() {
     let text = file(&[
         row("0", "ball", "0", &[]),
         row("0", "ball", "1", &[]),
@@ -389,6 +389,178 @@ fn an_empty_cell_is_refused() {
 
     let text = file(&[row(" ", "ball", "0", &[])]);
     assert_names(&refused(&text), 2, "run", &["empty cell", "run identifier"]);
+}
+
+/// `cells` of a row with every channel but `keep` left empty.
+fn only(channels: &[&str], time: &str) -> String {
+    let keep = |column: &str| channels.iter().any(|c| column.starts_with(c));
+    let cells: Vec<(&str, &str)> = HEADER
+        .split(',')
+        .skip(3)
+        .filter(|c| !keep(c))
+        .map(|c| (c, ""))
+        .collect();
+    row("0", "ball", time, &cells)
+}
+
+#[test]
+fn camera_frames_and_force_rows_read_as_channels_not_sampled() {
+    let text = file(&[
+        only(&["p", "q"], "0"),
+        only(&["f", "t"], "0.00001"),
+        only(&["f"], "0.00002"),
+        only(&["p", "q", "v", "w"], "0.00005"),
+    ]);
+    let dataset = Dataset::from_reader("rig.csv", text.as_bytes()).unwrap();
+    let samples = &dataset.runs[0].bodies[0].samples;
+    let has = |i: usize| -> Vec<Channel> {
+        Channel::ALL
+            .into_iter()
+            .filter(|&c| samples[i].has(c))
+            .collect()
+    };
+    use Channel::*;
+    assert_eq!(has(0), [Position, Orientation]);
+    assert_eq!(has(1), [Force, Torque]);
+    assert_eq!(has(2), [Force]);
+    assert_eq!(has(3), [Position, Orientation, Velocity, AngularVelocity]);
+    assert!(samples[0].force.iter().all(|f| f.is_nan()));
+    assert!(samples[1].lacks(Velocity) && samples[1].lacks(Position));
+    assert_eq!(samples[0].orientation, [1.0, 0.0, 0.0, 0.0]);
+}
+
+#[test]
+fn a_channel_left_out_of_the_header_is_never_sampled() {
+    // Tosses filmed without a force sensor: no f* and t* columns at all.
+    let header: Vec<&str> = HEADER
+        .split(',')
+        .filter(|c| !c.starts_with('f') && !c.starts_with('t') || *c == "time")
+        .collect();
+    let values = [
+        "toss_0", "cube", "0.5", "1", "2", "3", "1", "0", "0", "0", "0", "0", "0", "0", "0", "0",
+    ];
+    assert_eq!(header.len(), values.len());
+    let text = format!("{}\n{}\n", header.join(","), values.join(","));
+    let dataset = Dataset::from_reader("rig.csv", text.as_bytes()).unwrap();
+    let sample = &dataset.runs[0].bodies[0].samples[0];
+    assert_eq!(sample.position, [1.0, 2.0, 3.0]);
+    assert!(sample.lacks(Channel::Force) && sample.lacks(Channel::Torque));
+
+    // The shipped cube tosses read (their force cells are empty).
+    let tosses =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/contactnets-cube/tosses.csv");
+    if tosses.exists() {
+        let tosses = Dataset::read(&tosses).unwrap();
+        let samples = &tosses.runs[0].bodies[0].samples;
+        assert!(samples
+            .iter()
+            .all(|s| s.has(Channel::Position) && s.lacks(Channel::Force)));
+    }
+
+    // A channel with only some of its columns is a missing column, and a header
+    // with no channel at all is refused.
+    let header = HEADER.replace(",tz", "");
+    let text = format!("{header}\n{}\n", vec!["0"; 21].join(","));
+    assert_names(
+        &refused(&text),
+        1,
+        "tz",
+        &["missing", "tz", "left out whole"],
+    );
+    let error = refused("run,body,time\n0,ball,0\n");
+    assert_eq!(
+        (error.line, error.column.as_deref()),
+        (Some(1), None),
+        "{error}"
+    );
+    assert!(error.to_string().contains("names no channel"), "{error}");
+}
+
+#[test]
+fn a_row_without_any_channel_or_time_is_refused() {
+    let text = file(&[row("0", "ball", "0", &[]), only(&[], "1")]);
+    let error = refused(&text);
+    assert_eq!(
+        (error.line, error.column.as_deref()),
+        (Some(3), None),
+        "{error}"
+    );
+    assert!(
+        error
+            .to_string()
+            .contains("every channel cell of the row is empty"),
+        "{error}"
+    );
+
+    let text = file(&[only(&["f"], "")]);
+    assert_names(&refused(&text), 2, "time", &["empty cell", "in s"]);
+
+    let text = file(&[row("0", "ball", "0", &[("px", ""), ("pz", "")])]);
+    assert_names(
+        &refused(&text),
+        2,
+        "px",
+        &["empty cell", "py is filled", "position"],
+    );
+}
+
+#[test]
+fn channels_not_sampled_are_written_as_empty_cells_and_read_back_bit_for_bit() {
+    let mut dataset = awkward_dataset();
+    for run in &mut dataset.runs {
+        for track in &mut run.bodies {
+            for (i, sample) in track.samples.iter_mut().enumerate() {
+                // Alternate camera frames and force rows, and a row with only velocity.
+                let cleared: &[Channel] = match i % 3 {
+                    0 => &[Channel::Force, Channel::Torque, Channel::Velocity],
+                    1 => &[
+                        Channel::Position,
+                        Channel::Orientation,
+                        Channel::AngularVelocity,
+                    ],
+                    _ => &[
+                        Channel::Position,
+                        Channel::Orientation,
+                        Channel::Force,
+                        Channel::Torque,
+                        Channel::AngularVelocity,
+                    ],
+                };
+                for &channel in cleared {
+                    sample.clear(channel);
+                }
+            }
+        }
+    }
+    let mut bytes = Vec::new();
+    dataset.to_writer(&mut bytes).unwrap();
+    let text = String::from_utf8(bytes.clone()).unwrap();
+    let first = text.lines().nth(1).unwrap();
+    assert!(
+        first.ends_with(",,,,,,") && !first.ends_with(",,,,,,,"),
+        "{first}"
+    );
+    let read = Dataset::from_reader("rig.csv", &bytes[..]).unwrap();
+    assert_eq!(read, dataset);
+    assert_eq!(
+        bits(&read),
+        bits(&Dataset::from_reader("again", &bytes[..]).unwrap())
+    );
+    let mut again = Vec::new();
+    read.to_writer(&mut again).unwrap();
+    assert_eq!(again, bytes, "written twice, the same bytes");
+    // Every number that was sampled keeps its bits.
+    for (a, b) in bits(&read).iter().zip(bits(&dataset)) {
+        for (x, y) in a.2.iter().zip(&b.2) {
+            assert!(x == y || (f64::from_bits(*x).is_nan() && f64::from_bits(*y).is_nan()));
+        }
+    }
+
+    // A sample with no channel at all would not read back.
+    let mut empty = dataset.clone();
+    empty.runs[0].bodies[0].samples[0] = Sample::unsampled(-0.0);
+    let error = empty.to_writer(Vec::new()).unwrap_err();
+    assert!(error.to_string().contains("no channel"), "{error}");
 }
 
 #[test]

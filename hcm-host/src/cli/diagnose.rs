@@ -3,7 +3,7 @@
 
 use super::progress_bar;
 use anyhow::Context;
-use hcm_host::dataset::Dataset;
+use hcm_host::dataset::{needs, Dataset};
 use hcm_host::diagnose::catalogue::Kind;
 use hcm_host::diagnose::gain::markdown;
 use hcm_host::diagnose::structure::{structure_figures, Structure};
@@ -76,6 +76,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     super::require_one_dimensional(&base, "diagnose")?;
     super::check_contact(args.contact, &base)?;
     let data = Dataset::read(&args.data)?;
+    data.require(
+        &args.data.display().to_string(),
+        &base,
+        &[args.contact],
+        &needs::DIAGNOSE,
+    )?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     let bar = progress_bar(1, "diagnosing (noise, selection, re-fit, HCM, gain)");

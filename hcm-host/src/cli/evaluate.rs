@@ -1,7 +1,7 @@
 //! `hcm evaluate`: the paper's table for a physics model on validation data.
 
 use anyhow::Context;
-use hcm_host::dataset::Dataset;
+use hcm_host::dataset::{needs, reconstruct, Dataset};
 use hcm_host::evaluate::{evaluate, markdown};
 use hcm_host::identify::Physics;
 use hcm_host::residual::ContactResidual;
@@ -56,6 +56,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     super::require_one_dimensional(&pm2, "evaluate")?;
     super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
+    data.require(
+        &args.data.display().to_string(),
+        &pm2,
+        &[args.contact],
+        &needs::EVALUATE,
+    )?;
+    // Camera frames and force rows on their own clocks: the motion at the force samples.
+    let completed = reconstruct::complete(&pm2, &data)?;
+    let data = completed.data.as_ref();
     let mut models = vec![("PM2", pm2.clone())];
     if let Some(path) = &args.residual {
         let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
@@ -67,7 +76,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let columns: Vec<(&str, &hcm_host::scenario::Model)> =
         models.iter().map(|(l, m)| (*l, m)).collect();
-    let tables = evaluate(&columns, &data, args.contact)?;
+    let tables = evaluate(&columns, data, args.contact)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&tables)?);
         return Ok(());

@@ -2,7 +2,7 @@
 
 use super::progress_bar;
 use anyhow::Context;
-use hcm_host::dataset::Dataset;
+use hcm_host::dataset::{needs, Dataset};
 use hcm_host::identify::evolve::Fitness;
 use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::{identify, Method, Physics};
@@ -90,6 +90,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let model = scenario.model()?;
     super::check_contact(args.contact, &model)?;
     let data = Dataset::read(&args.data)?;
+    let needs = if model.is_rigid() {
+        &needs::IDENTIFY_RIGID
+    } else {
+        &needs::IDENTIFY
+    };
+    data.require(
+        &args.data.display().to_string(),
+        &model,
+        &[args.contact],
+        needs,
+    )?;
     let settings = GeneticSettings {
         seed: args.seed,
         population: args.population,

@@ -2,7 +2,7 @@
 //! quantisation-aware int8 twin; `hcm export` turns the result into weights blobs.
 
 use super::progress_bar;
-use hcm_host::dataset::Dataset;
+use hcm_host::dataset::{needs, Dataset};
 use hcm_host::identify::samples::force_samples;
 use hcm_host::identify::Physics;
 use hcm_host::residual::{HIDDEN, WIDTH};
@@ -67,6 +67,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     super::require_one_dimensional(&pm2, "train")?;
     super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
+    data.require(
+        &args.data.display().to_string(),
+        &pm2,
+        &[args.contact],
+        &needs::TRAIN,
+    )?;
     let (samples, _) = force_samples(&pm2, &data, args.contact)?;
     let (inputs, targets) = residual_pairs(&samples, &pm2.contacts[args.contact].model);
     let settings = TrainSettings {

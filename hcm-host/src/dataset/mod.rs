@@ -30,42 +30,70 @@
 //! | `ty` | N·m | contact torque on the body about its centre of mass, y |
 //! | `tz` | N·m | contact torque on the body about its centre of mass, z |
 //!
+//! Channels ([`Channel`]) are the groups of columns an instrument fills together:
+//! position `px py pz`, orientation `qw qx qy qz`, velocity `vx vy vz`, angular velocity
+//! `wx wy wz`, force `fx fy fz`, torque `tx ty tz`. A rig's camera and force sensor run
+//! on different clocks, so a row may fill some channels and leave the others' cells
+//! empty, meaning "not sampled at this row": camera frames (position, orientation,
+//! perhaps velocity) and force-sensor rows (force, torque) in one file, or no force at
+//! all (tosses filmed without a sensor). Motion is position with orientation.
+//!
 //! Reading ([`Dataset::read`], [`Dataset::from_reader`]):
 //!
 //! - Columns may come in any order. Columns the format does not define are ignored, so a
-//!   rig may keep its own (frame numbers, raw sensor channels). Names are case-sensitive;
-//!   a missing column is an error naming it.
+//!   rig may keep its own (frame numbers, raw sensor channels). Names are case-sensitive.
+//!   `run`, `body` and `time` are required, and at least one channel; a channel's
+//!   columns are all there or all left out (a channel left out is never sampled). A
+//!   missing column is an error naming it.
 //! - Cells are trimmed of surrounding whitespace; a leading UTF-8 byte-order mark is
 //!   skipped. Every row has as many cells as the header.
-//! - Every numeric cell is a finite number (`1.5`, `-2e-7`); an empty cell, text, `NaN` or
-//!   `inf` is an error naming the file, the line (1-based, the header is line 1; blank
-//!   lines count, and `\n`, `\r\n` and `\r` all end a line), the column and the offending
-//!   text. `run` and `body` are non-empty text.
+//! - A channel is filled whole or left empty whole in each row; empty is "not
+//!   sampled here" and reads as NaN in every component of the [`Sample`] (see
+//!   [`channel`] for why NaN). A row fills at least one channel and always has a time.
+//! - Every filled numeric cell is a finite number (`1.5`, `-2e-7`); text, `NaN`, `inf`,
+//!   an empty `time`, or an empty cell in a channel whose other cells are filled is an
+//!   error naming the file, the line (1-based, the header is line 1; blank lines count,
+//!   and `\n`, `\r\n` and `\r` all end a line), the column and the offending text.
+//!   `run` and `body` are non-empty text.
 //! - Rows of different runs and bodies may interleave. They are grouped by (run, body):
 //!   runs in order of first appearance, and within a run, bodies in order of first
-//!   appearance. Within one (run, body) time increases strictly; the same time in another
-//!   body or run is fine.
+//!   appearance. Within one (run, body) time increases strictly — camera frames and
+//!   force rows of one body are merged in time order, one row per instant; the same
+//!   time in another body or run is fine.
 //! - The quaternion is taken as written: it is neither checked for unit norm nor
 //!   renormalised. 1D and planar scenarios fill the components they use and leave the
 //!   rest 0 (quaternion 1, 0, 0, 0) — see [`Sample::at_rest`].
 //! - A file with no header, or a header with no data rows, is an error.
 //!
+//! Each command says which channels it needs ([`needs`]); `identify`, `diagnose` and
+//! `train` reconstruct the motion at the force sensor's samples themselves
+//! ([`reconstruct`]), so camera frames need not be interpolated by the user.
+//!
 //! Writing ([`Dataset::write`], [`Dataset::to_writer`]) emits the columns in the order of
 //! the table, run by run, and within a run body by body, each body's samples in time
 //! order. That block layout reads back into exactly the same [`Dataset`] (an interleaved
 //! layout would reorder bodies whose first samples are not in body order). Numbers use
-//! Rust's shortest round-trip formatting, so they read back bit for bit; rows end in `\n`,
+//! Rust's shortest round-trip formatting, so they read back bit for bit; a channel not
+//! sampled (NaN in every component) is written as empty cells; rows end in `\n`,
 //! names holding commas, quotes or line breaks are quoted, and the same dataset always
-//! gives the same bytes. The writer refuses what the reader would refuse
-//! (non-finite values, time not increasing, empty or whitespace-padded names, empty runs
-//! or bodies, repeated names) before writing anything, and [`Dataset::write`] goes through
+//! gives the same bytes. The writer refuses what the reader would refuse (non-finite
+//! values other than a whole channel not sampled, a sample with no channel, time not
+//! increasing, empty or whitespace-padded names, empty runs or bodies, repeated names)
+//! before writing anything, and [`Dataset::write`] goes through
 //! [`crate::output::write_atomically`], so a failed write leaves no file behind.
 
+pub mod channel;
+pub mod needs;
+pub mod reconstruct;
 pub mod schema;
 
+mod flight;
 mod read;
+mod through_contact;
 mod write;
 
+pub use channel::Channel;
+pub use needs::{Need, Requirement};
 pub use write::RunWriter;
 
 use std::fmt::Write as _;
@@ -74,7 +102,8 @@ use std::path::Path;
 use crate::output::{self, OutputError};
 
 /// The state of one body at one instant (one row of the file). SI units, world frame.
-#[derive(Clone, Debug, PartialEq)]
+/// A channel not sampled at this instant is NaN in every component ([`channel`]).
+#[derive(Clone, Debug)]
 pub struct Sample {
     /// Time, s.
     pub time: f64,

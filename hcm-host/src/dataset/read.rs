@@ -4,6 +4,7 @@
 use std::collections::{HashMap, VecDeque};
 use std::io::Read;
 
+use super::channel::Channel;
 use super::schema::{self, Column, BODY, COLUMNS, COLUMN_COUNT, FIRST_NUMERIC, NUMERIC_COUNT, RUN};
 use super::{BodyTrack, DataError, Dataset, Run};
 
@@ -181,8 +182,9 @@ impl<R: Read> Read for LineCounter<R> {
 struct Layout {
     /// Line of the header.
     line: u64,
-    /// `cell[i]` is the position in a row of `COLUMNS[i]`.
-    cell: [usize; COLUMN_COUNT],
+    /// `cell[i]` is the position in a row of `COLUMNS[i]`; None for the columns of a
+    /// channel the file does not have.
+    cell: [Option<usize>; COLUMN_COUNT],
 }
 
 impl Layout {
@@ -212,35 +214,63 @@ impl Layout {
                 found[index] = Some(position);
             }
         }
+        let near = |name: &str| {
+            header
+                .iter()
+                .map(|cell| cell.trim_start_matches('\u{feff}').trim())
+                .find(|cell| cell.eq_ignore_ascii_case(name))
+        };
         let missing: Vec<&str> = COLUMNS
             .iter()
-            .zip(&found)
-            .filter(|(_, position)| position.is_none())
-            .map(|(column, _)| column.name)
+            .enumerate()
+            .filter(|&(index, _)| {
+                found[index].is_none()
+                    && match Channel::of_column(index) {
+                        // A channel is all there or all absent (a rig without a force
+                        // sensor); a misspelt column is not an absent channel.
+                        Some(channel) => channel.columns().any(|other| {
+                            found[other].is_some() || near(COLUMNS[other].name).is_some()
+                        }),
+                        None => true,
+                    }
+            })
+            .map(|(_, column)| column.name)
             .collect();
         if let Some(&first) = missing.first() {
             let mut problem = String::from("missing from the header");
-            if let Some(near) = header
-                .iter()
-                .map(str::trim)
-                .find(|name| name.eq_ignore_ascii_case(first))
-            {
+            if let Some(near) = near(first) {
                 problem.push_str(&format!(" (found `{near}`; names are case-sensitive)"));
             }
             if missing.len() > 1 {
                 problem.push_str(&format!("; also missing: {}", missing[1..].join(", ")));
             }
             problem.push_str(&format!(
-                "; expected all of {} in any order",
+                "; expected all of {} in any order (a channel the rig does not record \
+                 may be left out whole, e.g. all of fx, fy, fz)",
                 schema::header()
             ));
             return Err(here(first, problem));
         }
-        Ok(Layout {
-            line,
-            cell: found.map(|position| position.unwrap_or_default()),
-        })
+        if !Channel::ALL
+            .iter()
+            .any(|channel| found[channel.columns().start].is_some())
+        {
+            return Err(DataError::new(
+                source,
+                format!(
+                    "the header names no channel; expected the columns of at least one of {}",
+                    channel_list()
+                ),
+            )
+            .at_line(line));
+        }
+        Ok(Layout { line, cell: found })
     }
+}
+
+/// Every channel with its columns, for messages.
+fn channel_list() -> String {
+    Channel::ALL.map(Channel::described).join(", ")
 }
 
 /// The dataset being assembled, with indexes to group rows in constant time.
@@ -264,13 +294,43 @@ impl Groups {
         line: u64,
         record: &csv::StringRecord,
     ) -> Result<(), DataError> {
-        let cell = |index: usize| record.get(layout.cell[index]).unwrap_or("").trim();
+        let cell = |index: usize| {
+            layout.cell[index]
+                .and_then(|position| record.get(position))
+                .unwrap_or("")
+                .trim()
+        };
         let run = text(source, line, &COLUMNS[RUN], cell(RUN), "a run identifier")?;
         let body = text(source, line, &COLUMNS[BODY], cell(BODY), "a body name")?;
-        let mut values = [0.0; NUMERIC_COUNT];
-        for (offset, value) in values.iter_mut().enumerate() {
-            let index = FIRST_NUMERIC + offset;
-            *value = number(source, line, &COLUMNS[index], cell(index))?;
+        let mut values = [f64::NAN; NUMERIC_COUNT];
+        values[0] = number(source, line, &COLUMNS[schema::TIME], cell(schema::TIME))?;
+        let mut filled = false;
+        for channel in Channel::ALL {
+            let columns = channel.columns();
+            let empty = columns
+                .clone()
+                .filter(|&index| cell(index).is_empty())
+                .count();
+            if empty == columns.len() {
+                continue;
+            }
+            if empty > 0 {
+                return Err(partial(source, line, channel, &cell));
+            }
+            for index in columns {
+                values[index - FIRST_NUMERIC] = number(source, line, &COLUMNS[index], cell(index))?;
+            }
+            filled = true;
+        }
+        if !filled {
+            return Err(DataError::new(
+                source,
+                format!(
+                    "every channel cell of the row is empty; a row holds at least one of {}",
+                    channel_list()
+                ),
+            )
+            .at_line(line));
         }
         let sample = schema::sample_from_values(values);
 
@@ -325,6 +385,40 @@ impl Groups {
     }
 }
 
+/// The error for a channel only partly filled in a row: its first empty cell.
+fn partial<'a>(
+    source: &str,
+    line: u64,
+    channel: Channel,
+    cell: &impl Fn(usize) -> &'a str,
+) -> DataError {
+    let columns = channel.columns();
+    let (empty, filled): (Vec<usize>, Vec<usize>) =
+        columns.clone().partition(|&index| cell(index).is_empty());
+    let first = COLUMNS[empty[0]];
+    let names = |indices: &[usize]| {
+        indices
+            .iter()
+            .map(|&index| COLUMNS[index].name)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    DataError::new(
+        source,
+        format!(
+            "expected {}, found an empty cell while {} {} filled: the {} channel ({}) is \
+             filled whole, or left empty whole where it was not sampled",
+            expected(&first),
+            names(&filled),
+            if filled.len() == 1 { "is" } else { "are" },
+            channel.name(),
+            channel.column_list(),
+        ),
+    )
+    .at_line(line)
+    .in_column(first.name)
+}
+
 /// A non-empty text cell.
 fn text<'a>(
     source: &str,
@@ -343,12 +437,17 @@ fn text<'a>(
     Ok(cell)
 }
 
-/// A finite number cell.
-fn number(source: &str, line: u64, column: &Column, cell: &str) -> Result<f64, DataError> {
-    let expected = match column.unit {
+/// What a numeric cell of `column` should hold, e.g. `a finite number in N`.
+fn expected(column: &Column) -> String {
+    match column.unit {
         "–" => String::from("a finite number"),
         unit => format!("a finite number in {unit}"),
-    };
+    }
+}
+
+/// A finite number cell.
+fn number(source: &str, line: u64, column: &Column, cell: &str) -> Result<f64, DataError> {
+    let expected = expected(column);
     let found = match cell.parse::<f64>() {
         Ok(value) if value.is_finite() => return Ok(value),
         _ if cell.is_empty() => String::from("an empty cell"),

@@ -6,12 +6,14 @@ use std::collections::HashSet;
 use std::fmt::Write as _;
 use std::io::Write;
 
+use super::channel::Channel;
 use super::schema::{self, COLUMNS, FIRST_NUMERIC};
 use super::{DataError, Dataset, Run, Sample};
 
 /// Refuses a dataset the reader would not read back as the same dataset: no samples,
-/// empty runs or bodies, empty, whitespace-padded or repeated names, non-finite values,
-/// time not strictly increasing within a body. `destination` names the output in errors.
+/// empty runs or bodies, empty, whitespace-padded or repeated names, non-finite values
+/// other than a whole channel not sampled (NaN), samples with no channel, time not
+/// strictly increasing within a body. `destination` names the output in errors.
 pub(super) fn check(dataset: &Dataset, destination: &str) -> Result<(), DataError> {
     if dataset.runs.is_empty() {
         return Err(no_runs(destination));
@@ -74,15 +76,8 @@ fn check_bodies(run: &Run, destination: &str) -> Result<(), DataError> {
         }
         let mut previous: Option<&Sample> = None;
         for (index, sample) in track.samples.iter().enumerate() {
-            let values = schema::sample_values(sample);
-            if let Some(offset) = values.iter().position(|value| !value.is_finite()) {
-                return refuse(
-                    COLUMNS[FIRST_NUMERIC + offset].name,
-                    format!(
-                        "{at}, sample {index}: {:?} is not a finite number",
-                        values[offset]
-                    ),
-                );
+            if let Some((column, problem)) = sample_problem(sample) {
+                return refuse(column, format!("{at}, sample {index}: {problem}"));
             }
             if let Some(previous) = previous {
                 if sample.time <= previous.time {
@@ -99,6 +94,35 @@ fn check_bodies(run: &Run, destination: &str) -> Result<(), DataError> {
         }
     }
     Ok(())
+}
+
+/// Why a sample would not read back as it is, and the column to blame: a non-finite
+/// time, a channel neither all finite nor all NaN (not sampled), or no channel at all.
+fn sample_problem(sample: &Sample) -> Option<(&'static str, String)> {
+    let values = schema::sample_values(sample);
+    if !sample.time.is_finite() {
+        let problem = format!("time {:?} s is not a finite number", sample.time);
+        return Some((COLUMNS[schema::TIME].name, problem));
+    }
+    for channel in Channel::ALL {
+        if sample.lacks(channel) {
+            continue;
+        }
+        if let Some(offset) = channel.values().find(|&offset| !values[offset].is_finite()) {
+            let problem = format!(
+                "{:?} is not a finite number (a channel not sampled is NaN in every component: \
+                 {})",
+                values[offset],
+                channel.described()
+            );
+            return Some((COLUMNS[FIRST_NUMERIC + offset].name, problem));
+        }
+    }
+    if Channel::ALL.iter().all(|&channel| sample.lacks(channel)) {
+        let problem = String::from("no channel was sampled (every number but time is NaN)");
+        return Some((COLUMNS[schema::TIME].name, problem));
+    }
+    None
 }
 
 /// Why a run or body name would not read back unchanged, if it would not.
@@ -174,14 +198,28 @@ impl<W: Write> RunWriter<W> {
     fn write_sample(&mut self, run: &str, body: &str, sample: &Sample) -> csv::Result<()> {
         self.csv.write_field(run)?;
         self.csv.write_field(body)?;
-        for value in schema::sample_values(sample) {
-            self.number.clear();
-            // `{:?}` is the shortest text that parses back to the same bits, with an
-            // exponent for very large and small magnitudes (`1e-300`, `1e17`).
-            let _ = write!(self.number, "{value:?}");
-            self.csv.write_field(&self.number)?;
+        let values = schema::sample_values(sample);
+        self.write_number(values[0])?;
+        for channel in Channel::ALL {
+            let unsampled = sample.lacks(channel);
+            for &value in &values[channel.values()] {
+                if unsampled {
+                    // An empty cell: not sampled at this row.
+                    self.csv.write_field("")?;
+                } else {
+                    self.write_number(value)?;
+                }
+            }
         }
         self.csv.write_record(None::<&[u8]>)
+    }
+
+    fn write_number(&mut self, value: f64) -> csv::Result<()> {
+        self.number.clear();
+        // `{:?}` is the shortest text that parses back to the same bits, with an
+        // exponent for very large and small magnitudes (`1e-300`, `1e17`).
+        let _ = write!(self.number, "{value:?}");
+        self.csv.write_field(&self.number)
     }
 
     /// Flushes the rows and hands back the writer; refuses a file without runs.

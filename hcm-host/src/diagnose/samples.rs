@@ -2,6 +2,7 @@
 //! run, in contact or not, with the motion state a contact law needs and the force
 //! the sensor recorded.
 
+use crate::dataset::reconstruct::{complete, Completed, TrackReconstruction};
 use crate::dataset::Dataset;
 use crate::identify::IdentifyError;
 use crate::indicators::{contact_history, event_spans};
@@ -9,6 +10,7 @@ use crate::scenario::Model;
 use hcm_core::effect::{ContactMemory, ExtendedLaw};
 use hcm_core::law::Indentation;
 use hcm_core::model::ContactModel;
+use nalgebra::Vector3;
 
 /// Column-wise samples of contact `c` over runs (one entry per recorded sample).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -29,6 +31,12 @@ pub struct ContactSamples {
     pub in_contact: Vec<bool>,
     /// Recorded normal force on body 1 (N).
     pub measured: Vec<f64>,
+    /// Standard deviation of `depth` from its reconstruction (m): 0 where the motion was
+    /// recorded at the sample, else the flight fit's covariance and the force noise
+    /// propagated through Newton's law ([`crate::dataset::reconstruct`]).
+    pub depth_sd: Vec<f64>,
+    /// Standard deviation of `rate` from its reconstruction (m/s), as `depth_sd`.
+    pub rate_sd: Vec<f64>,
 }
 
 impl ContactSamples {
@@ -84,6 +92,8 @@ impl ContactSamples {
             out.max_depth.push(self.max_depth[i]);
             out.in_contact.push(self.in_contact[i]);
             out.measured.push(self.measured[i]);
+            out.depth_sd.push(self.depth_sd[i]);
+            out.rate_sd.push(self.rate_sd[i]);
         }
         out
     }
@@ -91,6 +101,11 @@ impl ContactSamples {
 
 /// Every sample of contact `c` of `model` in every run of `data`. A run without a
 /// completed contact is an error naming it.
+///
+/// Motion not recorded at the force samples (camera frames at their own rate) is
+/// reconstructed there first ([`complete`]), and each sample's `depth_sd` and
+/// `rate_sd` say how well; data with motion and force on every row are read as
+/// recorded, with both 0.
 pub fn contact_samples(
     model: &Model,
     data: &Dataset,
@@ -99,8 +114,9 @@ pub fn contact_samples(
     if data.runs.is_empty() {
         return Err(IdentifyError::NoData);
     }
+    let completed = complete(model, data)?;
     let mut out = ContactSamples::default();
-    for (r, run) in data.runs.iter().enumerate() {
+    for (r, run) in completed.data.runs.iter().enumerate() {
         let history = contact_history(model, run, c)?;
         let spans = event_spans(&history);
         if spans.is_empty() {
@@ -116,6 +132,7 @@ pub fn contact_samples(
                 event[i] = Some(e);
             }
         }
+        let spread = Spread::new(model, &completed, r, c);
         let mut deepest = 0.0_f64;
         let mut current = None;
         for (i, &here) in event.iter().enumerate() {
@@ -135,7 +152,39 @@ pub fn contact_samples(
                 .push(if here.is_some() { deepest } else { 0.0 });
             out.in_contact.push(here.is_some());
             out.measured.push(history.force[i]);
+            let (depth_sd, rate_sd) = spread.at(i, &history.normal[i]);
+            out.depth_sd.push(depth_sd);
+            out.rate_sd.push(rate_sd);
         }
     }
     Ok(out)
+}
+
+/// The reconstructions of the two bodies of a contact in one run, read along the
+/// contact normal.
+pub(crate) struct Spread<'a> {
+    bodies: [Option<&'a TrackReconstruction>; 2],
+}
+
+impl<'a> Spread<'a> {
+    /// Of contact `c` in run `r` of `completed`.
+    pub(crate) fn new(model: &Model, completed: &'a Completed<'_>, r: usize, c: usize) -> Self {
+        let contact = &model.contacts[c];
+        let of = |b: usize| completed.track(r, &model.bodies[b].name);
+        Spread {
+            bodies: [of(contact.body_1), of(contact.body_2)],
+        }
+    }
+
+    /// Standard deviations of δ (m) and δ̇ (m/s) at sample `i` along `normal`: the two
+    /// bodies' independent variances projected, Σ n_k²·var_k.
+    pub(crate) fn at(&self, i: usize, normal: &Vector3<f64>) -> (f64, f64) {
+        let mut variance = (0.0, 0.0);
+        for track in self.bodies.iter().flatten() {
+            let along = |v: &[f64; 3]| (0..3).map(|k| normal[k] * normal[k] * v[k]).sum::<f64>();
+            variance.0 += along(&track.position_variance[i]);
+            variance.1 += along(&track.velocity_variance[i]);
+        }
+        (variance.0.sqrt(), variance.1.sqrt())
+    }
 }

@@ -35,6 +35,9 @@ pub enum IdentifyError {
     /// The data do not match the scenario.
     #[error(transparent)]
     Data(#[from] IndicatorError),
+    /// The motion could not be reconstructed at the force samples.
+    #[error(transparent)]
+    Reconstruct(#[from] crate::dataset::reconstruct::ReconstructError),
     /// The law cannot be built in this scenario.
     #[error(transparent)]
     Scenario(#[from] ScenarioError),
@@ -127,6 +130,9 @@ pub fn identify(
 ) -> Result<Identification, IdentifyError> {
     let started = Instant::now();
     let (template, bounds) = template(scenario, c, law_name)?;
+    // Camera frames and force rows on their own clocks: the motion at the force samples.
+    let completed = crate::dataset::reconstruct::complete(model, data)?;
+    let data = completed.data.as_ref();
     let (samples, events) = samples::force_samples(model, data, c)?;
     let targets = replay::targets(model, data, c)?;
     let (law, notes, standard_errors, label) = match method {

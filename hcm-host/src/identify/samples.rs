@@ -2,6 +2,7 @@
 //! columns of a data file with the scenario's geometry.
 
 use super::IdentifyError;
+use crate::dataset::reconstruct::complete;
 use crate::dataset::Dataset;
 use crate::indicators::{contact_history, event_spans};
 use crate::scenario::Model;
@@ -41,7 +42,9 @@ impl ForceSample {
 
 /// Every in-contact sample of contact `c` in every run, and how many runs and
 /// events they came from. A run without a completed contact is an error naming it:
-/// a silent drop would bias the fit.
+/// a silent drop would bias the fit. Motion not recorded at the force samples (camera
+/// frames) is reconstructed there first ([`complete`]); data with motion and force on
+/// every row are read as recorded.
 pub fn force_samples(
     model: &Model,
     data: &Dataset,
@@ -50,9 +53,10 @@ pub fn force_samples(
     if data.runs.is_empty() {
         return Err(IdentifyError::NoData);
     }
+    let completed = complete(model, data)?;
     let mut samples = Vec::new();
     let mut events = 0;
-    for run in &data.runs {
+    for run in &completed.data.runs {
         let history = contact_history(model, run, c)?;
         let spans = event_spans(&history);
         if spans.is_empty() {

@@ -1,0 +1,195 @@
+//! Which channels each command needs, and the error that says so before any work: the
+//! file, the command, the channel, and what to do.
+//!
+//! | command | needs, on the bodies of the contact |
+//! |---|---|
+//! | `identify`, `train`, `diagnose`, `evaluate`, `indicators` (1D) | position somewhere (camera frames) and force somewhere (the sensor's rows); the motion at the force samples is reconstructed |
+//! | `identify`, `indicators` (rigid, 3D) | position, orientation, velocity, angular velocity, force and torque on every row |
+
+use super::channel::Channel;
+use super::{DataError, Dataset};
+use crate::scenario::Model;
+
+/// How a command needs a channel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Need {
+    /// On every row of every moving body of the contacts.
+    EveryRow,
+    /// On some rows of each run: of each moving body for motion channels, of either
+    /// body of the contact for force and torque (one sensor measures the pair).
+    SomeRows,
+}
+
+/// What one command needs of the data.
+#[derive(Clone, Copy, Debug)]
+pub struct Requirement {
+    /// The command, e.g. `hcm identify`.
+    pub command: &'static str,
+    /// The channels and how they are needed.
+    pub channels: &'static [(Channel, Need)],
+    /// Why, in the command's terms: completes "… needs the force channel because …".
+    pub because: &'static str,
+}
+
+/// The 1D commands: motion from camera frames, force from the sensor's rows.
+const CAMERA_AND_SENSOR: &[(Channel, Need)] = &[
+    (Channel::Position, Need::SomeRows),
+    (Channel::Force, Need::SomeRows),
+];
+
+/// The rigid (3D) commands: full states on every row, not reconstructed yet.
+const FULL_STATES: &[(Channel, Need)] = &[
+    (Channel::Position, Need::EveryRow),
+    (Channel::Orientation, Need::EveryRow),
+    (Channel::Velocity, Need::EveryRow),
+    (Channel::AngularVelocity, Need::EveryRow),
+    (Channel::Force, Need::EveryRow),
+    (Channel::Torque, Need::EveryRow),
+];
+
+/// `hcm identify` on a 1D contact (least squares or GA on force curves).
+pub const IDENTIFY: Requirement = Requirement {
+    command: "hcm identify",
+    channels: CAMERA_AND_SENSOR,
+    because: "it fits the law's force to the measured contact force along the motion \
+              (camera frames are enough for the motion: it is reconstructed at the force samples)",
+};
+
+/// `hcm identify` on a rigid (3D) contact.
+pub const IDENTIFY_RIGID: Requirement = Requirement {
+    command: "hcm identify (rigid, 3D)",
+    channels: FULL_STATES,
+    because: "it replays each contact event from its full pre-contact state and compares \
+              wrenches; 3D motion is not reconstructed from camera frames yet, so give every \
+              channel on every row",
+};
+
+/// `hcm train`.
+pub const TRAIN: Requirement = Requirement {
+    command: "hcm train",
+    channels: CAMERA_AND_SENSOR,
+    because: "the residual network learns measured minus modelled contact force",
+};
+
+/// `hcm diagnose`.
+pub const DIAGNOSE: Requirement = Requirement {
+    command: "hcm diagnose",
+    channels: CAMERA_AND_SENSOR,
+    because: "it compares the model's force with the measured force in contact, along the \
+              motion around it",
+};
+
+/// `hcm evaluate`.
+pub const EVALUATE: Requirement = Requirement {
+    command: "hcm evaluate",
+    channels: CAMERA_AND_SENSOR,
+    because: "its indicators (maximum force, impulse, energy loss, duration) are read from \
+              the measured force and the motion",
+};
+
+/// `hcm indicators` on a 1D scenario.
+pub const INDICATORS: Requirement = Requirement {
+    command: "hcm indicators",
+    channels: CAMERA_AND_SENSOR,
+    because: "maximum force and impulse are read from the force, duration and energy loss \
+              from the motion",
+};
+
+/// `hcm indicators` on a rigid (3D) scenario.
+pub const INDICATORS_RIGID: Requirement = Requirement {
+    command: "hcm indicators (rigid, 3D)",
+    channels: FULL_STATES,
+    because: "each event's wrench and poses are read row by row; 3D motion is not \
+              reconstructed from camera frames yet, so give every channel on every row",
+};
+
+impl Dataset {
+    /// Checks that the data hold what `requirement` needs for the contacts `contacts` of
+    /// `model`; `file` names the data in the error.
+    pub fn require(
+        &self,
+        file: &str,
+        model: &Model,
+        contacts: &[usize],
+        requirement: &Requirement,
+    ) -> Result<(), DataError> {
+        for run in &self.runs {
+            for &c in contacts {
+                let contact = &model.contacts[c];
+                let pair = [contact.body_1, contact.body_2];
+                for &(channel, need) in requirement.channels {
+                    let motion = !matches!(channel, Channel::Force | Channel::Torque);
+                    let bodies: Vec<&str> = pair
+                        .iter()
+                        .filter(|&&b| !(motion && model.bodies[b].fixed))
+                        .map(|&b| model.bodies[b].name.as_str())
+                        .collect();
+                    let tracks: Vec<_> = bodies.iter().filter_map(|&b| run.body(b)).collect();
+                    let problem = match need {
+                        Need::SomeRows if motion => tracks
+                            .iter()
+                            .find(|t| !t.samples.iter().any(|s| s.has(channel)))
+                            .map(|t| {
+                                format!("run `{}` never fills it for body `{}`", run.id, t.body)
+                            }),
+                        Need::SomeRows => (!tracks
+                            .iter()
+                            .any(|t| t.samples.iter().any(|s| s.has(channel))))
+                        .then(|| {
+                            format!(
+                                "run `{}` never fills it for body `{}`",
+                                run.id,
+                                bodies.join("` or `")
+                            )
+                        }),
+                        Need::EveryRow => tracks.iter().find_map(|t| {
+                            let s = t.samples.iter().find(|s| !s.has(channel))?;
+                            Some(format!(
+                                "run `{}`, body `{}` leaves it empty at t = {:?} s",
+                                run.id, t.body, s.time
+                            ))
+                        }),
+                    };
+                    if let Some(problem) = problem {
+                        return Err(missing(file, requirement, channel, need, &problem));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The error for a channel a command needs and the data lack.
+fn missing(
+    file: &str,
+    requirement: &Requirement,
+    channel: Channel,
+    need: Need,
+    problem: &str,
+) -> DataError {
+    let todo = match (channel, need) {
+        (Channel::Force | Channel::Torque, Need::SomeRows) => format!(
+            "add the force sensor's rows ({} at its own rate, the other cells empty)",
+            channel.column_list()
+        ),
+        (_, Need::SomeRows) => format!(
+            "add the camera's frames ({} at its frame rate, the other cells empty)",
+            channel.column_list()
+        ),
+        (_, Need::EveryRow) => format!("fill {} on every row", channel.column_list()),
+    };
+    DataError::new(
+        file,
+        format!(
+            "{} needs the {} channel ({}) because {}, but {}; {}",
+            requirement.command,
+            channel.name(),
+            channel.column_list(),
+            requirement.because,
+            problem,
+            todo
+        ),
+    )
+    .in_column(crate::dataset::schema::COLUMNS[channel.columns().start].name)
+}
