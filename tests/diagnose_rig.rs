@@ -595,15 +595,45 @@ fn filmed_motion_with_viscous_damping_names_it() {
     named_alone(&d, name, index, truth, 0.15);
 }
 
+/// The paper's ball filmed at 20 kfps (3 µm noise, no velocity), the camera's rows and
+/// the force sensor's (1 MHz) in one file with empty cells, 2 ms of flight on each side.
+fn camera() -> Rig {
+    Rig {
+        motion: Motion::Camera {
+            frame_rate: 20e3,
+            position_noise: 3e-6,
+            velocity_noise: None,
+        },
+        margin: 2e-3,
+        ..ball()
+    }
+}
+
 #[test]
-#[ignore = "issue 16: the dataset reader rejects an empty cell (line 2, px)"]
+fn camera_frames_with_a_hidden_viscous_damping_name_it() {
+    let (rig, name, index, truth) = hide(camera(), Effect::Viscous, 0.05);
+    let d = diagnosed("viscous 5 %, camera rows with empty cells", &rig, 84);
+    named_alone(&d, name, index, truth, 0.15);
+}
+
+#[test]
+#[ignore = "issue 16: names adhesion (31 N), a wrong name: with the motion reconstructed by integrating the (delayed) force, the delay moves the whole reconstructed contact; the touch-down must be anchored on the camera's flight fit instead"]
+fn camera_frames_with_a_sensor_delay_name_it() {
+    let (rig, name, index, truth) = hide(camera(), Effect::Delay, 0.05);
+    let d = diagnosed("delay 5 %, camera rows with empty cells", &rig, 85);
+    named_alone(&d, name, index, truth, 0.15);
+}
+
+#[test]
 fn camera_frames_with_empty_cells_are_read_and_diagnosed() {
+    // 2 ms of flight filmed on each side: 40 frames to fit the flight before and after.
     let rig = Rig {
         motion: Motion::Camera {
             frame_rate: 20e3,
             position_noise: 3e-6,
             velocity_noise: None,
         },
+        margin: 2e-3,
         ..ball()
     };
     let recording = rig.record(RUNS, 83);

@@ -372,8 +372,11 @@ impl Rig {
                     let motion = if tc <= tf {
                         let (_, z, v) = frames[j];
                         j += 1;
-                        let v = v.map_or(String::new(), |v| v.to_string());
-                        format!("0,0,{z},1,0,0,0,0,0,{v},0,0,0")
+                        // A channel is filled whole or left empty whole: without a
+                        // measured velocity all of vx, vy, vz are empty; a camera does
+                        // not measure the angular velocity.
+                        let v = v.map_or(",,".to_owned(), |v| format!("0,0,{v}"));
+                        format!("0,0,{z},1,0,0,0,{v},,,")
                     } else {
                         ",,,,,,,,,,,,".to_owned()
                     };

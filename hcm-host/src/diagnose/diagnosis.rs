@@ -115,13 +115,20 @@ pub fn diagnose(
     settings: &DiagnoseSettings,
 ) -> Result<Diagnosis, IdentifyError> {
     let c = settings.contact;
+    // Motion at a camera's frames and force at the sensor's rate become full rows once,
+    // here (`dataset::reconstruct`): the gain, the sensor and the HCM read them too.
+    let raw = data;
+    let completed = crate::dataset::reconstruct::complete(base, data)?;
+    let data: &Dataset = &completed.data;
     let Holdout {
         training,
         held_out,
         condition,
     } = holdout(base, data, settings.seed, settings.holdout_fraction);
     let fit_data = subset(data, &training);
-    let samples: ContactSamples = contact_samples(base, &fit_data, c)?;
+    // From the recorded runs, so that each sample carries its reconstruction's
+    // uncertainty (0 where motion and force share every row).
+    let samples: ContactSamples = contact_samples(base, &subset(raw, &training), c)?;
     let noise = noise_floor(&samples);
     let sigma = noise.sigma;
     let law = base.contacts[c].model.normal.clone();
@@ -131,10 +138,12 @@ pub fn diagnose(
     let selection = select(&samples, &law, sigma);
     // Data that cannot show a shape get no cause, only the reasons why.
     let quality = assess(&samples, sigma);
+    // What the contact's reconstruction (camera-rate motion) adds to the noise.
+    let judged_sigma = super::noise::effective_sigma(&samples, &law, sigma);
     let naming = if quality.sufficient {
-        name_causes(&samples, &law, sigma)
+        name_causes(&samples, &law, judged_sigma)
     } else {
-        unnamed(&samples, &law, sigma)
+        unnamed(&samples, &law, judged_sigma)
     };
     let fit = naming.fit.clone();
     let after = naming.after.clone();
