@@ -88,7 +88,7 @@ const EFFECTS: [&str; 7] = [
 ];
 
 #[test]
-fn every_effect_at_5_percent_is_named_in_8_of_10_seeds_and_nothing_is_named_without_one() {
+fn every_effect_at_5_percent_is_named_in_8_of_10_seeds_never_wrongly_and_nothing_without_one() {
     let scale = scales();
     println!(
         "scales: peak {:.1} N, δ_max {:.3e} m, v0 {:.4} m/s, t_c {:.3e} s",
@@ -97,9 +97,16 @@ fn every_effect_at_5_percent_is_named_in_8_of_10_seeds_and_nothing_is_named_with
     let cells: Vec<(usize, usize, u64)> = (0..EFFECTS.len())
         .flat_map(|e| (0..LEVELS.len()).flat_map(move |l| (1..=SEEDS).map(move |s| (e, l, s))))
         .collect();
-    let exact: Vec<bool> = cells
+    let answers: Vec<Vec<&str>> = cells
         .par_iter()
-        .map(|&(e, l, seed)| named(&hide(EFFECTS[e], LEVELS[l], scale), seed) == [EFFECTS[e]])
+        .map(|&(e, l, seed)| named(&hide(EFFECTS[e], LEVELS[l], scale), seed))
+        .collect();
+    let exact: Vec<bool> = (0..cells.len())
+        .map(|k| answers[k] == [EFFECTS[cells[k].0]])
+        .collect();
+    // A wrong name: something named that is not the hidden effect.
+    let wrong: Vec<usize> = (0..cells.len())
+        .filter(|&k| answers[k].iter().any(|n| *n != EFFECTS[cells[k].0]))
         .collect();
     let alarms: Vec<Vec<&str>> = (1..=SEEDS).into_par_iter().map(|s| named("", s)).collect();
     let false_alarms = alarms.iter().filter(|n| !n.is_empty()).count();
@@ -139,9 +146,26 @@ fn every_effect_at_5_percent_is_named_in_8_of_10_seeds_and_nothing_is_named_with
         "| nothing hidden: false alarms | {false_alarms}/10 {:?} |",
         alarms
     );
+    println!(
+        "wrong names in {} hidden-effect data sets: {}",
+        cells.len(),
+        wrong.len()
+    );
+    for &k in &wrong {
+        let (e, l, seed) = cells[k];
+        println!(
+            "  {} at {} %, seed {seed}: named {:?}",
+            EFFECTS[e],
+            100.0 * LEVELS[l],
+            answers[k]
+        );
+    }
     assert!(
         false_alarms <= 1,
         "false alarms {false_alarms}/10: {alarms:?}"
     );
     assert!(failures.is_empty(), "{failures:#?}");
+    // Never the nearest wrong name: below its power an effect goes unnamed, it is not
+    // mistaken for another.
+    assert!(wrong.is_empty(), "{} wrong names", wrong.len());
 }
