@@ -16,6 +16,7 @@
 
 mod cases;
 mod cost;
+mod harness;
 mod memory;
 mod out;
 mod vectors;
@@ -24,54 +25,14 @@ use cases::table::{self, MEMORY, STATES};
 use cases::{hcm_force, Fixture};
 use core::hint::black_box;
 use cortex_m_rt::entry;
-use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
+use cortex_m_semihosting::debug;
 use hcm_core::effect::ExtendedLaw;
 use hcm_core::law::{AnyNormalLaw, LawKind, NormalLaw};
 use hcm_core::wrench::ContactWrench;
-use out::Line;
 
 #[entry]
 fn main() -> ! {
-    memory::paint_stack();
-    let mut line = Line::new();
-    let counter = cortex_m::Peripherals::take().map(|p| cost::Counter::start(p.SYST));
-    let Ok(fixture) = Fixture::decode() else {
-        line.word("error blob").end();
-        exit(EXIT_FAILURE)
-    };
-    cases::evaluate_all(&fixture, &mut |group, item, bits| {
-        line.word("case ").word(group).word(".").word(item);
-        for &word in bits {
-            line.hex(word);
-        }
-        line.end();
-    });
-    if let Some(counter) = &counter {
-        line.word("calibration")
-            .decimal(counter.calibration_ticks)
-            .decimal(counter.calibration_instructions)
-            .end();
-        costs(counter, &fixture, &mut |group, item, n| {
-            line.word("cost ")
-                .word(group)
-                .word(".")
-                .word(item)
-                .decimal(n)
-                .end();
-        });
-    }
-    // usize is 32 bits on this target: the casts are lossless.
-    line.word("size flash")
-        .decimal(memory::flash_bytes() as u32)
-        .end();
-    line.word("size ram")
-        .decimal(memory::static_ram_bytes() as u32)
-        .end();
-    line.word("size stack")
-        .decimal(memory::peak_stack_bytes() as u32)
-        .end();
-    line.word("end").end();
-    exit(EXIT_SUCCESS)
+    harness::run(Fixture::decode, cases::evaluate_all, costs)
 }
 
 /// Instructions per evaluation of each law, effect, friction, the wrench, the
@@ -176,16 +137,9 @@ fn law_costs(counter: &cost::Counter, report: &mut dyn FnMut(&str, &str, u32)) {
     );
 }
 
-fn exit(status: debug::ExitStatus) -> ! {
-    debug::exit(status);
-    loop {
-        cortex_m::asm::bkpt();
-    }
-}
-
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
     // hcm-core never panics; should anything else, fail the run (the message would
     // cost kilobytes of formatting code).
-    exit(EXIT_FAILURE)
+    harness::exit(debug::EXIT_FAILURE)
 }

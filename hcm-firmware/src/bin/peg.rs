@@ -11,6 +11,8 @@
 
 #[path = "../cost.rs"]
 mod cost;
+#[path = "../harness.rs"]
+mod harness;
 #[path = "../memory.rs"]
 mod memory;
 #[path = "../out.rs"]
@@ -22,53 +24,13 @@ mod vectors;
 
 use core::hint::black_box;
 use cortex_m_rt::entry;
-use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
+use cortex_m_semihosting::debug;
 use hcm_core::rigid::RigidState;
-use out::Line;
 use peg::{peg_load, PegFixture, PEG_STATES};
 
 #[entry]
 fn main() -> ! {
-    memory::paint_stack();
-    let mut line = Line::new();
-    let counter = cortex_m::Peripherals::take().map(|p| cost::Counter::start(p.SYST));
-    let Ok(fixture) = PegFixture::decode() else {
-        line.word("error blob").end();
-        exit(EXIT_FAILURE)
-    };
-    peg::evaluate_all(&fixture, &mut |group, item, bits| {
-        line.word("case ").word(group).word(".").word(item);
-        for &word in bits {
-            line.hex(word);
-        }
-        line.end();
-    });
-    if let Some(counter) = &counter {
-        line.word("calibration")
-            .decimal(counter.calibration_ticks)
-            .decimal(counter.calibration_instructions)
-            .end();
-        costs(counter, &fixture, &mut |group, item, n| {
-            line.word("cost ")
-                .word(group)
-                .word(".")
-                .word(item)
-                .decimal(n)
-                .end();
-        });
-    }
-    // usize is 32 bits on this target: the casts are lossless.
-    line.word("size flash")
-        .decimal(memory::flash_bytes() as u32)
-        .end();
-    line.word("size ram")
-        .decimal(memory::static_ram_bytes() as u32)
-        .end();
-    line.word("size stack")
-        .decimal(memory::peak_stack_bytes() as u32)
-        .end();
-    line.word("end").end();
-    exit(EXIT_SUCCESS)
+    harness::run(PegFixture::decode, peg::evaluate_all, costs)
 }
 
 /// Instructions per evaluation of the peg's contact manifold, its residual and its
@@ -133,15 +95,8 @@ fn costs(counter: &cost::Counter, fixture: &PegFixture, report: &mut dyn FnMut(&
     );
 }
 
-fn exit(status: debug::ExitStatus) -> ! {
-    debug::exit(status);
-    loop {
-        cortex_m::asm::bkpt();
-    }
-}
-
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
     // hcm-core never panics; should anything else, fail the run.
-    exit(EXIT_FAILURE)
+    harness::exit(debug::EXIT_FAILURE)
 }
