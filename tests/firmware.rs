@@ -51,6 +51,12 @@ struct Report {
 }
 
 impl Report {
+    /// Instructions printed for `name` (`u32::MAX`, failing every budget, if none).
+    fn cost(&self, name: &str) -> u32 {
+        let found = self.costs.iter().find(|(n, _)| n == name);
+        found.map_or(u32::MAX, |c| c.1)
+    }
+
     fn size(&self, kind: &str) -> u32 {
         let found = self.sizes.iter().find(|(k, _)| k == kind);
         found
@@ -266,13 +272,7 @@ fn the_firmware_fits_its_flash_budget_and_reports_its_costs() {
     }
     // The targets on the Cortex-M4F. Instruction counts under `-icount` are a
     // property of the code, not of the machine's load: the same build counts the same.
-    let cost = |name: &str| {
-        report
-            .costs
-            .iter()
-            .find(|(n, _)| n == name)
-            .map_or(u32::MAX, |c| c.1)
-    };
+    let cost = |name: &str| report.cost(name);
     assert!(
         cost("hcm.f32") <= HCM_F32_BUDGET,
         "HCM f32: {} instructions > {HCM_F32_BUDGET}",
@@ -409,13 +409,7 @@ fn the_peg_image_evaluates_the_peg_hcm_as_the_host_does() {
     for kind in ["flash", "ram", "stack"] {
         println!("peg image {kind}: {} B", report.size(kind));
     }
-    let cost = |name: &str| {
-        report
-            .costs
-            .iter()
-            .find(|(n, _)| n == name)
-            .map_or(u32::MAX, |c| c.1)
-    };
+    let cost = |name: &str| report.cost(name);
     assert!(
         (10..u32::MAX).contains(&cost("peg_hcm.f32")),
         "no measurement of the peg HCM"
