@@ -642,3 +642,86 @@ fn camera_frames_with_empty_cells_are_read_and_diagnosed() {
     let d = diagnose(&base_model(&rig), &data, &DiagnoseSettings::default()).unwrap();
     assert!(d.causes.is_empty(), "{:#?}", d.causes);
 }
+
+/// What `hcm diagnose` answers on the paper's ball (Lankarani–Nikravesh, e = 0.9) when
+/// the base model holds another law, `base` (its stiffness and exponent the rig's).
+fn with_base(label: &str, base: Model, seed: u64) -> Diagnosis {
+    let data = read(&ball().record(RUNS, seed));
+    let settings = DiagnoseSettings {
+        hcm_epochs: 2,
+        ..DiagnoseSettings::default()
+    };
+    let d = diagnose(&base, &data, &settings).expect("diagnose runs");
+    println!(
+        "{label}: causes {:?}, ambiguous {:?}, unexplained {:.3}",
+        d.causes
+            .iter()
+            .map(|c| (
+                c.effect,
+                c.parameters.iter().map(|p| p.value).collect::<Vec<_>>()
+            ))
+            .collect::<Vec<_>>(),
+        d.ambiguous,
+        d.unexplained_share
+    );
+    d
+}
+
+#[test]
+fn a_hertz_base_on_damped_data_names_the_missing_damping_as_what_it_is() {
+    // Lankarani–Nikravesh's damping is k·δⁿ·3(1 − e²)/(4·δ̇0)·δ̇: a hysteresis damping
+    // with p = n = 1.5, missing from Hertz.
+    let rig = ball();
+    let hertz = Rig {
+        base: Base::Hertz,
+        ..rig.clone()
+    };
+    let d = with_base("LN data, Hertz base", base_model(&hertz), 91);
+    let names: Vec<&str> = d.causes.iter().map(|c| c.effect).collect();
+    assert_eq!(names, ["hysteresis_damping"], "{:#?}", d.causes);
+    let p = d.causes[0].parameters[1].value;
+    assert!((p - rig.exponent).abs() < 0.25, "p = {p}");
+}
+
+#[test]
+fn a_hunt_crossley_base_on_lankarani_nikravesh_data_lacks_nothing() {
+    // The same damping shape, k·δⁿ·χ·δ̇: re-tuning χ absorbs it, nothing is missing.
+    let rig = ball();
+    let chi = 3.0 * (1.0 - 0.9_f64.powi(2)) / (4.0 * rig.impact_speed);
+    let hunt_crossley = Rig {
+        base: Base::HuntCrossley(chi * 0.8),
+        ..rig
+    };
+    let d = with_base(
+        "LN data, Hunt–Crossley base",
+        base_model(&hunt_crossley),
+        92,
+    );
+    assert!(d.causes.is_empty(), "{:#?}", d.causes);
+    assert!(d.ambiguous.is_empty(), "{:?}", d.ambiguous);
+}
+
+#[test]
+fn an_impact_base_on_lankarani_nikravesh_data_names_no_wrong_cause() {
+    // IMPACT's damping ramps to d_max over δ_max and stays: not LN's δ^1.5·δ̇. A sensible
+    // answer names a damping term or nothing (unexplained), never another cause.
+    let rig = ball();
+    let (k, n) = (rig.stiffness(), rig.exponent);
+    let impact = base_model_with(
+        &rig,
+        &[
+            "contact.0.law=impact".to_owned(),
+            format!(
+                "contact.0.parameters={{ stiffness = {k:e}, exponent = {n:e}, max_damping = 1e4, full_damping_depth = 1e-5 }}"
+            ),
+        ],
+    );
+    let d = with_base("LN data, IMPACT base", impact, 93);
+    for cause in &d.causes {
+        assert!(
+            matches!(cause.effect, "hysteresis_damping" | "viscous_damping"),
+            "{:#?}",
+            d.causes
+        );
+    }
+}

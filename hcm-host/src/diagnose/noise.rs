@@ -98,6 +98,44 @@ fn median(values: &mut [f64]) -> f64 {
     }
 }
 
+/// The noise the naming rule judges against (N): the sensor's σ and, where the contact's
+/// motion was reconstructed (`dataset::reconstruct`), what that reconstruction's own
+/// uncertainty does to the model force, σ_eff² = σ² + mean over the contact of
+/// (∂f/∂δ·sd(δ))² + (∂f/∂δ̇·sd(δ̇))², the slopes of `law` by central differences.
+///
+/// A flight fit's δ error is one offset per run rather than white noise, so this is the
+/// conservative side of it: the criterion then asks more of every effect, and a term a
+/// few hundredths of a percent of the force (a δ offset's shape) is not named. On data
+/// whose motion shares every row with the force the sds are 0 and σ_eff = σ.
+pub fn effective_sigma(samples: &ContactSamples, law: &ExtendedLaw<f64>, sigma: f64) -> f64 {
+    let contact: Vec<usize> = (0..samples.len())
+        .filter(|&i| samples.in_contact[i])
+        .filter(|&i| samples.depth_sd[i] > 0.0 || samples.rate_sd[i] > 0.0)
+        .collect();
+    if contact.is_empty() {
+        return sigma;
+    }
+    let force = |i: usize, depth: f64, rate: f64| {
+        let (mut state, memory) = samples.state(i);
+        state.depth = depth;
+        state.rate = rate;
+        law.normal_force(&state, &memory)
+    };
+    let variance: f64 = contact
+        .iter()
+        .map(|&i| {
+            let (d, r) = (samples.depth[i], samples.rate[i]);
+            let (sd_d, sd_r) = (samples.depth_sd[i], samples.rate_sd[i]);
+            let slope_d = (force(i, d + sd_d, r) - force(i, d - sd_d, r)) / 2.0;
+            let slope_r = (force(i, d, r + sd_r) - force(i, d, r - sd_r)) / 2.0;
+            slope_d * slope_d + slope_r * slope_r
+        })
+        .filter(|v| v.is_finite())
+        .sum::<f64>()
+        / contact.len() as f64;
+    (sigma * sigma + variance).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -203,42 +241,4 @@ mod tests {
         assert_eq!(estimate.samples, 0);
         assert!(estimate.sigma.is_nan());
     }
-}
-
-/// The noise the naming rule judges against (N): the sensor's σ and, where the contact's
-/// motion was reconstructed (`dataset::reconstruct`), what that reconstruction's own
-/// uncertainty does to the model force, σ_eff² = σ² + mean over the contact of
-/// (∂f/∂δ·sd(δ))² + (∂f/∂δ̇·sd(δ̇))², the slopes of `law` by central differences.
-///
-/// A flight fit's δ error is one offset per run rather than white noise, so this is the
-/// conservative side of it: the criterion then asks more of every effect, and a term a
-/// few hundredths of a percent of the force (a δ offset's shape) is not named. On data
-/// whose motion shares every row with the force the sds are 0 and σ_eff = σ.
-pub fn effective_sigma(samples: &ContactSamples, law: &ExtendedLaw<f64>, sigma: f64) -> f64 {
-    let contact: Vec<usize> = (0..samples.len())
-        .filter(|&i| samples.in_contact[i])
-        .filter(|&i| samples.depth_sd[i] > 0.0 || samples.rate_sd[i] > 0.0)
-        .collect();
-    if contact.is_empty() {
-        return sigma;
-    }
-    let force = |i: usize, depth: f64, rate: f64| {
-        let (mut state, memory) = samples.state(i);
-        state.depth = depth;
-        state.rate = rate;
-        law.normal_force(&state, &memory)
-    };
-    let variance: f64 = contact
-        .iter()
-        .map(|&i| {
-            let (d, r) = (samples.depth[i], samples.rate[i]);
-            let (sd_d, sd_r) = (samples.depth_sd[i], samples.rate_sd[i]);
-            let slope_d = (force(i, d + sd_d, r) - force(i, d - sd_d, r)) / 2.0;
-            let slope_r = (force(i, d, r + sd_r) - force(i, d, r - sd_r)) / 2.0;
-            slope_d * slope_d + slope_r * slope_r
-        })
-        .filter(|v| v.is_finite())
-        .sum::<f64>()
-        / contact.len() as f64;
-    (sigma * sigma + variance).sqrt()
 }
