@@ -617,11 +617,25 @@ fn camera_frames_with_a_hidden_viscous_damping_name_it() {
 }
 
 #[test]
-#[ignore = "issue 16: names adhesion (31 N), a wrong name: with the motion reconstructed by integrating the (delayed) force, the delay moves the whole reconstructed contact; the touch-down must be anchored on the camera's flight fit instead"]
-fn camera_frames_with_a_sensor_delay_name_it() {
-    let (rig, name, index, truth) = hide(camera(), Effect::Delay, 0.05);
+fn camera_frames_behind_a_lagging_force_sensor_get_a_verdict_not_a_wrong_name() {
+    // The motion reconstructed by integrating the delayed force lands late on the
+    // camera's flight after the contact; judged on it, the residual would be named
+    // adhesion. The data-quality check sees the gap and names nothing. (Naming the delay
+    // itself would need the reconstruction re-done for each trial delay: not yet.)
+    let (rig, _, _, _) = hide(camera(), Effect::Delay, 0.05);
     let d = diagnosed("delay 5 %, camera rows with empty cells", &rig, 85);
-    named_alone(&d, name, index, truth, 0.15);
+    println!("{:?}", d.data_quality);
+    assert!(!d.data_quality.sufficient, "{:?}", d.data_quality);
+    assert!(d.causes.is_empty(), "{:#?}", d.causes);
+    assert!(
+        d.data_quality
+            .reasons
+            .iter()
+            .any(|r| r.contains("camera's flight")),
+        "{:?}",
+        d.data_quality.reasons
+    );
+    // Without the delay the same check passes (the viscous and no-effect camera tests).
 }
 
 #[test]

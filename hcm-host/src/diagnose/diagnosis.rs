@@ -107,6 +107,26 @@ fn subset(data: &Dataset, runs: &[usize]) -> Dataset {
     }
 }
 
+/// |integrated − after-flight position| over its standard deviation, largest axis, for
+/// every contact a reconstruction integrated through (none for complete data).
+fn reconstruction_gaps(completed: &crate::dataset::reconstruct::Completed<'_>) -> Vec<f64> {
+    completed
+        .tracks
+        .iter()
+        .flatten()
+        .flatten()
+        .flat_map(|track| &track.contacts)
+        .filter_map(|check| check.position_gap)
+        .map(|(gap, sd)| {
+            gap.iter()
+                .zip(sd)
+                .filter(|(_, sd)| *sd > 0.0)
+                .map(|(g, sd)| g.abs() / sd)
+                .fold(0.0, f64::max)
+        })
+        .collect()
+}
+
 /// Diagnoses contact `settings.contact` of `base` (the scenario with the base physics
 /// applied) against `data`.
 pub fn diagnose(
@@ -137,7 +157,8 @@ pub fn diagnose(
     // suggests at first order. The decision is taken on full re-fits (`naming`).
     let selection = select(&samples, &law, sigma);
     // Data that cannot show a shape get no cause, only the reasons why.
-    let quality = assess(&samples, sigma);
+    let mut quality = assess(&samples, sigma);
+    quality.check_reconstruction(&reconstruction_gaps(&completed));
     // What the contact's reconstruction (camera-rate motion) adds to the noise.
     let judged_sigma = super::noise::effective_sigma(&samples, &law, sigma);
     let naming = if quality.sufficient {

@@ -22,6 +22,12 @@ pub const MIN_CONTACT_SAMPLES: usize = 10;
 pub const MIN_PEAK_TO_NOISE: f64 = 10.0;
 /// Least number of runs with a contact (–).
 pub const MIN_CONTACTS: usize = 2;
+/// Most standard deviations (median over contacts) by which the motion integrated
+/// through a contact may miss the camera's flight after it (–). On consistent data each
+/// contact's gap is a half-normal deviate (median 0.67); a median above 3 over several
+/// contacts does not happen by chance (one contact exceeds 3 with probability 0.003).
+/// Measured on the rig (tests/diagnose_rig.rs): 0.8 without a delay, 4.0 with a 2.4 µs one.
+pub const MAX_GAP_SIGMAS: f64 = 3.0;
 
 /// The verdict on the data, with the figures behind it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -36,6 +42,32 @@ pub struct DataQuality {
     pub samples_per_contact: usize,
     /// Median over those runs of the peak measured force over σ (–).
     pub peak_to_noise: f64,
+    /// Where the motion was reconstructed from camera frames and the force: the median
+    /// over contacts of |integrated − after-flight position| in its standard deviations
+    /// (–); `None` for data whose motion and force share every row.
+    pub reconstruction_gap: Option<f64>,
+}
+
+impl DataQuality {
+    /// Adds the reconstruction's check: `gaps` holds, per contact integrated through,
+    /// |integrated − after-flight position| over its standard deviation (–). The force
+    /// integrated from the flight before must land on the flight filmed after; when it
+    /// misses by more than [`MAX_GAP_SIGMAS`] the force and the frames disagree in time
+    /// or scale — a sensor delay, a clock offset, a wrong mass — and the contact's
+    /// reconstructed motion, which every cause would be judged on, cannot be trusted.
+    pub fn check_reconstruction(&mut self, gaps: &[f64]) {
+        if gaps.is_empty() {
+            return;
+        }
+        let gap = median(gaps.to_vec());
+        self.reconstruction_gap = Some(gap);
+        if gap.is_nan() || gap > MAX_GAP_SIGMAS {
+            self.reasons.push(format!(
+                "the motion integrated through the contacts misses the camera's flight after them by {gap:.1} standard deviations (median): the force and the frames disagree in time or scale (a sensor delay, a clock offset, a wrong mass), so the contact's motion cannot be trusted"
+            ));
+            self.sufficient = false;
+        }
+    }
 }
 
 /// The median of `values` (0 for none).
@@ -84,5 +116,6 @@ pub fn assess(samples: &ContactSamples, sigma: f64) -> DataQuality {
         contacts: touched.len(),
         samples_per_contact,
         peak_to_noise,
+        reconstruction_gap: None,
     }
 }
