@@ -596,7 +596,8 @@ fn filmed_motion_with_viscous_damping_names_it() {
 }
 
 /// The paper's ball filmed at 20 kfps (3 µm noise, no velocity), the camera's rows and
-/// the force sensor's (1 MHz) in one file with empty cells, 2 ms of flight on each side.
+/// the force sensor's (1 MHz) in one file with empty cells, 2 ms of flight on each side
+/// (40 frames to fit the flight before and after each contact).
 fn camera() -> Rig {
     Rig {
         motion: Motion::Camera {
@@ -640,16 +641,7 @@ fn camera_frames_behind_a_lagging_force_sensor_get_a_verdict_not_a_wrong_name() 
 
 #[test]
 fn camera_frames_with_empty_cells_are_read_and_diagnosed() {
-    // 2 ms of flight filmed on each side: 40 frames to fit the flight before and after.
-    let rig = Rig {
-        motion: Motion::Camera {
-            frame_rate: 20e3,
-            position_noise: 3e-6,
-            velocity_noise: None,
-        },
-        margin: 2e-3,
-        ..ball()
-    };
+    let rig = camera();
     let recording = rig.record(RUNS, 83);
     let data = Dataset::from_reader("camera.csv", recording.csv.as_bytes());
     let data = data.expect("empty cells read as not sampled");
