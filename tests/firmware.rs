@@ -81,15 +81,18 @@ fn firmware() -> &'static Report {
 /// Runs the peg's image (`--bin peg`) once for all tests here.
 fn peg_firmware() -> &'static Report {
     static REPORT: OnceLock<Result<Report, String>> = OnceLock::new();
-    let run =
-        || run_firmware().and_then(|_| cargo_run(&firmware_dir(), &["--bin", "peg"], "firmware"));
-    match REPORT.get_or_init(run) {
+    match REPORT.get_or_init(|| run_image(&["--bin", "peg"])) {
         Ok(report) => report,
         Err(why) => panic!("{why}"),
     }
 }
 
 fn run_firmware() -> Result<Report, String> {
+    run_image(&[])
+}
+
+/// Runs the image `args` select (none: the ball's) under QEMU, which must be installed.
+fn run_image(args: &[&str]) -> Result<Report, String> {
     let qemu = Command::new("qemu-system-arm").arg("--version").output();
     if !qemu.is_ok_and(|out| out.status.success()) {
         return Err(
@@ -99,7 +102,7 @@ fn run_firmware() -> Result<Report, String> {
         );
     }
     // Run in its directory, whose .cargo/config.toml names the target and the runner.
-    cargo_run(&firmware_dir(), &[], "firmware")
+    cargo_run(&firmware_dir(), args, "firmware")
 }
 
 /// `cargo run --release` in `dir` with `args`, in a target directory `name` of its own

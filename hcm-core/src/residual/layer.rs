@@ -227,7 +227,7 @@ const BLOCK: usize = 16;
 /// The input count is a slice length, not a const generic, and the storage format is
 /// not a parameter: every layer with the same output count and activation — a 3-16
 /// input layer, a 16-16 hidden layer, f32 or int8 — shares one copy of this code,
-/// which keeps the eight activations inlined per block within the firmware's flash.
+/// which keeps the sixteen activations inlined per block within the firmware's flash.
 #[inline(never)]
 fn affine<const OUT: usize, A: Fn(f32) -> f32>(
     weights: &[[f32; OUT]],

@@ -83,6 +83,16 @@ impl Completed<'_> {
         self.tracks.iter().flatten().any(Option::is_some)
     }
 
+    /// Runs `runs` (indices) of the data with their reconstructions, in that order.
+    pub fn subset(&self, runs: &[usize]) -> Completed<'static> {
+        Completed {
+            data: Cow::Owned(Dataset {
+                runs: runs.iter().map(|&r| self.data.runs[r].clone()).collect(),
+            }),
+            tracks: runs.iter().map(|&r| self.tracks[r].clone()).collect(),
+        }
+    }
+
     /// The reconstruction of body `body` in run `run` (index), if it was reconstructed.
     pub fn track(&self, run: usize, body: &str) -> Option<&TrackReconstruction> {
         let index = self.data.runs[run]

@@ -5,10 +5,11 @@ use super::gain::{gain, group_table, holdout, GainTable, Holdout, Judged};
 use super::naming::{name_causes, unnamed, NotAccepted, Trial};
 use super::noise::{noise_floor, NoiseFloor};
 use super::quality::{assess, DataQuality};
+use super::samples::contact_samples_of;
 use super::select::{select, Cause, Fitted, Step};
 use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
-use super::{contact_samples, ContactSamples};
+use super::ContactSamples;
 use crate::dataset::Dataset;
 use crate::export::encode;
 use crate::identify::samples::force_samples;
@@ -101,32 +102,6 @@ pub struct RunSplit {
     pub condition: Option<String>,
 }
 
-fn subset(data: &Dataset, runs: &[usize]) -> Dataset {
-    Dataset {
-        runs: runs.iter().map(|&r| data.runs[r].clone()).collect(),
-    }
-}
-
-/// |integrated − after-flight position| over its standard deviation, largest axis, for
-/// every contact a reconstruction integrated through (none for complete data).
-fn reconstruction_gaps(completed: &crate::dataset::reconstruct::Completed<'_>) -> Vec<f64> {
-    completed
-        .tracks
-        .iter()
-        .flatten()
-        .flatten()
-        .flat_map(|track| &track.contacts)
-        .filter_map(|check| check.position_gap)
-        .map(|(gap, sd)| {
-            gap.iter()
-                .zip(sd)
-                .filter(|(_, sd)| *sd > 0.0)
-                .map(|(g, sd)| g.abs() / sd)
-                .fold(0.0, f64::max)
-        })
-        .collect()
-}
-
 /// Diagnoses contact `settings.contact` of `base` (the scenario with the base physics
 /// applied) against `data`.
 pub fn diagnose(
@@ -137,7 +112,6 @@ pub fn diagnose(
     let c = settings.contact;
     // Motion at a camera's frames and force at the sensor's rate become full rows once,
     // here (`dataset::reconstruct`): the gain, the sensor and the HCM read them too.
-    let raw = data;
     let completed = crate::dataset::reconstruct::complete(base, data)?;
     let data: &Dataset = &completed.data;
     let Holdout {
@@ -145,10 +119,11 @@ pub fn diagnose(
         held_out,
         condition,
     } = holdout(base, data, settings.seed, settings.holdout_fraction);
-    let fit_data = subset(data, &training);
-    // From the recorded runs, so that each sample carries its reconstruction's
-    // uncertainty (0 where motion and force share every row).
-    let samples: ContactSamples = contact_samples(base, &subset(raw, &training), c)?;
+    // The training runs with their reconstructions, so that each sample carries its
+    // reconstruction's uncertainty (0 where motion and force share every row).
+    let fitted = completed.subset(&training);
+    let fit_data: &Dataset = &fitted.data;
+    let samples: ContactSamples = contact_samples_of(base, &fitted, c)?;
     let noise = noise_floor(&samples);
     let sigma = noise.sigma;
     let law = base.contacts[c].model.normal.clone();
@@ -158,7 +133,7 @@ pub fn diagnose(
     let selection = select(&samples, &law, sigma);
     // Data that cannot show a shape get no cause, only the reasons why.
     let mut quality = assess(&samples, sigma);
-    quality.check_reconstruction(&reconstruction_gaps(&completed));
+    quality.check_reconstruction(&completed);
     // What the contact's reconstruction (camera-rate motion) adds to the noise.
     let judged_sigma = super::noise::effective_sigma(&samples, &law, sigma);
     let naming = if quality.sufficient {
@@ -200,7 +175,7 @@ pub fn diagnose(
     if let Some(air_drag) = drag.as_ref().and_then(|d| d.air_drag()) {
         extended.bodies[base.contacts[c].body_1].air_drag = Some(air_drag);
     }
-    let hcm = hcm_contact(base, &fit_data, c, settings)?.map(|contact| {
+    let hcm = hcm_contact(base, fit_data, c, settings)?.map(|contact| {
         let mut model = base.clone();
         model.contacts[c] = contact;
         model

@@ -35,7 +35,7 @@
 //! [`structure`]: super::structure::residual_structure
 
 use super::catalogue::{Candidate, CATALOGUE};
-use super::select::{refit, Fitted, Refit};
+use super::select::{parameters, refit, Fitted, Refit};
 use super::structure::{residual_structure, Structure};
 use super::ContactSamples;
 use hcm_core::effect::ExtendedLaw;
@@ -147,8 +147,12 @@ fn structure_of(samples: &ContactSamples, fit: &Refit, sigma: f64) -> Structure 
 pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Naming {
     let threshold = (samples.len().max(2) as f64).ln();
     let mut chosen: Vec<(Candidate, f64)> = Vec::new();
-    let mut fit = refit(samples, base, &chosen, sigma);
-    let mut after = structure_of(samples, &fit, sigma);
+    // The base re-tuned alone: the first step's reference, and the answer when nothing
+    // is named.
+    let base_fit = refit(samples, base, &chosen, sigma);
+    let base_after = structure_of(samples, &base_fit, sigma);
+    let mut fit = base_fit.clone();
+    let mut after = base_after.clone();
     let mut steps = Vec::new();
     let mut not_accepted = Vec::new();
     let mut ambiguous = Vec::new();
@@ -167,20 +171,18 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
         // ties keep catalogue order (a stable sort).
         let criterion = |k: usize| {
             let ((_, shape), trial) = &trials[k];
-            let parameters = if shape.is_nan() { 1.0 } else { 2.0 };
-            trial.rss / (sigma * sigma) + threshold * parameters
+            trial.rss / (sigma * sigma) + threshold * parameters(*shape)
         };
         let mut order: Vec<usize> = (0..trials.len()).collect();
         order.sort_by(|&a, &b| criterion(a).total_cmp(&criterion(b)));
         let judge = |k: usize| {
             let ((candidate, shape), trial) = &trials[k];
-            let parameters = if shape.is_nan() { 1.0 } else { 2.0 };
             Trial {
                 effect: candidate.name(),
                 rss: (fit.rss, trial.rss),
                 bic: (
                     (fit.rss - trial.rss) / (sigma * sigma),
-                    threshold * parameters,
+                    threshold * parameters(*shape),
                 ),
                 determined: determined(trial),
                 accepted: false,
@@ -194,7 +196,7 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
         let Some(k) = passing else {
             if let Some(&best) = order.first() {
                 let t = judge(best);
-                not_accepted.push(rejected(&trials[best].1, &t, sigma));
+                not_accepted.push(rejected(&trials[best].1, &t));
                 steps.push(t);
             }
             break;
@@ -217,11 +219,11 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
             };
             not_accepted.push(NotAccepted {
                 reason: why(best.effect, other.effect),
-                ..rejected(&trials[k].1, &best, sigma)
+                ..rejected(&trials[k].1, &best)
             });
             not_accepted.push(NotAccepted {
                 reason: why(other.effect, best.effect),
-                ..rejected(&trials[m].1, &other, sigma)
+                ..rejected(&trials[m].1, &other)
             });
             ambiguous = vec![best.effect, other.effect];
             provisional = Some(trials[k].0);
@@ -256,15 +258,15 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
         else {
             break;
         };
-        let parameters = if chosen[k].1.is_nan() { 1.0 } else { 2.0 };
+        let penalty = threshold * parameters(chosen[k].1);
         let loss = (weaker.rss - fit.rss) / (sigma * sigma);
-        if loss > threshold * parameters {
+        if loss > penalty {
             break;
         }
         steps.push(Trial {
             effect: chosen[k].0.name(),
             rss: (weaker.rss, fit.rss),
-            bic: (loss, threshold * parameters),
+            bic: (loss, penalty),
             determined: true,
             accepted: false,
         });
@@ -287,8 +289,8 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
         }
         chosen.clear();
         provisional = None;
-        fit = refit(samples, base, &chosen, sigma);
-        after = structure_of(samples, &fit, sigma);
+        fit = base_fit;
+        after = base_after;
     }
     Naming {
         chosen,
@@ -320,8 +322,7 @@ pub fn unnamed(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) ->
 }
 
 /// The best trial of a step that stopped, as not accepted.
-fn rejected(trial: &Refit, t: &Trial, sigma: f64) -> NotAccepted {
-    let _ = sigma;
+fn rejected(trial: &Refit, t: &Trial) -> NotAccepted {
     let reason = if t.bic.0 <= t.bic.1 {
         format!(
             "its RSS drop, {:.1}·σ², is below the information criterion's {:.1}·σ²",

@@ -85,7 +85,7 @@ fn uniform_clock(t: &[f64]) -> bool {
 }
 
 /// The median of `values` (reordered in place); NaN when empty.
-fn median(values: &mut [f64]) -> f64 {
+pub(super) fn median(values: &mut [f64]) -> f64 {
     let n = values.len();
     if n == 0 {
         return f64::NAN;

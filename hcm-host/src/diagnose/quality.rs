@@ -13,7 +13,9 @@
 //! - too few contacts: fewer than [`MIN_CONTACTS`] runs with a contact leave nothing to
 //!   cross-check a cause on.
 
+use super::noise::median;
 use super::ContactSamples;
+use crate::dataset::reconstruct::Completed;
 use serde::Serialize;
 
 /// Least median number of force samples per contact (–).
@@ -26,7 +28,8 @@ pub const MIN_CONTACTS: usize = 2;
 /// through a contact may miss the camera's flight after it (–). On consistent data each
 /// contact's gap is a half-normal deviate (median 0.67); a median above 3 over several
 /// contacts does not happen by chance (one contact exceeds 3 with probability 0.003).
-/// Measured on the rig (tests/diagnose_rig.rs): 0.8 without a delay, 4.0 with a 2.4 µs one.
+/// Measured on the rig (tests/diagnose_rig.rs, camera rows): 0.88 without an effect, 3.9 with
+/// a 2.4 µs sensor delay.
 pub const MAX_GAP_SIGMAS: f64 = 3.0;
 
 /// The verdict on the data, with the figures behind it.
@@ -49,17 +52,34 @@ pub struct DataQuality {
 }
 
 impl DataQuality {
-    /// Adds the reconstruction's check: `gaps` holds, per contact integrated through,
-    /// |integrated − after-flight position| over its standard deviation (–). The force
-    /// integrated from the flight before must land on the flight filmed after; when it
-    /// misses by more than [`MAX_GAP_SIGMAS`] the force and the frames disagree in time
-    /// or scale — a sensor delay, a clock offset, a wrong mass — and the contact's
-    /// reconstructed motion, which every cause would be judged on, cannot be trusted.
-    pub fn check_reconstruction(&mut self, gaps: &[f64]) {
+    /// Adds the reconstruction's check (`completed`, [`crate::dataset::reconstruct`]):
+    /// per contact integrated through, |integrated − after-flight position| over its
+    /// standard deviation, the largest axis (–). The force integrated from the flight
+    /// before must land on the flight filmed after; when it misses by more than
+    /// [`MAX_GAP_SIGMAS`] the force and the frames disagree in time or scale — a sensor
+    /// delay, a clock offset, a wrong mass — and the contact's reconstructed motion,
+    /// which every cause would be judged on, cannot be trusted. Complete data (nothing
+    /// reconstructed) add nothing.
+    pub fn check_reconstruction(&mut self, completed: &Completed<'_>) {
+        let mut gaps: Vec<f64> = completed
+            .tracks
+            .iter()
+            .flatten()
+            .flatten()
+            .flat_map(|track| &track.contacts)
+            .filter_map(|check| check.position_gap)
+            .map(|(gap, sd)| {
+                gap.iter()
+                    .zip(sd)
+                    .filter(|(_, sd)| *sd > 0.0)
+                    .map(|(g, sd)| g.abs() / sd)
+                    .fold(0.0, f64::max)
+            })
+            .collect();
         if gaps.is_empty() {
             return;
         }
-        let gap = median(gaps.to_vec());
+        let gap = median(&mut gaps);
         self.reconstruction_gap = Some(gap);
         if gap.is_nan() || gap > MAX_GAP_SIGMAS {
             self.reasons.push(format!(
@@ -68,12 +88,6 @@ impl DataQuality {
             self.sufficient = false;
         }
     }
-}
-
-/// The median of `values` (0 for none).
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values.get(values.len() / 2).copied().unwrap_or(0.0)
 }
 
 /// Checks `samples` (noise σ in N) against the floors of the module documentation.
@@ -87,8 +101,11 @@ pub fn assess(samples: &ContactSamples, sigma: f64) -> DataQuality {
         peaks[r] = peaks[r].max(samples.measured[i].abs());
     }
     let touched: Vec<usize> = (0..runs).filter(|&r| counts[r] > 0).collect();
-    let samples_per_contact = median(touched.iter().map(|&r| counts[r] as f64).collect()) as usize;
-    let peak_to_noise = median(touched.iter().map(|&r| peaks[r] / sigma).collect());
+    // No contact: NaN, which both floors below refuse (NaN as usize is 0).
+    let mut per_contact: Vec<f64> = touched.iter().map(|&r| counts[r] as f64).collect();
+    let samples_per_contact = median(&mut per_contact) as usize;
+    let mut ratios: Vec<f64> = touched.iter().map(|&r| peaks[r] / sigma).collect();
+    let peak_to_noise = median(&mut ratios);
     let mut reasons = Vec::new();
     if touched.len() < MIN_CONTACTS {
         reasons.push(format!(

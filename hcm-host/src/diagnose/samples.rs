@@ -114,7 +114,19 @@ pub fn contact_samples(
     if data.runs.is_empty() {
         return Err(IdentifyError::NoData);
     }
-    let completed = complete(model, data)?;
+    contact_samples_of(model, &complete(model, data)?, c)
+}
+
+/// [`contact_samples`] of data already completed ([`complete`]): for a caller that needs
+/// the completed data too, so that nothing is reconstructed twice.
+pub fn contact_samples_of(
+    model: &Model,
+    completed: &Completed<'_>,
+    c: usize,
+) -> Result<ContactSamples, IdentifyError> {
+    if completed.data.runs.is_empty() {
+        return Err(IdentifyError::NoData);
+    }
     let mut out = ContactSamples::default();
     for (r, run) in completed.data.runs.iter().enumerate() {
         let history = contact_history(model, run, c)?;
@@ -132,7 +144,7 @@ pub fn contact_samples(
                 event[i] = Some(e);
             }
         }
-        let spread = Spread::new(model, &completed, r, c);
+        let spread = Spread::new(model, completed, r, c);
         let mut deepest = 0.0_f64;
         let mut current = None;
         for (i, &here) in event.iter().enumerate() {

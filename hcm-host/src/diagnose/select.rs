@@ -209,6 +209,16 @@ impl FoldReductions {
     }
 }
 
+/// The parameters an effect adds to a model (–): its strength, and its shape if it has
+/// one (`shape` is NaN for effects without).
+pub fn parameters(shape: f64) -> f64 {
+    if shape.is_nan() {
+        1.0
+    } else {
+        2.0
+    }
+}
+
 /// Whether one effect earns its place: the three tests of the module documentation,
 /// comparing the model without it against the model with it.
 struct Verdict {
@@ -232,7 +242,7 @@ impl Verdict {
         structured: f64,
         threshold: f64,
     ) -> Verdict {
-        let parameters = if shape.is_nan() { 1.0 } else { 2.0 };
+        let parameters = parameters(shape);
         let gain = (without.0 - with.0) / (sigma * sigma);
         let share = (without.0 - with.0) / structured;
         Verdict {
