@@ -78,10 +78,19 @@ fn firmware() -> &'static Report {
     }
 }
 
-/// Runs the peg's image (`--bin peg`) once for all tests here.
-fn peg_firmware() -> &'static Report {
+/// Runs the peg's image with f32 weights (`--bin peg-f32`) once for all tests here.
+fn peg_f32_firmware() -> &'static Report {
     static REPORT: OnceLock<Result<Report, String>> = OnceLock::new();
-    match REPORT.get_or_init(|| run_image(&["--bin", "peg"])) {
+    match REPORT.get_or_init(|| run_image(&["--bin", "peg-f32"])) {
+        Ok(report) => report,
+        Err(why) => panic!("{why}"),
+    }
+}
+
+/// The same with int8 weights (`--bin peg-int8`).
+fn peg_int8_firmware() -> &'static Report {
+    static REPORT: OnceLock<Result<Report, String>> = OnceLock::new();
+    match REPORT.get_or_init(|| run_image(&["--bin", "peg-int8"])) {
         Ok(report) => report,
         Err(why) => panic!("{why}"),
     }
@@ -342,9 +351,9 @@ fn the_case_table_exercises_the_residual_and_a_real_bounce() {
     assert!(apex > lift_off);
 }
 
-/// The host's f32 evaluation of the peg's table.
-fn host_peg_cases() -> Vec<(String, Vec<u32>)> {
-    let fixture = peg::PegFixture::decode().expect("the peg's blobs decode on the host");
+/// The host's f32 evaluation of the peg's table with `Q` weights.
+fn host_peg_cases<Q: peg::PegWeights>() -> Vec<(String, Vec<u32>)> {
+    let fixture = peg::PegFixture::<Q>::decode().expect("the peg's blob decodes on the host");
     let mut out = Vec::new();
     peg::evaluate_all(&fixture, &mut |group, item, bits| {
         out.push((format!("{group}.{item}"), bits.to_vec()));
@@ -352,9 +361,10 @@ fn host_peg_cases() -> Vec<(String, Vec<u32>)> {
     out
 }
 
-#[test]
-fn the_peg_image_evaluates_the_peg_hcm_as_the_host_does() {
-    let (target, host) = (&peg_firmware().cases, host_peg_cases());
+/// Compares one peg image's table with the host's (`Q` weights) and prints its costs
+/// and sizes.
+fn check_peg_image<Q: peg::PegWeights>(report: &Report) {
+    let (target, host) = (&report.cases, host_peg_cases::<Q>());
     // The table exercises what it should: points and the residual in the four wall
     // states, no point in flight, physics only outside the envelope (host values).
     let word = |name: &str, i: usize| {
@@ -363,26 +373,28 @@ fn the_peg_image_evaluates_the_peg_hcm_as_the_host_does() {
             .map_or(u32::MAX, |(_, bits)| bits[i])
     };
     let names = peg::STATE_NAMES;
+    let group = Q::LOAD_GROUP;
     let on: Vec<u32> = names
         .iter()
-        .map(|s| word(&format!("peg_f32.{s}"), 8))
+        .map(|s| word(&format!("{group}.{s}"), 8))
         .collect();
     let points: Vec<u32> = names
         .iter()
-        .map(|s| word(&format!("peg_f32.{s}"), 7))
+        .map(|s| word(&format!("{group}.{s}"), 7))
         .collect();
     assert_eq!(on, [1, 1, 1, 1, 0, 0], "residual on per state");
     assert!(
         points[..4].iter().all(|&p| p > 0) && points[4] == 0 && points[5] > 0,
         "touching points per state: {points:?}"
     );
+    assert_eq!(target.len(), host.len(), "{group}: lines printed vs host");
     let differing = differences(target, &host);
     for (name, i, t, h) in &differing {
         let (tf, hf) = (f32::from_bits(*t), f32::from_bits(*h));
         println!("{name}[{i}]: target {t:08x} ({tf:e}), host {h:08x} ({hf:e})");
         // The inputs and the residual's outputs involve no pow: bit for bit.
         assert!(
-            name.starts_with("peg_f32.") || name.starts_with("peg_int8."),
+            name.starts_with(&format!("{group}.")),
             "{name}[{i}] uses no powf and must be bit-identical"
         );
         assert!(*i < 7, "{name}[{i}] is a count or flag: {t} ≠ {h}");
@@ -401,26 +413,46 @@ fn the_peg_image_evaluates_the_peg_hcm_as_the_host_does() {
     }
     let values: usize = host.iter().map(|c| c.1.len()).sum();
     println!(
-        "peg: {values} values in {} lines compared, {} bit-identical",
+        "peg {}: {values} values in {} lines compared, {} bit-identical",
+        Q::NAME,
         host.len(),
         values - differing.len()
     );
-    let report = peg_firmware();
     for (name, n) in &report.costs {
         println!("| {name} | {n} |");
     }
     for kind in ["flash", "ram", "stack"] {
-        println!("peg image {kind}: {} B", report.size(kind));
+        println!("peg {} image {kind}: {} B", Q::NAME, report.size(kind));
     }
-    let cost = |name: &str| report.cost(name);
+    let flash = report.size("flash");
     assert!(
-        (10..u32::MAX).contains(&cost("peg_hcm.f32")),
+        flash <= FLASH_BUDGET,
+        "peg {} image flash {flash} B > budget {FLASH_BUDGET} B",
+        Q::NAME
+    );
+    let cost = report.cost(&format!("peg_hcm.{}", Q::NAME));
+    assert!(
+        (10..u32::MAX).contains(&cost),
         "no measurement of the peg HCM"
     );
+}
+
+#[test]
+fn the_peg_f32_image_evaluates_the_peg_hcm_as_the_host_does() {
+    check_peg_image::<hcm_core::residual::F32Weights>(peg_f32_firmware());
+}
+
+#[test]
+fn the_peg_int8_image_evaluates_the_peg_hcm_as_the_host_does() {
+    check_peg_image::<hcm_core::residual::Int8Weights>(peg_int8_firmware());
+}
+
+#[test]
+fn the_peg_hcm_costs_no_more_with_int8_weights() {
+    let f32_cost = peg_f32_firmware().cost("peg_hcm.f32");
+    let int8_cost = peg_int8_firmware().cost("peg_hcm.int8");
     assert!(
-        cost("peg_hcm.int8") <= cost("peg_hcm.f32") + 1,
-        "peg HCM int8 {} > f32 {}",
-        cost("peg_hcm.int8"),
-        cost("peg_hcm.f32")
+        int8_cost <= f32_cost + 1,
+        "peg HCM int8 {int8_cost} > f32 {f32_cost}"
     );
 }

@@ -1,16 +1,19 @@
 //! The peg-in-hole's hybrid model (issue 15) on the controller, compiled twice like the
-//! ball's table (`../cases`): into the `peg` firmware image (`cargo run --release --bin
-//! peg`) and into the host test `tests/firmware.rs`, which evaluates the same states in
-//! f32 on the host and requires every printed bit pattern to match.
+//! ball's table (`../cases`): into the peg's firmware images and into the host test
+//! `tests/firmware.rs`, which evaluates the same states in f32 on the host and requires
+//! every printed bit pattern to match.
 //!
 //! For each peg state it runs the whole HCM as the simulator does, in `f32`: the peg's
 //! box against the block's five boxes (`hcm_core::geometry::compound`), each touching
 //! point's indentation rate from the peg's motion, IMPACT + STEP friction at every
 //! point summed by Eq 1, and the residual wrench (the 13-32-32-6 network of
-//! `examples/blobs/peg_in_hole.*.hcm`, f32 and int8 weights) at the peg's centre of
-//! mass (`ContactModel::pair_load`). Its own image: the two peg blobs (11.3 kB) and the
-//! box geometry do not fit beside the ball's table in the 32 KiB the issue allows one
-//! image.
+//! `examples/blobs/peg_in_hole.*.hcm`) at the peg's centre of mass
+//! (`ContactModel::pair_load`).
+//!
+//! One image per weight format (`cargo run --release --bin peg-f32`, `--bin
+//! peg-int8`), as a controller ships the one network it runs: with both blobs (11.3 kB)
+//! one image was 38,968 B, over the 32 KiB the issue allows a firmware; each alone fits
+//! (the README's controller section has the sizes).
 
 mod states;
 
@@ -19,23 +22,43 @@ use hcm_core::friction::VelocityStepFriction;
 use hcm_core::geometry::{compound, Cuboid};
 use hcm_core::law::{AnyNormalLaw, Impact, Indentation};
 use hcm_core::model::{ContactModel, ContactPoint, Evaluated, Manifold, PairLoad, Residual};
-use hcm_core::residual::{decode, BlobError, Int8Weights, Mlp};
+use hcm_core::residual::{decode, BlobError, F32Weights, Int8Weights, Mlp, WeightFormat};
 use hcm_core::rigid::RigidState;
 use nalgebra::{UnitQuaternion, Vector3};
 pub use states::{PEG_STATES, STATE_NAMES};
 
-/// The peg's exported residual, f32 weights (`hcm reproduce peg-in-hole`).
-pub static PEG_F32_BLOB: &[u8] = include_bytes!("../../../examples/blobs/peg_in_hole.f32.hcm");
-/// Its int8 twin.
-pub static PEG_INT8_BLOB: &[u8] = include_bytes!("../../../examples/blobs/peg_in_hole.int8.hcm");
-
 /// The peg's residual: 13 inputs (position (m), orientation quaternion w, x, y, z (–),
 /// velocity (m/s), body-frame angular velocity (rad/s)), two hidden layers of 32, six
 /// outputs (force (N) and torque (N·m) error on the peg, world frame, about its centre
-/// of mass).
-pub type PegResidual = Mlp<13, 32, 6, 2>;
-/// The same network with int8 hidden → hidden weights.
-pub type PegResidualInt8 = Mlp<13, 32, 6, 2, Int8Weights>;
+/// of mass), weights stored as `Q`.
+pub type PegResidual<Q> = Mlp<13, 32, 6, 2, Q>;
+
+/// A weight format the peg's residual was exported in: its blob (`hcm reproduce
+/// peg-in-hole`, shipped in `examples/blobs/`) and the names its results print under.
+pub trait PegWeights: WeightFormat {
+    /// The exported blob.
+    const BLOB: &'static [u8];
+    /// The format's name in the printed lines (`f32`, `int8`).
+    const NAME: &'static str;
+    /// Group of the HCM's loads: `peg_` + [`PegWeights::NAME`].
+    const LOAD_GROUP: &'static str;
+    /// Group of the residual's raw outputs: `peg_residual_` + [`PegWeights::NAME`].
+    const RESIDUAL_GROUP: &'static str;
+}
+
+impl PegWeights for F32Weights {
+    const BLOB: &'static [u8] = include_bytes!("../../../examples/blobs/peg_in_hole.f32.hcm");
+    const NAME: &'static str = "f32";
+    const LOAD_GROUP: &'static str = "peg_f32";
+    const RESIDUAL_GROUP: &'static str = "peg_residual_f32";
+}
+
+impl PegWeights for Int8Weights {
+    const BLOB: &'static [u8] = include_bytes!("../../../examples/blobs/peg_in_hole.int8.hcm");
+    const NAME: &'static str = "int8";
+    const LOAD_GROUP: &'static str = "peg_int8";
+    const RESIDUAL_GROUP: &'static str = "peg_residual_int8";
+}
 
 /// Where results go: group, item, raw bits (as in `../cases`).
 pub type Emit<'a> = &'a mut dyn FnMut(&str, &str, &[u32]);
@@ -74,24 +97,20 @@ pub fn peg_friction() -> VelocityStepFriction<f32> {
     }
 }
 
-/// The two HCMs, decoded once at start-up.
-pub struct PegFixture {
-    /// PM2 + friction + the f32 residual.
-    pub hcm_f32: ContactModel<f32, PegResidual>,
-    /// The same with the int8 residual.
-    pub hcm_int8: ContactModel<f32, PegResidualInt8>,
+/// The peg's HCM with `Q` weights, decoded once at start-up.
+pub struct PegFixture<Q: PegWeights> {
+    /// PM2 + friction + the residual.
+    pub hcm: ContactModel<f32, PegResidual<Q>>,
 }
 
-impl PegFixture {
-    /// Decodes the embedded blobs; fails only if one is not a valid 13-32-32-6 blob.
+impl<Q: PegWeights> PegFixture<Q> {
+    /// Decodes the embedded blob; fails only if it is not a valid 13-32-32-6 blob of `Q`.
     pub fn decode() -> Result<Self, BlobError> {
-        let f32_residual: PegResidual = decode(PEG_F32_BLOB)?;
-        let int8_residual: PegResidualInt8 = decode(PEG_INT8_BLOB)?;
+        let residual: PegResidual<Q> = decode(Q::BLOB)?;
         let physics =
             ContactModel::physics(AnyNormalLaw::from(peg_pm2())).with_friction(peg_friction());
         Ok(PegFixture {
-            hcm_f32: physics.clone().with_residual(f32_residual),
-            hcm_int8: physics.with_residual(int8_residual),
+            hcm: physics.with_residual(residual),
         })
     }
 }
@@ -151,19 +170,16 @@ pub fn peg_load<R: Residual<f32>>(
     )
 }
 
-/// Every peg state: its inputs, then per HCM (f32, int8) the force (N) and torque
-/// (N·m) on the peg, the summed normal force (N), the number of touching points and 1
-/// if the residual took part; and the residual's own six outputs.
-pub fn evaluate_all(fixture: &PegFixture, emit: Emit<'_>) {
+/// Every peg state: its inputs, then the HCM's force (N) and torque (N·m) on the peg,
+/// the summed normal force (N), the number of touching points and 1 if the residual
+/// took part; and the residual's own six outputs.
+pub fn evaluate_all<Q: PegWeights>(fixture: &PegFixture<Q>, emit: Emit<'_>) {
     for (state, name) in PEG_STATES.iter().zip(STATE_NAMES) {
         let state = RigidState { components: *state };
         emit("input", name, &state.components.map(f32::to_bits));
-        emit("peg_f32", name, &load_bits(&fixture.hcm_f32, &state));
-        emit("peg_int8", name, &load_bits(&fixture.hcm_int8, &state));
-        let raw = fixture.hcm_f32.residual.evaluate(&state.components);
-        emit("peg_residual_f32", name, &raw.map(f32::to_bits));
-        let raw = fixture.hcm_int8.residual.evaluate(&state.components);
-        emit("peg_residual_int8", name, &raw.map(f32::to_bits));
+        emit(Q::LOAD_GROUP, name, &load_bits(&fixture.hcm, &state));
+        let raw = fixture.hcm.residual.evaluate(&state.components);
+        emit(Q::RESIDUAL_GROUP, name, &raw.map(f32::to_bits));
     }
 }
 

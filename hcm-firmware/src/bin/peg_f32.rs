@@ -1,0 +1,9 @@
+//! The peg-in-hole's HCM with f32 weights on a Cortex-M4F (`cargo run --release --bin
+//! peg-f32` in `hcm-firmware`): the body is `src/peg/image.rs`.
+#![no_std]
+#![no_main]
+
+/// The weight format this image's blob holds.
+type Weights = hcm_core::residual::F32Weights;
+
+include!("../peg/image.rs");
