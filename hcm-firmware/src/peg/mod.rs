@@ -105,6 +105,9 @@ pub struct PegFixture<Q: PegWeights> {
 
 impl<Q: PegWeights> PegFixture<Q> {
     /// Decodes the embedded blob; fails only if it is not a valid 13-32-32-6 blob of `Q`.
+    /// Never inlined: the image decodes at start-up and again to count the cost, and
+    /// one copy of the decoder is 1.5 kB of flash.
+    #[inline(never)]
     pub fn decode() -> Result<Self, BlobError> {
         let residual: PegResidual<Q> = decode(Q::BLOB)?;
         let physics =
