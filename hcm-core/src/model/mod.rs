@@ -22,7 +22,7 @@ pub use point::{ContactPoint, Manifold, PointForce, MAX_POINTS};
 pub use residual::{Correction, NoResidual, Residual};
 
 use crate::effect::{ContactMemory, ExtendedLaw};
-use crate::friction::VelocityStepFriction;
+use crate::friction::{TangentialEffects, VelocityStepFriction};
 use crate::law::{touching, AnyNormalLaw, Indentation};
 use crate::residual::Excursion;
 use crate::wrench::ContactWrench;
@@ -47,6 +47,9 @@ pub struct ContactModel<T, R = NoResidual> {
     pub normal: ExtendedLaw<T>,
     /// The tangential law (Eq 10–11); `None`: frictionless.
     pub friction: Option<VelocityStepFriction<T>>,
+    /// Tangential effects beside it (viscous friction, torsional and rolling
+    /// resistance); none by default.
+    pub tangential: TangentialEffects<T>,
     /// The learned correction ([`NoResidual`] for physics alone).
     pub residual: R,
 }
@@ -68,6 +71,7 @@ impl<T: Real> ContactModel<T, NoResidual> {
         ContactModel {
             normal: law.into(),
             friction: None,
+            tangential: TangentialEffects::default(),
             residual: NoResidual,
         }
     }
@@ -79,6 +83,7 @@ impl<T: Real, R> ContactModel<T, R> {
         ContactModel {
             normal: self.normal,
             friction: self.friction,
+            tangential: self.tangential,
             residual,
         }
     }
@@ -108,19 +113,32 @@ impl<T: Real, R> ContactModel<T, R> {
         self.normal.normal_force(indentation, memory)
     }
 
-    /// Physics force at one point: f_n, and the friction from the point's slip.
+    /// Physics force at one point: f_n, the friction from the point's slip, and the
+    /// couple of the tangential effects.
     #[inline]
     pub fn point_force(&self, point: &ContactPoint<T>) -> PointForce<T> {
         let normal_force = self.physics_normal_force(&point.indentation, &point.memory);
-        let friction = match &self.friction {
+        let mut friction = match &self.friction {
             Some(law) if normal_force != T::zero() => {
                 law.force(&point.relative_velocity, &point.normal, normal_force)
             }
             _ => Vector3::zeros(),
         };
+        let mut couple = Vector3::zeros();
+        if normal_force != T::zero() && !self.tangential.is_empty() {
+            let (extra, c) = self.tangential.point_loads(
+                &point.relative_velocity,
+                &point.relative_angular_velocity,
+                &point.normal,
+                normal_force,
+            );
+            friction += extra;
+            couple = c;
+        }
         PointForce {
             normal_force,
             friction,
+            couple,
         }
     }
 
@@ -128,7 +146,8 @@ impl<T: Real, R> ContactModel<T, R> {
     /// physical domains; otherwise the first problem.
     pub fn validate(&self) -> Result<(), LawError> {
         self.normal.validate()?;
-        self.friction.as_ref().map_or(Ok(()), |f| f.validate())
+        self.friction.as_ref().map_or(Ok(()), |f| f.validate())?;
+        self.tangential.validate()
     }
 
     /// The same model in another float type (f64 → f32 rounds each parameter); the
@@ -140,6 +159,7 @@ impl<T: Real, R> ContactModel<T, R> {
         ContactModel {
             normal: self.normal.cast(),
             friction: self.friction.map(|f| f.map(Real::cast)),
+            tangential: self.tangential.map(Real::cast),
             residual: self.residual.clone(),
         }
     }
@@ -279,13 +299,16 @@ fn point_wrench<T: Real>(
     reference_1: &Vector3<T>,
     reference_2: &Vector3<T>,
 ) -> ContactWrench<T> {
-    ContactWrench::assemble(
+    let mut wrench = ContactWrench::assemble(
         force.normal_force,
         &point.normal,
         &force.friction,
         &(point.position - reference_1),
         &(point.position - reference_2),
-    )
+    );
+    wrench.torque_1 += force.couple;
+    wrench.torque_2 -= force.couple;
+    wrench
 }
 
 #[cfg(test)]

@@ -27,6 +27,9 @@ pub struct ContactPoint<T> {
     /// Velocity of body 1's material point at the contact relative to body 2's (m/s);
     /// its part along **n** is the approach, the rest is slip.
     pub relative_velocity: Vector3<T>,
+    /// Angular velocity of body 1 relative to body 2, **ω**₁ − **ω**₂ (rad/s): what
+    /// torsional and rolling resistance oppose.
+    pub relative_angular_velocity: Vector3<T>,
 }
 
 impl<T: Real> ContactPoint<T> {
@@ -39,6 +42,7 @@ impl<T: Real> ContactPoint<T> {
             normal: Vector3::z(),
             position: Vector3::zeros(),
             relative_velocity: Vector3::zeros(),
+            relative_angular_velocity: Vector3::zeros(),
         }
     }
 }
@@ -48,8 +52,12 @@ impl<T: Real> ContactPoint<T> {
 pub struct PointForce<T: Real> {
     /// Normal force magnitude f_n (N), > 0 repulsive, along **n**.
     pub normal_force: T,
-    /// Friction force **f_f** on body 1 (N), perpendicular to **n**.
+    /// Friction force **f_f** on body 1 (N), perpendicular to **n**: the dry law's,
+    /// plus viscous friction.
     pub friction: Vector3<T>,
+    /// Couple on body 1 (N·m) of torsional and rolling resistance (body 2 receives the
+    /// opposite); zero without them.
+    pub couple: Vector3<T>,
 }
 
 impl<T: Real> PointForce<T> {

@@ -127,6 +127,7 @@ fn point(depth: f64, position: [f64; 3], slip: [f64; 3]) -> ContactPoint<f64> {
         normal: Vector3::z(),
         position: Vector3::from(position),
         relative_velocity: Vector3::from(slip),
+        relative_angular_velocity: Vector3::zeros(),
     }
 }
 
@@ -242,4 +243,45 @@ fn nan_anywhere_never_panics() {
     let load = model.pair_load(&[p], &Vector3::zeros(), &Vector3::zeros(), &[f64::NAN, 0.0]);
     assert!(load.normal_force.is_nan());
     assert_eq!(load.evaluated, Evaluated::PhysicsOnly);
+}
+
+#[test]
+fn tangential_effects_add_viscous_friction_and_a_couple_at_touching_points() {
+    use crate::friction::{TangentialEffects, TorsionalResistance, ViscousFriction};
+    let mut model = ContactModel::physics(AnyNormalLaw::from(Hertz {
+        stiffness: 1e9,
+        exponent: 1.5,
+    }));
+    model.tangential = TangentialEffects {
+        viscous_friction: Some(ViscousFriction { coefficient: 3.0 }),
+        torsional_resistance: Some(TorsionalResistance {
+            arm: 2e-3,
+            spin_rate: 0.1,
+        }),
+        rolling_resistance: None,
+    };
+    let mut p = point(1e-6, [0.1, 0.0, 0.0], [0.5, 0.0, -7.0]);
+    p.relative_angular_velocity = Vector3::new(0.0, 0.0, 4.0);
+    let centre = Vector3::new(0.0, 0.0, 0.2);
+    let load = model.pair_load(&[p], &centre, &Vector3::zeros(), &[]);
+    let f_n = 1e9 * 1e-6_f64.powf(1.5);
+    // Viscous: −3·(0.5, 0, 0) beside the normal force (the approach is not slip).
+    let w = &load.wrench;
+    assert!(
+        (w.force_1 - Vector3::new(-1.5, 0.0, f_n)).norm() < 1e-9,
+        "{}",
+        w.force_1
+    );
+    // The couple −a·f_n about z, opposite on body 2, beside the forces' moments.
+    let arm = Vector3::new(0.1, 0.0, 0.0) - centre;
+    let couple = 2e-3 * f_n * 4.0 / 16.01_f64.sqrt();
+    let expected = arm.cross(&w.force_1) + Vector3::new(0.0, 0.0, -couple);
+    assert!((w.torque_1 - expected).norm() < 1e-9, "{}", w.torque_1);
+    let about_ground = Vector3::new(0.1, 0.0, 0.0).cross(&-w.force_1);
+    let expected_2 = about_ground + Vector3::new(0.0, 0.0, couple);
+    assert!((w.torque_2 - expected_2).norm() < 1e-9, "{}", w.torque_2);
+    // Apart: nothing.
+    let apart = point(-1e-6, [0.1, 0.0, 0.0], [0.5, 0.0, 0.0]);
+    let load = model.pair_load(&[apart], &centre, &Vector3::zeros(), &[]);
+    assert_eq!(load.wrench.torque_1, Vector3::zeros());
 }

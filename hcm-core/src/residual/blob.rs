@@ -315,10 +315,12 @@ impl<'a> Reader<'a> {
     }
 
     /// Fills `values`, refusing any value for which `valid` is false with `error`.
+    /// `valid` is a function pointer, not a generic closure: one copy of this loop
+    /// serves every check (flash on a controller).
     fn read_f32s(
         &mut self,
         values: &mut [f32],
-        valid: impl Fn(f32) -> bool,
+        valid: fn(f32) -> bool,
         error: BlobError,
     ) -> Result<(), BlobError> {
         for value in values {

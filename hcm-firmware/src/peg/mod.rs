@@ -153,6 +153,7 @@ pub fn manifold(state: &RigidState<f32>) -> Manifold<f32> {
             normal: g.normal,
             position: g.point,
             relative_velocity,
+            relative_angular_velocity: omega,
         });
     }
     points

@@ -15,6 +15,7 @@ pub use resolve::{Body, Contact, Model, Shape};
 pub use rigid::{FrictionSpec, InertiaSpec, OrientationSpec, Part, PartSpec};
 
 use hcm_core::effect::{AirDrag, ContactEffect};
+use hcm_core::friction::TangentialEffects;
 use hcm_core::geometry::Material;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -163,6 +164,12 @@ pub struct ContactSpec {
     /// (–, –, m/s, m/s). None: frictionless.
     #[serde(default)]
     pub friction: Option<FrictionSpec>,
+    /// Tangential effects beside the friction (`hcm_core::friction::TangentialEffects`),
+    /// e.g. `tangential = { viscous_friction = { coefficient = 0.5 } }` (N·s/m per
+    /// point), `torsional_resistance = { arm = 2e-3, spin_rate = 0.1 }` (m, rad/s),
+    /// `rolling_resistance = { arm = 5e-4, roll_rate = 0.1 }` (m, rad/s). None: none.
+    #[serde(default)]
+    pub tangential: TangentialEffects<f64>,
 }
 
 /// Solver settings and the stop condition.

@@ -118,7 +118,7 @@ pub struct Model {
 
 impl Model {
     /// Whether the scenario needs the 3D rigid-body simulator: a box or compound
-    /// body, friction, or a body that starts turned or spinning. Otherwise the
+    /// body, friction or a tangential effect, or a body that starts turned or spinning. Otherwise the
     /// bodies move without rotating and the 1D simulator (its events located at
     /// δ = 0 per contact) runs it.
     pub fn is_rigid(&self) -> bool {
@@ -127,7 +127,10 @@ impl Model {
                 || (!b.fixed
                     && (b.angular_velocity != Vector3::zeros()
                         || b.orientation != UnitQuaternion::identity()))
-        }) || self.contacts.iter().any(|c| c.model.friction.is_some())
+        }) || self
+            .contacts
+            .iter()
+            .any(|c| c.model.friction.is_some() || !c.model.tangential.is_empty())
     }
 
     /// Index of the body named `name`.
@@ -322,6 +325,10 @@ impl Scenario {
                     .map_err(|m| invalid.error(field("friction"), m))?,
             );
         }
+        spec.tangential
+            .validate()
+            .map_err(|e| invalid.error(field("tangential"), e.to_string()))?;
+        model.tangential = spec.tangential;
         let contact = Contact {
             body_1,
             body_2,

@@ -145,6 +145,8 @@ impl ContactSystem<'_> {
             normal: k.normal,
             position: k.point,
             relative_velocity: self.relative_velocity(y, c),
+            // Bodies of a 1D scenario do not rotate.
+            relative_angular_velocity: Vector3::zeros(),
         };
         (point, [k.depth, k.rate, indentation.approach_speed])
     }

@@ -97,6 +97,7 @@ impl RigidSystem<'_> {
                 normal: g.normal,
                 position: g.point,
                 relative_velocity,
+                relative_angular_velocity: pose_1.angular_velocity - pose_2.angular_velocity,
             };
             // Both hold at most MAX_POINTS: the pushes cannot fail.
             let _ = manifold.push(point);
