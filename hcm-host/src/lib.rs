@@ -17,4 +17,5 @@ pub mod pipeline;
 pub mod residual;
 pub mod scenario;
 pub mod simulate;
+pub mod toss;
 pub mod train;

@@ -6,10 +6,12 @@ mod export;
 mod force;
 mod generate;
 mod identify;
+mod identify_motion;
 mod identify_rigid;
 mod indicators;
 mod laws;
 mod numbers;
+mod predict;
 mod report;
 mod reproduce;
 mod reproduce_peg;
@@ -42,6 +44,8 @@ use std::process::ExitCode;
 ///   hcm evaluate    the paper's table: PM2 (and the HCM) against S2
 ///   hcm reproduce   all of the above for one of the paper's examples, with a report
 ///   hcm diagnose    name what a physics law misses in data, and extend it
+///   hcm predict     replay measured tosses from their window start and score them
+///   hcm identify-motion  fit a tossed body's contact to filmed tosses, judge it held out
 ///
 /// `hcm COMMAND --help` defines each command's terms; the README has the details.
 #[derive(Parser)]
@@ -65,6 +69,8 @@ enum Command {
     Export(export::Args),
     Reproduce(reproduce::Args),
     Diagnose(diagnose::Args),
+    Predict(predict::Args),
+    IdentifyMotion(identify_motion::Args),
 }
 
 /// Parses the command line, runs the subcommand, and reports errors in plain words.
@@ -82,6 +88,8 @@ pub fn main() -> ExitCode {
         Command::Export(args) => export::run(args),
         Command::Reproduce(args) => reproduce::run(args),
         Command::Diagnose(args) => diagnose::run(args),
+        Command::Predict(args) => predict::run(args),
+        Command::IdentifyMotion(args) => identify_motion::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

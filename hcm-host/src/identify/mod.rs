@@ -6,6 +6,7 @@ pub mod evolve;
 pub mod genetic;
 pub mod least_squares;
 pub mod levenberg_marquardt;
+pub mod motion;
 pub mod physics;
 pub mod replay;
 pub mod rigid;

@@ -1,0 +1,181 @@
+//! `hcm predict`: replay measured tosses from their window start and score the
+//! prediction against the recorded poses (issue 17).
+
+use super::progress_bar;
+use anyhow::Context;
+use hcm_host::dataset::Dataset;
+use hcm_host::identify::Physics;
+use hcm_host::output::write_atomically;
+use hcm_host::toss::{
+    evaluate_tosses, predicted_dataset, summarize, StateSource, Summary, TossEvaluation, TossSetup,
+};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Predict measured tosses from their window start and score the prediction.
+///
+/// Example: `hcm predict --scenario scenarios/cube_toss.toml --data data/contactnets-cube/tosses.csv --out predicted.csv`
+///
+/// For each run of --data (a toss: the scenario's one moving body, a box, filmed while
+/// it lands on the scenario's fixed plane): finds the window, estimates the initial
+/// state there, simulates from it with the scenario's physics (or --physics), and
+/// writes the predicted trajectory to OUT in the measured-data format, at the run's own
+/// frame times from the window start on. Prints the scores over tosses beside the
+/// frozen-pose baseline's. Tosses run in parallel (RAYON_NUM_THREADS threads; the
+/// results do not depend on it).
+///
+/// Terms:
+///   window         a toss's frames from 3 frames before the body's centre first comes
+///                  within its circumscribed radius of the plane (the ContactNets cube:
+///                  0.0524·√3 m; nearer, a corner can touch) to its last frame
+///   initial state  the body's state at the window start: position and velocity fitted
+///                  to the last 8 frames up to it (a parabola under the scenario's
+///                  gravity, a straight line across), orientation and angular velocity
+///                  likewise (constant angular velocity); with fewer than 4 such frames,
+///                  the recorded state at the window start (the summary counts these)
+///   position error mean over the window's frames of |p_pred − p| / the body's width
+///                  (the cube's side, 0.1048 m), in %
+///   rotation error mean over the window's frames of the angle of R_predᵀ·R, in degrees
+///   frozen pose    the baseline: the body held at its recorded window-start pose
+///   physics file   a contact law with its parameters and friction, as `hcm identify`
+///                  writes it (`--physics`); without it, the scenario's own
+#[derive(clap::Args)]
+#[command(verbatim_doc_comment)]
+pub struct Args {
+    #[command(flatten)]
+    scenario: super::ScenarioArgs,
+    /// Physics file from `hcm identify`: replaces the scenario's contact law and friction.
+    #[arg(long)]
+    physics: Option<PathBuf>,
+    /// Measured tosses (measured-data CSV): position and orientation in every frame.
+    #[arg(long)]
+    data: PathBuf,
+    /// Where to write the predicted trajectories (measured-data CSV, one run per toss).
+    #[arg(long)]
+    out: PathBuf,
+    /// Also write each toss's scores (CSV: run, frames, window start, initial state,
+    /// position and rotation error of the prediction and of the frozen pose).
+    #[arg(long, value_name = "FILE")]
+    scores: Option<PathBuf>,
+    /// Predict only the first N runs of --data.
+    #[arg(long, value_name = "N")]
+    first: Option<usize>,
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let mut scenario = args.scenario.load()?;
+    if let Some(path) = &args.physics {
+        scenario = Physics::read(path)?.apply(&scenario, path)?;
+    }
+    let model = scenario.model()?;
+    let setup = TossSetup::new(&model)?;
+    let mut data = Dataset::read(&args.data)?;
+    if let Some(first) = args.first {
+        anyhow::ensure!(first > 0, "--first 0: predict at least one run");
+        data.runs.truncate(first);
+    }
+    setup.check_data(&args.data.display().to_string(), &model, &data)?;
+    let bar = progress_bar(data.runs.len() as u64, "tosses");
+    let started = Instant::now();
+    let evaluations = evaluate_tosses(&model, &data, || bar.inc(1))
+        .with_context(|| format!("predicting the tosses of {}", args.data.display()))?;
+    bar.finish_and_clear();
+    let seconds = started.elapsed().as_secs_f64();
+    predicted_dataset(&evaluations, &setup.name)
+        .write(&args.out)
+        .with_context(|| format!("writing {}", args.out.display()))?;
+    if let Some(path) = &args.scores {
+        write_scores(path, &evaluations)?;
+    }
+    print_summary(&model.scenario.name, &setup, &evaluations, seconds);
+    println!("wrote the predicted trajectories to {}", args.out.display());
+    if let Some(path) = &args.scores {
+        println!("wrote each toss's scores to {}", path.display());
+    }
+    Ok(())
+}
+
+/// Prints what was predicted, how long it took and the scores over tosses.
+fn print_summary(name: &str, setup: &TossSetup, evaluations: &[TossEvaluation], seconds: f64) {
+    let frames: usize = evaluations.iter().map(|e| e.score.frames).sum();
+    let recorded = (evaluations.iter())
+        .filter(|e| e.prediction.initial.source == StateSource::Recorded)
+        .count();
+    let mut times: Vec<f64> = evaluations.iter().map(|e| e.prediction.seconds).collect();
+    let steps: u64 = evaluations.iter().map(|e| e.prediction.steps).sum();
+    times.sort_by(f64::total_cmp);
+    let median_ms = 1e3 * times.get(times.len() / 2).copied().unwrap_or(f64::NAN);
+    println!(
+        "{name}: {} tosses, {frames} frames in their windows, predicted in {seconds:.2} s \
+         ({} threads; one toss's simulation: median {median_ms:.1} ms, {} solver steps on \
+         average)",
+        evaluations.len(),
+        rayon::current_num_threads(),
+        steps / evaluations.len().max(1) as u64
+    );
+    println!(
+        "initial states: {} fitted to the free-flight frames up to the window start, \
+         {recorded} recorded (too few frames before the window)",
+        evaluations.len() - recorded
+    );
+    let summary = summarize(evaluations);
+    let width = 1e3 * setup.width;
+    println!();
+    println!(
+        "| model | position error (% of {width:.1} mm): mean ± std | median | rotation error (°): mean ± std | median |"
+    );
+    println!("|---|---|---|---|---|");
+    let row = |label: &str, position: &Summary, rotation: &Summary| {
+        println!(
+            "| {label} | {:.2} ± {:.2} | {:.2} | {:.2} ± {:.2} | {:.2} |",
+            position.mean,
+            position.std,
+            position.median,
+            rotation.mean,
+            rotation.std,
+            rotation.median
+        );
+    };
+    row("simulation", &summary.position, &summary.rotation);
+    row(
+        "frozen pose",
+        &summary.baseline_position,
+        &summary.baseline_rotation,
+    );
+}
+
+/// Writes each toss's scores as CSV, atomically.
+fn write_scores(path: &Path, evaluations: &[TossEvaluation]) -> anyhow::Result<()> {
+    write_atomically(path, |out| -> anyhow::Result<()> {
+        let mut csv = csv::Writer::from_writer(out);
+        csv.write_record([
+            "run",
+            "frames",
+            "window_start",
+            "initial_state",
+            "position_error",
+            "rotation_error",
+            "frozen_position_error",
+            "frozen_rotation_error",
+        ])?;
+        for e in evaluations {
+            let source = match e.prediction.initial.source {
+                StateSource::FreeFlightFit { frames } => format!("fit {frames} frames"),
+                StateSource::Recorded => "recorded".to_owned(),
+            };
+            csv.write_record([
+                e.score.run.clone(),
+                e.score.frames.to_string(),
+                e.prediction.initial.time.to_string(),
+                source,
+                e.score.position_error.to_string(),
+                e.score.rotation_error.to_string(),
+                e.baseline.position_error.to_string(),
+                e.baseline.rotation_error.to_string(),
+            ])?;
+        }
+        csv.flush()?;
+        Ok(())
+    })
+    .with_context(|| format!("writing {}", path.display()))
+}

@@ -1,0 +1,85 @@
+//! Identification from motion alone (issue 17): a tossed body's contact law, friction
+//! and table height fitted to filmed tosses — poses, no force — by replaying each
+//! training toss from its window start ([`crate::toss`]) and minimising the mean score
+//! `hcm predict` prints ([`fitness`]). The genetic algorithm
+//! ([`crate::identify::genetic`], seeded, its generation evaluated in parallel) searches
+//! the box of [`parameters`]; Nelder–Mead ([`polish`]) refines its best. The tosses are
+//! split by [`split`]: the fit never sees the held-out part.
+
+pub mod fitness;
+pub mod parameters;
+pub mod polish;
+pub mod split;
+
+pub use fitness::{fitness, toss_scores, MotionTarget};
+pub use parameters::MotionParameters;
+pub use split::{part_of, split_tosses, Part};
+
+use crate::identify::genetic::{minimize, GeneticError, GeneticSettings};
+use crate::scenario::Model;
+use std::time::Instant;
+
+/// Which stage of the fit a progress report is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MotionStage {
+    /// Steps are generations of the genetic algorithm.
+    Genetic,
+    /// Steps are fitness evaluations of the polish.
+    Polish,
+}
+
+/// What the fit found.
+#[derive(Clone, Debug)]
+pub struct MotionFit {
+    /// The scenario's model with the fitted parameters.
+    pub model: Model,
+    /// The fitted values, in [`MotionParameters::named`] form (SI units).
+    pub parameters: Vec<(String, f64)>,
+    /// The fitness of the scenario's own parameters (% + °).
+    pub start_fitness: f64,
+    /// The genetic algorithm's best fitness.
+    pub genetic_fitness: f64,
+    /// The fitness after the polish.
+    pub fitness: f64,
+    /// Replays of the training set simulated.
+    pub evaluations: usize,
+    /// Wall-clock time (s).
+    pub seconds: f64,
+}
+
+/// Fits `parameters` of `model` to `target`'s tosses: the genetic algorithm with
+/// `settings`, then a polish of about `polish_budget` evaluations. `progress(stage,
+/// steps done, best fitness)` reports each generation and each polish step.
+pub fn identify_motion(
+    model: &Model,
+    target: &MotionTarget<'_>,
+    parameters: &MotionParameters,
+    settings: &GeneticSettings,
+    polish_budget: usize,
+    mut progress: impl FnMut(MotionStage, usize, f64),
+) -> Result<MotionFit, GeneticError> {
+    let started = Instant::now();
+    let bounds = parameters.bounds();
+    let score = |genes: &[f64]| fitness(target, &parameters.apply(model, genes));
+    let start_fitness = score(&parameters.of(model));
+    let genetic = minimize(&bounds, settings, score, |generation, best| {
+        progress(MotionStage::Genetic, generation, best)
+    })?;
+    let polished = polish::polish(
+        &bounds,
+        &genetic.best,
+        genetic.fitness,
+        polish_budget,
+        score,
+        |evaluations, best| progress(MotionStage::Polish, evaluations, best),
+    );
+    Ok(MotionFit {
+        model: parameters.apply(model, &polished.best),
+        parameters: parameters.named(&polished.best),
+        start_fitness,
+        genetic_fitness: genetic.fitness,
+        fitness: polished.fitness,
+        evaluations: 1 + genetic.evaluations + polished.evaluations,
+        seconds: started.elapsed().as_secs_f64(),
+    })
+}

@@ -1,0 +1,182 @@
+//! The state a toss's replay starts from, re-estimated from the free-flight frames up
+//! to its window start. A tracker's velocities are differences of noisy poses (the
+//! ContactNets ones jump by 0.1 m/s from frame to frame); before the window no corner
+//! can touch, so the motion there is known in form and a fit over several frames
+//! averages the noise out:
+//!
+//! - position: p(τ) = p₀ + v·τ + ½·g·τ², least squares per axis with g the scenario's
+//!   gravity (a parabola in z with g = 9.81 m/s² and straight lines in x and y for the
+//!   tosses), τ the time from the window start;
+//! - orientation: R(τ) = exp([a + ω·τ]ₓ)·R_w with R_w the recorded orientation at the
+//!   window start, the rotation vectors log(R_i·R_wᵀ) fitted by a straight line per
+//!   component: constant angular velocity ω (world frame), exact in free flight for a
+//!   body of isotropic inertia such as the cube (8.1e-4 kg·m² about every axis); the
+//!   start orientation is exp([a]ₓ)·R_w.
+//!
+//! The fit uses the last [`FIT_FRAMES`] frames up to and including the window start.
+//! With fewer than [`MIN_FIT_FRAMES`] (a toss filmed from just before its landing) the
+//! recorded pose, velocity and angular velocity at the window start are used as they
+//! are, and [`StateSource::Recorded`] says so.
+
+use super::{TossError, TossSetup, Window};
+use crate::dataset::{BodyTrack, Channel, Sample};
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+
+/// Frames fitted up to the window start (–): 8 frames are 47 ms at 148 Hz, enough to
+/// average the tracker's noise while the cube is surely in free flight.
+pub const FIT_FRAMES: usize = 8;
+
+/// Fewest frames fitted (–): two unknowns per axis, and two more frames to average.
+pub const MIN_FIT_FRAMES: usize = 4;
+
+/// How far a recorded quaternion's norm may lie from 1 (–) before it is refused.
+const UNIT_TOLERANCE: f64 = 1e-6;
+
+/// Where the initial state came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StateSource {
+    /// Fitted to this many free-flight frames ending at the window start.
+    FreeFlightFit {
+        /// Frames fitted (–).
+        frames: usize,
+    },
+    /// The recorded state at the window start, too few frames before it to fit.
+    Recorded,
+}
+
+/// The body's state at the window start.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InitialState {
+    /// Time of the window start in the data (s).
+    pub time: f64,
+    /// Centre-of-mass position (m, world frame).
+    pub position: Vector3<f64>,
+    /// Orientation, body → world.
+    pub orientation: UnitQuaternion<f64>,
+    /// Centre-of-mass velocity (m/s, world frame).
+    pub velocity: Vector3<f64>,
+    /// Angular velocity ω (rad/s, world frame).
+    pub angular_velocity: Vector3<f64>,
+    /// How it was obtained.
+    pub source: StateSource,
+}
+
+/// The initial state of `run`'s toss at `window.start` (see the module documentation).
+pub fn estimate_initial_state(
+    setup: &TossSetup,
+    run: &str,
+    track: &BodyTrack,
+    window: &Window,
+) -> Result<InitialState, TossError> {
+    let start = &track.samples[window.start];
+    let first = (window.start + 1).saturating_sub(FIT_FRAMES);
+    let frames = &track.samples[first..=window.start];
+    let start_orientation = orientation(setup, run, start)?;
+    if frames.len() < MIN_FIT_FRAMES {
+        return recorded(setup, run, start, start_orientation);
+    }
+    let taus: Vec<f64> = frames.iter().map(|s| s.time - start.time).collect();
+    let heights: Vec<Vector3<f64>> = frames
+        .iter()
+        .zip(&taus)
+        .map(|(s, tau)| Vector3::from(s.position) - setup.gravity * (0.5 * tau * tau))
+        .collect();
+    let (position, velocity) = line_fit(&taus, &heights);
+    let inverse = start_orientation.inverse();
+    let mut turns = Vec::with_capacity(frames.len());
+    for sample in frames {
+        turns.push((orientation(setup, run, sample)? * inverse).scaled_axis());
+    }
+    let (offset, angular_velocity) = line_fit(&taus, &turns);
+    Ok(InitialState {
+        time: start.time,
+        position,
+        orientation: UnitQuaternion::from_scaled_axis(offset) * start_orientation,
+        velocity,
+        angular_velocity,
+        source: StateSource::FreeFlightFit {
+            frames: frames.len(),
+        },
+    })
+}
+
+/// The recorded state at the window start, when too few frames precede it to fit.
+fn recorded(
+    setup: &TossSetup,
+    run: &str,
+    start: &Sample,
+    orientation: UnitQuaternion<f64>,
+) -> Result<InitialState, TossError> {
+    for channel in [Channel::Velocity, Channel::AngularVelocity] {
+        if !start.has(channel) {
+            return Err(TossError::Frame {
+                run: run.to_owned(),
+                time: start.time,
+                problem: format!(
+                    "fewer than {MIN_FIT_FRAMES} frames up to the window start to estimate \
+                     the velocity of `{}` from, and its recorded {} ({}) is empty there",
+                    setup.name,
+                    channel.name(),
+                    channel.column_list()
+                ),
+            });
+        }
+    }
+    Ok(InitialState {
+        time: start.time,
+        position: Vector3::from(start.position),
+        orientation,
+        velocity: Vector3::from(start.velocity),
+        angular_velocity: Vector3::from(start.angular_velocity),
+        source: StateSource::Recorded,
+    })
+}
+
+/// A frame's recorded orientation, refused when empty or not a unit quaternion.
+pub fn orientation(
+    setup: &TossSetup,
+    run: &str,
+    sample: &Sample,
+) -> Result<UnitQuaternion<f64>, TossError> {
+    let [w, x, y, z] = sample.orientation;
+    let quaternion = Quaternion::new(w, x, y, z);
+    let norm = quaternion.norm();
+    // An empty channel reads as NaN, whose norm is NaN: refused too.
+    if (norm - 1.0).abs() <= UNIT_TOLERANCE {
+        return Ok(UnitQuaternion::from_quaternion(quaternion));
+    }
+    let problem = if sample.lacks(Channel::Orientation) {
+        format!(
+            "body `{}` has no orientation (qw, qx, qy, qz empty): a toss needs the camera's \
+             pose in every frame",
+            setup.name
+        )
+    } else {
+        format!(
+            "body `{}`: columns `qw`, `qx`, `qy`, `qz` hold a quaternion of norm {norm}; a \
+             pose needs a unit quaternion (within {UNIT_TOLERANCE})",
+            setup.name
+        )
+    };
+    Err(TossError::Frame {
+        run: run.to_owned(),
+        time: sample.time,
+        problem,
+    })
+}
+
+/// Least-squares straight line y(τ) = a + b·τ through `values` at `taus`, per
+/// component: (a, b). The taus must not all be equal (the frames' times differ).
+fn line_fit(taus: &[f64], values: &[Vector3<f64>]) -> (Vector3<f64>, Vector3<f64>) {
+    let n = taus.len() as f64;
+    let tau_mean = taus.iter().sum::<f64>() / n;
+    let value_mean = values.iter().sum::<Vector3<f64>>() / n;
+    let mut spread = 0.0;
+    let mut covariance = Vector3::zeros();
+    for (tau, value) in taus.iter().zip(values) {
+        spread += (tau - tau_mean) * (tau - tau_mean);
+        covariance += (value - value_mean) * (tau - tau_mean);
+    }
+    let slope = covariance / spread;
+    (value_mean - slope * tau_mean, slope)
+}

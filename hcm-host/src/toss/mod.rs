@@ -1,0 +1,84 @@
+//! Predicting measured tosses (issue 17): a body filmed while it is tossed onto a fixed
+//! plane — position and orientation per camera frame, no force — replayed in the 3D
+//! simulator from each toss's *window* start, and the prediction scored against the
+//! recorded poses.
+//!
+//! - [`window`]: where a toss's window starts — [`LEAD_FRAMES`] frames before the
+//!   body's centre first comes within its circumscribed radius of the plane (below
+//!   that a corner can touch; 0.0524·√3 m for the ContactNets cube).
+//! - [`initial_state`]: the state the replay starts from, re-estimated from the
+//!   free-flight frames up to the window start (a parabola under gravity for the
+//!   position, constant angular velocity for the orientation).
+//! - [`predict`]: the replay of one toss, sampled at the toss's frame times, and of
+//!   every toss of a data file in parallel.
+//! - [`score`]: position error (% of the body's width) and rotation error (degrees),
+//!   per toss and over tosses; [`baseline`]: the frozen-pose baseline scored the same
+//!   way; [`evaluation`]: every toss of a file predicted and scored.
+//! - [`setup`]: what of a scenario the tosses need (the one moving body, its plane).
+
+pub mod baseline;
+pub mod evaluation;
+pub mod initial_state;
+pub mod predict;
+pub mod score;
+pub mod setup;
+pub mod window;
+
+pub use baseline::frozen_pose;
+pub use evaluation::{
+    evaluate_tosses, predicted_dataset, summarize, EvaluationSummary, TossEvaluation,
+};
+pub use initial_state::{estimate_initial_state, InitialState, StateSource};
+pub use predict::{predict_toss, predict_tosses, TossPrediction};
+pub use score::{score_toss, Summary, TossScore};
+pub use setup::TossSetup;
+pub use window::{find_window, Window, LEAD_FRAMES};
+
+use crate::dataset::DataError;
+use crate::scenario::ScenarioError;
+use crate::simulate::SimulationError;
+
+/// Why a toss could not be predicted or scored. Every variant names the run, and the
+/// data's or the scenario's terms.
+#[derive(Debug, thiserror::Error)]
+pub enum TossError {
+    /// The scenario does not describe one body tossed onto a plane.
+    #[error("scenario `{scenario}`: {problem}")]
+    Setup { scenario: String, problem: String },
+    /// The data lack what the prediction needs.
+    #[error(transparent)]
+    Data(#[from] DataError),
+    /// The scenario (with a physics file or candidate parameters) is invalid.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// A run has no track of the tossed body.
+    #[error("run `{run}` has no samples of body `{body}` (the scenario's moving body); the data's `body` column must name it")]
+    MissingBody { run: String, body: String },
+    /// The body's centre never comes near enough to the plane for a corner to touch.
+    #[error(
+        "run `{run}`: the centre of `{body}` never comes within {threshold} m of the plane \
+         (its lowest is {lowest} m at t = {lowest_time} s), so no contact and no window; \
+         leave the run out or check the plane's position (the table height)"
+    )]
+    NoContact {
+        run: String,
+        body: String,
+        threshold: f64,
+        lowest: f64,
+        lowest_time: f64,
+    },
+    /// A frame's pose cannot be used.
+    #[error("run `{run}`, t = {time} s: {problem}")]
+    Frame {
+        run: String,
+        time: f64,
+        problem: String,
+    },
+    /// The replay failed.
+    #[error("run `{run}`: the replay from the window start failed: {source}")]
+    Simulation {
+        run: String,
+        #[source]
+        source: SimulationError,
+    },
+}

@@ -1,0 +1,113 @@
+//! How far a predicted toss is from the recorded one, as issue 17 defines it (and the
+//! published simulator comparisons on these tosses report it):
+//!
+//! - position error: the mean over the window's frames of |p_pred − p| divided by the
+//!   body's width (the cube's side, 0.1048 m), in per cent;
+//! - rotation error: the mean over the window's frames of the angle of R_predᵀ·R, in
+//!   degrees;
+//!
+//! and over tosses, the mean, the standard deviation and the median of each.
+
+use super::initial_state::orientation;
+use super::{TossError, TossSetup};
+use crate::dataset::Sample;
+use nalgebra::{UnitQuaternion, Vector3};
+use serde::Serialize;
+
+/// The scores of one toss.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TossScore {
+    /// Run id.
+    pub run: String,
+    /// Frames scored (the window's) (–).
+    pub frames: usize,
+    /// Mean |p_pred − p| over the frames, in % of the body's width.
+    pub position_error: f64,
+    /// Mean angle of R_predᵀ·R over the frames (degrees).
+    pub rotation_error: f64,
+}
+
+/// The angle (rad, in [0, π]) of the rotation taking `predicted` to `measured`: the
+/// angle of R_predᵀ·R. As 2·atan2(|v|, |w|) of the quaternion q_pred⁻¹·q, which keeps
+/// its precision at small angles (an arccosine of w loses half the digits there) and
+/// reads q and −q alike.
+pub fn rotation_angle(predicted: &UnitQuaternion<f64>, measured: &UnitQuaternion<f64>) -> f64 {
+    let difference = predicted.inverse() * measured;
+    let q = difference.quaternion();
+    2.0 * q.imag().norm().atan2(q.w.abs())
+}
+
+/// Scores `predicted` against `measured`, frame by frame (the same frames, in order).
+pub fn score_toss(
+    setup: &TossSetup,
+    run: &str,
+    measured: &[Sample],
+    predicted: &[Sample],
+) -> Result<TossScore, TossError> {
+    let mut position = 0.0;
+    let mut rotation = 0.0;
+    for (recorded, model) in measured.iter().zip(predicted) {
+        let miss = Vector3::from(model.position) - Vector3::from(recorded.position);
+        position += miss.norm();
+        rotation += rotation_angle(
+            &orientation(setup, run, model)?,
+            &orientation(setup, run, recorded)?,
+        );
+    }
+    let frames = measured.len().min(predicted.len());
+    let n = frames.max(1) as f64;
+    Ok(TossScore {
+        run: run.to_owned(),
+        frames,
+        position_error: 100.0 * position / n / setup.width,
+        rotation_error: rotation.to_degrees() / n,
+    })
+}
+
+/// One score over tosses: mean, sample standard deviation and median.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Summary {
+    /// Tosses (–).
+    pub count: usize,
+    /// Mean.
+    pub mean: f64,
+    /// Sample standard deviation (n − 1); 0 for one toss.
+    pub std: f64,
+    /// Median (the mean of the middle two for an even count).
+    pub median: f64,
+}
+
+impl Summary {
+    /// The summary of `values`, summed in their order (so the same values give the
+    /// same bits); NaN for an empty list.
+    pub fn of(values: &[f64]) -> Summary {
+        let n = values.len();
+        let mean = values.iter().sum::<f64>() / n as f64;
+        let squares: f64 = values.iter().map(|v| (v - mean) * (v - mean)).sum();
+        let std = if n > 1 {
+            (squares / (n - 1) as f64).sqrt()
+        } else {
+            0.0
+        };
+        let mut sorted = values.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let median = match n {
+            0 => f64::NAN,
+            _ if n % 2 == 1 => sorted[n / 2],
+            _ => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
+        };
+        Summary {
+            count: n,
+            mean,
+            std,
+            median,
+        }
+    }
+
+    /// The position and rotation summaries of `scores`.
+    pub fn of_scores(scores: &[TossScore]) -> (Summary, Summary) {
+        let position: Vec<f64> = scores.iter().map(|s| s.position_error).collect();
+        let rotation: Vec<f64> = scores.iter().map(|s| s.rotation_error).collect();
+        (Summary::of(&position), Summary::of(&rotation))
+    }
+}
