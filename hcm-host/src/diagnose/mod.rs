@@ -19,3 +19,4 @@ pub mod sensor;
 pub mod structure;
 pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};
 pub mod drag;
+pub mod motion;

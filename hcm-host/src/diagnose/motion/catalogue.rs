@@ -1,0 +1,220 @@
+//! What a motion-only diagnosis may find wrong with a tossed or sliding body's contact:
+//! the friction law (its coefficient, its shape, a viscous part), resistance to
+//! rotation (torsional, rolling), and the measurement (the table's height or tilt, the
+//! tracker's length scale). Each candidate is a small change of the user's model (or
+//! of how the data are read) with its own parameters, every one of which has a neutral
+//! value that changes nothing.
+
+use crate::dataset::Dataset;
+use crate::identify::genetic::Bound;
+use crate::scenario::{Model, Shape};
+use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};
+use nalgebra::{UnitQuaternion, Vector3};
+
+/// Rotation rate (rad/s) below which the resistance couples fade: slow against a
+/// tumbling cube (rad/s to tens of rad/s), fast against a body at rest.
+const RESISTANCE_RATE: f64 = 0.1;
+
+/// What kind of cause a candidate is: a diagnosis calls two candidates of different
+/// kinds that explain the data equally well ambiguous rather than pick one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Family {
+    /// The friction law's coefficient or shape.
+    Friction,
+    /// A couple against the bodies' relative rotation.
+    Resistance,
+    /// How the data were measured, not the physics.
+    Measurement,
+}
+
+/// One candidate change.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MotionEffect {
+    /// Both friction coefficients scaled by k (–).
+    FrictionCoefficient,
+    /// Coulomb's law instead of STEP's two coefficients: μ_s = μ_d = μ (–).
+    CoulombFriction,
+    /// Viscous friction −c_v·v_t per contact point (N·s/m).
+    ViscousFriction,
+    /// Torsional resistance a_t (m).
+    TorsionalResistance,
+    /// Rolling resistance a_r (m).
+    RollingResistance,
+    /// The table's surface moved along its normal by Δz (m).
+    TableOffset,
+    /// The table tilted by small angles about the world x and y axes (rad).
+    TableTilt,
+    /// The tracker's lengths are s times the true ones (–).
+    LengthScale,
+}
+
+impl MotionEffect {
+    /// The catalogue, in the order a report lists it.
+    pub const ALL: [MotionEffect; 8] = [
+        MotionEffect::FrictionCoefficient,
+        MotionEffect::CoulombFriction,
+        MotionEffect::ViscousFriction,
+        MotionEffect::TorsionalResistance,
+        MotionEffect::RollingResistance,
+        MotionEffect::TableOffset,
+        MotionEffect::TableTilt,
+        MotionEffect::LengthScale,
+    ];
+
+    /// The catalogue name a diagnosis prints.
+    pub fn name(self) -> &'static str {
+        match self {
+            MotionEffect::FrictionCoefficient => "friction_coefficient",
+            MotionEffect::CoulombFriction => "coulomb_friction",
+            MotionEffect::ViscousFriction => "viscous_friction",
+            MotionEffect::TorsionalResistance => "torsional_resistance",
+            MotionEffect::RollingResistance => "rolling_resistance",
+            MotionEffect::TableOffset => "table_offset",
+            MotionEffect::TableTilt => "table_tilt",
+            MotionEffect::LengthScale => "length_scale",
+        }
+    }
+
+    /// Its family.
+    pub fn family(self) -> Family {
+        match self {
+            MotionEffect::FrictionCoefficient
+            | MotionEffect::CoulombFriction
+            | MotionEffect::ViscousFriction => Family::Friction,
+            MotionEffect::TorsionalResistance | MotionEffect::RollingResistance => {
+                Family::Resistance
+            }
+            MotionEffect::TableOffset | MotionEffect::TableTilt | MotionEffect::LengthScale => {
+                Family::Measurement
+            }
+        }
+    }
+
+    /// Whether it changes how the data are read rather than the model.
+    pub fn transforms_data(self) -> bool {
+        self == MotionEffect::LengthScale
+    }
+
+    /// The box its parameters are searched in, scaled by the body's `mass` (kg) and
+    /// `size` (m, its largest half extent); names with units.
+    pub fn bounds(self, mass: f64, size: f64) -> Vec<Bound> {
+        let bound = |name: &str, lower: f64, upper: f64, log_scale: bool| Bound {
+            name: name.to_owned(),
+            lower,
+            upper,
+            log_scale,
+        };
+        match self {
+            MotionEffect::FrictionCoefficient => vec![bound("scale", 0.2, 5.0, true)],
+            MotionEffect::CoulombFriction => vec![bound("mu", 0.01, 1.5, true)],
+            // Up to a decay rate 4·c/m of 20 /s for a body on four corners.
+            MotionEffect::ViscousFriction => vec![bound("coefficient", 0.0, 5.0 * mass, false)],
+            MotionEffect::TorsionalResistance => vec![bound("arm", 0.0, 0.5 * size, false)],
+            MotionEffect::RollingResistance => vec![bound("arm", 0.0, 0.5 * size, false)],
+            MotionEffect::TableOffset => vec![bound("offset", -0.05 * size, 0.05 * size, false)],
+            MotionEffect::TableTilt => vec![
+                bound("about_x", -0.05, 0.05, false),
+                bound("about_y", -0.05, 0.05, false),
+            ],
+            MotionEffect::LengthScale => vec![bound("scale", 0.9, 1.1, false)],
+        }
+    }
+
+    /// Whether it can change `model`'s `contact` at all: a coefficient or a shape needs
+    /// a friction law, and Coulomb's law is no change of shape for a law whose μ_s = μ_d
+    /// already (it would only repeat the coefficient's candidate).
+    pub fn changes(self, model: &Model, contact: usize) -> bool {
+        let friction = model.contacts[contact].model.friction;
+        match self {
+            MotionEffect::FrictionCoefficient => friction.is_some(),
+            MotionEffect::CoulombFriction => {
+                friction.is_some_and(|f| f.static_coefficient != f.dynamic_coefficient)
+            }
+            _ => true,
+        }
+    }
+
+    /// The parameters that change nothing (for Coulomb's law, which has none, the
+    /// model's μ_d: the nearest Coulomb law).
+    pub fn neutral(self, model: &Model, contact: usize) -> Vec<f64> {
+        match self {
+            MotionEffect::FrictionCoefficient | MotionEffect::LengthScale => vec![1.0],
+            MotionEffect::CoulombFriction => {
+                let friction = model.contacts[contact].model.friction;
+                vec![friction.map_or(0.1, |f| f.dynamic_coefficient)]
+            }
+            MotionEffect::TableTilt => vec![0.0, 0.0],
+            _ => vec![0.0],
+        }
+    }
+
+    /// `model` with the change `values` stand for at `contact` against `plane` (data
+    /// transforms leave the model as it is).
+    pub fn apply(self, model: &Model, contact: usize, plane: usize, values: &[f64]) -> Model {
+        let mut out = model.clone();
+        let first = values.first().copied().unwrap_or(0.0);
+        let physics = &mut out.contacts[contact].model;
+        match self {
+            MotionEffect::FrictionCoefficient => {
+                if let Some(f) = physics.friction.as_mut() {
+                    f.static_coefficient *= first;
+                    f.dynamic_coefficient *= first;
+                }
+            }
+            MotionEffect::CoulombFriction => {
+                if let Some(f) = physics.friction.as_mut() {
+                    f.static_coefficient = first;
+                    f.dynamic_coefficient = first;
+                }
+            }
+            MotionEffect::ViscousFriction => {
+                physics.tangential.viscous_friction = Some(ViscousFriction { coefficient: first });
+            }
+            MotionEffect::TorsionalResistance => {
+                physics.tangential.torsional_resistance = Some(TorsionalResistance {
+                    arm: first,
+                    spin_rate: RESISTANCE_RATE,
+                });
+            }
+            MotionEffect::RollingResistance => {
+                physics.tangential.rolling_resistance = Some(RollingResistance {
+                    arm: first,
+                    roll_rate: RESISTANCE_RATE,
+                });
+            }
+            MotionEffect::TableOffset => {
+                if let Shape::Plane { offset, .. } = &mut out.bodies[plane].shape {
+                    *offset += first;
+                }
+            }
+            MotionEffect::TableTilt => {
+                let second = values.get(1).copied().unwrap_or(0.0);
+                let tilt = UnitQuaternion::from_scaled_axis(Vector3::new(first, second, 0.0));
+                if let Shape::Plane { normal, .. } = &mut out.bodies[plane].shape {
+                    *normal = tilt * *normal;
+                }
+            }
+            MotionEffect::LengthScale => {}
+        }
+        out
+    }
+
+    /// The data as the candidate reads them: for a length scale s, every position and
+    /// velocity divided by s (about the world origin); otherwise `None` (as recorded).
+    pub fn transform(self, data: &Dataset, values: &[f64]) -> Option<Dataset> {
+        if self != MotionEffect::LengthScale {
+            return None;
+        }
+        let scale = values.first().copied().unwrap_or(1.0);
+        let mut out = data.clone();
+        for run in &mut out.runs {
+            for body in &mut run.bodies {
+                for sample in &mut body.samples {
+                    sample.position = sample.position.map(|x| x / scale);
+                    sample.velocity = sample.velocity.map(|x| x / scale);
+                }
+            }
+        }
+        Some(out)
+    }
+}

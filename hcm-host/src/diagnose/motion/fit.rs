@@ -1,0 +1,152 @@
+//! One candidate fitted on the training tosses, the user's model otherwise fixed: a
+//! coarse grid over each parameter's box (the replay's score is rough: a bounce moved
+//! by one frame jumps it, so a local method alone may stop in a dent), then the same
+//! Nelder–Mead polish as the identification from motion, from the grid's best.
+
+use super::catalogue::MotionEffect;
+use crate::dataset::Dataset;
+use crate::identify::genetic::Bound;
+use crate::identify::motion::polish::polish;
+use crate::identify::motion::{fitness, toss_scores, MotionTarget};
+use crate::scenario::Model;
+use crate::toss::TossScore;
+
+/// Grid points of a one-parameter candidate's box (–).
+const GRID: usize = 9;
+/// Golden-section steps in the grid's best bracket (–): it shrinks to 0.618^24 ≈ 1e-5
+/// of two grid cells. A friction coefficient off by 0.3 % moves a 0.3 m slide's end
+/// by 1 mm, about 1 % of the score: the fit has to be that fine.
+const GOLDEN_STEPS: usize = 24;
+/// Polish evaluations of a two-parameter candidate (–).
+const POLISH_2D: usize = 40;
+
+/// Where a candidate is evaluated: the user's model, the contact and plane it
+/// changes, and the data.
+#[derive(Clone, Copy, Debug)]
+pub struct Subject<'a> {
+    /// The model the candidates change.
+    pub model: &'a Model,
+    /// Index of the body's contact with the plane.
+    pub contact: usize,
+    /// Index of the plane's body.
+    pub plane: usize,
+}
+
+impl Subject<'_> {
+    /// Every toss's scores of `data` under `effect` with `values` (`None` if the data
+    /// cannot be read so, or a replay fails).
+    pub fn scores(
+        &self,
+        effect: MotionEffect,
+        values: &[f64],
+        data: &Dataset,
+    ) -> Option<Vec<TossScore>> {
+        let model = effect.apply(self.model, self.contact, self.plane, values);
+        match effect.transform(data, values) {
+            Some(read) => {
+                let target = MotionTarget::new(&model, &read).ok()?;
+                toss_scores(&target, &model)
+            }
+            None => {
+                let target = MotionTarget::new(&model, data).ok()?;
+                toss_scores(&target, &model)
+            }
+        }
+    }
+
+    /// Mean position error (%) + rotation error (°) over `data`'s tosses, +∞ if any
+    /// replay fails.
+    pub fn fitness(&self, effect: MotionEffect, values: &[f64], data: &Dataset) -> f64 {
+        let model = effect.apply(self.model, self.contact, self.plane, values);
+        let read = effect.transform(data, values);
+        let target = MotionTarget::new(&model, read.as_ref().unwrap_or(data));
+        target.map_or(f64::INFINITY, |t| fitness(&t, &model))
+    }
+}
+
+/// A candidate's fit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fitted {
+    /// Its parameters (the bounds' units).
+    pub values: Vec<f64>,
+    /// Their training fitness (% + °).
+    pub fitness: f64,
+    /// Fitness evaluations (each a replay of every training toss).
+    pub evaluations: usize,
+}
+
+/// Fits `effect` to `training` in `bounds`, starting from `neutral`: one parameter by
+/// a grid and a golden-section search in the best grid point's bracket, two by the
+/// polish from `neutral`. The neutral values win ties (no change unless it helps).
+pub fn fit(
+    subject: &Subject<'_>,
+    effect: MotionEffect,
+    bounds: &[Bound],
+    neutral: &[f64],
+    training: &Dataset,
+) -> Fitted {
+    let score = |values: &[f64]| subject.fitness(effect, values, training);
+    let start = score(neutral);
+    let (values, fitness, evaluations) = match bounds {
+        [bound] => line_search(bound, |x| score(&[x])),
+        _ => {
+            let p = polish(bounds, neutral, start, POLISH_2D, score, |_, _| {});
+            (p.best, p.fitness, p.evaluations)
+        }
+    };
+    if fitness < start {
+        Fitted {
+            values,
+            fitness,
+            evaluations: evaluations + 1,
+        }
+    } else {
+        Fitted {
+            values: neutral.to_vec(),
+            fitness: start,
+            evaluations: evaluations + 1,
+        }
+    }
+}
+
+/// Minimises `score` over `bound`: the best of a grid of [`GRID`] points, then a
+/// golden-section search between its neighbours (in log(value) on a log scale).
+fn line_search(bound: &Bound, score: impl Fn(f64) -> f64) -> (Vec<f64>, f64, usize) {
+    let at = |u: f64| grid_value(bound, u.clamp(0.0, 1.0));
+    let cell = 1.0 / (GRID - 1) as f64;
+    let grid: Vec<f64> = (0..GRID).map(|k| score(at(k as f64 * cell))).collect();
+    let best = (0..GRID)
+        .min_by(|&a, &b| grid[a].total_cmp(&grid[b]))
+        .unwrap_or(0);
+    let (mut a, mut b) = ((best as f64 - 1.0) * cell, (best as f64 + 1.0) * cell);
+    let (mut u_best, mut f_best) = (best as f64 * cell, grid[best]);
+    let ratio = (5.0_f64.sqrt() - 1.0) / 2.0;
+    let (mut c, mut d) = (b - ratio * (b - a), a + ratio * (b - a));
+    let (mut fc, mut fd) = (score(at(c)), score(at(d)));
+    for _ in 0..GOLDEN_STEPS {
+        if fc < fd {
+            (b, d, fd) = (d, c, fc);
+            c = b - ratio * (b - a);
+            fc = score(at(c));
+        } else {
+            (a, c, fc) = (c, d, fd);
+            d = a + ratio * (b - a);
+            fd = score(at(d));
+        }
+        for (u, f) in [(c, fc), (d, fd)] {
+            if f < f_best {
+                (u_best, f_best) = (u, f);
+            }
+        }
+    }
+    (vec![at(u_best)], f_best, GRID + 2 + GOLDEN_STEPS)
+}
+
+/// The value at fraction `at` ∈ [0, 1] of `bound` (through log(value) on a log scale).
+fn grid_value(bound: &Bound, at: f64) -> f64 {
+    if bound.log_scale {
+        (bound.lower.ln() + at * (bound.upper.ln() - bound.lower.ln())).exp()
+    } else {
+        bound.lower + at * (bound.upper - bound.lower)
+    }
+}

@@ -1,0 +1,328 @@
+//! Diagnosis from motion alone (issue 17): what a tossed or sliding body's simulation
+//! gets wrong when the data hold its poses and no force.
+//!
+//! The tosses are split as the identification from motion splits them (even toss
+//! numbers train, odd ones are held out: [`crate::identify::motion::split_tosses`]).
+//! Every candidate of the [`catalogue`] — the friction law's coefficient, its shape
+//! (Coulomb), viscous friction, torsional and rolling resistance, the table's height
+//! and tilt, the tracker's length scale — is fitted on the training tosses with the
+//! user's model otherwise fixed ([`fit`]), and judged on the held-out tosses by its
+//! paired gain over the user's model, toss by toss ([`paired`]). A candidate *helps*
+//! when that gain is at least [`HELPS_T`] standard errors above zero and at least
+//! [`MIN_GAIN`] of the model's held-out score. The one with the largest gain is named
+//! only if it also beats every other helping candidate by [`RIVAL_T`] standard errors
+//! on the same tosses; otherwise the answer is "ambiguous" and names none. A named
+//! cause is added to the model, and the search repeats on what is left (at most
+//! [`MAX_ROUNDS`] causes). Nothing helping: the answer is "none".
+
+pub mod catalogue;
+pub mod fit;
+pub mod paired;
+
+pub use catalogue::{Family, MotionEffect};
+pub use paired::Paired;
+
+use crate::dataset::Dataset;
+use crate::identify::motion::{split_tosses, MotionParameters};
+use crate::scenario::Model;
+use crate::toss::{TossError, TossScore, TossSetup};
+use fit::{Fitted, Subject};
+use serde::Serialize;
+
+/// How many standard errors a held-out gain must lie above zero to help (one-sided;
+/// with the normal approximation a chance of about 1 in 700 for one candidate).
+pub const HELPS_T: f64 = 3.0;
+/// The least held-out gain that helps, as a fraction of the user's model's held-out
+/// score (the first round's, also in later rounds): a significant but negligible
+/// improvement is not a cause worth adding.
+pub const MIN_GAIN: f64 = 0.01;
+/// How many standard errors the best candidate must beat each other helping one by,
+/// on the same held-out tosses, to be named alone.
+pub const RIVAL_T: f64 = 2.0;
+/// Causes named one after another, at most.
+pub const MAX_ROUNDS: usize = 2;
+/// Held-out tosses a diagnosis needs, at least.
+pub const MIN_HELD_OUT: usize = 3;
+
+/// One candidate of one round.
+#[derive(Clone, Debug, Serialize)]
+pub struct CandidateResult {
+    /// Catalogue name.
+    pub name: &'static str,
+    /// Its family (`friction`, `resistance`, `measurement`).
+    pub family: &'static str,
+    /// Fitted parameters (name, value), units of the catalogue.
+    pub parameters: Vec<(String, f64)>,
+    /// Training fitness (% + °), the model's with this change.
+    pub training: f64,
+    /// Mean held-out score (% + °).
+    pub held_out: f64,
+    /// Held-out gain over the round's model: its score minus the candidate's.
+    pub gain: Paired,
+    /// Whether it helps (see the module's rule).
+    pub helps: bool,
+    /// Fitness evaluations its fit took.
+    pub evaluations: usize,
+}
+
+/// One round: the candidates against the model as it stood.
+#[derive(Clone, Debug, Serialize)]
+pub struct Round {
+    /// The round's model's training fitness and mean held-out score (% + °).
+    pub training: f64,
+    pub held_out: f64,
+    /// Every candidate, in catalogue order.
+    pub candidates: Vec<CandidateResult>,
+    /// The cause named in this round.
+    pub named: Option<&'static str>,
+    /// Candidates that explain the held-out data equally well (none named).
+    pub ambiguous: Vec<&'static str>,
+}
+
+/// What the diagnosis found.
+#[derive(Clone, Debug, Serialize)]
+pub struct MotionDiagnosis {
+    /// Training and held-out tosses.
+    pub training_tosses: usize,
+    pub held_out_tosses: usize,
+    /// The rounds, in order.
+    pub rounds: Vec<Round>,
+    /// Causes named, in order, with their parameters.
+    pub named: Vec<(String, Vec<(String, f64)>)>,
+    /// When the search stopped at a tie: the candidates it could not tell apart.
+    pub ambiguous: Vec<&'static str>,
+    /// Held-out gain of the extended model (every named cause) over the user's.
+    pub total_gain: Option<Paired>,
+    /// One sentence for people.
+    pub answer: String,
+    /// The user's model with every named cause.
+    #[serde(skip)]
+    pub extended: Model,
+}
+
+/// Why a motion diagnosis could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum MotionDiagnoseError {
+    /// The scenario or the data do not describe tosses.
+    #[error(transparent)]
+    Toss(#[from] TossError),
+    /// Too few tosses to judge on.
+    #[error("{found} held-out tosses (odd toss numbers); a diagnosis from motion needs at least {MIN_HELD_OUT} and as many for training")]
+    TooFewTosses { found: usize },
+    /// The user's model cannot replay the tosses.
+    #[error("the model's replay of the {part} tosses failed; check it with `hcm predict`")]
+    Replay { part: &'static str },
+}
+
+/// One toss's combined score (% + °), as the fit weighs it.
+fn combined(scores: &[TossScore]) -> Vec<f64> {
+    scores
+        .iter()
+        .map(|s| s.position_error + s.rotation_error)
+        .collect()
+}
+
+fn mean(values: &[f64]) -> f64 {
+    values.iter().sum::<f64>() / values.len().max(1) as f64
+}
+
+/// Diagnoses `model` against `data` (poses of one body tossed or sliding on a plane);
+/// `progress(round, candidate, candidates)` before each candidate's fit.
+pub fn diagnose_motion(
+    model: &Model,
+    data: &Dataset,
+    mut progress: impl FnMut(usize, usize, usize),
+) -> Result<MotionDiagnosis, MotionDiagnoseError> {
+    let setup = TossSetup::new(model)?;
+    let indices = MotionParameters::new(model, &setup)?;
+    let (mut training, mut held_out) = split_tosses(data);
+    let found = held_out.runs.len().min(training.runs.len());
+    if found < MIN_HELD_OUT {
+        return Err(MotionDiagnoseError::TooFewTosses { found });
+    }
+    let (mass, size) = (model.bodies[setup.body].mass, setup.width / 2.0);
+    let mut current = model.clone();
+    let mut rounds = Vec::new();
+    let mut named = Vec::new();
+    let mut ambiguous = Vec::new();
+    let mut first_scores = None;
+    let mut last_scores = None;
+    for round in 0..MAX_ROUNDS {
+        let subject = Subject {
+            model: &current,
+            contact: indices.contact,
+            plane: indices.plane,
+        };
+        let neutral = MotionEffect::FrictionCoefficient;
+        let base_held = subject
+            .scores(neutral, &[1.0], &held_out)
+            .map(|s| combined(&s))
+            .ok_or(MotionDiagnoseError::Replay { part: "held-out" })?;
+        let base_training = subject.fitness(neutral, &[1.0], &training);
+        if !base_training.is_finite() {
+            return Err(MotionDiagnoseError::Replay { part: "training" });
+        }
+        let floor = MIN_GAIN * mean(first_scores.get_or_insert_with(|| base_held.clone()));
+        let open: Vec<MotionEffect> = (MotionEffect::ALL.iter().copied())
+            .filter(|e| !named.iter().any(|(n, _)| n == e.name()))
+            .filter(|e| e.changes(&current, indices.contact))
+            .collect();
+        let mut results = Vec::new();
+        let mut held_scores = Vec::new();
+        for (k, &effect) in open.iter().enumerate() {
+            progress(round, k, open.len());
+            let bounds = effect.bounds(mass, size);
+            let neutral = effect.neutral(&current, indices.contact);
+            let fitted = fit::fit(&subject, effect, &bounds, &neutral, &training);
+            let held = subject
+                .scores(effect, &fitted.values, &held_out)
+                .map(|s| combined(&s));
+            let result = judge(effect, &bounds, &fitted, &base_held, held.as_deref(), floor);
+            results.push(result);
+            held_scores.push((effect, fitted, held));
+        }
+        let (chosen, tied) = choose(&results, &held_scores);
+        let mut this = Round {
+            training: base_training,
+            held_out: mean(&base_held),
+            candidates: results,
+            named: None,
+            ambiguous: tied.clone(),
+        };
+        let Some(index) = chosen else {
+            ambiguous = tied;
+            rounds.push(this);
+            break;
+        };
+        let (effect, fitted, held) = held_scores.swap_remove(index);
+        this.named = Some(effect.name());
+        named.push((
+            effect.name().to_owned(),
+            this.candidates[index].parameters.clone(),
+        ));
+        current = effect.apply(&current, indices.contact, indices.plane, &fitted.values);
+        if let Some(read) = effect.transform(&training, &fitted.values) {
+            training = read;
+        }
+        if let Some(read) = effect.transform(&held_out, &fitted.values) {
+            held_out = read;
+        }
+        last_scores = held;
+        rounds.push(this);
+    }
+    let total_gain = match (&first_scores, &last_scores) {
+        (Some(first), Some(last)) => Some(Paired::of(first, last)),
+        _ => None,
+    };
+    let answer = answer(&named, &ambiguous, total_gain.as_ref());
+    Ok(MotionDiagnosis {
+        training_tosses: training.runs.len(),
+        held_out_tosses: held_out.runs.len(),
+        rounds,
+        named,
+        ambiguous,
+        total_gain,
+        answer,
+        extended: current,
+    })
+}
+
+/// A candidate's verdict from its fit and held-out scores.
+fn judge(
+    effect: MotionEffect,
+    bounds: &[crate::identify::genetic::Bound],
+    fitted: &Fitted,
+    base_held: &[f64],
+    held: Option<&[f64]>,
+    floor: f64,
+) -> CandidateResult {
+    let parameters = (bounds.iter().zip(&fitted.values))
+        .map(|(b, v)| (b.name.clone(), *v))
+        .collect();
+    let (held_out, gain) = match held {
+        Some(scores) => (mean(scores), Paired::of(base_held, scores)),
+        None => (f64::INFINITY, Paired::of(&[], &[])),
+    };
+    let helps = gain.t() >= HELPS_T && gain.mean >= floor;
+    CandidateResult {
+        name: effect.name(),
+        family: match effect.family() {
+            Family::Friction => "friction",
+            Family::Resistance => "resistance",
+            Family::Measurement => "measurement",
+        },
+        parameters,
+        training: fitted.fitness,
+        held_out,
+        gain,
+        helps,
+        evaluations: fitted.evaluations,
+    }
+}
+
+/// The helping candidate with the largest gain, if it beats every other helping one
+/// by [`RIVAL_T`] on the same tosses; else the tied names (best first).
+fn choose(
+    results: &[CandidateResult],
+    held: &[(MotionEffect, Fitted, Option<Vec<f64>>)],
+) -> (Option<usize>, Vec<&'static str>) {
+    let helping: Vec<usize> = (0..results.len()).filter(|&i| results[i].helps).collect();
+    let Some(&best) = helping
+        .iter()
+        .max_by(|&&a, &&b| results[a].gain.mean.total_cmp(&results[b].gain.mean))
+    else {
+        return (None, Vec::new());
+    };
+    let best_scores = held[best].2.as_deref().unwrap_or(&[]);
+    let tied: Vec<&'static str> = (helping.iter().copied())
+        .filter(|&i| i != best)
+        .filter(|&i| {
+            let other = held[i].2.as_deref().unwrap_or(&[]);
+            Paired::of(other, best_scores).t() < RIVAL_T
+        })
+        .map(|i| results[i].name)
+        .collect();
+    if tied.is_empty() {
+        (Some(best), Vec::new())
+    } else {
+        let mut names = vec![results[best].name];
+        names.extend(tied);
+        (None, names)
+    }
+}
+
+/// The answer in one sentence.
+fn answer(
+    named: &[(String, Vec<(String, f64)>)],
+    ambiguous: &[&'static str],
+    total: Option<&Paired>,
+) -> String {
+    let mut parts = Vec::new();
+    for (name, parameters) in named {
+        let values: Vec<String> = parameters
+            .iter()
+            .map(|(p, v)| format!("{p} = {v:.4e}"))
+            .collect();
+        parts.push(format!("{name} ({})", values.join(", ")));
+    }
+    let mut text = if parts.is_empty() {
+        "none named".to_owned()
+    } else {
+        format!("named: {}", parts.join("; "))
+    };
+    if let Some(total) = total {
+        text.push_str(&format!(
+            "; held-out gain {:.3} (95 % {:.3} to {:.3}) % + ° per toss",
+            total.mean, total.interval[0], total.interval[1]
+        ));
+    }
+    if !ambiguous.is_empty() {
+        text.push_str(&format!(
+            "; then ambiguous ({}): each helps, none clearly more, so none is named",
+            ambiguous.join(" or ")
+        ));
+    } else if parts.is_empty() {
+        text.push_str(": no candidate improves the held-out prediction significantly");
+    }
+    text
+}

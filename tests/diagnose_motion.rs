@@ -1,0 +1,265 @@
+//! Diagnosis from motion alone (issue 17, `hcm_host::diagnose::motion`): tosses of a
+//! cube and slides of a box to rest, simulated with a tangential effect the user's
+//! model lacks and recorded as a 148 Hz tracker would (poses, no force); the diagnosis
+//! must name exactly the hidden effect — a different friction coefficient, Coulomb's
+//! law instead of STEP's, viscous friction, torsional or rolling resistance — or
+//! answer "none" when nothing is hidden.
+//!
+//! Run with `--nocapture` to see every candidate's held-out gain.
+
+use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};
+use hcm_host::dataset::{Dataset, Run};
+use hcm_host::diagnose::motion::{diagnose_motion, MotionDiagnosis};
+use hcm_host::scenario::{Model, Scenario};
+use hcm_host::simulate::simulate;
+use rand::rngs::StdRng;
+use rand::{RngExt, SeedableRng};
+
+/// Tosses per data set: half train, half are held out.
+const TOSSES: usize = 10;
+
+/// The shipped cube-toss scenario with `sets` applied (the user's model).
+fn cube_toss(sets: &[&str]) -> Model {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    Scenario::load(&hcm_tests::scenario("cube_toss.toml"), &sets)
+        .expect("scenarios/cube_toss.toml reads")
+        .model()
+        .expect("and resolves")
+}
+
+/// What the data's truth hides beside the user's model.
+#[derive(Clone, Copy, Debug)]
+enum Hidden {
+    Nothing,
+    /// Both friction coefficients times this.
+    FrictionScale(f64),
+    /// μ_s = μ_d = this.
+    Coulomb(f64),
+    Viscous(f64),
+    Torsional(f64),
+    Rolling(f64),
+}
+
+fn with_hidden(model: &Model, hidden: Hidden) -> Model {
+    let mut truth = model.clone();
+    let contact = &mut truth.contacts[0].model;
+    match hidden {
+        Hidden::Nothing => {}
+        Hidden::FrictionScale(k) => {
+            let f = contact.friction.as_mut().unwrap();
+            f.static_coefficient *= k;
+            f.dynamic_coefficient *= k;
+        }
+        Hidden::Coulomb(mu) => {
+            let f = contact.friction.as_mut().unwrap();
+            f.static_coefficient = mu;
+            f.dynamic_coefficient = mu;
+        }
+        Hidden::Viscous(c) => {
+            contact.tangential.viscous_friction = Some(ViscousFriction { coefficient: c });
+        }
+        Hidden::Torsional(arm) => {
+            contact.tangential.torsional_resistance = Some(TorsionalResistance {
+                arm,
+                spin_rate: 0.1,
+            });
+        }
+        Hidden::Rolling(arm) => {
+            contact.tangential.rolling_resistance = Some(RollingResistance {
+                arm,
+                roll_rate: 0.1,
+            });
+        }
+    }
+    truth
+}
+
+/// How the body starts: thrown onto the table, or set down on it sliding.
+#[derive(Clone, Copy, Debug)]
+enum Start {
+    Toss,
+    Slide,
+}
+
+/// `TOSSES` runs of `truth` from seeded random starts, recorded at the scenario's
+/// frame rate (poses and velocities; no force is read), run ids `toss_000`….
+fn recorded(truth: &Model, start: Start, seed: u64) -> Dataset {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let mut data = Dataset::default();
+    for k in 0..TOSSES {
+        let mut model = truth.clone();
+        let body = &mut model.bodies[0];
+        let angle = rng.random_range(0.0..std::f64::consts::TAU);
+        let speed = rng.random_range(0.8..1.6);
+        match start {
+            Start::Toss => {
+                body.position = [0.0, 0.0, rng.random_range(0.15..0.25)].into();
+                body.velocity = [speed * angle.cos(), speed * angle.sin(), -0.5].into();
+                body.angular_velocity = [
+                    rng.random_range(-6.0..6.0),
+                    rng.random_range(-6.0..6.0),
+                    rng.random_range(-3.0..3.0),
+                ]
+                .into();
+                body.orientation = nalgebra::UnitQuaternion::from_euler_angles(
+                    rng.random_range(-0.6..0.6),
+                    rng.random_range(-0.6..0.6),
+                    rng.random_range(0.0..1.5),
+                );
+            }
+            Start::Slide => {
+                // Resting flat (1 µm above the table), sliding and spinning.
+                body.position = [0.0, 0.0, 0.0524 + 1e-6].into();
+                body.orientation = nalgebra::UnitQuaternion::from_euler_angles(
+                    0.0,
+                    0.0,
+                    rng.random_range(0.0..1.5),
+                );
+                body.velocity = [speed * angle.cos(), speed * angle.sin(), 0.0].into();
+                body.angular_velocity = [0.0, 0.0, rng.random_range(-8.0..8.0)].into();
+            }
+        }
+        let mut run: Run = simulate(&model).expect("the truth simulates").run;
+        run.id = format!("toss_{k:03}");
+        data.runs.push(run);
+    }
+    data
+}
+
+fn diagnosed(what: &str, user: &Model, hidden: Hidden, start: Start, seed: u64) -> MotionDiagnosis {
+    let data = recorded(&with_hidden(user, hidden), start, seed);
+    let begun = std::time::Instant::now();
+    let d = diagnose_motion(user, &data, |_, _, _| {}).expect("the diagnosis runs");
+    println!("== {what} ({:.1} s)", begun.elapsed().as_secs_f64());
+    for round in &d.rounds {
+        println!(
+            "  round: training {:.4}, held-out {:.4} (% + °)",
+            round.training, round.held_out
+        );
+        for c in &round.candidates {
+            println!(
+                "    {:<22} gain {:>9.4} ± {:.4} (t {:>7.1}) {}  {:?}",
+                c.name,
+                c.gain.mean,
+                c.gain.standard_error,
+                c.gain.t(),
+                if c.helps { "helps" } else { "     " },
+                c.parameters
+            );
+        }
+    }
+    println!("  answer: {}", d.answer);
+    d
+}
+
+fn names(d: &MotionDiagnosis) -> Vec<&str> {
+    d.named.iter().map(|(n, _)| n.as_str()).collect()
+}
+
+/// The user's STEP law with two coefficients, so that Coulomb's law is a change.
+fn stepped_user() -> Model {
+    cube_toss(&[
+        "contact.0.friction.mu_static=0.3",
+        "contact.0.friction.mu_dynamic=0.15",
+        "contact.0.friction.v_static=0.02",
+        "contact.0.friction.v_dynamic=0.5",
+    ])
+}
+
+#[test]
+fn nothing_hidden_in_tosses_names_nothing() {
+    let d = diagnosed(
+        "tosses, nothing hidden",
+        &cube_toss(&[]),
+        Hidden::Nothing,
+        Start::Toss,
+        1,
+    );
+    assert!(d.named.is_empty() && d.ambiguous.is_empty(), "{}", d.answer);
+}
+
+#[test]
+fn nothing_hidden_in_slides_names_nothing() {
+    let d = diagnosed(
+        "slides, nothing hidden",
+        &stepped_user(),
+        Hidden::Nothing,
+        Start::Slide,
+        2,
+    );
+    assert!(d.named.is_empty() && d.ambiguous.is_empty(), "{}", d.answer);
+}
+
+#[test]
+fn a_different_friction_coefficient_is_named_from_slides() {
+    let d = diagnosed(
+        "slides, μ × 1.5",
+        &stepped_user(),
+        Hidden::FrictionScale(1.5),
+        Start::Slide,
+        3,
+    );
+    assert_eq!(names(&d), ["friction_coefficient"], "{}", d.answer);
+    let scale = d.named[0].1[0].1;
+    assert!((scale / 1.5 - 1.0).abs() < 0.05, "{scale}");
+}
+
+#[test]
+fn coulomb_friction_is_named_from_slides() {
+    let d = diagnosed(
+        "slides, Coulomb μ = 0.2",
+        &stepped_user(),
+        Hidden::Coulomb(0.2),
+        Start::Slide,
+        4,
+    );
+    assert_eq!(names(&d), ["coulomb_friction"], "{}", d.answer);
+}
+
+#[test]
+fn viscous_friction_is_named_from_slides() {
+    let d = diagnosed(
+        "slides, viscous 0.3 N·s/m",
+        &stepped_user(),
+        Hidden::Viscous(0.3),
+        Start::Slide,
+        5,
+    );
+    assert_eq!(names(&d), ["viscous_friction"], "{}", d.answer);
+}
+
+#[test]
+fn torsional_resistance_is_named_from_slides() {
+    let d = diagnosed(
+        "slides, torsional 5 mm",
+        &stepped_user(),
+        Hidden::Torsional(5e-3),
+        Start::Slide,
+        6,
+    );
+    assert_eq!(names(&d), ["torsional_resistance"], "{}", d.answer);
+}
+
+#[test]
+fn rolling_resistance_is_named_from_tosses() {
+    let d = diagnosed(
+        "tosses, rolling 5 mm",
+        &cube_toss(&[]),
+        Hidden::Rolling(5e-3),
+        Start::Toss,
+        7,
+    );
+    assert_eq!(names(&d), ["rolling_resistance"], "{}", d.answer);
+}
+
+#[test]
+fn a_different_friction_coefficient_is_named_from_tosses() {
+    let d = diagnosed(
+        "tosses, μ × 1.5",
+        &cube_toss(&[]),
+        Hidden::FrictionScale(1.5),
+        Start::Toss,
+        8,
+    );
+    assert_eq!(names(&d), ["friction_coefficient"], "{}", d.answer);
+}
