@@ -263,3 +263,41 @@ fn a_different_friction_coefficient_is_named_from_tosses() {
     );
     assert_eq!(names(&d), ["friction_coefficient"], "{}", d.answer);
 }
+
+#[test]
+fn hcm_diagnose_motion_writes_its_answer_and_refuses_too_few_tosses() {
+    let hcm = hcm_tests::cli::Hcm::new();
+    let data = recorded(
+        &with_hidden(&cube_toss(&[]), Hidden::Rolling(5e-3)),
+        Start::Toss,
+        9,
+    );
+    let csv = hcm.path("tosses.csv");
+    data.write(&csv).unwrap();
+    let out = hcm.path("diagnosis.json");
+    let printed = hcm
+        .run("diagnose-motion")
+        .opt("--scenario", hcm_tests::scenario("cube_toss.toml"))
+        .opt("--data", &csv)
+        .opt("--out", &out)
+        .ok();
+    println!("{printed}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(json["named"][0][0], "rolling_resistance", "{printed}");
+    assert!(
+        printed.contains("answer: named: rolling_resistance"),
+        "{printed}"
+    );
+    // Four tosses leave two held out: refused, saying how many it needs.
+    let mut few = data.clone();
+    few.runs.truncate(4);
+    few.write(&csv).unwrap();
+    let message = hcm
+        .run("diagnose-motion")
+        .opt("--scenario", hcm_tests::scenario("cube_toss.toml"))
+        .opt("--data", &csv)
+        .opt("--out", &out)
+        .fails();
+    assert!(message.contains("needs at least 3"), "{message}");
+}

@@ -1,6 +1,7 @@
 //! The `hcm` command line: one module per subcommand, each with its `Args` and `run`.
 
 mod diagnose;
+mod diagnose_motion;
 mod evaluate;
 mod export;
 mod force;
@@ -46,6 +47,7 @@ use std::process::ExitCode;
 ///   hcm diagnose    name what a physics law misses in data, and extend it
 ///   hcm predict     replay measured tosses from their window start and score them
 ///   hcm identify-motion  fit a tossed body's contact to filmed tosses, judge it held out
+///   hcm diagnose-motion  name what a tossed body's simulation misses, from motion alone
 ///
 /// `hcm COMMAND --help` defines each command's terms; the README has the details.
 #[derive(Parser)]
@@ -71,6 +73,7 @@ enum Command {
     Diagnose(diagnose::Args),
     Predict(predict::Args),
     IdentifyMotion(identify_motion::Args),
+    DiagnoseMotion(diagnose_motion::Args),
 }
 
 /// Parses the command line, runs the subcommand, and reports errors in plain words.
@@ -90,6 +93,7 @@ pub fn main() -> ExitCode {
         Command::Diagnose(args) => diagnose::run(args),
         Command::Predict(args) => predict::run(args),
         Command::IdentifyMotion(args) => identify_motion::run(args),
+        Command::DiagnoseMotion(args) => diagnose_motion::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
