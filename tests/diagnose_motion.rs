@@ -3,7 +3,8 @@
 //! model lacks and recorded as a 148 Hz tracker would (poses, no force); the diagnosis
 //! must name exactly the hidden effect — a different friction coefficient, Coulomb's
 //! law instead of STEP's, viscous friction, torsional or rolling resistance — or
-//! answer "none" when nothing is hidden.
+//! answer "none" when nothing is hidden; and the same from slides whose data also hold
+//! the contact force.
 //!
 //! Run with `--nocapture` to see every candidate's held-out gain.
 
@@ -82,8 +83,23 @@ enum Start {
 }
 
 /// `TOSSES` runs of `truth` from seeded random starts, recorded at the scenario's
-/// frame rate (poses and velocities; no force is read), run ids `toss_000`….
+/// frame rate, poses and velocities and no force (empty cells), run ids `toss_000`….
 fn recorded(truth: &Model, start: Start, seed: u64) -> Dataset {
+    let mut data = recorded_with_force(truth, start, seed);
+    for run in &mut data.runs {
+        for body in &mut run.bodies {
+            for sample in &mut body.samples {
+                sample.force = [f64::NAN; 3];
+                sample.torque = [f64::NAN; 3];
+            }
+        }
+    }
+    data
+}
+
+/// The same with the contact force on the body in every frame, as a force plate under
+/// the table would give it.
+fn recorded_with_force(truth: &Model, start: Start, seed: u64) -> Dataset {
     let mut rng = StdRng::seed_from_u64(seed);
     let mut data = Dataset::default();
     for k in 0..TOSSES {
@@ -116,7 +132,9 @@ fn recorded(truth: &Model, start: Start, seed: u64) -> Dataset {
                     rng.random_range(0.0..1.5),
                 );
                 body.velocity = [speed * angle.cos(), speed * angle.sin(), 0.0].into();
-                body.angular_velocity = [0.0, 0.0, rng.random_range(-8.0..8.0)].into();
+                // Spinning at 3–8 rad/s either way: every slide turns as it slides.
+                let spin = rng.random_range(3.0..8.0) * if rng.random() { 1.0 } else { -1.0 };
+                body.angular_velocity = [0.0, 0.0, spin].into();
             }
         }
         let mut run: Run = simulate(&model).expect("the truth simulates").run;
@@ -127,9 +145,16 @@ fn recorded(truth: &Model, start: Start, seed: u64) -> Dataset {
 }
 
 fn diagnosed(what: &str, user: &Model, hidden: Hidden, start: Start, seed: u64) -> MotionDiagnosis {
-    let data = recorded(&with_hidden(user, hidden), start, seed);
+    diagnosed_from(
+        what,
+        user,
+        &recorded(&with_hidden(user, hidden), start, seed),
+    )
+}
+
+fn diagnosed_from(what: &str, user: &Model, data: &Dataset) -> MotionDiagnosis {
     let begun = std::time::Instant::now();
-    let d = diagnose_motion(user, &data, |_, _, _| {}).expect("the diagnosis runs");
+    let d = diagnose_motion(user, data, |_, _, _| {}).expect("the diagnosis runs");
     println!("== {what} ({:.1} s)", begun.elapsed().as_secs_f64());
     for round in &d.rounds {
         println!(
@@ -262,6 +287,46 @@ fn a_different_friction_coefficient_is_named_from_tosses() {
         8,
     );
     assert_eq!(names(&d), ["friction_coefficient"], "{}", d.answer);
+}
+
+/// Slides recorded with the contact force beside the poses: motion and force judged
+/// together.
+fn with_force(what: &str, hidden: Hidden, seed: u64) -> MotionDiagnosis {
+    let user = stepped_user();
+    let data = recorded_with_force(&with_hidden(&user, hidden), Start::Slide, seed);
+    diagnosed_from(what, &user, &data)
+}
+
+#[test]
+fn nothing_hidden_in_slides_with_force_names_nothing() {
+    let d = with_force("slides + force, nothing hidden", Hidden::Nothing, 12);
+    assert!(d.named.is_empty() && d.ambiguous.is_empty(), "{}", d.answer);
+}
+
+#[test]
+fn coulomb_friction_is_named_from_slides_with_force() {
+    let d = with_force("slides + force, Coulomb μ = 0.2", Hidden::Coulomb(0.2), 14);
+    assert_eq!(names(&d), ["coulomb_friction"], "{}", d.answer);
+}
+
+#[test]
+fn viscous_friction_is_named_from_slides_with_force() {
+    let d = with_force(
+        "slides + force, viscous 0.3 N·s/m",
+        Hidden::Viscous(0.3),
+        15,
+    );
+    assert_eq!(names(&d), ["viscous_friction"], "{}", d.answer);
+}
+
+#[test]
+fn torsional_resistance_is_named_from_slides_with_force() {
+    let d = with_force(
+        "slides + force, torsional 5 mm",
+        Hidden::Torsional(5e-3),
+        16,
+    );
+    assert_eq!(names(&d), ["torsional_resistance"], "{}", d.answer);
 }
 
 #[test]

@@ -7,9 +7,12 @@ use super::catalogue::MotionEffect;
 use crate::dataset::Dataset;
 use crate::identify::genetic::Bound;
 use crate::identify::motion::polish::polish;
-use crate::identify::motion::{fitness, toss_scores, MotionTarget};
+use crate::identify::motion::MotionTarget;
 use crate::scenario::Model;
-use crate::toss::TossScore;
+use crate::toss::predict::{simulate_toss, PreparedToss};
+use crate::toss::score_toss;
+use nalgebra::Vector3;
+use rayon::prelude::*;
 
 /// Grid points of a one-parameter candidate's box (–).
 const GRID: usize = 9;
@@ -33,35 +36,62 @@ pub struct Subject<'a> {
 }
 
 impl Subject<'_> {
-    /// Every toss's scores of `data` under `effect` with `values` (`None` if the data
-    /// cannot be read so, or a replay fails).
-    pub fn scores(
-        &self,
-        effect: MotionEffect,
-        values: &[f64],
-        data: &Dataset,
-    ) -> Option<Vec<TossScore>> {
-        let model = effect.apply(self.model, self.contact, self.plane, values);
-        match effect.transform(data, values) {
-            Some(read) => {
-                let target = MotionTarget::new(&model, &read).ok()?;
-                toss_scores(&target, &model)
-            }
-            None => {
-                let target = MotionTarget::new(&model, data).ok()?;
-                toss_scores(&target, &model)
-            }
-        }
-    }
-
-    /// Mean position error (%) + rotation error (°) over `data`'s tosses, +∞ if any
-    /// replay fails.
-    pub fn fitness(&self, effect: MotionEffect, values: &[f64], data: &Dataset) -> f64 {
+    /// Every toss's score of `data` under `effect` with `values` (`None` if the data
+    /// cannot be read so, or a replay fails): see [`toss_score`].
+    pub fn scores(&self, effect: MotionEffect, values: &[f64], data: &Dataset) -> Option<Vec<f64>> {
         let model = effect.apply(self.model, self.contact, self.plane, values);
         let read = effect.transform(data, values);
-        let target = MotionTarget::new(&model, read.as_ref().unwrap_or(data));
-        target.map_or(f64::INFINITY, |t| fitness(&t, &model))
+        let target = MotionTarget::new(&model, read.as_ref().unwrap_or(data)).ok()?;
+        let weight = model.bodies[target.setup.body].mass * target.setup.gravity.norm();
+        let scores: Vec<Option<f64>> = (target.tosses.par_iter())
+            .map(|toss| toss_score(&target, toss, &model, weight))
+            .collect();
+        scores.into_iter().collect()
     }
+
+    /// Mean score over `data`'s tosses, +∞ if any replay fails.
+    pub fn fitness(&self, effect: MotionEffect, values: &[f64], data: &Dataset) -> f64 {
+        match self.scores(effect, values, data) {
+            Some(scores) if !scores.is_empty() => {
+                let mean = scores.iter().sum::<f64>() / scores.len() as f64;
+                if mean.is_finite() {
+                    mean
+                } else {
+                    f64::INFINITY
+                }
+            }
+            _ => f64::INFINITY,
+        }
+    }
+}
+
+/// One toss's score under `model`: its mean position error (% of the width) plus mean
+/// rotation error (°), as `hcm predict` scores it, plus — where the data have a force
+/// channel — the mean force error over the frames that hold one, |F_pred − F| in % of
+/// the body's weight `weight` (N): motion and force judged together.
+fn toss_score(
+    target: &MotionTarget<'_>,
+    toss: &PreparedToss<'_>,
+    model: &Model,
+    weight: f64,
+) -> Option<f64> {
+    let prediction = simulate_toss(model, &target.setup, toss).ok()?;
+    let measured = &toss.track.samples[toss.window.start..];
+    let score = score_toss(&target.setup, toss.run, measured, &prediction.samples).ok()?;
+    let (mut force, mut frames) = (0.0, 0);
+    for (recorded, predicted) in measured.iter().zip(&prediction.samples) {
+        let f = Vector3::from(recorded.force);
+        if f.iter().all(|x| x.is_finite()) {
+            force += (Vector3::from(predicted.force) - f).norm();
+            frames += 1;
+        }
+    }
+    let force_error = if frames > 0 {
+        100.0 * force / frames as f64 / weight
+    } else {
+        0.0
+    };
+    Some(score.position_error + score.rotation_error + force_error)
 }
 
 /// A candidate's fit.

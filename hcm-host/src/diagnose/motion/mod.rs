@@ -7,7 +7,9 @@
 //! (Coulomb), viscous friction, torsional and rolling resistance, the table's height
 //! and tilt, the tracker's length scale — is fitted on the training tosses with the
 //! user's model otherwise fixed ([`fit`]), and judged on the held-out tosses by its
-//! paired gain over the user's model, toss by toss ([`paired`]). A candidate *helps*
+//! paired gain over the user's model, toss by toss ([`paired`]). A toss's score is its
+//! mean position error (%) plus mean rotation error (°), plus, where the data hold a
+//! force channel, its mean force error (% of the body's weight). A candidate *helps*
 //! when that gain is at least [`HELPS_T`] standard errors above zero and at least
 //! [`MIN_GAIN`] of the model's held-out score. The one with the largest gain is named
 //! only if it also beats every other helping candidate by [`RIVAL_T`] standard errors
@@ -25,7 +27,7 @@ pub use paired::Paired;
 use crate::dataset::Dataset;
 use crate::identify::motion::{split_tosses, MotionParameters};
 use crate::scenario::Model;
-use crate::toss::{TossError, TossScore, TossSetup};
+use crate::toss::{TossError, TossSetup};
 use fit::{Fitted, Subject};
 use serde::Serialize;
 
@@ -114,14 +116,6 @@ pub enum MotionDiagnoseError {
     Replay { part: &'static str },
 }
 
-/// One toss's combined score (% + °), as the fit weighs it.
-fn combined(scores: &[TossScore]) -> Vec<f64> {
-    scores
-        .iter()
-        .map(|s| s.position_error + s.rotation_error)
-        .collect()
-}
-
 fn mean(values: &[f64]) -> f64 {
     values.iter().sum::<f64>() / values.len().max(1) as f64
 }
@@ -156,7 +150,6 @@ pub fn diagnose_motion(
         let neutral = MotionEffect::FrictionCoefficient;
         let base_held = subject
             .scores(neutral, &[1.0], &held_out)
-            .map(|s| combined(&s))
             .ok_or(MotionDiagnoseError::Replay { part: "held-out" })?;
         let base_training = subject.fitness(neutral, &[1.0], &training);
         if !base_training.is_finite() {
@@ -174,9 +167,7 @@ pub fn diagnose_motion(
             let bounds = effect.bounds(mass, size);
             let neutral = effect.neutral(&current, indices.contact);
             let fitted = fit::fit(&subject, effect, &bounds, &neutral, &training);
-            let held = subject
-                .scores(effect, &fitted.values, &held_out)
-                .map(|s| combined(&s));
+            let held = subject.scores(effect, &fitted.values, &held_out);
             let result = judge(effect, &bounds, &fitted, &base_held, held.as_deref(), floor);
             results.push(result);
             held_scores.push((effect, fitted, held));
