@@ -100,9 +100,14 @@ fn recorded(truth: &Model, start: Start, seed: u64) -> Dataset {
 /// The same with the contact force on the body in every frame, as a force plate under
 /// the table would give it.
 fn recorded_with_force(truth: &Model, start: Start, seed: u64) -> Dataset {
+    runs_of(truth, start, seed, TOSSES)
+}
+
+/// `count` runs of `truth` from seeded random starts, with force.
+fn runs_of(truth: &Model, start: Start, seed: u64, count: usize) -> Dataset {
     let mut rng = StdRng::seed_from_u64(seed);
     let mut data = Dataset::default();
-    for k in 0..TOSSES {
+    for k in 0..count {
         let mut model = truth.clone();
         let body = &mut model.bodies[0];
         let angle = rng.random_range(0.0..std::f64::consts::TAU);
@@ -327,6 +332,74 @@ fn torsional_resistance_is_named_from_slides_with_force() {
         16,
     );
     assert_eq!(names(&d), ["torsional_resistance"], "{}", d.answer);
+}
+
+/// Tosses per data set with tracker noise: the noise raises the model's own held-out
+/// score (the replays start from a state fitted to noisy frames), so a gain needs more
+/// tosses to stand out.
+const NOISY_TOSSES: usize = 20;
+
+/// `NOISY_TOSSES` tosses of `truth` as a camera tracker records them: poses only, each
+/// with Gaussian noise of 0.5 mm on every coordinate and 0.3° about a random axis.
+fn noisy_tosses(truth: &Model, seed: u64) -> Dataset {
+    let mut data = runs_of(truth, Start::Toss, seed, NOISY_TOSSES);
+    for run in &mut data.runs {
+        for body in &mut run.bodies {
+            for sample in &mut body.samples {
+                sample.force = [f64::NAN; 3];
+                sample.torque = [f64::NAN; 3];
+            }
+        }
+    }
+    tracked(data, 5e-4, 0.3_f64.to_radians(), seed + 1)
+}
+
+/// `data` as a camera tracker records it: every pose with Gaussian noise, `position`
+/// (m) on each coordinate and a rotation of `angle` (rad) standard deviation about a
+/// random axis; velocities re-estimated by the prediction from the noisy poses.
+fn tracked(mut data: Dataset, position: f64, angle: f64, seed: u64) -> Dataset {
+    let mut rng = StdRng::seed_from_u64(seed);
+    // Box–Muller: a standard normal from two uniforms.
+    let mut unit = move || {
+        let u: f64 = 1.0 - rng.random::<f64>();
+        let v: f64 = rng.random();
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    };
+    for run in &mut data.runs {
+        for body in &mut run.bodies {
+            for sample in &mut body.samples {
+                for x in &mut sample.position {
+                    *x += position * unit();
+                }
+                let turn = nalgebra::Vector3::from_fn(|_, _| angle * unit());
+                let [w, x, y, z] = sample.orientation;
+                let q = nalgebra::UnitQuaternion::from_scaled_axis(turn)
+                    * nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                        w, x, y, z,
+                    ));
+                sample.orientation = [q.w, q.i, q.j, q.k];
+            }
+        }
+    }
+    data
+}
+
+#[test]
+fn tracker_noise_names_nothing_when_nothing_is_hidden_in_tosses() {
+    let user = cube_toss(&[]);
+    let data = noisy_tosses(&user, 21);
+    let d = diagnosed_from("tosses with tracker noise, nothing hidden", &user, &data);
+    assert!(d.named.is_empty() && d.ambiguous.is_empty(), "{}", d.answer);
+}
+
+#[test]
+#[ignore = "issue 17: below the power with tracker noise: rolling 5 mm fits 4.5 mm and gains 15.3 ± 6.1 % + ° on 10 held-out tosses (t 2.5 < 3), heavy-tailed over the tosses; not named (no wrong name either)"]
+fn rolling_resistance_is_named_through_tracker_noise() {
+    let user = cube_toss(&[]);
+    let truth = with_hidden(&user, Hidden::Rolling(5e-3));
+    let data = noisy_tosses(&truth, 23);
+    let d = diagnosed_from("tosses with tracker noise, rolling 5 mm", &user, &data);
+    assert_eq!(names(&d), ["rolling_resistance"], "{}", d.answer);
 }
 
 #[test]
