@@ -6,9 +6,11 @@ use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::motion::{
-    identify_motion, split_tosses, MotionParameters, MotionStage, MotionTarget,
+    fitted_assignments, fitted_scenario_text, identify_motion, split_tosses, MotionParameters,
+    MotionStage, MotionTarget,
 };
 use hcm_host::identify::{FitRecord, Physics};
+use hcm_host::output::write_bytes;
 use hcm_host::scenario::Model;
 use hcm_host::toss::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};
 use std::path::PathBuf;
@@ -25,8 +27,9 @@ use std::path::PathBuf;
 /// rotation error (°): the genetic algorithm, then a Nelder–Mead polish, each
 /// candidate's tosses simulated in parallel. Writes the physics file (law and friction;
 /// the table offset, which a physics file cannot carry, is printed as the `--set` that
-/// applies it, and kept in the file's notes), and prints the scores of the scenario's
-/// parameters, the fitted ones and the frozen pose on both parts.
+/// applies it, and kept in the file's notes; --scenario-out writes a scenario with all
+/// of them in), and prints the scores of the scenario's parameters, the fitted ones and
+/// the frozen pose on both parts.
 ///
 /// Terms:
 ///   window         a toss's frames from 3 frames before the body's centre first comes
@@ -55,6 +58,10 @@ pub struct Args {
     /// Also write the held-out tosses (measured-data CSV), for `hcm predict --data`.
     #[arg(long, value_name = "FILE")]
     held_out: Option<PathBuf>,
+    /// Also write the fitted scenario (TOML): the scenario with the fitted law
+    /// parameters, friction and table offset in it, for `hcm predict --scenario`.
+    #[arg(long, value_name = "FILE")]
+    scenario_out: Option<PathBuf>,
     /// Seed of the genetic algorithm.
     #[arg(long, default_value_t = 1)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
@@ -119,10 +126,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         println!("  {name:<14} {value:.6e}");
     }
     let offset = fit.parameters.last().map_or(0.0, |p| p.1);
-    let set = format!(
-        "body.{}.shape.plane.offset={offset:e}",
-        model.bodies[parameters.plane].name
-    );
+    let assignments = fitted_assignments(&model, &parameters, &fit.parameters);
+    let set = assignments.last().cloned().unwrap_or_default();
     println!("table offset: give `--set {set}` with the physics file");
     let table = score_table(&model, &fit.model, &training, &held_out)?;
     print!("{table}");
@@ -154,6 +159,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         )
         .with_context(|| format!("writing {}", args.out.display()))?;
     println!("wrote {}", args.out.display());
+    if let Some(path) = &args.scenario_out {
+        let header = format!(
+            "Scenario `{}` ({}) with the contact and table height fitted by\n\
+             hcm identify-motion to the even-numbered tosses of {}: {}",
+            scenario.name,
+            args.scenario.scenario.display(),
+            args.data.display(),
+            assignments.join(" ")
+        );
+        let text = fitted_scenario_text(&scenario, &assignments, &header)?;
+        write_bytes(path, text.as_bytes())?;
+        println!("wrote {}", path.display());
+    }
     Ok(())
 }
 
