@@ -64,6 +64,10 @@ fn the_window_and_initial_state_of_a_simulated_toss_are_its_truth() {
     );
     assert_eq!(window.start + LEAD_FRAMES, window.near);
     assert_eq!(window.frames, track.samples.len());
+    // A fitted table height moves the contact surface, not the window.
+    let lowered = cube_toss(&["body.table.shape.plane.offset=-2e-3"]);
+    let lowered = TossSetup::new(&lowered).unwrap();
+    assert_eq!(find_window(&lowered, &run.id, track).unwrap(), window);
 
     let initial = estimate_initial_state(&setup, &run.id, track, &window).unwrap();
     assert_eq!(initial.source, StateSource::FreeFlightFit { frames: 8 });

@@ -103,3 +103,58 @@ fn the_fit_from_motion_beats_the_scenario_on_held_out_tosses() {
     assert_eq!(bits(&found), bits(&again));
     assert_eq!(found.fitness.to_bits(), again.fitness.to_bits());
 }
+
+#[test]
+fn identify_motion_writes_a_scenario_that_predict_replays_as_it_scored() {
+    let hcm = hcm_tests::cli::Hcm::new();
+    hidden_tosses().write(&hcm.path("tosses.csv")).unwrap();
+    let scenario = hcm_tests::scenario("cube_toss.toml");
+    let out = hcm
+        .run("identify-motion")
+        .opt("--scenario", &scenario)
+        .opt("--data", "tosses.csv")
+        .opt("--population", "4")
+        .opt("--generations", "2")
+        .opt("--polish", "4")
+        .opt("--out", "fitted.toml")
+        .opt("--held-out", "held_out.csv")
+        .opt("--scenario-out", "fitted_scenario.toml")
+        .ok();
+    println!("{out}");
+    // The fitted held-out row, e.g. `| held out (3) | fitted | 1.23 ± …`.
+    // The cells after the label's (the label spans `cells` cells).
+    let row = |text: &str, label: &str, cells: usize| -> String {
+        let line = text.lines().find(|l| l.contains(label)).unwrap_or_default();
+        line.split('|')
+            .skip(1 + cells)
+            .collect::<Vec<_>>()
+            .join("|")
+    };
+    let fitted = row(&out, "| held out (3) | fitted |", 2);
+    assert!(!fitted.is_empty(), "{out}");
+    let physics = std::fs::read_to_string(hcm.path("fitted.toml")).unwrap();
+    assert!(physics.contains("mu_dynamic") && physics.contains("max_damping"));
+    let predicted = hcm
+        .run("predict")
+        .opt("--scenario", "fitted_scenario.toml")
+        .opt("--data", "held_out.csv")
+        .opt("--out", "predicted.csv")
+        .ok();
+    assert_eq!(row(&predicted, "| simulation |", 1), fitted, "{predicted}");
+    // The physics file with the printed table offset gives the same.
+    let set = out
+        .lines()
+        .find_map(|l| l.split("--set ").nth(1))
+        .and_then(|rest| rest.split('`').next())
+        .unwrap()
+        .to_owned();
+    let again = hcm
+        .run("predict")
+        .opt("--scenario", &scenario)
+        .opt("--physics", "fitted.toml")
+        .opt("--set", &set)
+        .opt("--data", "held_out.csv")
+        .opt("--out", "again.csv")
+        .ok();
+    assert_eq!(row(&again, "| simulation |", 1), fitted, "{again}");
+}

@@ -6,9 +6,11 @@ use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::motion::{
-    identify_motion, split_tosses, MotionParameters, MotionStage, MotionTarget,
+    fitted_assignments, fitted_scenario_text, identify_motion, split_tosses, MotionFit,
+    MotionParameters, MotionStage, MotionTarget,
 };
 use hcm_host::identify::{FitRecord, Physics};
+use hcm_host::output::write_bytes;
 use hcm_host::scenario::Model;
 use hcm_host::toss::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};
 use std::path::PathBuf;
@@ -25,8 +27,9 @@ use std::path::PathBuf;
 /// rotation error (°): the genetic algorithm, then a Nelder–Mead polish, each
 /// candidate's tosses simulated in parallel. Writes the physics file (law and friction;
 /// the table offset, which a physics file cannot carry, is printed as the `--set` that
-/// applies it, and kept in the file's notes), and prints the scores of the scenario's
-/// parameters, the fitted ones and the frozen pose on both parts.
+/// applies it, and kept in the file's notes; --scenario-out writes a scenario with all
+/// of them in), and prints the scores of the scenario's parameters, the fitted ones and
+/// the frozen pose on both parts.
 ///
 /// Terms:
 ///   window         a toss's frames from 3 frames before the body's centre first comes
@@ -55,6 +58,10 @@ pub struct Args {
     /// Also write the held-out tosses (measured-data CSV), for `hcm predict --data`.
     #[arg(long, value_name = "FILE")]
     held_out: Option<PathBuf>,
+    /// Also write the fitted scenario (TOML): the scenario with the fitted law
+    /// parameters, friction and table offset in it, for `hcm predict --scenario`.
+    #[arg(long, value_name = "FILE")]
+    scenario_out: Option<PathBuf>,
     /// Seed of the genetic algorithm.
     #[arg(long, default_value_t = 1)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
@@ -76,26 +83,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let model = scenario.model()?;
     let setup = TossSetup::new(&model)?;
-    let mut data = Dataset::read(&args.data)?;
-    if let Some(first) = args.first {
-        anyhow::ensure!(first > 1, "--first {first}: give at least 2 runs to split");
-        data.runs.truncate(first);
-    }
-    setup.check_data(&args.data.display().to_string(), &model, &data)?;
-    let (training, held_out) = split_tosses(&data);
-    anyhow::ensure!(
-        !training.runs.is_empty() && !held_out.runs.is_empty(),
-        "{}: the split by toss number left {} training and {} held-out runs; both parts \
-         need runs (even and odd numbers)",
-        args.data.display(),
-        training.runs.len(),
-        held_out.runs.len()
-    );
-    if let Some(path) = &args.held_out {
-        held_out
-            .write(path)
-            .with_context(|| format!("writing {}", path.display()))?;
-    }
+    let (training, held_out) = read_split(&args, &model, &setup)?;
     let target = MotionTarget::new(&model, &training)?;
     let parameters = MotionParameters::new(&model, &setup)?;
     let settings = GeneticSettings {
@@ -118,19 +106,74 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for (name, value) in &fit.parameters {
         println!("  {name:<14} {value:.6e}");
     }
-    let offset = fit.parameters.last().map_or(0.0, |p| p.1);
-    let set = format!(
-        "body.{}.shape.plane.offset={offset:e}",
-        model.bodies[parameters.plane].name
-    );
+    let assignments = fitted_assignments(&model, &parameters, &fit.parameters);
+    let set = assignments.last().cloned().unwrap_or_default();
     println!("table offset: give `--set {set}` with the physics file");
-    let table = score_table(&model, &fit.model, &training, &held_out)?;
-    print!("{table}");
-    let law = fit.model.contacts[parameters.contact].law();
+    print!("{}", score_table(&model, &fit.model, &training, &held_out)?);
+    write_physics(
+        &args,
+        &scenario.name,
+        &fit,
+        &parameters,
+        &set,
+        training.runs.len(),
+    )?;
+    if let Some(path) = &args.scenario_out {
+        let header = format!(
+            "Scenario `{}` ({}) with the contact and table height fitted by\n\
+             hcm identify-motion to the even-numbered tosses of {}: {}",
+            scenario.name,
+            args.scenario.scenario.display(),
+            args.data.display(),
+            assignments.join(" ")
+        );
+        let text = fitted_scenario_text(&scenario, &assignments, &header)?;
+        write_bytes(path, text.as_bytes())?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Reads --data (its first N runs with --first), checks the poses and splits it into
+/// (training, held out); writes the held-out part with --held-out.
+fn read_split(args: &Args, model: &Model, setup: &TossSetup) -> anyhow::Result<(Dataset, Dataset)> {
+    let mut data = Dataset::read(&args.data)?;
+    if let Some(first) = args.first {
+        anyhow::ensure!(first > 1, "--first {first}: give at least 2 runs to split");
+        data.runs.truncate(first);
+    }
+    setup.check_data(&args.data.display().to_string(), model, &data)?;
+    let (training, held_out) = split_tosses(&data);
+    anyhow::ensure!(
+        !training.runs.is_empty() && !held_out.runs.is_empty(),
+        "{}: the split by toss number left {} training and {} held-out runs; both parts \
+         need runs (even and odd numbers)",
+        args.data.display(),
+        training.runs.len(),
+        held_out.runs.len()
+    );
+    if let Some(path) = &args.held_out {
+        held_out
+            .write(path)
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
+    Ok((training, held_out))
+}
+
+/// Writes the physics file: the fitted law and friction, the table offset's `--set` in
+/// the notes.
+fn write_physics(
+    args: &Args,
+    name: &str,
+    fit: &MotionFit,
+    parameters: &MotionParameters,
+    set: &str,
+    runs: usize,
+) -> anyhow::Result<()> {
     let record = FitRecord {
         method: "ga + Nelder–Mead on toss replays (motion only)".into(),
         data: args.data.display().to_string(),
-        runs: training.runs.len(),
+        runs,
         seconds: fit.seconds,
         force_rms: f64::NAN,
         curve_rms: f64::NAN,
@@ -140,17 +183,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                  (degrees) over the training tosses (even toss numbers)",
                 fit.fitness
             ),
-            format!("table offset {offset:e} m: apply with --set {set}"),
+            format!("table offset: apply with --set {set}"),
         ],
         ..FitRecord::default()
     };
+    let law = fit.model.contacts[parameters.contact].law();
     Physics::for_contact(&fit.model, parameters.contact, law, record)
         .write(
             &args.out,
-            &format!(
-                "contact of scenario `{}` fitted to tosses by hcm identify-motion",
-                scenario.name
-            ),
+            &format!("contact of scenario `{name}` fitted to tosses by hcm identify-motion"),
         )
         .with_context(|| format!("writing {}", args.out.display()))?;
     println!("wrote {}", args.out.display());
@@ -164,7 +205,7 @@ fn run_fit(
     parameters: &MotionParameters,
     settings: &GeneticSettings,
     polish: usize,
-) -> anyhow::Result<hcm_host::identify::motion::MotionFit> {
+) -> anyhow::Result<MotionFit> {
     let genetic = progress_bar(settings.generations as u64, "GA generations");
     let polishing = progress_bar(polish as u64, "polish");
     polishing.set_position(0);

@@ -38,13 +38,16 @@ use std::time::Instant;
 ///   rotation error mean over the window's frames of the angle of R_predᵀ·R, in degrees
 ///   frozen pose    the baseline: the body held at its recorded window-start pose
 ///   physics file   a contact law with its parameters and friction, as `hcm identify`
-///                  writes it (`--physics`); without it, the scenario's own
+///                  or `hcm identify-motion` writes it (`--physics`); without it, the
+///                  scenario's own. A table offset `hcm identify-motion` found is given
+///                  as the `--set` it prints
 #[derive(clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
     scenario: super::ScenarioArgs,
-    /// Physics file from `hcm identify`: replaces the scenario's contact law and friction.
+    /// Physics file from `hcm identify` or `hcm identify-motion`: replaces the scenario's
+    /// contact law and friction.
     #[arg(long)]
     physics: Option<PathBuf>,
     /// Measured tosses (measured-data CSV): position and orientation in every frame.

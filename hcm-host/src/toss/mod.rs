@@ -74,11 +74,8 @@ pub enum TossError {
         time: f64,
         problem: String,
     },
-    /// The replay failed.
-    #[error("run `{run}`: the replay from the window start failed: {source}")]
-    Simulation {
-        run: String,
-        #[source]
-        source: SimulationError,
-    },
+    /// The replay failed. (The simulator's error is part of the message, not a
+    /// `source`, so that a chain printed with `{:#}` does not repeat it.)
+    #[error("run `{run}`: the replay from the window start failed: {error}")]
+    Simulation { run: String, error: SimulationError },
 }

@@ -135,9 +135,9 @@ pub fn simulate_toss(
 ) -> Result<TossPrediction, TossError> {
     let started = Instant::now();
     let replay = replay_model(model, setup, toss);
-    let simulation = simulate(&replay).map_err(|source| TossError::Simulation {
+    let simulation = simulate(&replay).map_err(|error| TossError::Simulation {
         run: toss.run.to_owned(),
-        source,
+        error,
     })?;
     let seconds = started.elapsed().as_secs_f64();
     let simulated = &simulation.run.bodies[0].samples;

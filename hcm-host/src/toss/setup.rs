@@ -26,7 +26,10 @@ pub struct TossSetup {
     pub body: usize,
     /// Its name (the data's `body` column).
     pub name: String,
-    /// A point of the plane's surface (m, world frame).
+    /// The plane body's reference point (m, world frame): the table as the data's frame
+    /// has it. The contact's surface lies `offset` from it along the normal; the windows
+    /// are measured from this point, not from the surface, so that fitting the table's
+    /// height (the offset) leaves every toss's window, and the frames scored, as they are.
     pub plane_point: Vector3<f64>,
     /// The plane's unit outward normal (world frame).
     pub plane_normal: Vector3<f64>,
@@ -71,10 +74,9 @@ impl TossSetup {
             .filter(|c| c.body_1 == body || c.body_2 == body)
             .map(|c| c.body_1 + c.body_2 - body)
             .find_map(|other| match model.bodies[other].shape {
-                Shape::Plane { normal, offset } => {
+                Shape::Plane { normal, .. } => {
                     let fixed = &model.bodies[other];
-                    let normal = fixed.orientation * normal;
-                    Some((fixed.position + normal * offset, normal))
+                    Some((fixed.position, fixed.orientation * normal))
                 }
                 _ => None,
             })
@@ -103,7 +105,8 @@ impl TossSetup {
         Ok(data.require(file, model, &contacts, &TOSSES)?)
     }
 
-    /// Height of a centre at `position` (m) above the plane (m).
+    /// Height of a centre at `position` (m) above the plane's reference point, along
+    /// its normal (m).
     pub fn height(&self, position: &Vector3<f64>) -> f64 {
         self.plane_normal.dot(&(position - self.plane_point))
     }

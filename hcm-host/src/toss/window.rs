@@ -2,7 +2,10 @@
 //! [`LEAD_FRAMES`] frames before the body's centre first comes within its circumscribed
 //! radius of the plane (0.0524·√3 m for the ContactNets cube) — before that frame no
 //! corner can touch, so the motion is free flight, which the simulator predicts exactly
-//! and which would flatter any score — and to run to the toss's last frame.
+//! and which would flatter any score — and to run to the toss's last frame. The height
+//! is measured from the plane body's reference point (the table of the data's frame,
+//! z = 0 for the tosses), not from its contact surface, which a fitted offset moves: the
+//! frames scored are the data's, whatever the model.
 
 use super::{TossError, TossSetup};
 use crate::dataset::{BodyTrack, Channel};

@@ -9,10 +9,12 @@
 pub mod fitness;
 pub mod parameters;
 pub mod polish;
+pub mod scenario_file;
 pub mod split;
 
 pub use fitness::{fitness, toss_scores, MotionTarget};
 pub use parameters::MotionParameters;
+pub use scenario_file::{fitted_assignments, fitted_scenario_text};
 pub use split::{part_of, split_tosses, Part};
 
 use crate::identify::genetic::{minimize, GeneticError, GeneticSettings};
@@ -48,7 +50,9 @@ pub struct MotionFit {
 }
 
 /// Fits `parameters` of `model` to `target`'s tosses: the genetic algorithm with
-/// `settings`, then a polish of about `polish_budget` evaluations. `progress(stage,
+/// `settings`, then a polish of about `polish_budget` evaluations from the better of its
+/// best and the scenario's own parameters (so the fit never ends worse than the
+/// scenario on the training tosses). `progress(stage,
 /// steps done, best fitness)` reports each generation and each polish step.
 pub fn identify_motion(
     model: &Model,
@@ -61,14 +65,21 @@ pub fn identify_motion(
     let started = Instant::now();
     let bounds = parameters.bounds();
     let score = |genes: &[f64]| fitness(target, &parameters.apply(model, genes));
-    let start_fitness = score(&parameters.of(model));
+    let start = parameters.of(model);
+    let start_fitness = score(&start);
     let genetic = minimize(&bounds, settings, score, |generation, best| {
         progress(MotionStage::Genetic, generation, best)
     })?;
+    // A short search may end above the scenario's own parameters: polish the better.
+    let (from, from_fitness) = if start_fitness < genetic.fitness {
+        (&start, start_fitness)
+    } else {
+        (&genetic.best, genetic.fitness)
+    };
     let polished = polish::polish(
         &bounds,
-        &genetic.best,
-        genetic.fitness,
+        from,
+        from_fitness,
         polish_budget,
         score,
         |evaluations, best| progress(MotionStage::Polish, evaluations, best),
