@@ -39,6 +39,8 @@ enum Hidden {
     Viscous(f64),
     Torsional(f64),
     Rolling(f64),
+    /// The body's inertia times this.
+    Inertia(f64),
 }
 
 fn with_hidden(model: &Model, hidden: Hidden) -> Model {
@@ -65,6 +67,7 @@ fn with_hidden(model: &Model, hidden: Hidden) -> Model {
                 spin_rate: 0.1,
             });
         }
+        Hidden::Inertia(k) => truth.bodies[0].inertia *= k,
         Hidden::Rolling(arm) => {
             contact.tangential.rolling_resistance = Some(RollingResistance {
                 arm,
@@ -280,6 +283,20 @@ fn rolling_resistance_is_named_from_tosses() {
         7,
     );
     assert_eq!(names(&d), ["rolling_resistance"], "{}", d.answer);
+}
+
+#[test]
+fn a_larger_inertia_is_named_from_tosses() {
+    let d = diagnosed(
+        "tosses, inertia × 1.3",
+        &cube_toss(&[]),
+        Hidden::Inertia(1.3),
+        Start::Toss,
+        10,
+    );
+    assert_eq!(names(&d), ["inertia_scale"], "{}", d.answer);
+    let scale = d.named[0].1[0].1;
+    assert!((scale / 1.3 - 1.0).abs() < 0.02, "{scale}");
 }
 
 #[test]

@@ -17,7 +17,8 @@ use std::path::PathBuf;
 /// Splits the runs of --data by toss number (even numbers train, odd ones are held
 /// out), and tries every candidate change of the model: the friction's coefficient,
 /// Coulomb's law for its shape (when μ_s ≠ μ_d), viscous friction, torsional and
-/// rolling resistance, the table's height and tilt, the tracker's length scale. Each is
+/// rolling resistance, the table's height and tilt, the tracker's length scale, the
+/// body's inertia. Each is
 /// fitted on the training tosses with the rest of the model fixed (replaying them as
 /// `hcm predict` does) and judged on the held-out tosses, toss by toss, by how much it
 /// lowers their score. A candidate helps when its mean held-out gain is at least 3

@@ -25,6 +25,8 @@ pub enum Family {
     Resistance,
     /// How the data were measured, not the physics.
     Measurement,
+    /// The body's own properties.
+    Body,
 }
 
 /// One candidate change.
@@ -46,11 +48,14 @@ pub enum MotionEffect {
     TableTilt,
     /// The tracker's lengths are s times the true ones (–).
     LengthScale,
+    /// The body's inertia tensor scaled by k (–): its mass further out (or in) than the
+    /// model has it.
+    InertiaScale,
 }
 
 impl MotionEffect {
     /// The catalogue, in the order a report lists it.
-    pub const ALL: [MotionEffect; 8] = [
+    pub const ALL: [MotionEffect; 9] = [
         MotionEffect::FrictionCoefficient,
         MotionEffect::CoulombFriction,
         MotionEffect::ViscousFriction,
@@ -59,6 +64,7 @@ impl MotionEffect {
         MotionEffect::TableOffset,
         MotionEffect::TableTilt,
         MotionEffect::LengthScale,
+        MotionEffect::InertiaScale,
     ];
 
     /// The catalogue name a diagnosis prints.
@@ -72,6 +78,7 @@ impl MotionEffect {
             MotionEffect::TableOffset => "table_offset",
             MotionEffect::TableTilt => "table_tilt",
             MotionEffect::LengthScale => "length_scale",
+            MotionEffect::InertiaScale => "inertia_scale",
         }
     }
 
@@ -87,6 +94,7 @@ impl MotionEffect {
             MotionEffect::TableOffset | MotionEffect::TableTilt | MotionEffect::LengthScale => {
                 Family::Measurement
             }
+            MotionEffect::InertiaScale => Family::Body,
         }
     }
 
@@ -117,6 +125,7 @@ impl MotionEffect {
                 bound("about_y", -0.05, 0.05, false),
             ],
             MotionEffect::LengthScale => vec![bound("scale", 0.9, 1.1, false)],
+            MotionEffect::InertiaScale => vec![bound("scale", 0.5, 2.0, true)],
         }
     }
 
@@ -138,7 +147,9 @@ impl MotionEffect {
     /// model's μ_d: the nearest Coulomb law).
     pub fn neutral(self, model: &Model, contact: usize) -> Vec<f64> {
         match self {
-            MotionEffect::FrictionCoefficient | MotionEffect::LengthScale => vec![1.0],
+            MotionEffect::FrictionCoefficient
+            | MotionEffect::LengthScale
+            | MotionEffect::InertiaScale => vec![1.0],
             MotionEffect::CoulombFriction => {
                 let friction = model.contacts[contact].model.friction;
                 vec![friction.map_or(0.1, |f| f.dynamic_coefficient)]
@@ -193,6 +204,11 @@ impl MotionEffect {
                 if let Shape::Plane { normal, .. } = &mut out.bodies[plane].shape {
                     *normal = tilt * *normal;
                 }
+            }
+            MotionEffect::InertiaScale => {
+                let c = &out.contacts[contact];
+                let body = c.body_1 + c.body_2 - plane;
+                out.bodies[body].inertia *= first;
             }
             MotionEffect::LengthScale => {}
         }

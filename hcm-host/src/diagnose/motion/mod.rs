@@ -5,7 +5,7 @@
 //! numbers train, odd ones are held out: [`crate::identify::motion::split_tosses`]).
 //! Every candidate of the [`catalogue`] — the friction law's coefficient, its shape
 //! (Coulomb), viscous friction, torsional and rolling resistance, the table's height
-//! and tilt, the tracker's length scale — is fitted on the training tosses with the
+//! and tilt, the tracker's length scale, the body's inertia — is fitted on the training tosses with the
 //! user's model otherwise fixed ([`fit`]), and judged on the held-out tosses by its
 //! paired gain over the user's model, toss by toss ([`paired`]). A toss's score is its
 //! mean position error (%) plus mean rotation error (°), plus, where the data hold a
@@ -241,6 +241,7 @@ fn judge(
             Family::Friction => "friction",
             Family::Resistance => "resistance",
             Family::Measurement => "measurement",
+            Family::Body => "body",
         },
         parameters,
         training: fitted.fitness,
