@@ -87,7 +87,10 @@ pub mod needs;
 pub mod reconstruct;
 pub mod schema;
 
+pub mod delay;
 mod flight;
+mod implied;
+pub mod newton;
 mod read;
 mod through_contact;
 mod write;

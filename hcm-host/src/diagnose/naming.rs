@@ -193,6 +193,24 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
             let t = judge(k);
             t.bic.0 > t.bic.1 && t.determined
         });
+        // Within a family the extra shape parameter must earn its place by the margin
+        // that tells families apart: hysteresis damping is named over viscous damping
+        // (its p = 0) only when its criterion is lower by EVIDENCE.
+        let passing = passing.map(|k| {
+            order
+                .iter()
+                .copied()
+                .filter(|&m| {
+                    let (a, b) = (trials[m].0, trials[k].0);
+                    same_family(a.0, b.0)
+                        && parameters(a.1) < parameters(b.1)
+                        && criterion(m) - criterion(k) < EVIDENCE
+                        && judge(m).bic.0 > judge(m).bic.1
+                        && judge(m).determined
+                })
+                .min_by(|&a, &b| criterion(a).total_cmp(&criterion(b)))
+                .unwrap_or(k)
+        });
         let Some(k) = passing else {
             if let Some(&best) = order.first() {
                 let t = judge(best);

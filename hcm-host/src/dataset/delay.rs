@@ -1,0 +1,120 @@
+//! A force sensor that lags the camera, found and undone by the reconstruction.
+//!
+//! Integrating a force read τ late from the flight before the contact moves the whole
+//! contact τ late: the ball leaves the ground late and lands on the camera's flight
+//! after it off by the velocity change times τ. Since no force acts at the window's
+//! ends, that gap is exactly linear in τ: at the window's end the integration taken
+//! τ on (free motion past its last sample) less the flight before taken τ on gives
+//!
+//! gap(τ) = gap(0) + Δv·τ  (per axis; Δv the force's velocity change over the contact),
+//!
+//! so the delay that puts every contact on its after-flight is the weighted least
+//! squares τ̂ = −Σ gap·Δv/sd² / Σ Δv²/sd² over contacts and axes, with variance
+//! 1/Σ Δv²/sd² ([`fit`]). The motion at each force sample t is then the integration
+//! read at t + τ̂ with the flight before put back at t ([`shift`]): the motion as it
+//! was, against which the force reads τ̂ late — what the diagnosis names as a sensor
+//! delay. τ̂'s own uncertainty is carried per row: δ moves by Δv(t)·dτ and δ̇ by
+//! a(t)·dτ. A delay does not change the velocity gap; data whose velocity misses the
+//! after-flight (a wrong mass, a force scale) stay incoherent under any τ.
+
+use super::flight::FlightFit;
+use super::reconstruct::Completed;
+use super::through_contact::Integrated;
+
+/// A sensor delay fitted by the reconstruction.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Delay {
+    /// Delay τ of the force behind the camera (s).
+    pub value: f64,
+    /// Its standard deviation (s).
+    pub sd: f64,
+}
+
+/// The delay that best closes the position gaps of every contact of `completed`
+/// reconstructed from camera frames (see the module documentation); None without a
+/// contact with a flight after it.
+pub fn fit(completed: &Completed<'_>) -> Option<Delay> {
+    let (mut num, mut den) = (0.0, 0.0);
+    let checks = completed
+        .tracks
+        .iter()
+        .flatten()
+        .flatten()
+        .flat_map(|t| &t.contacts);
+    for check in checks {
+        let Some((gap, sd)) = check.position_gap else {
+            continue;
+        };
+        for k in 0..3 {
+            if sd[k] > 0.0 {
+                let w = 1.0 / (sd[k] * sd[k]);
+                num -= w * gap[k] * check.velocity_change[k];
+                den += w * check.velocity_change[k].powi(2);
+            }
+        }
+    }
+    (den > 0.0).then(|| Delay {
+        value: num / den,
+        sd: den.sqrt().recip(),
+    })
+}
+
+/// `through` (integrated over samples at `time`, from the flight `before`, with
+/// accelerations `acceleration` (m/s², gravity included) at those samples) as it is
+/// when the force read `delay` late: state at t from the integration at t + τ, the
+/// flight before put back at t; τ's variance added (see the module documentation).
+pub(super) fn shift(
+    through: &mut Integrated,
+    time: &[f64],
+    acceleration: &[[f64; 3]],
+    before: &FlightFit,
+    delay: Delay,
+) {
+    let original = (through.position.clone(), through.velocity.clone());
+    let n = time.len();
+    let g = before.gravity;
+    // State of the integration at time s: Hermite between samples, free motion after.
+    let at = |s: f64| -> ([f64; 3], [f64; 3], [f64; 3]) {
+        let (p, v) = (&original.0, &original.1);
+        if s <= time[0] {
+            let (bp, bv) = before.state(s);
+            return (bp, bv, g);
+        }
+        if s >= time[n - 1] {
+            let d = s - time[n - 1];
+            let pos = core::array::from_fn(|k| p[n - 1][k] + v[n - 1][k] * d + 0.5 * g[k] * d * d);
+            let vel = core::array::from_fn(|k| v[n - 1][k] + g[k] * d);
+            return (pos, vel, g);
+        }
+        let j = time.partition_point(|&x| x <= s);
+        let (i, h) = (j - 1, time[j] - time[j - 1]);
+        let x = (s - time[i]) / h;
+        let cubic = |y0: f64, y1: f64, d0: f64, d1: f64| {
+            let (x2, x3) = (x * x, x * x * x);
+            (2.0 * x3 - 3.0 * x2 + 1.0) * y0
+                + (x3 - 2.0 * x2 + x) * h * d0
+                + (-2.0 * x3 + 3.0 * x2) * y1
+                + (x3 - x2) * h * d1
+        };
+        let (a0, a1) = (acceleration[i], acceleration[j]);
+        (
+            core::array::from_fn(|k| cubic(p[i][k], p[j][k], v[i][k], v[j][k])),
+            core::array::from_fn(|k| cubic(v[i][k], v[j][k], a0[k], a1[k])),
+            core::array::from_fn(|k| a0[k] + x * (a1[k] - a0[k])),
+        )
+    };
+    let variance = delay.sd * delay.sd;
+    for (i, &t) in time.iter().enumerate() {
+        let s = t + delay.value;
+        let (p, v, a) = at(s);
+        let (later_p, later_v) = before.state(s);
+        let (now_p, now_v) = before.state(t);
+        for k in 0..3 {
+            let change = v[k] - later_v[k];
+            through.position[i][k] = p[k] - later_p[k] + now_p[k];
+            through.velocity[i][k] = change + now_v[k];
+            through.position_variance[i][k] += change * change * variance;
+            through.velocity_variance[i][k] += (a[k] - g[k]).powi(2) * variance;
+        }
+    }
+}
