@@ -1,8 +1,8 @@
 //! The displacement a body's measured contact force implies through one contact:
 //! Newton's law m·ẍ = f integrated from rest at the window's start, the force taken as a
-//! cubic between its samples (Hermite with central-difference slopes, so that a force
-//! at 100 kHz — ten samples per contact — integrates to well under a µm; the piecewise
-//! linear force of [`super::through_contact`] is off by about one there).
+//! cubic between its samples (Hermite with central-difference slopes): a smooth 113 µs
+//! pulse sampled at 100 kHz — ten samples per contact — integrates to within 3e-8 m,
+//! where the piecewise linear force of [`super::through_contact`] is off by 3.5e-7 m.
 //!
 //! Gravity and the state at the start are left out: they are what a fit to recorded
 //! motion supplies (`p0 + v0·s + ½·g·s² + D(t)`, s = t − t0).

@@ -6,7 +6,7 @@
 //! through two or three frames with µm-level noise, not the indentation of tens of µm a
 //! contact law needs. The force sensor knows better: Newton's law fixes the motion
 //! through each contact up to its start, x(t) = p0 + v0·s + ½·g·s² + D(t + τ)
-//! (s = t − t0, D the force's double integral over m, [`Implied`]). The **check** fits
+//! (s = t − t0, D the force's double integral over m, `Implied`). The **check** fits
 //! p0, v0 and a sensor delay τ (a lag is the sensor's business, named later, not a sign
 //! of untrustworthy motion) to the recorded positions of the contact window and as much
 //! flight on each side, weighted by what each row can be off by: the motion's own white
@@ -18,7 +18,7 @@
 //! [`MAX_MISFIT`] the contact's motion is **replaced** by the force's: p0 and v0 fitted
 //! by least squares to every recorded row of the contact and its flights (the spline's
 //! frames, whatever their rate), with their uncertainty from the misfit itself and the
-//! rows' correlation ([`independent`]), carried per row as an empty-cell reconstruction
+//! rows' correlation (`independent`), carried per row as an empty-cell reconstruction
 //! carries its own.
 
 use super::implied::Implied;

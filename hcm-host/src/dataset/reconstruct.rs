@@ -23,7 +23,10 @@
 //!
 //! Data whose every row already holds position, velocity and force are returned as they
 //! are, borrowed, with no uncertainty: today's simulated data take exactly the path
-//! they always took.
+//! they always took. [`complete_with`] can ask for more ([`Checks`]): motion recorded on
+//! every row checked against Newton's law with the force and replaced where it fails
+//! (`super::newton`, a camera splined onto the force rows), and the force integrated as
+//! read a given delay late behind the frames (`super::delay`).
 
 use std::borrow::Cow;
 
