@@ -118,3 +118,77 @@ pub(super) fn shift(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dataset::through_contact::{integrate, ForceSeries};
+
+    #[test]
+    fn shifting_the_integration_of_a_late_force_gives_the_motion_as_it_was() {
+        // A sin² pulse of peak F over T on a ball falling at 1.4 m/s, read τ late at
+        // 1 MHz; the flight before is exact (no noise). The shift moves the motion by
+        // up to Δv·τ = 7 µm; what is left is the linear force's integration error
+        // (the trapezoid's, 1e-4 m/s of the 2.45 m/s pulse).
+        let (m, peak, duration, g, tau) = (0.067, 2900.0, 1.13e-4, -9.81, 3e-6);
+        let (t0, w) = (5e-5, std::f64::consts::PI / duration);
+        let force = |t: f64| {
+            let s = t - t0;
+            if s > 0.0 && s < duration {
+                peak * (w * s).sin().powi(2)
+            } else {
+                0.0
+            }
+        };
+        // The true motion: free fall plus the pulse's closed-form integrals.
+        let exact = |t: f64| {
+            let s = (t - t0).clamp(0.0, duration);
+            let v = peak / m * (s / 2.0 - (2.0 * w * s).sin() / (4.0 * w));
+            let d = peak / m * (s * s / 4.0 + ((2.0 * w * s).cos() - 1.0) / (8.0 * w * w));
+            let after = (t - t0 - duration).max(0.0);
+            (-1.4 * t + 0.5 * g * t * t + d + v * after, -1.4 + g * t + v)
+        };
+        let samples: Vec<(f64, [f64; 3])> = (0..300)
+            .map(|j| {
+                let t = j as f64 * 1e-6;
+                (t, [0.0, 0.0, force(t - tau)])
+            })
+            .collect();
+        let series = ForceSeries::new(samples);
+        let frames: Vec<(f64, [f64; 3])> = (0..5)
+            .map(|i| {
+                let t = i as f64 * 1e-5;
+                (t, [0.0, 0.0, exact(t).0])
+            })
+            .collect();
+        let (first, last) = (40, 200);
+        let before = FlightFit::fit(&frames, [0.0, 0.0, g], series.time[first]).unwrap();
+        let mut through = integrate(&series, (first, last), &before, m);
+        let acceleration: Vec<[f64; 3]> = (first..=last)
+            .map(|j| [0.0, 0.0, series.force[j][2] / m + g])
+            .collect();
+        let time = &series.time[first..=last];
+        let delay = Delay {
+            value: tau,
+            sd: 1e-7,
+        };
+        shift(&mut through, time, &acceleration, &before, delay);
+        for (i, &t) in time.iter().enumerate() {
+            let (p, v) = exact(t);
+            assert!(
+                (through.position[i][2] - p).abs() < 1e-8,
+                "t = {t}: {}",
+                through.position[i][2] - p
+            );
+            assert!(
+                (through.velocity[i][2] - v).abs() < 5e-4,
+                "t = {t}: {}",
+                through.velocity[i][2] - v
+            );
+        }
+        // τ's variance: δ moves by Δv·sd(τ) at the end, 2.45 m/s × 0.1 µs.
+        let end = time.len() - 1;
+        let spread = through.position_variance[end][2].sqrt();
+        assert!((spread / (2.446 * 1e-7) - 1.0).abs() < 0.01, "{spread}");
+    }
+}

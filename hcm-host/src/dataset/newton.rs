@@ -414,6 +414,9 @@ pub(super) fn replace_track(
 
 /// The median force (N per axis) of the first and last tenth of `samples`.
 fn edge_reading(samples: &[super::Sample]) -> [f64; 3] {
+    if samples.is_empty() {
+        return [0.0; 3];
+    }
     let tenth = (samples.len() / 10).max(1);
     let ends = samples[..tenth]
         .iter()
