@@ -92,6 +92,7 @@ mod flight;
 mod implied;
 pub mod newton;
 mod read;
+mod recorded_motion;
 mod through_contact;
 mod write;
 

@@ -199,7 +199,7 @@ pub fn complete_with<'a>(
             if !incomplete(track) {
                 if checks.recorded_motion {
                     let mass = model.bodies[body].mass;
-                    misfits.extend(super::newton::misfits(track, gravity, mass));
+                    misfits.extend(super::recorded_motion::misfits(track, gravity, mass));
                     recorded.push((r, b, mass));
                 }
                 continue;
@@ -216,7 +216,8 @@ pub fn complete_with<'a>(
     if motion_misfit.is_some_and(|m| m > super::newton::MAX_MISFIT) {
         for (r, b, mass) in recorded {
             let track = &data.runs[r].bodies[b];
-            let (rebuilt, reconstruction) = super::newton::replace_track(track, gravity, mass);
+            let (rebuilt, reconstruction) =
+                super::recorded_motion::replace_track(track, gravity, mass);
             runs[r].get_or_insert_with(|| data.runs[r].clone()).bodies[b] = rebuilt;
             tracks[r][b] = Some(reconstruction);
         }
