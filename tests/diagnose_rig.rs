@@ -670,6 +670,21 @@ fn a_5_us_sensor_delay_behind_camera_rows_is_named() {
 }
 
 #[test]
+fn a_1_us_sensor_delay_behind_camera_rows_is_not_misnamed() {
+    // Too small to move the landing by 3 standard deviations: the reconstruction
+    // integrates the late force and so aligns the motion with it. The delay goes
+    // unnamed; nothing else may be named in its place.
+    let mut rig = camera();
+    rig.sensor.delay = 1e-6;
+    let d = diagnosed("delay 1 µs, camera rows", &rig, 89);
+    assert!(
+        d.causes.iter().all(|c| c.effect == "sensor_delay"),
+        "{:#?}",
+        d.causes
+    );
+}
+
+#[test]
 fn camera_frames_behind_a_lagging_force_sensor_name_the_delay() {
     // Before the reconstruction fitted the delay this gave the data-quality verdict
     // (gap 3.9 standard deviations): the motion integrated from the delayed force
