@@ -670,17 +670,18 @@ fn a_5_us_sensor_delay_behind_camera_rows_is_named() {
 }
 
 #[test]
-fn a_1_us_sensor_delay_behind_camera_rows_is_not_misnamed() {
-    // Too small to move the landing by 3 standard deviations: the reconstruction
-    // integrates the late force and so aligns the motion with it. The delay goes
-    // unnamed; nothing else may be named in its place.
+fn a_1_us_sensor_delay_behind_camera_rows_is_named() {
+    // Too small to move the landing by 3 standard deviations (gap 1.74), but the delay
+    // that closes the gaps is over 5 of its standard deviations from 0.
     let mut rig = camera();
     rig.sensor.delay = 1e-6;
     let d = diagnosed("delay 1 µs, camera rows", &rig, 89);
+    assert_eq!(names(&d), ["sensor_delay"], "{:#?}", d.causes);
+    let p = &d.causes[0].parameters[0];
     assert!(
-        d.causes.iter().all(|c| c.effect == "sensor_delay"),
-        "{:#?}",
-        d.causes
+        p.ci.0.is_finite() && p.ci.1.is_finite() && p.ci.0 <= 1e-6 && 1e-6 <= p.ci.1,
+        "interval {:?}",
+        p.ci
     );
 }
 

@@ -10,6 +10,7 @@ use super::select::{select, Cause, Fitted, Step};
 use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
 use super::ContactSamples;
+use crate::dataset::delay::DELAY_SIGMAS;
 use crate::dataset::reconstruct::{complete_with, Checks};
 use crate::dataset::Dataset;
 use crate::export::encode;
@@ -121,10 +122,13 @@ pub fn diagnose(
     };
     let mut completed = complete_with(base, data, checks)?;
     // A force sensor lagging the camera lands every contact's motion off the flight
-    // after it by Δv·τ: fit τ from those gaps and reconstruct again with it; keep that
-    // only if it puts the contacts on their flights (else the data-quality verdict).
-    if reconstruction_gap(&completed).is_some_and(|g| g > MAX_GAP_SIGMAS) {
-        if let Some(delay) = crate::dataset::delay::fit(&completed) {
+    // after it by Δv·τ: fit τ from those gaps and, when the gaps are too large or τ is
+    // significant, reconstruct again with it; keep that only if it puts the contacts on
+    // their flights (else the data-quality verdict).
+    if let Some(gap) = reconstruction_gap(&completed) {
+        let delay = crate::dataset::delay::fit(&completed)
+            .filter(|d| gap > MAX_GAP_SIGMAS || d.value.abs() > DELAY_SIGMAS * d.sd);
+        if let Some(delay) = delay {
             let retimed = Checks {
                 sensor_delay: Some(delay),
                 ..checks

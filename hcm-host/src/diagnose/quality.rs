@@ -56,7 +56,8 @@ pub struct DataQuality {
     /// force's (`dataset::newton`). `None` where nothing was checked.
     pub motion_misfit: Option<f64>,
     /// The delay of the force behind the camera the reconstruction found and undid
-    /// (`dataset::delay`), if the gap without it was over [`MAX_GAP_SIGMAS`].
+    /// (`dataset::delay`): when the gap without it was over [`MAX_GAP_SIGMAS`] or it is
+    /// over `dataset::delay::DELAY_SIGMAS` of its standard deviations from 0.
     pub sensor_delay: Option<Delay>,
 }
 
