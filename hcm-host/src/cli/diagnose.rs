@@ -236,6 +236,39 @@ fn answer(d: &Diagnosis) -> String {
     }
 }
 
+/// How the motion the residual is read along was obtained, where it was not simply
+/// recorded at the force rows.
+fn motion_note(q: &hcm_host::diagnose::quality::DataQuality) -> Option<String> {
+    let mut parts = Vec::new();
+    if let Some(m) = q
+        .motion_misfit
+        .filter(|&m| m > hcm_host::dataset::newton::MAX_MISFIT)
+    {
+        parts.push(format!(
+            "the motion recorded on every row does not obey Newton's law with the force through the contacts (median misfit {m:.1} σ, above {}): it was replaced there by the motion the force implies, fitted to it",
+            hcm_host::dataset::newton::MAX_MISFIT
+        ));
+    }
+    if let Some(g) = q.reconstruction_gap {
+        parts.push(format!(
+            "the motion was reconstructed from the camera frames and the force (median gap {g:.2} σ to the flight after each contact)"
+        ));
+    }
+    if let Some(delay) = q.sensor_delay {
+        parts.push(format!(
+            "the force lags the camera by {:.3} ± {:.3} µs, found and undone by the reconstruction",
+            1e6 * delay.value,
+            1e6 * delay.sd
+        ));
+    }
+    (!parts.is_empty()).then(|| {
+        let mut line = parts.join("; ");
+        line[..1].make_ascii_uppercase();
+        line.push('.');
+        line
+    })
+}
+
 fn report(d: &Diagnosis, figures: &[&str]) -> String {
     let mut md = String::from("# hcm diagnose\n\n");
     let _ = writeln!(md, "**Answer: {}.**\n", answer(d));
@@ -252,6 +285,9 @@ fn report(d: &Diagnosis, figures: &[&str]) -> String {
         d.noise.sigma,
         d.noise.samples
     );
+    if let Some(line) = motion_note(&d.data_quality) {
+        let _ = writeln!(md, "**Motion.** {line}\n");
+    }
     let _ = writeln!(md, "## 1. What is wrong (training runs)\n");
     let _ = writeln!(md, "| residual | base | extended |\n|---|---|---|");
     type Row = (&'static str, fn(&Structure) -> f64);

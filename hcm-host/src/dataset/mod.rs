@@ -87,8 +87,12 @@ pub mod needs;
 pub mod reconstruct;
 pub mod schema;
 
+pub mod delay;
 mod flight;
+mod implied;
+pub mod newton;
 mod read;
+mod recorded_motion;
 mod through_contact;
 mod write;
 

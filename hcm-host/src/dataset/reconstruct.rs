@@ -23,11 +23,15 @@
 //!
 //! Data whose every row already holds position, velocity and force are returned as they
 //! are, borrowed, with no uncertainty: today's simulated data take exactly the path
-//! they always took.
+//! they always took. [`complete_with`] can ask for more ([`Checks`]): motion recorded on
+//! every row checked against Newton's law with the force and replaced where it fails
+//! (`super::newton`, a camera splined onto the force rows), and the force integrated as
+//! read a given delay late behind the frames (`super::delay`).
 
 use std::borrow::Cow;
 
 use super::channel::Channel;
+use super::delay::Delay;
 use super::flight::{FlightFit, MIN_FRAMES};
 use super::through_contact::{integrate, ForceSeries};
 use super::{BodyTrack, Dataset, Run, Sample};
@@ -75,6 +79,24 @@ pub struct Completed<'a> {
     /// Per run, per body (as in `data.runs[r].bodies`): the reconstruction of that
     /// track, None for a track kept as recorded.
     pub tracks: Vec<Vec<Option<TrackReconstruction>>>,
+    /// Where motion recorded on every row was checked against Newton's law
+    /// ([`Checks::recorded_motion`]): the median over contacts of its misfit, in
+    /// standard deviations (–).
+    pub motion_misfit: Option<f64>,
+    /// The sensor delay the reconstruction was done with, if any.
+    pub delay: Option<Delay>,
+}
+
+/// What [`complete_with`] checks beyond [`complete`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Checks {
+    /// Check motion recorded on every row against the force through each contact and
+    /// replace it where it does not obey Newton's law (`dataset::newton`): a camera's
+    /// frames splined onto the force rows.
+    pub recorded_motion: bool,
+    /// Integrate the force as read this late behind the camera frames
+    /// (`dataset::delay`): the motion as it was, against a lagging sensor.
+    pub sensor_delay: Option<Delay>,
 }
 
 impl Completed<'_> {
@@ -90,6 +112,8 @@ impl Completed<'_> {
                 runs: runs.iter().map(|&r| self.data.runs[r].clone()).collect(),
             }),
             tracks: runs.iter().map(|&r| self.tracks[r].clone()).collect(),
+            motion_misfit: self.motion_misfit,
+            delay: self.delay,
         }
     }
 
@@ -127,6 +151,8 @@ pub struct ContactCheck {
     /// Integrated minus after-flight position at the end (m), with its standard
     /// deviation per axis; None as for the velocity.
     pub position_gap: Option<([f64; 3], [f64; 3])>,
+    /// The force's velocity change over the contact, ∫f/m (m/s), as read (no delay).
+    pub velocity_change: [f64; 3],
 }
 
 /// Whether `track` needs reconstructing: a row without position, velocity or force.
@@ -140,6 +166,19 @@ fn incomplete(track: &BodyTrack) -> bool {
 /// The data with every incomplete moving body of a contact reconstructed at its force
 /// samples (see the module documentation); complete data come back borrowed.
 pub fn complete<'a>(model: &Model, data: &'a Dataset) -> Result<Completed<'a>, ReconstructError> {
+    complete_with(model, data, Checks::default())
+}
+
+/// [`complete`], and what `checks` asks for.
+pub fn complete_with<'a>(
+    model: &Model,
+    data: &'a Dataset,
+    checks: Checks,
+) -> Result<Completed<'a>, ReconstructError> {
+    let gravity = [model.gravity.x, model.gravity.y, model.gravity.z];
+    let mut misfits = Vec::new();
+    // Complete tracks checked against Newton's law: (run, body, mass (kg)).
+    let mut recorded = Vec::new();
     let mut tracks: Vec<Vec<Option<TrackReconstruction>>> = data
         .runs
         .iter()
@@ -151,14 +190,35 @@ pub fn complete<'a>(model: &Model, data: &'a Dataset) -> Result<Completed<'a>, R
             let Some(body) = model.body_index(&track.body) else {
                 continue;
             };
-            if model.bodies[body].fixed || !incomplete(track) {
+            if model.bodies[body].fixed {
                 continue;
             }
             let Some(partner) = contact_partner(model, body) else {
                 continue;
             };
-            let (rebuilt, reconstruction) = reconstruct_track(model, run, track, body, partner)?;
+            if !incomplete(track) {
+                if checks.recorded_motion {
+                    let mass = model.bodies[body].mass;
+                    misfits.extend(super::recorded_motion::misfits(track, gravity, mass));
+                    recorded.push((r, b, mass));
+                }
+                continue;
+            }
+            let (rebuilt, reconstruction) =
+                reconstruct_track(model, (run, track), (body, partner), checks.sensor_delay)?;
             runs[r].get_or_insert_with(|| run.clone()).bodies[b] = rebuilt;
+            tracks[r][b] = Some(reconstruction);
+        }
+    }
+    let motion_misfit = (!misfits.is_empty()).then(|| median(&mut misfits));
+    // One instrument recorded every track: when its motion fails the check (median over
+    // contacts), every contact's motion is replaced.
+    if motion_misfit.is_some_and(|m| m > super::newton::MAX_MISFIT) {
+        for (r, b, mass) in recorded {
+            let track = &data.runs[r].bodies[b];
+            let (rebuilt, reconstruction) =
+                super::recorded_motion::replace_track(track, gravity, mass);
+            runs[r].get_or_insert_with(|| data.runs[r].clone()).bodies[b] = rebuilt;
             tracks[r][b] = Some(reconstruction);
         }
     }
@@ -166,6 +226,8 @@ pub fn complete<'a>(model: &Model, data: &'a Dataset) -> Result<Completed<'a>, R
         return Ok(Completed {
             data: Cow::Borrowed(data),
             tracks,
+            motion_misfit,
+            delay: None,
         });
     }
     let runs = runs
@@ -176,7 +238,19 @@ pub fn complete<'a>(model: &Model, data: &'a Dataset) -> Result<Completed<'a>, R
     Ok(Completed {
         data: Cow::Owned(Dataset { runs }),
         tracks,
+        motion_misfit,
+        delay: checks.sensor_delay,
     })
+}
+
+/// The median of `values` (NaN for none).
+pub(super) fn median(values: &mut [f64]) -> f64 {
+    values.sort_unstable_by(f64::total_cmp);
+    match values.len() {
+        0 => f64::NAN,
+        n if n % 2 == 1 => values[n / 2],
+        n => 0.5 * (values[n / 2 - 1] + values[n / 2]),
+    }
 }
 
 /// The body across the first contact of `body`, if it is in one.
@@ -211,10 +285,9 @@ fn force_samples(run: &Run, track: &BodyTrack, partner: &str) -> Vec<(f64, [f64;
 /// One track rebuilt at its force samples, and its uncertainty.
 fn reconstruct_track(
     model: &Model,
-    run: &Run,
-    track: &BodyTrack,
-    body: usize,
-    partner: usize,
+    (run, track): (&Run, &BodyTrack),
+    (body, partner): (usize, usize),
+    delay: Option<Delay>,
 ) -> Result<(BodyTrack, TrackReconstruction), ReconstructError> {
     let missing = Channel::ALL
         .into_iter()
@@ -246,7 +319,7 @@ fn reconstruct_track(
         time,
         frames,
     };
-    let states = motion(&series, &frames, &windows, gravity, mass, &few)?;
+    let states = motion(&series, &frames, &windows, (gravity, mass, delay), &few)?;
     let recorded = Recorded::new(track);
     let rows = (0..series.time.len())
         .map(|j| {
@@ -300,8 +373,7 @@ fn motion(
     series: &ForceSeries,
     frames: &[(f64, [f64; 3])],
     windows: &[(usize, usize)],
-    gravity: [f64; 3],
-    mass: f64,
+    (gravity, mass, delay): ([f64; 3], f64, Option<Delay>),
     few: &dyn Fn(f64, usize) -> ReconstructError,
 ) -> Result<Motion, ReconstructError> {
     let n = series.time.len();
@@ -326,7 +398,17 @@ fn motion(
         let (before, count) = flight(frames, (previous_end, time(first)), gravity, time(first));
         let before = before.ok_or_else(|| few(time(first), count))?;
         set_flight(&mut out, &before, next_row..first);
-        let through = integrate(series, (first, last), &before, mass);
+        let mut through = integrate(series, (first, last), &before, mass);
+        let velocity_change = core::array::from_fn(|k| {
+            through.velocity[last - first][k] - before.state(time(last)).1[k]
+        });
+        if let Some(delay) = delay {
+            let acceleration: Vec<[f64; 3]> = (first..=last)
+                .map(|j| core::array::from_fn(|k| series.force[j][k] / mass + gravity[k]))
+                .collect();
+            let times = &series.time[first..=last];
+            super::delay::shift(&mut through, times, &acceleration, &before, delay);
+        }
         for (i, j) in (first..=last).enumerate() {
             out.position[j] = through.position[i];
             out.velocity[j] = through.velocity[i];
@@ -334,12 +416,14 @@ fn motion(
             out.velocity_variance[j] = through.velocity_variance[i];
         }
         let (after, after_count) = flight(frames, (time(last), next_start), gravity, time(last));
-        out.checks.push(check(
+        let mut checked = check(
             &through,
             after.as_ref(),
             (time(first), time(last)),
             (count, after_count),
-        ));
+        );
+        checked.velocity_change = velocity_change;
+        out.checks.push(checked);
         next_row = last + 1;
         previous_end = time(last);
         if let Some(after) = after {
@@ -396,6 +480,7 @@ fn check(
         frames,
         velocity_gap: gaps.map(|g| g.0),
         position_gap: gaps.map(|g| g.1),
+        velocity_change: [0.0; 3],
     }
 }
 

@@ -4,12 +4,14 @@
 use super::gain::{gain, group_table, holdout, GainTable, Holdout, Judged};
 use super::naming::{name_causes, unnamed, NotAccepted, Trial};
 use super::noise::{noise_floor, NoiseFloor};
-use super::quality::{assess, DataQuality};
+use super::quality::{assess, reconstruction_gap, DataQuality, MAX_GAP_SIGMAS};
 use super::samples::contact_samples_of;
 use super::select::{select, Cause, Fitted, Step};
 use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
 use super::ContactSamples;
+use crate::dataset::delay::DELAY_SIGMAS;
+use crate::dataset::reconstruct::{complete_with, Checks};
 use crate::dataset::Dataset;
 use crate::export::encode;
 use crate::identify::samples::force_samples;
@@ -112,7 +114,31 @@ pub fn diagnose(
     let c = settings.contact;
     // Motion at a camera's frames and force at the sensor's rate become full rows once,
     // here (`dataset::reconstruct`): the gain, the sensor and the HCM read them too.
-    let completed = crate::dataset::reconstruct::complete(base, data)?;
+    // Motion on every row is checked against the force first: a camera's frames splined
+    // onto the force rows are replaced through the contacts (`dataset::newton`).
+    let checks = Checks {
+        recorded_motion: true,
+        sensor_delay: None,
+    };
+    let mut completed = complete_with(base, data, checks)?;
+    // A force sensor lagging the camera lands every contact's motion off the flight
+    // after it by Δv·τ: fit τ from those gaps and, when the gaps are too large or τ is
+    // significant, reconstruct again with it; keep that only if it puts the contacts on
+    // their flights (else the data-quality verdict).
+    if let Some(gap) = reconstruction_gap(&completed) {
+        let delay = crate::dataset::delay::fit(&completed)
+            .filter(|d| gap > MAX_GAP_SIGMAS || d.value.abs() > DELAY_SIGMAS * d.sd);
+        if let Some(delay) = delay {
+            let retimed = Checks {
+                sensor_delay: Some(delay),
+                ..checks
+            };
+            let again = complete_with(base, data, retimed)?;
+            if reconstruction_gap(&again).is_some_and(|g| g <= MAX_GAP_SIGMAS) {
+                completed = again;
+            }
+        }
+    }
     let data: &Dataset = &completed.data;
     let Holdout {
         training,
@@ -146,6 +172,18 @@ pub fn diagnose(
     // Named: the chosen causes (entered first); a provisional term is in the extended
     // law and the sensor, not among the causes.
     let mut causes: Vec<Cause> = fit.causes.into_iter().take(naming.chosen.len()).collect();
+    // A delay found by the reconstruction: the motion was aligned with it, so the delay
+    // named is that alignment, uncertain by the reconstruction's own sd as well.
+    if let Some(delay) = completed.delay {
+        for p in causes
+            .iter_mut()
+            .filter(|c| c.effect == "sensor_delay")
+            .flat_map(|c| c.parameters.iter_mut())
+        {
+            let half = (0.5 * (p.ci.1 - p.ci.0)).hypot(1.96 * delay.sd);
+            p.ci = (p.value - half, p.value + half);
+        }
+    }
     let body = &base.bodies[base.contacts[c].body_1];
     let drag = super::drag::fit_drag(&samples, body.mass);
     if let Some(d) = drag.as_ref().filter(|d| d.significant) {

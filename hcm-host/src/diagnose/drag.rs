@@ -110,9 +110,17 @@ pub fn fit_drag(samples: &ContactSamples, mass: f64) -> Option<DragFit> {
     })
 }
 
-/// Segments of consecutive flight samples of one run, at least three long.
+/// Segments of consecutive flight samples of one run, at least three long. Samples
+/// whose motion was reconstructed (`dataset::reconstruct`, `dataset::newton`) are not
+/// flight measurements: their motion is gravity's alone by construction, and mixed
+/// with recorded rows it would fake a drag.
 fn flight_segments(samples: &ContactSamples) -> Vec<std::ops::Range<usize>> {
-    let flight = |j: usize| !samples.in_contact[j] && samples.depth[j] < 0.0;
+    let flight = |j: usize| {
+        !samples.in_contact[j]
+            && samples.depth[j] < 0.0
+            && samples.depth_sd[j] == 0.0
+            && samples.rate_sd[j] == 0.0
+    };
     let mut segments = Vec::new();
     let mut i = 0;
     while i < samples.len() {

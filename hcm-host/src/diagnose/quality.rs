@@ -15,6 +15,7 @@
 
 use super::noise::median;
 use super::ContactSamples;
+use crate::dataset::delay::Delay;
 use crate::dataset::reconstruct::Completed;
 use serde::Serialize;
 
@@ -28,8 +29,7 @@ pub const MIN_CONTACTS: usize = 2;
 /// through a contact may miss the camera's flight after it (–). On consistent data each
 /// contact's gap is a half-normal deviate (median 0.67); a median above 3 over several
 /// contacts does not happen by chance (one contact exceeds 3 with probability 0.003).
-/// Measured on the rig (tests/diagnose_rig.rs, camera rows): 0.88 without an effect, 3.9 with
-/// a 2.4 µs sensor delay.
+/// Measured on the rig (tests/diagnose_rig.rs, camera rows): see README, "Diagnose".
 pub const MAX_GAP_SIGMAS: f64 = 3.0;
 
 /// The verdict on the data, with the figures behind it.
@@ -46,48 +46,73 @@ pub struct DataQuality {
     /// Median over those runs of the peak measured force over σ (–).
     pub peak_to_noise: f64,
     /// Where the motion was reconstructed from camera frames and the force: the median
-    /// over contacts of |integrated − after-flight position| in its standard deviations
-    /// (–); `None` for data whose motion and force share every row.
+    /// over contacts of the largest |integrated − after-flight| position or velocity in
+    /// its standard deviations (–), after any sensor delay found; `None` for data whose
+    /// motion and force share every row.
     pub reconstruction_gap: Option<f64>,
+    /// Where the motion was recorded on every row: the median over contacts of its
+    /// misfit to the motion the force implies, in standard deviations (–); contacts
+    /// above [`crate::dataset::newton::MAX_MISFIT`] had their motion replaced by the
+    /// force's (`dataset::newton`). `None` where nothing was checked.
+    pub motion_misfit: Option<f64>,
+    /// The delay of the force behind the camera the reconstruction found and undid
+    /// (`dataset::delay`): when the gap without it was over [`MAX_GAP_SIGMAS`] or it is
+    /// over `dataset::delay::DELAY_SIGMAS` of its standard deviations from 0.
+    pub sensor_delay: Option<Delay>,
 }
 
 impl DataQuality {
-    /// Adds the reconstruction's check (`completed`, [`crate::dataset::reconstruct`]):
-    /// per contact integrated through, |integrated − after-flight position| over its
-    /// standard deviation, the largest axis (–). The force integrated from the flight
-    /// before must land on the flight filmed after; when it misses by more than
-    /// [`MAX_GAP_SIGMAS`] the force and the frames disagree in time or scale — a sensor
-    /// delay, a clock offset, a wrong mass — and the contact's reconstructed motion,
-    /// which every cause would be judged on, cannot be trusted. Complete data (nothing
-    /// reconstructed) add nothing.
+    /// Adds the reconstruction's check (`completed`, [`crate::dataset::reconstruct`],
+    /// [`reconstruction_gap`]). The force integrated from the flight before must land on
+    /// the flight filmed after; a lagging sensor, which only moves the landing, has
+    /// been found and undone by then (`dataset::delay`, the diagnosis re-reconstructs
+    /// with it). When it still misses by more than [`MAX_GAP_SIGMAS`] the force and the
+    /// frames disagree in scale or time — a wrong mass, a sensor's gain — and the
+    /// contact's reconstructed motion, which every cause would be judged on, cannot be
+    /// trusted. Complete data (nothing reconstructed from frames) add nothing.
     pub fn check_reconstruction(&mut self, completed: &Completed<'_>) {
-        let mut gaps: Vec<f64> = completed
-            .tracks
-            .iter()
-            .flatten()
-            .flatten()
-            .flat_map(|track| &track.contacts)
-            .filter_map(|check| check.position_gap)
-            .map(|(gap, sd)| {
-                gap.iter()
-                    .zip(sd)
-                    .filter(|(_, sd)| *sd > 0.0)
-                    .map(|(g, sd)| g.abs() / sd)
-                    .fold(0.0, f64::max)
-            })
-            .collect();
-        if gaps.is_empty() {
+        self.motion_misfit = completed.motion_misfit;
+        self.sensor_delay = completed.delay;
+        let Some(gap) = reconstruction_gap(completed) else {
             return;
-        }
-        let gap = median(&mut gaps);
+        };
         self.reconstruction_gap = Some(gap);
         if gap.is_nan() || gap > MAX_GAP_SIGMAS {
             self.reasons.push(format!(
-                "the motion integrated through the contacts misses the camera's flight after them by {gap:.1} standard deviations (median): the force and the frames disagree in time or scale (a sensor delay, a clock offset, a wrong mass), so the contact's motion cannot be trusted"
+                "the motion integrated through the contacts misses the camera's flight after them by {gap:.1} standard deviations (median), and no sensor delay closes the gap: the force and the frames disagree in scale (a wrong mass, a force sensor's gain) or in time, so the contact's motion cannot be trusted"
             ));
             self.sufficient = false;
         }
     }
+}
+
+/// Per contact integrated through from camera frames, the largest |integrated −
+/// after-flight| over its standard deviation, of position and velocity on every axis;
+/// the median over contacts (–). None where nothing was reconstructed from frames.
+pub fn reconstruction_gap(completed: &Completed<'_>) -> Option<f64> {
+    let worst = |(gap, sd): ([f64; 3], [f64; 3])| -> f64 {
+        gap.iter()
+            .zip(sd)
+            .filter(|(_, sd)| *sd > 0.0)
+            .map(|(g, sd)| g.abs() / sd)
+            .fold(0.0, f64::max)
+    };
+    let mut gaps: Vec<f64> = completed
+        .tracks
+        .iter()
+        .flatten()
+        .flatten()
+        .flat_map(|track| &track.contacts)
+        .filter_map(|check| {
+            let position = worst(check.position_gap?);
+            Some(
+                check
+                    .velocity_gap
+                    .map_or(position, |v| position.max(worst(v))),
+            )
+        })
+        .collect();
+    (!gaps.is_empty()).then(|| median(&mut gaps))
 }
 
 /// Checks `samples` (noise σ in N) against the floors of the module documentation.
@@ -134,5 +159,7 @@ pub fn assess(samples: &ContactSamples, sigma: f64) -> DataQuality {
         samples_per_contact,
         peak_to_noise,
         reconstruction_gap: None,
+        motion_misfit: None,
+        sensor_delay: None,
     }
 }
