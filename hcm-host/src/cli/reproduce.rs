@@ -83,6 +83,9 @@ pub struct Args {
     /// Cube-toss: use only the first N runs of --data (before the split).
     #[arg(long, value_name = "N")]
     first: Option<usize>,
+    /// Cube-toss: skip the diagnosis of the fitted model (most of the run's time).
+    #[arg(long)]
+    no_diagnosis: bool,
     /// Output directory (created): data, pm2.toml, residual blobs, report.md,
     /// results.json, figures.
     #[arg(long)]
@@ -117,8 +120,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ExampleArg::CubeToss => return super::reproduce_cube::run(args.into()),
     };
     anyhow::ensure!(
-        args.data.is_none() && args.first.is_none() && args.polish.is_none(),
-        "--data, --first and --polish apply to `hcm reproduce cube-toss` only"
+        args.data.is_none() && args.first.is_none() && args.polish.is_none() && !args.no_diagnosis,
+        "--data, --first, --polish and --no-diagnosis apply to `hcm reproduce cube-toss` only"
     );
     let settings = ReproduceSettings {
         example,
@@ -178,6 +181,7 @@ impl From<Args> for super::reproduce_cube::CubeArgs {
             generations: args.generations,
             population: args.population,
             polish: args.polish,
+            no_diagnosis: args.no_diagnosis,
         }
     }
 }

@@ -25,6 +25,7 @@ pub struct CubeArgs {
     pub generations: Option<usize>,
     pub population: Option<usize>,
     pub polish: Option<usize>,
+    pub no_diagnosis: bool,
 }
 
 pub fn run(args: CubeArgs) -> anyhow::Result<()> {
@@ -49,6 +50,7 @@ pub fn run(args: CubeArgs) -> anyhow::Result<()> {
         population: args.population.unwrap_or(shipped.population),
         generations: args.generations.unwrap_or(shipped.generations),
         polish: args.polish.unwrap_or(shipped.polish),
+        diagnose: !args.no_diagnosis,
         ..shipped
     };
     let staged = StagedDirectory::create(&args.out, "results.json")?;

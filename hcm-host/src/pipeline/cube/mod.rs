@@ -50,6 +50,8 @@ pub struct CubeSettings {
     pub generations: usize,
     /// Fitness evaluations of the Nelder–Mead polish.
     pub polish: usize,
+    /// Whether to diagnose the fitted model (most of the run's time).
+    pub diagnose: bool,
 }
 
 impl CubeSettings {
@@ -66,6 +68,7 @@ impl CubeSettings {
             population: 20,
             generations: 10,
             polish: 40,
+            diagnose: true,
         }
     }
 
@@ -149,8 +152,8 @@ pub struct CubeReproduction {
     pub contact: usize,
     /// Both parts predicted with both models.
     pub predicted: Predictions,
-    /// The diagnosis of the fitted model.
-    pub diagnosis: MotionDiagnosis,
+    /// The diagnosis of the fitted model, unless the settings skip it.
+    pub diagnosis: Option<MotionDiagnosis>,
     /// Scores, errors over time and per phase, timings.
     pub results: CubeResults,
     /// The figures.
@@ -179,21 +182,23 @@ pub fn reproduce_cube(
     let timeline = clock.time("errors over time and per phase", || {
         stages::timeline(&setup, &held_out, &predicted)
     })?;
-    let diagnosis = clock.time("diagnose", || {
-        let mut data = training.clone();
-        data.runs.extend(held_out.runs.iter().cloned());
-        progress.begin("diagnose", 1);
-        let diagnosis = diagnose_motion(&fit.model, &data, |_, k, n| {
-            progress.advance(k as u64, n as u64)
-        });
-        progress.end();
-        diagnosis
-    })?;
+    let diagnosis = match settings.diagnose {
+        true => Some(clock.time("diagnose", || {
+            diagnose(&fit.model, &training, &held_out, progress)
+        })?),
+        false => None,
+    };
     let figures = clock.time("figures", || {
         toss_figures(&setup, &held_out, &predicted, &timeline)
     })?;
     let results = CubeResults::gather(
-        settings, &fit, &table_set, &predicted, timeline, &diagnosis, clock.0,
+        settings,
+        &fit,
+        &table_set,
+        &predicted,
+        timeline,
+        diagnosis.as_ref(),
+        clock.0,
     );
     Ok(CubeReproduction {
         scenario,
@@ -207,6 +212,23 @@ pub fn reproduce_cube(
         results,
         figures,
     })
+}
+
+/// The diagnosis of `fitted` on both parts (which it splits again, the same way).
+fn diagnose(
+    fitted: &Model,
+    training: &Dataset,
+    held_out: &Dataset,
+    progress: &dyn CubeProgress,
+) -> Result<MotionDiagnosis, CubeError> {
+    let mut data = training.clone();
+    data.runs.extend(held_out.runs.iter().cloned());
+    progress.begin("diagnose", 1);
+    let diagnosis = diagnose_motion(fitted, &data, |_, k, n| {
+        progress.advance(k as u64, n as u64)
+    });
+    progress.end();
+    Ok(diagnosis?)
 }
 
 /// The data read, cut to `first`, checked against the scenario, and split.

@@ -137,7 +137,9 @@ impl CubeResults {
     }
 
     fn write_diagnosis(&self, out: &mut String) -> std::fmt::Result {
-        let d = &self.diagnosis;
+        let Some(d) = &self.diagnosis else {
+            return writeln!(out, "## Diagnosis\n\nSkipped (`--no-diagnosis`).\n");
+        };
         writeln!(
             out,
             "## What the fitted model still gets wrong (diagnose-motion)\n\nEach candidate \

@@ -108,8 +108,8 @@ pub struct CubeResults {
     pub held_out: Vec<TossRow>,
     /// Held-out errors over time and per phase.
     pub timeline: Timeline,
-    /// The diagnosis of the fitted model.
-    pub diagnosis: MotionDiagnosis,
+    /// The diagnosis of the fitted model (`null`: skipped).
+    pub diagnosis: Option<MotionDiagnosis>,
     /// Wall clock per stage (s); the only part that differs between runs.
     pub timings: Vec<StageTiming>,
 }
@@ -122,7 +122,7 @@ impl CubeResults {
         table_set: &str,
         predicted: &Predictions,
         timeline: Timeline,
-        diagnosis: &MotionDiagnosis,
+        diagnosis: Option<&MotionDiagnosis>,
         timings: Vec<StageTiming>,
     ) -> CubeResults {
         CubeResults {
@@ -147,7 +147,7 @@ impl CubeResults {
             published: PUBLISHED.to_vec(),
             held_out: toss_rows(&predicted.held_out_fitted, &predicted.held_out_scenario),
             timeline,
-            diagnosis: diagnosis.clone(),
+            diagnosis: diagnosis.cloned(),
             timings,
         }
     }
