@@ -69,14 +69,14 @@ pub fn toss_figures(
         series
     };
     let top = Figure::new(
-        &format!("Held-out tosses {tosses} from above: recorded and predicted (fitted model)"),
+        &format!("Held-out tosses {tosses} from above (fitted model)"),
         "x (mm)",
         "y (mm)",
         path_series(&|s, _| mm(s, 0), &|s| mm(s, 1)),
     )
     .with_equal_scales();
     let height = Figure::new(
-        &format!("Held-out tosses {tosses}: height of the centre, recorded and predicted"),
+        &format!("Held-out tosses {tosses}: height of the centre (fitted model)"),
         "time since the window start (s)",
         "z (mm)",
         path_series(&|s, t0| s.time - t0, &|s| mm(s, 2)),
