@@ -64,36 +64,60 @@ fn mean(row: &Value, score: &str) -> f64 {
     row[score]["mean"].as_f64().unwrap()
 }
 
+/// Every file the directory must hold.
+const FILES: [&str; 14] = [
+    "physics.toml",
+    "training.csv",
+    "held_out.csv",
+    "predicted_held_out.csv",
+    "report.md",
+    "results.json",
+    "paths_top.svg",
+    "paths_top.png",
+    "paths_height.svg",
+    "paths_height.png",
+    "error_position.svg",
+    "error_position.png",
+    "error_rotation.svg",
+    "error_rotation.png",
+];
+
 #[test]
 fn the_small_reproduction_beats_the_frozen_pose_and_its_physics_file_predicts_the_same() {
     let hcm = Hcm::new();
     let text = reproduce(&hcm, "cube");
     let results: Value = serde_json::from_str(&text).unwrap();
     let out = hcm.path("cube");
-    for file in [
-        "physics.toml",
-        "training.csv",
-        "held_out.csv",
-        "predicted_held_out.csv",
-        "report.md",
-        "results.json",
-        "paths_top.svg",
-        "paths_top.png",
-        "paths_height.svg",
-        "paths_height.png",
-        "error_position.svg",
-        "error_position.png",
-        "error_rotation.svg",
-        "error_rotation.png",
-    ] {
+    for file in FILES {
         assert!(out.join(file).is_file(), "{file} missing");
     }
     assert_eq!(results["training_tosses"], 5);
     assert_eq!(results["held_out_tosses"], 3);
+    beats_the_frozen_pose(&results);
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for text in ["first impact", "settling", "Drake", "MuJoCo", "**Answer:**"] {
+        assert!(report.contains(text), "report lacks {text}:\n{report}");
+    }
+    let set = results["table_set"].as_str().unwrap();
+    assert!(report.contains(set), "{report}");
+    predict_gives_the_scores_back(&hcm, &out, &results);
 
-    // Held out, the fit beats the frozen pose by a wide margin.
-    let fitted = row(&results, "held out", "fitted");
-    let frozen = row(&results, "held out", "frozen pose");
+    // The library on one thread: the same results but for the diagnosis and the timings.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let single = pool.install(|| reproduce_cube(&settings(), &Silent).unwrap());
+    let single = serde_json::to_string_pretty(&single.results).unwrap();
+    assert!(single.contains("\"diagnosis\": null"), "{single}");
+    assert_eq!(before_diagnosis(&text), before_diagnosis(&single));
+}
+
+/// Held out, the fit beats the frozen pose by a wide margin; the diagnosis judged every
+/// candidate on the held-out tosses; the phases cover the held-out windows.
+fn beats_the_frozen_pose(results: &Value) {
+    let fitted = row(results, "held out", "fitted");
+    let frozen = row(results, "held out", "frozen pose");
     for (score, margin) in [("position", 5.0), ("rotation", 1.0)] {
         let (model, baseline) = (mean(fitted, score), mean(frozen, score));
         assert!(
@@ -101,30 +125,25 @@ fn the_small_reproduction_beats_the_frozen_pose_and_its_physics_file_predicts_th
             "{score}: fitted {model} against the frozen pose's {baseline}"
         );
     }
-    // The diagnosis ran: every candidate judged on the 3 held-out tosses.
     let rounds = results["diagnosis"]["rounds"].as_array().unwrap();
     for candidate in rounds[0]["candidates"].as_array().unwrap() {
         assert_eq!(candidate["gain"]["tosses"], 3, "{candidate}");
     }
-    // Every phase's frames add up to the held-out windows', and the report names them.
     let phases = results["timeline"]["fitted"]["phases"].as_array().unwrap();
     let frames: u64 = phases.iter().map(|p| p["frames"].as_u64().unwrap()).sum();
     let windows: u64 = (results["held_out"].as_array().unwrap().iter())
         .map(|t| t["frames"].as_u64().unwrap())
         .sum();
     assert_eq!(frames, windows);
-    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
-    for text in ["first impact", "settling", "Drake", "MuJoCo", "**Answer:**"] {
-        assert!(report.contains(text), "report lacks {text}:\n{report}");
-    }
+}
 
-    // physics.toml + the table offset's --set gives the held-out scores back.
-    let set = results["table_set"].as_str().unwrap();
-    assert!(report.contains(set), "{report}");
+/// `hcm predict` with `out`'s physics.toml and the table offset's `--set` gives every
+/// held-out toss's scores back, and the same predicted file.
+fn predict_gives_the_scores_back(hcm: &Hcm, out: &Path, results: &Value) {
     hcm.run("predict")
         .opt("--scenario", hcm_tests::scenario("cube_toss.toml"))
         .opt("--physics", out.join("physics.toml"))
-        .opt("--set", set)
+        .opt("--set", results["table_set"].as_str().unwrap())
         .opt("--data", out.join("held_out.csv"))
         .opt("--out", "predicted.csv")
         .opt("--scores", "scores.csv")
@@ -151,14 +170,4 @@ fn the_small_reproduction_beats_the_frozen_pose_and_its_physics_file_predicts_th
         predicted,
         std::fs::read(out.join("predicted_held_out.csv")).unwrap()
     );
-
-    // The library on one thread: the same results but for the diagnosis and the timings.
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
-    let single = pool.install(|| reproduce_cube(&settings(), &Silent).unwrap());
-    let single = serde_json::to_string_pretty(&single.results).unwrap();
-    assert!(single.contains("\"diagnosis\": null"), "{single}");
-    assert_eq!(before_diagnosis(&text), before_diagnosis(&single));
 }

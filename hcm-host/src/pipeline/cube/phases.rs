@@ -127,3 +127,66 @@ fn settling_start(setup: &TossSetup, run: &str, measured: &[Sample]) -> Result<u
     }
     Ok(start)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pipeline::cube::SHIPPED_SCENARIO;
+    use crate::scenario::Scenario;
+
+    /// A cube falling at 1.5 m/s onto the table (flat, no bounce) while moving 5 mm per
+    /// frame along x, stopping dead at frame 30; 50 frames at 148 Hz.
+    fn toss() -> Vec<Sample> {
+        (0..50)
+            .map(|k| {
+                let time = k as f64 / 148.0;
+                let mut sample = Sample::at_rest(time);
+                let z = (0.2 - 1.5 * time).max(0.0524);
+                sample.position = [0.005 * k.min(30) as f64, 0.0, z];
+                sample
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_phases_follow_the_recorded_fall_landing_slide_and_stop() {
+        let scenario = Scenario::parse(std::path::Path::new("cube"), SHIPPED_SCENARIO, &[]);
+        let setup = TossSetup::new(&scenario.unwrap().model().unwrap()).unwrap();
+        let samples = toss();
+        // Within 0.0524·√3 m from frame 11 (0.2 − 1.5·11/148 = 0.0885 m); the window
+        // starts 3 frames before.
+        let window = Window {
+            start: 8,
+            near: 11,
+            frames: samples.len(),
+        };
+        let found = phases(&setup, "toss", &window, &samples[8..]).unwrap();
+        let count = |phase| found.iter().filter(|&&p| p == phase).count();
+        // Flight: frames 8–10. The centre stops falling at frame 15 (on the table from
+        // there): first impact 11–18. Still from frame 30: sliding 19–29, settling 30–49.
+        assert_eq!(count(Phase::Flight), 3, "{found:?}");
+        assert_eq!(count(Phase::FirstImpact), 8, "{found:?}");
+        assert_eq!(count(Phase::SlidingTumbling), 11, "{found:?}");
+        assert_eq!(count(Phase::Settling), 20, "{found:?}");
+        // In order.
+        assert!(found
+            .windows(2)
+            .all(|w| Phase::ALL.iter().position(|&p| p == w[0])
+                <= Phase::ALL.iter().position(|&p| p == w[1])));
+    }
+
+    #[test]
+    fn a_toss_still_moving_at_its_end_never_settles() {
+        let scenario = Scenario::parse(std::path::Path::new("cube"), SHIPPED_SCENARIO, &[]);
+        let setup = TossSetup::new(&scenario.unwrap().model().unwrap()).unwrap();
+        let samples = toss();
+        let window = Window {
+            start: 8,
+            near: 11,
+            frames: 30,
+        };
+        let found = phases(&setup, "toss", &window, &samples[8..30]).unwrap();
+        assert!(!found.contains(&Phase::Settling), "{found:?}");
+        assert_eq!(found.len(), 22);
+    }
+}
