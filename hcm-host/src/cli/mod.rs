@@ -15,6 +15,7 @@ mod numbers;
 mod predict;
 mod report;
 mod reproduce;
+mod reproduce_cube;
 mod reproduce_peg;
 mod simulate;
 mod train;
@@ -43,7 +44,8 @@ use std::process::ExitCode;
 ///   hcm train       train the residual network on S1 (the force PM2 gets wrong)
 ///   hcm export      write the trained network as a blob for the core (f32 or int8)
 ///   hcm evaluate    the paper's table: PM2 (and the HCM) against S2
-///   hcm reproduce   all of the above for one of the paper's examples, with a report
+///   hcm reproduce   all of the above for one of the paper's examples (or, cube-toss, the
+///                   real cube tosses), with a report
 ///   hcm diagnose    name what a physics law misses in data, and extend it
 ///   hcm predict     replay measured tosses from their window start and score them
 ///   hcm identify-motion  fit a tossed body's contact to filmed tosses, judge it held out

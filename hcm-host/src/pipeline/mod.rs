@@ -17,6 +17,7 @@
 //! prints or writes a file: progress goes to the caller's [`Progress`], and the
 //! intermediate values come back in the [`Reproduction`] for the caller to write.
 
+pub mod cube;
 mod evaluate;
 mod example;
 mod export;

@@ -1,0 +1,256 @@
+//! `hcm reproduce cube-toss`: issue 17 end to end on filmed tosses — the tosses split
+//! by toss number ([`split_tosses`]), the contact fitted from motion alone on the
+//! training part ([`identify_motion`]), the held-out tosses predicted with the fitted
+//! model and with the scenario's own parameters beside the frozen pose, their error over
+//! time and per phase ([`errors`], [`phases`]), the diagnosis of what the fitted model
+//! still gets wrong ([`diagnose_motion`]), and the report's figures ([`figures`]).
+//! Nothing here prints or writes a file: progress goes to a [`CubeProgress`], and the
+//! caller writes what comes back.
+
+pub mod errors;
+mod figures;
+pub mod phases;
+mod report;
+mod results;
+mod stages;
+
+pub use figures::toss_figures;
+pub use results::{CubeResults, ModelScores, Published, TossRow, PUBLISHED};
+pub use stages::{ErrorProfile, Predictions, Timeline};
+
+use crate::dataset::{DataError, Dataset};
+use crate::diagnose::motion::{diagnose_motion, MotionDiagnoseError, MotionDiagnosis};
+use crate::identify::genetic::GeneticError;
+use crate::identify::motion::{split_tosses, MotionFit};
+use crate::scenario::{Model, Scenario, ScenarioError};
+use crate::toss::{TossError, TossSetup};
+use std::path::{Path, PathBuf};
+
+use super::{NamedFigure, Silent, StageClock};
+
+/// The scenario shipped with hcm, so that the example runs from any directory.
+pub const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/cube_toss.toml");
+
+/// What [`reproduce_cube`] runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CubeSettings {
+    /// The tosses (measured-data CSV).
+    pub data: PathBuf,
+    /// Use only the first N runs of the data (before the split).
+    pub first: Option<usize>,
+    /// Scenario file; `None`: [`SHIPPED_SCENARIO`].
+    pub scenario: Option<PathBuf>,
+    /// Overrides of the scenario's values (`key=value`).
+    pub overrides: Vec<String>,
+    /// Seed of the genetic algorithm.
+    pub seed: u64,
+    /// GA individuals per generation.
+    pub population: usize,
+    /// GA generations.
+    pub generations: usize,
+    /// Fitness evaluations of the Nelder–Mead polish.
+    pub polish: usize,
+    /// Whether to diagnose the fitted model (most of the run's time).
+    pub diagnose: bool,
+}
+
+impl CubeSettings {
+    /// The defaults of `hcm reproduce cube-toss` on `data`: those of
+    /// `hcm identify-motion` (population 20, 10 generations, 40 polish evaluations),
+    /// which keep the whole run, diagnosis included, under 15 minutes on two cores.
+    pub fn shipped(data: &Path) -> CubeSettings {
+        CubeSettings {
+            data: data.to_owned(),
+            first: None,
+            scenario: None,
+            overrides: Vec::new(),
+            seed: 1,
+            population: 20,
+            generations: 10,
+            polish: 40,
+            diagnose: true,
+        }
+    }
+
+    /// How the report names the scenario.
+    pub fn scenario_label(&self) -> String {
+        match &self.scenario {
+            Some(path) => path.display().to_string(),
+            None => "scenarios/cube_toss.toml (built in)".to_owned(),
+        }
+    }
+
+    /// The scenario, overrides applied.
+    pub fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
+        match &self.scenario {
+            Some(path) => Scenario::load(path, &self.overrides),
+            None => Scenario::parse(
+                Path::new(&self.scenario_label()),
+                SHIPPED_SCENARIO,
+                &self.overrides,
+            ),
+        }
+    }
+}
+
+/// How the cube pipeline tells its caller how far it is (the CLI draws bars).
+pub trait CubeProgress: Sync {
+    /// A stage of `steps` steps begins.
+    fn begin(&self, stage: &'static str, steps: u64) {
+        let _ = (stage, steps);
+    }
+    /// `done` of `steps` steps are done.
+    fn advance(&self, done: u64, steps: u64) {
+        let _ = (done, steps);
+    }
+    /// The stage ended.
+    fn end(&self) {}
+}
+
+impl CubeProgress for Silent {}
+
+/// Why the cube pipeline stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum CubeError {
+    /// The scenario.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// The data file.
+    #[error(transparent)]
+    Data(#[from] DataError),
+    /// The tosses against the scenario.
+    #[error(transparent)]
+    Toss(#[from] TossError),
+    /// The fit's settings.
+    #[error("the fit from motion: {0}")]
+    Genetic(#[from] GeneticError),
+    /// The diagnosis.
+    #[error("the diagnosis from motion: {0}")]
+    Diagnose(#[from] MotionDiagnoseError),
+    /// Too few tosses for one part of the split.
+    #[error("{data}: the split by toss number left {training} training and {held_out} held-out runs; both need at least 3 (even and odd toss numbers)")]
+    Split {
+        data: String,
+        training: usize,
+        held_out: usize,
+    },
+}
+
+/// Everything [`reproduce_cube`] made.
+pub struct CubeReproduction {
+    /// The scenario as read (its label in the results).
+    pub scenario: Scenario,
+    /// The training tosses (even toss numbers).
+    pub training: Dataset,
+    /// The held-out tosses (odd toss numbers).
+    pub held_out: Dataset,
+    /// The fit.
+    pub fit: MotionFit,
+    /// The fitted table offset as the `--set` that applies it beside the physics file.
+    pub table_set: String,
+    /// The index of the fitted contact.
+    pub contact: usize,
+    /// Both parts predicted with both models.
+    pub predicted: Predictions,
+    /// The diagnosis of the fitted model, unless the settings skip it.
+    pub diagnosis: Option<MotionDiagnosis>,
+    /// Scores, errors over time and per phase, timings.
+    pub results: CubeResults,
+    /// The figures.
+    pub figures: Vec<NamedFigure>,
+}
+
+/// Runs the cube toss's stages. Bit-identical results (but for the timings) for the
+/// same settings, whatever the thread count.
+pub fn reproduce_cube(
+    settings: &CubeSettings,
+    progress: &dyn CubeProgress,
+) -> Result<CubeReproduction, CubeError> {
+    let mut clock = StageClock::default();
+    let scenario = settings.load_scenario()?;
+    let model = scenario.model()?;
+    let setup = TossSetup::new(&model)?;
+    let (training, held_out) =
+        clock.time("read + split", || read_split(settings, &setup, &model))?;
+    let (fit, parameters) = clock.time("fit (GA + polish)", || {
+        stages::fit(settings, &model, &setup, &training, progress)
+    })?;
+    let table_set = stages::table_set(&model, &parameters, &fit);
+    let predicted = clock.time("predict", || {
+        stages::predict(&model, &fit.model, &training, &held_out, progress)
+    })?;
+    let timeline = clock.time("errors over time and per phase", || {
+        stages::timeline(&setup, &held_out, &predicted)
+    })?;
+    let diagnosis = match settings.diagnose {
+        true => Some(clock.time("diagnose", || {
+            diagnose(&fit.model, &training, &held_out, progress)
+        })?),
+        false => None,
+    };
+    let figures = clock.time("figures", || {
+        toss_figures(&setup, &held_out, &predicted, &timeline)
+    })?;
+    let results = CubeResults::gather(
+        settings,
+        &fit,
+        &table_set,
+        &predicted,
+        timeline,
+        diagnosis.as_ref(),
+        clock.0,
+    );
+    Ok(CubeReproduction {
+        scenario,
+        training,
+        held_out,
+        fit,
+        table_set,
+        contact: parameters.contact,
+        predicted,
+        diagnosis,
+        results,
+        figures,
+    })
+}
+
+/// The diagnosis of `fitted` on both parts (which it splits again, the same way).
+fn diagnose(
+    fitted: &Model,
+    training: &Dataset,
+    held_out: &Dataset,
+    progress: &dyn CubeProgress,
+) -> Result<MotionDiagnosis, CubeError> {
+    let mut data = training.clone();
+    data.runs.extend(held_out.runs.iter().cloned());
+    progress.begin("diagnose", 1);
+    let diagnosis = diagnose_motion(fitted, &data, |_, k, n| {
+        progress.advance(k as u64, n as u64)
+    });
+    progress.end();
+    Ok(diagnosis?)
+}
+
+/// The data read, cut to `first`, checked against the scenario, and split.
+fn read_split(
+    settings: &CubeSettings,
+    setup: &TossSetup,
+    model: &Model,
+) -> Result<(Dataset, Dataset), CubeError> {
+    let mut data = Dataset::read(&settings.data)?;
+    if let Some(first) = settings.first {
+        data.runs.truncate(first);
+    }
+    let name = settings.data.display().to_string();
+    setup.check_data(&name, model, &data)?;
+    let (training, held_out) = split_tosses(&data);
+    let least = crate::diagnose::motion::MIN_HELD_OUT;
+    if training.runs.len() < least || held_out.runs.len() < least {
+        return Err(CubeError::Split {
+            data: name,
+            training: training.runs.len(),
+            held_out: held_out.runs.len(),
+        });
+    }
+    Ok((training, held_out))
+}

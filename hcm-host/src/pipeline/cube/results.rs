@@ -1,0 +1,207 @@
+//! What `results.json` holds: every figure of the report, unrounded.
+
+use super::stages::{Predictions, Timeline};
+use super::CubeSettings;
+use crate::diagnose::motion::MotionDiagnosis;
+use crate::identify::motion::MotionFit;
+use crate::pipeline::StageTiming;
+use crate::toss::{summarize, Summary, TossEvaluation};
+use serde::Serialize;
+
+/// A simulator's published scores on this data set (fitted and scored on all 550
+/// tosses, as quoted second-hand in issue 17; not confirmed from the paper).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Published {
+    /// The simulator.
+    pub simulator: &'static str,
+    /// Position error, mean and standard deviation over tosses (% of the width).
+    pub position: [f64; 2],
+    /// Rotation error, mean and standard deviation over tosses (°).
+    pub rotation: [f64; 2],
+}
+
+/// The published figures issue 17 quotes.
+pub const PUBLISHED: [Published; 3] = [
+    Published {
+        simulator: "Drake",
+        position: [13.5, 8.2],
+        rotation: [16.5, 20.0],
+    },
+    Published {
+        simulator: "Bullet",
+        position: [14.9, 8.9],
+        rotation: [16.5, 20.2],
+    },
+    Published {
+        simulator: "MuJoCo",
+        position: [25.1, 10.8],
+        rotation: [21.7, 21.4],
+    },
+];
+
+/// One row of the score table: a model on one part of the split.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ModelScores {
+    /// `held out` or `training`.
+    pub part: &'static str,
+    /// `fitted`, `scenario's parameters` or `frozen pose`.
+    pub model: &'static str,
+    /// Position error over tosses (% of the width).
+    pub position: Summary,
+    /// Rotation error over tosses (°).
+    pub rotation: Summary,
+}
+
+/// One held-out toss's scores under each model.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TossRow {
+    /// Run id.
+    pub run: String,
+    /// Frames of its window (–).
+    pub frames: usize,
+    /// Fitted model: position (%) and rotation (°) errors.
+    pub fitted: [f64; 2],
+    /// The scenario's parameters: the same.
+    pub scenario: [f64; 2],
+    /// The frozen pose: the same.
+    pub frozen: [f64; 2],
+}
+
+/// The fit, without its wall-clock time (which is in the timings).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FitSummary {
+    /// Fitted values (SI units).
+    pub parameters: Vec<(String, f64)>,
+    /// Training fitness (% + °): the scenario's parameters, after the GA, after the
+    /// polish.
+    pub start_fitness: f64,
+    pub genetic_fitness: f64,
+    pub fitness: f64,
+    /// Replays of the training set (–).
+    pub evaluations: usize,
+}
+
+/// Everything the report states.
+#[derive(Clone, Debug, Serialize)]
+pub struct CubeResults {
+    /// The scenario and the data as given.
+    pub scenario: String,
+    pub data: String,
+    /// The settings.
+    pub first: Option<usize>,
+    pub seed: u64,
+    pub population: usize,
+    pub generations: usize,
+    pub polish: usize,
+    /// Tosses in each part (–).
+    pub training_tosses: usize,
+    pub held_out_tosses: usize,
+    /// The fit.
+    pub fit: FitSummary,
+    /// The `--set` the fitted table offset needs beside physics.toml.
+    pub table_set: String,
+    /// The score table.
+    pub scores: Vec<ModelScores>,
+    /// The published figures, for comparison.
+    pub published: Vec<Published>,
+    /// Every held-out toss's scores.
+    pub held_out: Vec<TossRow>,
+    /// Held-out errors over time and per phase.
+    pub timeline: Timeline,
+    /// The diagnosis of the fitted model (`null`: skipped).
+    pub diagnosis: Option<MotionDiagnosis>,
+    /// Wall clock per stage (s); the only part that differs between runs.
+    pub timings: Vec<StageTiming>,
+}
+
+impl CubeResults {
+    /// The results of one run.
+    pub fn gather(
+        settings: &CubeSettings,
+        fit: &MotionFit,
+        table_set: &str,
+        predicted: &Predictions,
+        timeline: Timeline,
+        diagnosis: Option<&MotionDiagnosis>,
+        timings: Vec<StageTiming>,
+    ) -> CubeResults {
+        CubeResults {
+            scenario: settings.scenario_label(),
+            data: settings.data.display().to_string(),
+            first: settings.first,
+            seed: settings.seed,
+            population: settings.population,
+            generations: settings.generations,
+            polish: settings.polish,
+            training_tosses: predicted.training_fitted.len(),
+            held_out_tosses: predicted.held_out_fitted.len(),
+            fit: FitSummary {
+                parameters: fit.parameters.clone(),
+                start_fitness: fit.start_fitness,
+                genetic_fitness: fit.genetic_fitness,
+                fitness: fit.fitness,
+                evaluations: fit.evaluations,
+            },
+            table_set: table_set.to_owned(),
+            scores: score_rows(predicted),
+            published: PUBLISHED.to_vec(),
+            held_out: toss_rows(&predicted.held_out_fitted, &predicted.held_out_scenario),
+            timeline,
+            diagnosis: diagnosis.cloned(),
+            timings,
+        }
+    }
+
+    /// The row of `model` on `part`.
+    pub fn row(&self, part: &str, model: &str) -> Option<&ModelScores> {
+        (self.scores.iter()).find(|r| r.part == part && r.model == model)
+    }
+}
+
+/// The score table: held out first, then training; fitted, scenario's, frozen pose.
+fn score_rows(p: &Predictions) -> Vec<ModelScores> {
+    let mut rows = Vec::new();
+    let parts = [
+        ("held out", &p.held_out_fitted, &p.held_out_scenario),
+        ("training", &p.training_fitted, &p.training_scenario),
+    ];
+    for (part, fitted, scenario) in parts {
+        let (fitted, scenario) = (summarize(fitted), summarize(scenario));
+        let models = [
+            ("fitted", fitted.position, fitted.rotation),
+            (
+                "scenario's parameters",
+                scenario.position,
+                scenario.rotation,
+            ),
+            (
+                "frozen pose",
+                fitted.baseline_position,
+                fitted.baseline_rotation,
+            ),
+        ];
+        for (model, position, rotation) in models {
+            rows.push(ModelScores {
+                part,
+                model,
+                position,
+                rotation,
+            });
+        }
+    }
+    rows
+}
+
+fn toss_rows(fitted: &[TossEvaluation], scenario: &[TossEvaluation]) -> Vec<TossRow> {
+    fitted
+        .iter()
+        .zip(scenario)
+        .map(|(f, s)| TossRow {
+            run: f.score.run.clone(),
+            frames: f.score.frames,
+            fitted: [f.score.position_error, f.score.rotation_error],
+            scenario: [s.score.position_error, s.score.rotation_error],
+            frozen: [f.baseline.position_error, f.baseline.rotation_error],
+        })
+        .collect()
+}

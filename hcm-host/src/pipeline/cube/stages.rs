@@ -1,0 +1,141 @@
+//! The cube pipeline's stages between reading the tosses and the diagnosis: the fit,
+//! the predictions of both parts with both models, and the held-out errors over time
+//! and per phase.
+
+use super::errors::{frame_errors, over_time, per_phase, PhaseErrors, TimePoint};
+use super::{CubeError, CubeProgress, CubeSettings};
+use crate::dataset::Dataset;
+use crate::identify::genetic::GeneticSettings;
+use crate::identify::motion::{
+    identify_motion, MotionFit, MotionParameters, MotionStage, MotionTarget,
+};
+use crate::scenario::Model;
+use crate::toss::{evaluate_tosses, TossEvaluation, TossSetup};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The fit on the training tosses, with a progress stage for the GA and one for the
+/// polish.
+pub fn fit(
+    settings: &CubeSettings,
+    model: &Model,
+    setup: &TossSetup,
+    training: &Dataset,
+    progress: &dyn CubeProgress,
+) -> Result<(MotionFit, MotionParameters), CubeError> {
+    let target = MotionTarget::new(model, training)?;
+    let parameters = MotionParameters::new(model, setup)?;
+    let genetic = GeneticSettings {
+        seed: settings.seed,
+        population: settings.population,
+        generations: settings.generations,
+        ..GeneticSettings::default()
+    };
+    let (generations, polish) = (settings.generations as u64, settings.polish as u64);
+    progress.begin("fit: GA", generations);
+    let mut polishing = false;
+    let fit = identify_motion(
+        model,
+        &target,
+        &parameters,
+        &genetic,
+        settings.polish,
+        |stage, done, _| {
+            if stage == MotionStage::Polish && !polishing {
+                polishing = true;
+                progress.end();
+                progress.begin("fit: polish", polish);
+            }
+            let steps = if polishing { polish } else { generations };
+            progress.advance(done as u64, steps);
+        },
+    );
+    progress.end();
+    Ok((fit?, parameters))
+}
+
+/// The fitted table offset as the `--set` that applies it (a physics file holds the
+/// law and the friction, not the plane).
+pub fn table_set(model: &Model, parameters: &MotionParameters, fit: &MotionFit) -> String {
+    let offset = (fit.parameters.iter())
+        .find(|(name, _)| name == "table_offset")
+        .map_or(0.0, |p| p.1);
+    format!(
+        "body.{}.shape.plane.offset={offset:e}",
+        model.bodies[parameters.plane].name
+    )
+}
+
+/// Both parts predicted with both models (each in the data's order).
+pub struct Predictions {
+    /// Held-out tosses, the fitted model.
+    pub held_out_fitted: Vec<TossEvaluation>,
+    /// Held-out tosses, the scenario's parameters.
+    pub held_out_scenario: Vec<TossEvaluation>,
+    /// Training tosses, the fitted model.
+    pub training_fitted: Vec<TossEvaluation>,
+    /// Training tosses, the scenario's parameters.
+    pub training_scenario: Vec<TossEvaluation>,
+}
+
+/// Every toss of both parts predicted and scored with `scenario`'s and `fitted`'s
+/// parameters, the frozen pose beside each.
+pub fn predict(
+    scenario: &Model,
+    fitted: &Model,
+    training: &Dataset,
+    held_out: &Dataset,
+    progress: &dyn CubeProgress,
+) -> Result<Predictions, CubeError> {
+    let steps = 2 * (training.runs.len() + held_out.runs.len()) as u64;
+    let done = AtomicU64::new(0);
+    let tick = || {
+        let now = done.fetch_add(1, Ordering::Relaxed) + 1;
+        progress.advance(now, steps);
+    };
+    progress.begin("predict", steps);
+    let predictions = Predictions {
+        held_out_fitted: evaluate_tosses(fitted, held_out, tick)?,
+        held_out_scenario: evaluate_tosses(scenario, held_out, tick)?,
+        training_fitted: evaluate_tosses(fitted, training, tick)?,
+        training_scenario: evaluate_tosses(scenario, training, tick)?,
+    };
+    progress.end();
+    Ok(predictions)
+}
+
+/// The held-out errors over time and per phase, of one model.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct ErrorProfile {
+    /// Per frame index since the window start.
+    pub over_time: Vec<TimePoint>,
+    /// Per phase.
+    pub phases: Vec<PhaseErrors>,
+}
+
+/// The held-out profiles of the fitted model and of the scenario's parameters.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Timeline {
+    /// The fitted model.
+    pub fitted: ErrorProfile,
+    /// The scenario's parameters.
+    pub scenario: ErrorProfile,
+}
+
+/// The held-out tosses' error profiles.
+pub fn timeline(
+    setup: &TossSetup,
+    held_out: &Dataset,
+    predicted: &Predictions,
+) -> Result<Timeline, CubeError> {
+    let profile = |evaluations: &[TossEvaluation]| -> Result<ErrorProfile, CubeError> {
+        let frames = frame_errors(setup, held_out, evaluations)?;
+        Ok(ErrorProfile {
+            over_time: over_time(&frames),
+            phases: per_phase(&frames),
+        })
+    };
+    Ok(Timeline {
+        fitted: profile(&predicted.held_out_fitted)?,
+        scenario: profile(&predicted.held_out_scenario)?,
+    })
+}
