@@ -41,6 +41,31 @@ pub struct Bound {
     pub log_scale: bool,
 }
 
+impl Bound {
+    /// The value at fraction `at` of the interval, clamped into [0, 1] (through
+    /// log(value) on a log scale): how a local search walks the box on the scale the
+    /// genetic algorithm searches.
+    pub fn value_at(&self, at: f64) -> f64 {
+        let at = at.clamp(0.0, 1.0);
+        if self.log_scale {
+            (self.lower.ln() + at * (self.upper.ln() - self.lower.ln())).exp()
+        } else {
+            self.lower + at * (self.upper - self.lower)
+        }
+    }
+
+    /// The fraction of the interval `value` lies at, clamped into [0, 1]: the inverse
+    /// of [`Bound::value_at`].
+    pub fn fraction_of(&self, value: f64) -> f64 {
+        let (lower, upper, value) = if self.log_scale {
+            (self.lower.ln(), self.upper.ln(), value.ln())
+        } else {
+            (self.lower, self.upper, value)
+        };
+        ((value - lower) / (upper - lower)).clamp(0.0, 1.0)
+    }
+}
+
 /// Tuning of [`minimize`]. The defaults suit 2–4 parameters and a fitness costing
 /// about a millisecond.
 #[derive(Clone, Debug, PartialEq)]
@@ -529,6 +554,22 @@ fn describe_box(bounds: &[Bound]) -> String {
 mod tests {
     use super::*;
     use std::sync::Mutex;
+
+    #[test]
+    fn a_bound_maps_fractions_to_values_and_back() {
+        let log = Bound {
+            name: "k".into(),
+            lower: 1e6,
+            upper: 1e8,
+            log_scale: true,
+        };
+        assert!((log.value_at(0.5) / 1e7 - 1.0).abs() < 1e-12);
+        assert!((log.fraction_of(1e7) - 0.5).abs() < 1e-12);
+        let line = linear("mu", 0.1, 0.5);
+        assert!((line.value_at(0.25) - 0.2).abs() < 1e-15);
+        assert_eq!((line.value_at(-1.0), line.value_at(2.0)), (0.1, 0.5));
+        assert_eq!(line.fraction_of(9.0), 1.0);
+    }
 
     fn linear(name: &str, lower: f64, upper: f64) -> Bound {
         Bound {

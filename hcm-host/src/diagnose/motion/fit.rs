@@ -1,7 +1,8 @@
-//! One candidate fitted on the training tosses, the user's model otherwise fixed: a
-//! coarse grid over each parameter's box (the replay's score is rough: a bounce moved
-//! by one frame jumps it, so a local method alone may stop in a dent), then the same
-//! Nelder–Mead polish as the identification from motion, from the grid's best.
+//! One candidate fitted on the training tosses, the user's model otherwise fixed. One
+//! parameter: a coarse grid over its box (the replay's score is rough: a bounce moved by
+//! one frame jumps it, so a local method alone may stop in a dent), then a
+//! golden-section search in the best grid point's bracket. Two parameters: the same
+//! Nelder–Mead polish as the identification from motion, from the neutral values.
 
 use super::catalogue::MotionEffect;
 use crate::dataset::Dataset;
@@ -142,7 +143,7 @@ pub fn fit(
 /// Minimises `score` over `bound`: the best of a grid of [`GRID`] points, then a
 /// golden-section search between its neighbours (in log(value) on a log scale).
 fn line_search(bound: &Bound, score: impl Fn(f64) -> f64) -> (Vec<f64>, f64, usize) {
-    let at = |u: f64| grid_value(bound, u.clamp(0.0, 1.0));
+    let at = |u: f64| bound.value_at(u);
     let cell = 1.0 / (GRID - 1) as f64;
     let grid: Vec<f64> = (0..GRID).map(|k| score(at(k as f64 * cell))).collect();
     let best = (0..GRID)
@@ -170,13 +171,4 @@ fn line_search(bound: &Bound, score: impl Fn(f64) -> f64) -> (Vec<f64>, f64, usi
         }
     }
     (vec![at(u_best)], f_best, GRID + 2 + GOLDEN_STEPS)
-}
-
-/// The value at fraction `at` ∈ [0, 1] of `bound` (through log(value) on a log scale).
-fn grid_value(bound: &Bound, at: f64) -> f64 {
-    if bound.log_scale {
-        (bound.lower.ln() + at * (bound.upper.ln() - bound.lower.ln())).exp()
-    } else {
-        bound.lower + at * (bound.upper - bound.lower)
-    }
 }

@@ -27,26 +27,6 @@ pub struct Polished {
     pub evaluations: usize,
 }
 
-/// A value's normalised gene in [0, 1].
-fn normalise(bound: &Bound, value: f64) -> f64 {
-    let (lower, upper, value) = if bound.log_scale {
-        (bound.lower.ln(), bound.upper.ln(), value.ln())
-    } else {
-        (bound.lower, bound.upper, value)
-    };
-    ((value - lower) / (upper - lower)).clamp(0.0, 1.0)
-}
-
-/// A normalised gene's value.
-fn value(bound: &Bound, gene: f64) -> f64 {
-    let gene = gene.clamp(0.0, 1.0);
-    if bound.log_scale {
-        (bound.lower.ln() + gene * (bound.upper.ln() - bound.lower.ln())).exp()
-    } else {
-        bound.lower + gene * (bound.upper - bound.lower)
-    }
-}
-
 /// Minimises `fitness` from `start` (inside `bounds`, fitness `start_fitness`) until
 /// fewer than two of `budget` evaluations remain (a last shrink may take n more);
 /// `progress(evaluations, best)` after each step.
@@ -63,7 +43,7 @@ pub fn polish(
         let values: Vec<f64> = bounds
             .iter()
             .zip(genes)
-            .map(|(b, &g)| value(b, g))
+            .map(|(b, &g)| b.value_at(g))
             .collect();
         let f = fitness(&values);
         evaluations.set(evaluations.get() + 1);
@@ -76,7 +56,7 @@ pub fn polish(
     let origin: Vec<f64> = bounds
         .iter()
         .zip(start)
-        .map(|(b, &v)| normalise(b, v))
+        .map(|(b, &v)| b.fraction_of(v))
         .collect();
     let mut simplex: Vec<(Vec<f64>, f64)> = vec![(origin.clone(), start_fitness)];
     for i in 0..origin.len() {
@@ -105,7 +85,7 @@ pub fn polish(
         best: bounds
             .iter()
             .zip(&genes)
-            .map(|(b, &g)| value(b, g))
+            .map(|(b, &g)| b.value_at(g))
             .collect(),
         fitness,
         evaluations: evaluations.get(),
