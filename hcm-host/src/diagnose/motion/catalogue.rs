@@ -29,6 +29,18 @@ pub enum Family {
     Body,
 }
 
+impl Family {
+    /// The family's name in a report (`friction`, `resistance`, `measurement`, `body`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Friction => "friction",
+            Family::Resistance => "resistance",
+            Family::Measurement => "measurement",
+            Family::Body => "body",
+        }
+    }
+}
+
 /// One candidate change.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MotionEffect {
@@ -72,9 +84,10 @@ impl MotionEffect {
         match self {
             MotionEffect::FrictionCoefficient => "friction_coefficient",
             MotionEffect::CoulombFriction => "coulomb_friction",
-            MotionEffect::ViscousFriction => "viscous_friction",
-            MotionEffect::TorsionalResistance => "torsional_resistance",
-            MotionEffect::RollingResistance => "rolling_resistance",
+            // The core's names of the tangential effects the candidates add.
+            MotionEffect::ViscousFriction => ViscousFriction::<f64>::NAME,
+            MotionEffect::TorsionalResistance => TorsionalResistance::<f64>::NAME,
+            MotionEffect::RollingResistance => RollingResistance::<f64>::NAME,
             MotionEffect::TableOffset => "table_offset",
             MotionEffect::TableTilt => "table_tilt",
             MotionEffect::LengthScale => "length_scale",

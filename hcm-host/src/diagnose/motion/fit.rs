@@ -11,7 +11,7 @@ use crate::identify::motion::polish::polish;
 use crate::identify::motion::MotionTarget;
 use crate::scenario::Model;
 use crate::toss::predict::{simulate_toss, PreparedToss};
-use crate::toss::score_toss;
+use crate::toss::{score_toss, TossError};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
@@ -36,34 +36,79 @@ pub struct Subject<'a> {
     pub plane: usize,
 }
 
+/// One part of the tosses (training or held out) as every candidate of a round reads
+/// it: the data, and their windows, initial states and frame grids prepared once from
+/// the round's model — never from a candidate, so a tilted table or another inertia is
+/// judged on the same frames from the same starts as the model it changes.
+pub struct Part<'a> {
+    /// The tosses.
+    pub data: &'a Dataset,
+    /// Prepared from the round's model.
+    pub target: MotionTarget<'a>,
+}
+
+impl<'a> Part<'a> {
+    /// `data` prepared for `model`.
+    pub fn new(model: &Model, data: &'a Dataset) -> Result<Part<'a>, TossError> {
+        Ok(Part {
+            data,
+            target: MotionTarget::new(model, data)?,
+        })
+    }
+}
+
 impl Subject<'_> {
-    /// Every toss's score of `data` under `effect` with `values` (`None` if the data
-    /// cannot be read so, or a replay fails): see [`toss_score`].
-    pub fn scores(&self, effect: MotionEffect, values: &[f64], data: &Dataset) -> Option<Vec<f64>> {
-        let model = effect.apply(self.model, self.contact, self.plane, values);
-        let read = effect.transform(data, values);
-        let target = MotionTarget::new(&model, read.as_ref().unwrap_or(data)).ok()?;
-        let weight = model.bodies[target.setup.body].mass * target.setup.gravity.norm();
-        let scores: Vec<Option<f64>> = (target.tosses.par_iter())
-            .map(|toss| toss_score(&target, toss, &model, weight))
-            .collect();
-        scores.into_iter().collect()
+    /// Every toss's score of `part` under the subject's own model (`None` if a replay
+    /// fails).
+    pub fn base_scores(&self, part: &Part<'_>) -> Option<Vec<f64>> {
+        scores_of(&part.target, self.model)
     }
 
-    /// Mean score over `data`'s tosses, +∞ if any replay fails.
-    pub fn fitness(&self, effect: MotionEffect, values: &[f64], data: &Dataset) -> f64 {
-        match self.scores(effect, values, data) {
-            Some(scores) if !scores.is_empty() => {
-                let mean = scores.iter().sum::<f64>() / scores.len() as f64;
-                if mean.is_finite() {
-                    mean
-                } else {
-                    f64::INFINITY
-                }
-            }
-            _ => f64::INFINITY,
+    /// Every toss's score of `part` under `effect` with `values` (`None` if the data
+    /// cannot be read so, or a replay fails): see [`toss_score`]. A candidate that
+    /// reads the data otherwise (a length scale) has them prepared afresh, from the
+    /// subject's model.
+    pub fn scores(
+        &self,
+        effect: MotionEffect,
+        values: &[f64],
+        part: &Part<'_>,
+    ) -> Option<Vec<f64>> {
+        let model = effect.apply(self.model, self.contact, self.plane, values);
+        match effect.transform(part.data, values) {
+            Some(read) => scores_of(&MotionTarget::new(self.model, &read).ok()?, &model),
+            None => scores_of(&part.target, &model),
         }
     }
+
+    /// Mean score over `part`'s tosses, +∞ if any replay fails.
+    pub fn fitness(&self, effect: MotionEffect, values: &[f64], part: &Part<'_>) -> f64 {
+        mean_or_infinity(self.scores(effect, values, part).as_deref())
+    }
+}
+
+/// The mean of `scores`, +∞ if there are none, a replay failed or it is not finite.
+pub fn mean_or_infinity(scores: Option<&[f64]>) -> f64 {
+    match scores {
+        Some(scores) if !scores.is_empty() => {
+            let mean = scores.iter().sum::<f64>() / scores.len() as f64;
+            if mean.is_finite() {
+                mean
+            } else {
+                f64::INFINITY
+            }
+        }
+        _ => f64::INFINITY,
+    }
+}
+
+/// Every toss's score of `target` under `model`, in parallel (`None` if a replay fails).
+fn scores_of(target: &MotionTarget<'_>, model: &Model) -> Option<Vec<f64>> {
+    let weight = model.bodies[target.setup.body].mass * target.setup.gravity.norm();
+    let scores: Vec<Option<f64>> = (target.tosses.par_iter())
+        .map(|toss| toss_score(target, toss, model, weight))
+        .collect();
+    scores.into_iter().collect()
 }
 
 /// One toss's score under `model`: its mean position error (% of the width) plus mean
@@ -114,7 +159,7 @@ pub fn fit(
     effect: MotionEffect,
     bounds: &[Bound],
     neutral: &[f64],
-    training: &Dataset,
+    training: &Part<'_>,
 ) -> Fitted {
     let score = |values: &[f64]| subject.fitness(effect, values, training);
     let start = score(neutral);

@@ -28,7 +28,7 @@ use crate::dataset::Dataset;
 use crate::identify::motion::{split_tosses, MotionParameters};
 use crate::scenario::Model;
 use crate::toss::{TossError, TossSetup};
-use fit::{Fitted, Subject};
+use fit::{Fitted, Part, Subject};
 use serde::Serialize;
 
 /// How many standard errors a held-out gain must lie above zero to help (one-sided;
@@ -147,11 +147,14 @@ pub fn diagnose_motion(
             contact: indices.contact,
             plane: indices.plane,
         };
-        let neutral = MotionEffect::FrictionCoefficient;
+        let (training_part, held_part) = (
+            Part::new(&current, &training)?,
+            Part::new(&current, &held_out)?,
+        );
         let base_held = subject
-            .scores(neutral, &[1.0], &held_out)
+            .base_scores(&held_part)
             .ok_or(MotionDiagnoseError::Replay { part: "held-out" })?;
-        let base_training = subject.fitness(neutral, &[1.0], &training);
+        let base_training = fit::mean_or_infinity(subject.base_scores(&training_part).as_deref());
         if !base_training.is_finite() {
             return Err(MotionDiagnoseError::Replay { part: "training" });
         }
@@ -166,8 +169,8 @@ pub fn diagnose_motion(
             progress(round, k, open.len());
             let bounds = effect.bounds(mass, size);
             let neutral = effect.neutral(&current, indices.contact);
-            let fitted = fit::fit(&subject, effect, &bounds, &neutral, &training);
-            let held = subject.scores(effect, &fitted.values, &held_out);
+            let fitted = fit::fit(&subject, effect, &bounds, &neutral, &training_part);
+            let held = subject.scores(effect, &fitted.values, &held_part);
             let result = judge(effect, &bounds, &fitted, &base_held, held.as_deref(), floor);
             results.push(result);
             held_scores.push((effect, fitted, held));
@@ -237,12 +240,7 @@ fn judge(
     let helps = gain.t() >= HELPS_T && gain.mean >= floor;
     CandidateResult {
         name: effect.name(),
-        family: match effect.family() {
-            Family::Friction => "friction",
-            Family::Resistance => "resistance",
-            Family::Measurement => "measurement",
-            Family::Body => "body",
-        },
+        family: effect.family().name(),
         parameters,
         training: fitted.fitness,
         held_out,
