@@ -6,10 +6,9 @@ use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::motion::{
-    fitted_assignments, fitted_scenario_text, identify_motion, split_tosses, MotionFit,
-    MotionParameters, MotionStage, MotionTarget,
+    fitted_assignments, fitted_offset, fitted_physics, fitted_scenario_text, identify_motion,
+    split_tosses, table_assignment, MotionFit, MotionParameters, MotionStage, MotionTarget,
 };
-use hcm_host::identify::{FitRecord, Physics};
 use hcm_host::output::write_bytes;
 use hcm_host::scenario::Model;
 use hcm_host::toss::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};
@@ -107,7 +106,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         println!("  {name:<14} {value:.6e}");
     }
     let assignments = fitted_assignments(&model, &parameters, &fit.parameters);
-    let set = assignments.last().cloned().unwrap_or_default();
+    let set = table_assignment(&model, &parameters, fitted_offset(&fit.parameters));
     println!("table offset: give `--set {set}` with the physics file");
     print!("{}", score_table(&model, &fit.model, &training, &held_out)?);
     write_physics(
@@ -170,25 +169,9 @@ fn write_physics(
     set: &str,
     runs: usize,
 ) -> anyhow::Result<()> {
-    let record = FitRecord {
-        method: "ga + Nelder–Mead on toss replays (motion only)".into(),
-        data: args.data.display().to_string(),
-        runs,
-        seconds: fit.seconds,
-        force_rms: f64::NAN,
-        curve_rms: f64::NAN,
-        notes: vec![
-            format!(
-                "fitness {:.4}: mean position error (% of the width) + mean rotation error \
-                 (degrees) over the training tosses (even toss numbers)",
-                fit.fitness
-            ),
-            format!("table offset: apply with --set {set}"),
-        ],
-        ..FitRecord::default()
-    };
-    let law = fit.model.contacts[parameters.contact].law();
-    Physics::for_contact(&fit.model, parameters.contact, law, record)
+    let method = "ga + Nelder–Mead on toss replays (motion only)";
+    let data = args.data.display().to_string();
+    fitted_physics(fit, parameters.contact, set, method, &data, runs)
         .write(
             &args.out,
             &format!("contact of scenario `{name}` fitted to tosses by hcm identify-motion"),

@@ -4,7 +4,7 @@
 
 use super::progress_bar;
 use super::reproduce::write_figures;
-use hcm_host::identify::{FitRecord, Physics};
+use hcm_host::identify::motion::fitted_physics;
 use hcm_host::output::{write_bytes, StagedDirectory};
 use hcm_host::pipeline::cube::{reproduce_cube, CubeProgress, CubeReproduction, CubeSettings};
 use hcm_host::pipeline::StageTiming;
@@ -75,26 +75,10 @@ pub fn run(args: CubeArgs) -> anyhow::Result<()> {
 /// physics.toml, the two parts of the split, the fitted model's held-out predictions
 /// and the figures.
 fn write_files(r: &CubeReproduction, settings: &CubeSettings, out: &Path) -> anyhow::Result<()> {
-    let model = &r.fit.model;
-    let record = FitRecord {
-        method: "ga + Nelder–Mead on toss replays (motion only), hcm reproduce cube-toss".into(),
-        data: settings.data.display().to_string(),
-        runs: r.training.runs.len(),
-        seconds: r.fit.seconds,
-        force_rms: f64::NAN,
-        curve_rms: f64::NAN,
-        notes: vec![
-            format!(
-                "fitness {:.4}: mean position error (% of the width) + mean rotation error \
-                 (degrees) over the training tosses (even toss numbers)",
-                r.fit.fitness
-            ),
-            format!("table offset: apply with --set {}", r.table_set),
-        ],
-        ..FitRecord::default()
-    };
-    let law = model.contacts[r.contact].law();
-    Physics::for_contact(model, r.contact, law, record).write(
+    let method = "ga + Nelder–Mead on toss replays (motion only), hcm reproduce cube-toss";
+    let data = settings.data.display().to_string();
+    let runs = r.training.runs.len();
+    fitted_physics(&r.fit, r.contact, &r.table_set, method, &data, runs).write(
         &out.join("physics.toml"),
         &format!(
             "contact of scenario `{}` fitted to tosses by hcm reproduce cube-toss",
@@ -103,7 +87,7 @@ fn write_files(r: &CubeReproduction, settings: &CubeSettings, out: &Path) -> any
     )?;
     r.training.write(&out.join("training.csv"))?;
     r.held_out.write(&out.join("held_out.csv"))?;
-    let body = TossSetup::new(model)?.name;
+    let body = TossSetup::new(&r.fit.model)?.name;
     predicted_dataset(&r.predicted.held_out_fitted, &body)
         .write(&out.join("predicted_held_out.csv"))?;
     write_figures(&r.figures, out)

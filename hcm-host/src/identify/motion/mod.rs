@@ -8,13 +8,17 @@
 
 pub mod fitness;
 pub mod parameters;
+pub mod physics_file;
 pub mod polish;
 pub mod scenario_file;
 pub mod split;
 
 pub use fitness::{fitness, toss_scores, MotionTarget};
 pub use parameters::MotionParameters;
-pub use scenario_file::{fitted_assignments, fitted_scenario_text};
+pub use physics_file::fitted_physics;
+pub use scenario_file::{
+    fitted_assignments, fitted_offset, fitted_scenario_text, table_assignment,
+};
 pub use split::{part_of, split_tosses, Part};
 
 use crate::identify::genetic::{minimize, GeneticError, GeneticSettings};

@@ -16,15 +16,28 @@ pub fn fitted_assignments(
     named: &[(String, f64)],
 ) -> Vec<String> {
     let contact = parameters.contact;
-    let table = &model.bodies[parameters.plane].name;
     named
         .iter()
         .map(|(name, value)| match name.as_str() {
-            "table_offset" => format!("body.{table}.shape.plane.offset={value:e}"),
+            "table_offset" => table_assignment(model, parameters, *value),
             "mu_static" | "mu_dynamic" => format!("contact.{contact}.friction.{name}={value:e}"),
             _ => format!("contact.{contact}.parameters.{name}={value:e}"),
         })
         .collect()
+}
+
+/// The `--set` that puts the table's surface at `offset` (m) — what a physics file,
+/// which holds the law and the friction but not the plane, needs beside it.
+pub fn table_assignment(model: &Model, parameters: &MotionParameters, offset: f64) -> String {
+    let table = &model.bodies[parameters.plane].name;
+    format!("body.{table}.shape.plane.offset={offset:e}")
+}
+
+/// The fit's table offset (m) among its [`MotionParameters::named`] values (0 if none).
+pub fn fitted_offset(named: &[(String, f64)]) -> f64 {
+    (named.iter())
+        .find(|(name, _)| name == "table_offset")
+        .map_or(0.0, |p| p.1)
 }
 
 /// The text of the fitted scenario file: `scenario` with `assignments` applied, checked

@@ -7,7 +7,8 @@ use super::{CubeError, CubeProgress, CubeSettings};
 use crate::dataset::Dataset;
 use crate::identify::genetic::GeneticSettings;
 use crate::identify::motion::{
-    identify_motion, MotionFit, MotionParameters, MotionStage, MotionTarget,
+    fitted_offset, identify_motion, table_assignment, MotionFit, MotionParameters, MotionStage,
+    MotionTarget,
 };
 use crate::scenario::Model;
 use crate::toss::{evaluate_tosses, TossEvaluation, TossSetup};
@@ -56,13 +57,7 @@ pub fn fit(
 /// The fitted table offset as the `--set` that applies it (a physics file holds the
 /// law and the friction, not the plane).
 pub fn table_set(model: &Model, parameters: &MotionParameters, fit: &MotionFit) -> String {
-    let offset = (fit.parameters.iter())
-        .find(|(name, _)| name == "table_offset")
-        .map_or(0.0, |p| p.1);
-    format!(
-        "body.{}.shape.plane.offset={offset:e}",
-        model.bodies[parameters.plane].name
-    )
+    table_assignment(model, parameters, fitted_offset(&fit.parameters))
 }
 
 /// Both parts predicted with both models (each in the data's order).
