@@ -3,11 +3,8 @@
 
 use super::progress_bar;
 use anyhow::Context;
-use hcm_host::dataset::Dataset;
 use hcm_host::diagnose::motion::{diagnose_motion, MotionDiagnosis, HELPS_T, MIN_GAIN, RIVAL_T};
-use hcm_host::identify::Physics;
 use hcm_host::output::write_bytes;
-use hcm_host::toss::TossSetup;
 use std::path::PathBuf;
 
 /// Name what a tossed body's simulation misses, from filmed motion alone (no force).
@@ -39,40 +36,21 @@ use std::path::PathBuf;
 #[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
-    scenario: super::ScenarioArgs,
-    /// Physics file replacing the scenario's contact law and friction.
-    #[arg(long)]
-    physics: Option<PathBuf>,
-    /// Filmed tosses (measured-data CSV): position and orientation in every frame.
-    #[arg(long)]
-    data: PathBuf,
+    tosses: super::tosses::TossArgs,
     /// Where to write the diagnosis (JSON).
     #[arg(long)]
     out: PathBuf,
-    /// Use only the first N runs of --data (before the split).
-    #[arg(long, value_name = "N")]
-    first: Option<usize>,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let mut scenario = args.scenario.load()?;
-    if let Some(path) = &args.physics {
-        scenario = Physics::read(path)?.apply(&scenario, path)?;
-    }
-    let model = scenario.model()?;
-    let setup = TossSetup::new(&model)?;
-    let mut data = Dataset::read(&args.data)?;
-    if let Some(first) = args.first {
-        data.runs.truncate(first);
-    }
-    setup.check_data(&args.data.display().to_string(), &model, &data)?;
+    let (model, _, data) = args.tosses.load()?;
     let bar = progress_bar(0, "candidates");
     let diagnosis = diagnose_motion(&model, &data, |round, k, count| {
         bar.set_length(count as u64);
         bar.set_position(k as u64);
         bar.set_message(format!("round {}", round + 1));
     })
-    .with_context(|| format!("diagnosing the tosses of {}", args.data.display()))?;
+    .with_context(|| format!("diagnosing the tosses of {}", args.tosses.data.display()))?;
     bar.finish_and_clear();
     let json = serde_json::to_string_pretty(&diagnosis)?;
     write_bytes(&args.out, json.as_bytes())

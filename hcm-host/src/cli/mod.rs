@@ -18,6 +18,7 @@ mod reproduce;
 mod reproduce_cube;
 mod reproduce_peg;
 mod simulate;
+mod tosses;
 mod train;
 
 use clap::{Parser, Subcommand};

@@ -3,8 +3,6 @@
 
 use super::progress_bar;
 use anyhow::Context;
-use hcm_host::dataset::Dataset;
-use hcm_host::identify::Physics;
 use hcm_host::output::write_atomically;
 use hcm_host::toss::{
     evaluate_tosses, predicted_dataset, summarize, StateSource, Summary, TossEvaluation, TossSetup,
@@ -45,14 +43,7 @@ use std::time::Instant;
 #[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
-    scenario: super::ScenarioArgs,
-    /// Physics file from `hcm identify` or `hcm identify-motion`: replaces the scenario's
-    /// contact law and friction.
-    #[arg(long)]
-    physics: Option<PathBuf>,
-    /// Measured tosses (measured-data CSV): position and orientation in every frame.
-    #[arg(long)]
-    data: PathBuf,
+    tosses: super::tosses::TossArgs,
     /// Where to write the predicted trajectories (measured-data CSV, one run per toss).
     #[arg(long)]
     out: PathBuf,
@@ -60,28 +51,14 @@ pub struct Args {
     /// position and rotation error of the prediction and of the frozen pose).
     #[arg(long, value_name = "FILE")]
     scores: Option<PathBuf>,
-    /// Predict only the first N runs of --data.
-    #[arg(long, value_name = "N")]
-    first: Option<usize>,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let mut scenario = args.scenario.load()?;
-    if let Some(path) = &args.physics {
-        scenario = Physics::read(path)?.apply(&scenario, path)?;
-    }
-    let model = scenario.model()?;
-    let setup = TossSetup::new(&model)?;
-    let mut data = Dataset::read(&args.data)?;
-    if let Some(first) = args.first {
-        anyhow::ensure!(first > 0, "--first 0: predict at least one run");
-        data.runs.truncate(first);
-    }
-    setup.check_data(&args.data.display().to_string(), &model, &data)?;
+    let (model, setup, data) = args.tosses.load()?;
     let bar = progress_bar(data.runs.len() as u64, "tosses");
     let started = Instant::now();
     let evaluations = evaluate_tosses(&model, &data, || bar.inc(1))
-        .with_context(|| format!("predicting the tosses of {}", args.data.display()))?;
+        .with_context(|| format!("predicting the tosses of {}", args.tosses.data.display()))?;
     bar.finish_and_clear();
     let seconds = started.elapsed().as_secs_f64();
     predicted_dataset(&evaluations, &setup.name)
