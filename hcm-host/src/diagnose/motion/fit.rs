@@ -1,12 +1,14 @@
 //! One candidate fitted on the training tosses, the user's model otherwise fixed. One
 //! parameter: a coarse grid over its box (the replay's score is rough: a bounce moved by
-//! one frame jumps it, so a local method alone may stop in a dent), then a
-//! golden-section search in the best grid point's bracket. Two parameters: the same
-//! Nelder–Mead polish as the identification from motion, from the neutral values.
+//! one frame jumps it, so a local method alone may stop in a dent), then Brent's method
+//! in the best grid point's bracket — the identification's scalar search. Two
+//! parameters: the Nelder–Mead polish of the identification from motion, from the
+//! neutral values.
 
 use super::catalogue::MotionEffect;
 use crate::dataset::Dataset;
 use crate::identify::genetic::Bound;
+use crate::identify::least_squares::minimize_scalar;
 use crate::identify::motion::polish::polish;
 use crate::identify::motion::MotionTarget;
 use crate::scenario::Model;
@@ -17,10 +19,10 @@ use rayon::prelude::*;
 
 /// Grid points of a one-parameter candidate's box (–).
 const GRID: usize = 9;
-/// Golden-section steps in the grid's best bracket (–): it shrinks to 0.618^24 ≈ 1e-5
-/// of two grid cells. A friction coefficient off by 0.3 % moves a 0.3 m slide's end
-/// by 1 mm, about 1 % of the score: the fit has to be that fine.
-const GOLDEN_STEPS: usize = 24;
+/// Tolerance of the scalar search on the box's fraction (–): a friction coefficient
+/// off by 0.3 % moves a 0.3 m slide's end by 1 mm, about 1 % of the score, so the fit
+/// has to be that fine — 1e-6 of a box spanning 25× is 3e-6 relative.
+const FRACTION_TOLERANCE: f64 = 1e-6;
 /// Polish evaluations of a two-parameter candidate (–).
 const POLISH_2D: usize = 40;
 
@@ -152,7 +154,7 @@ pub struct Fitted {
 }
 
 /// Fits `effect` to `training` in `bounds`, starting from `neutral`: one parameter by
-/// a grid and a golden-section search in the best grid point's bracket, two by the
+/// [`line_search`], two by the
 /// polish from `neutral`. The neutral values win ties (no change unless it helps).
 pub fn fit(
     subject: &Subject<'_>,
@@ -185,35 +187,21 @@ pub fn fit(
     }
 }
 
-/// Minimises `score` over `bound`: the best of a grid of [`GRID`] points, then a
-/// golden-section search between its neighbours (in log(value) on a log scale).
+/// Minimises `score` over `bound` on the fraction of its box (log(value) on a log
+/// scale): the identification's scalar search, a grid of [`GRID`] points then Brent's
+/// method between the best one's neighbours, to [`FRACTION_TOLERANCE`]. Returns the
+/// value, its score and the evaluations made.
 fn line_search(bound: &Bound, score: impl Fn(f64) -> f64) -> (Vec<f64>, f64, usize) {
-    let at = |u: f64| bound.value_at(u);
-    let cell = 1.0 / (GRID - 1) as f64;
-    let grid: Vec<f64> = (0..GRID).map(|k| score(at(k as f64 * cell))).collect();
-    let best = (0..GRID)
-        .min_by(|&a, &b| grid[a].total_cmp(&grid[b]))
-        .unwrap_or(0);
-    let (mut a, mut b) = ((best as f64 - 1.0) * cell, (best as f64 + 1.0) * cell);
-    let (mut u_best, mut f_best) = (best as f64 * cell, grid[best]);
-    let ratio = (5.0_f64.sqrt() - 1.0) / 2.0;
-    let (mut c, mut d) = (b - ratio * (b - a), a + ratio * (b - a));
-    let (mut fc, mut fd) = (score(at(c)), score(at(d)));
-    for _ in 0..GOLDEN_STEPS {
-        if fc < fd {
-            (b, d, fd) = (d, c, fc);
-            c = b - ratio * (b - a);
-            fc = score(at(c));
-        } else {
-            (a, c, fc) = (c, d, fd);
-            d = a + ratio * (b - a);
-            fd = score(at(d));
-        }
-        for (u, f) in [(c, fc), (d, fd)] {
-            if f < f_best {
-                (u_best, f_best) = (u, f);
-            }
-        }
-    }
-    (vec![at(u_best)], f_best, GRID + 2 + GOLDEN_STEPS)
+    let mut evaluations = 0;
+    let (at, fitness) = minimize_scalar(
+        |u| {
+            evaluations += 1;
+            score(bound.value_at(u))
+        },
+        0.0,
+        1.0,
+        GRID,
+        FRACTION_TOLERANCE,
+    );
+    (vec![bound.value_at(at)], fitness, evaluations)
 }
