@@ -22,6 +22,7 @@
 //! carries its own.
 
 use super::implied::Implied;
+use crate::identify::least_squares::minimize_scalar;
 
 /// Largest RMS misfit (in standard deviations of what a row can be off by) at which
 /// recorded motion is trusted through a contact (–). Measured on the independent rig
@@ -172,34 +173,12 @@ pub(super) fn misfit(
     Some((chi2(tau, true) / dof).sqrt())
 }
 
-/// Where `f` is smallest over τ ∈ [−span, span]: a grid, then golden sections around
-/// its best point.
+/// Where `f` is smallest over τ ∈ [−span, span]: the identification's scalar search
+/// (`minimize_scalar`: a grid of 2·[`DELAY_GRID`] + 1 delays, 0 among them, then Brent's
+/// method around the best), to a billionth of the span.
 fn minimise(f: &dyn Fn(f64) -> f64, span: f64) -> f64 {
-    let step = span / DELAY_GRID as f64;
-    let grid = (-(DELAY_GRID as i64)..=DELAY_GRID as i64).map(|i| i as f64 * step);
-    let (mut best, mut value) = (0.0, f(0.0));
-    for tau in grid {
-        let v = f(tau);
-        if v < value {
-            (best, value) = (tau, v);
-        }
-    }
-    let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut a, mut b) = (best - step, best + step);
-    for _ in 0..40 {
-        let (c, d) = (b - ratio * (b - a), a + ratio * (b - a));
-        if f(c) < f(d) {
-            b = d;
-        } else {
-            a = c;
-        }
-    }
-    let refined = 0.5 * (a + b);
-    if f(refined) < value {
-        refined
-    } else {
-        best
-    }
+    let points = 2 * DELAY_GRID + 1;
+    minimize_scalar(f, -span, span, points, 1e-9 * span).0
 }
 
 /// Independent values among residuals `r` in time order (–): a residual of n
@@ -302,7 +281,7 @@ mod tests {
     }
 
     #[test]
-    fn the_golden_search_finds_a_delay_between_grid_points() {
+    fn the_search_finds_a_delay_between_grid_points() {
         let best = minimise(&|tau: f64| ((tau - 3.3e-6) / 1e-6).powi(2) + 1.0, 5e-5);
         assert!((best - 3.3e-6).abs() < 1e-11, "{best}");
     }
