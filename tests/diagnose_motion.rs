@@ -88,7 +88,11 @@ enum Start {
 /// `TOSSES` runs of `truth` from seeded random starts, recorded at the scenario's
 /// frame rate, poses and velocities and no force (empty cells), run ids `toss_000`….
 fn recorded(truth: &Model, start: Start, seed: u64) -> Dataset {
-    let mut data = recorded_with_force(truth, start, seed);
+    without_force(recorded_with_force(truth, start, seed))
+}
+
+/// `data` with its force and torque cells emptied: poses only, as a tracker gives them.
+fn without_force(mut data: Dataset) -> Dataset {
     for run in &mut data.runs {
         for body in &mut run.bodies {
             for sample in &mut body.samples {
@@ -359,15 +363,7 @@ const NOISY_TOSSES: usize = 20;
 /// `NOISY_TOSSES` tosses of `truth` as a camera tracker records them: poses only, each
 /// with Gaussian noise of 0.5 mm on every coordinate and 0.3° about a random axis.
 fn noisy_tosses(truth: &Model, seed: u64) -> Dataset {
-    let mut data = runs_of(truth, Start::Toss, seed, NOISY_TOSSES);
-    for run in &mut data.runs {
-        for body in &mut run.bodies {
-            for sample in &mut body.samples {
-                sample.force = [f64::NAN; 3];
-                sample.torque = [f64::NAN; 3];
-            }
-        }
-    }
+    let data = without_force(runs_of(truth, Start::Toss, seed, NOISY_TOSSES));
     tracked(data, 5e-4, 0.3_f64.to_radians(), seed + 1)
 }
 
