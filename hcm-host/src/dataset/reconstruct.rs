@@ -36,6 +36,7 @@ use super::flight::{FlightFit, MIN_FRAMES};
 use super::through_contact::{integrate, ForceSeries};
 use super::{BodyTrack, Dataset, Run, Sample};
 
+use crate::numerics::median;
 use crate::scenario::Model;
 
 /// Frames fitted per flight: the nearest this many to the contact. A long flight adds
@@ -241,16 +242,6 @@ pub fn complete_with<'a>(
         motion_misfit,
         delay: checks.sensor_delay,
     })
-}
-
-/// The median of `values` (NaN for none).
-pub(super) fn median(values: &mut [f64]) -> f64 {
-    values.sort_unstable_by(f64::total_cmp);
-    match values.len() {
-        0 => f64::NAN,
-        n if n % 2 == 1 => values[n / 2],
-        n => 0.5 * (values[n / 2 - 1] + values[n / 2]),
-    }
 }
 
 /// The body across the first contact of `body`, if it is in one.

@@ -159,7 +159,7 @@ fn edge_reading(samples: &[super::Sample]) -> [f64; 3] {
     let mut values: Vec<[f64; 3]> = ends.map(|s| s.force).collect();
     core::array::from_fn(|k| {
         let mut axis: Vec<f64> = values.iter_mut().map(|f| f[k]).collect();
-        super::reconstruct::median(&mut axis)
+        crate::numerics::median(&mut axis)
     })
 }
 

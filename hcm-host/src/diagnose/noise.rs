@@ -29,6 +29,7 @@
 //! about π·√(3F/σ) samples (≈ 80 for F = 3000 N, σ = 15 N) makes it noticeable.
 
 use super::ContactSamples;
+use crate::numerics::median;
 use hcm_core::effect::ExtendedLaw;
 
 /// Largest relative difference between the two intervals of a triple for the clock to
@@ -82,20 +83,6 @@ pub fn white_noise(run: &[usize], time: &[f64], values: &[f64]) -> NoiseFloor {
 fn uniform_clock(t: &[f64]) -> bool {
     let (h1, h2) = (t[1] - t[0], t[2] - t[1]);
     h1 > 0.0 && h2 > 0.0 && (h1 - h2).abs() <= UNIFORM_CLOCK * h1.max(h2)
-}
-
-/// The median of `values` (reordered in place); NaN when empty.
-pub(super) fn median(values: &mut [f64]) -> f64 {
-    let n = values.len();
-    if n == 0 {
-        return f64::NAN;
-    }
-    values.sort_unstable_by(f64::total_cmp);
-    if n % 2 == 1 {
-        values[n / 2]
-    } else {
-        0.5 * (values[n / 2 - 1] + values[n / 2])
-    }
 }
 
 /// The noise the naming rule judges against (N): the sensor's σ and, where the contact's

@@ -13,10 +13,10 @@
 //! - too few contacts: fewer than [`MIN_CONTACTS`] runs with a contact leave nothing to
 //!   cross-check a cause on.
 
-use super::noise::median;
 use super::ContactSamples;
 use crate::dataset::delay::Delay;
 use crate::dataset::reconstruct::Completed;
+use crate::numerics::median;
 use serde::Serialize;
 
 /// Least median number of force samples per contact (–).

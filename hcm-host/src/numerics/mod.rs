@@ -6,11 +6,15 @@
 //!   air-drag fit, the int8 output-layer re-fit, the diagnosis' effect selection and
 //!   the peak-force polynomial all solve through it.
 //! - [`euclidean_norm`]: ‖x‖₂ without overflow.
+//! - [`median`]: of a list, in place (the noise floors, the data-quality checks, the
+//!   toss scores' summaries).
 
 pub mod linear_least_squares;
+mod median;
 mod norm;
 
 pub use linear_least_squares::{
     linear_least_squares, Covariance, LinearFit, LinearLeastSquaresError, Reduction,
 };
+pub use median::median;
 pub use norm::euclidean_norm;

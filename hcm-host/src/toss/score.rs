@@ -11,6 +11,7 @@
 use super::initial_state::orientation;
 use super::{TossError, TossSetup};
 use crate::dataset::Sample;
+use crate::numerics::median;
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::Serialize;
 
@@ -89,13 +90,7 @@ impl Summary {
         } else {
             0.0
         };
-        let mut sorted = values.to_vec();
-        sorted.sort_by(f64::total_cmp);
-        let median = match n {
-            0 => f64::NAN,
-            _ if n % 2 == 1 => sorted[n / 2],
-            _ => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
-        };
+        let median = median(&mut values.to_vec());
         Summary {
             count: n,
             mean,
