@@ -97,6 +97,7 @@ mod through_contact;
 mod write;
 
 pub use channel::Channel;
+pub use flight::FlightFit;
 pub use needs::{Need, Requirement};
 pub use write::RunWriter;
 

@@ -19,7 +19,7 @@
 //! are, and [`StateSource::Recorded`] says so.
 
 use super::{TossError, TossSetup, Window};
-use crate::dataset::{BodyTrack, Channel, Sample};
+use crate::dataset::{BodyTrack, Channel, FlightFit, Sample};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 /// Frames fitted up to the window start (–): 8 frames are 47 ms at 148 Hz, enough to
@@ -75,25 +75,32 @@ pub fn estimate_initial_state(
     if frames.len() < MIN_FIT_FRAMES {
         return recorded(setup, run, start, start_orientation);
     }
-    let taus: Vec<f64> = frames.iter().map(|s| s.time - start.time).collect();
-    let heights: Vec<Vector3<f64>> = frames
-        .iter()
-        .zip(&taus)
-        .map(|(s, tau)| Vector3::from(s.position) - setup.gravity * (0.5 * tau * tau))
-        .collect();
-    let (position, velocity) = line_fit(&taus, &heights);
+    // The data's free-flight fit (`dataset::FlightFit`, the rig reconstruction's),
+    // referred to the window start: under gravity for the position, at zero
+    // acceleration for the rotation vectors.
+    let track_fit = |points: &[(f64, [f64; 3])], gravity: [f64; 3]| {
+        FlightFit::fit(points, gravity, start.time).ok_or_else(|| TossError::Frame {
+            run: run.to_owned(),
+            time: start.time,
+            problem: "the frames up to the window start share one time".into(),
+        })
+    };
+    let positions: Vec<(f64, [f64; 3])> = frames.iter().map(|s| (s.time, s.position)).collect();
+    let flight = track_fit(&positions, setup.gravity.into())?;
     let inverse = start_orientation.inverse();
     let mut turns = Vec::with_capacity(frames.len());
     for sample in frames {
-        turns.push((orientation(setup, run, sample)? * inverse).scaled_axis());
+        let turn = (orientation(setup, run, sample)? * inverse).scaled_axis();
+        turns.push((sample.time, turn.into()));
     }
-    let (offset, angular_velocity) = line_fit(&taus, &turns);
+    let turning = track_fit(&turns, [0.0; 3])?;
     Ok(InitialState {
         time: start.time,
-        position,
-        orientation: UnitQuaternion::from_scaled_axis(offset) * start_orientation,
-        velocity,
-        angular_velocity,
+        position: Vector3::from(flight.position),
+        orientation: UnitQuaternion::from_scaled_axis(Vector3::from(turning.position))
+            * start_orientation,
+        velocity: Vector3::from(flight.velocity),
+        angular_velocity: Vector3::from(turning.velocity),
         source: StateSource::FreeFlightFit {
             frames: frames.len(),
         },
@@ -163,20 +170,4 @@ pub fn orientation(
         time: sample.time,
         problem,
     })
-}
-
-/// Least-squares straight line y(τ) = a + b·τ through `values` at `taus`, per
-/// component: (a, b). The taus must not all be equal (the frames' times differ).
-fn line_fit(taus: &[f64], values: &[Vector3<f64>]) -> (Vector3<f64>, Vector3<f64>) {
-    let n = taus.len() as f64;
-    let tau_mean = taus.iter().sum::<f64>() / n;
-    let value_mean = values.iter().sum::<Vector3<f64>>() / n;
-    let mut spread = 0.0;
-    let mut covariance = Vector3::zeros();
-    for (tau, value) in taus.iter().zip(values) {
-        spread += (tau - tau_mean) * (tau - tau_mean);
-        covariance += (value - value_mean) * (tau - tau_mean);
-    }
-    let slope = covariance / spread;
-    (value_mean - slope * tau_mean, slope)
 }
