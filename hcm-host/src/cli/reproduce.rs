@@ -47,8 +47,8 @@ enum ExampleArg {
 /// Nelder–Mead), predicts the held-out tosses, measures their error over time and per
 /// phase, runs the diagnosis from motion on the fitted model, and writes to OUT:
 /// physics.toml, training.csv, held_out.csv, predicted_held_out.csv, report.md,
-/// results.json and the figures (the 456 tosses: 12 minutes on two cores, 8 of
-/// processor time).
+/// results.json and the figures (the 456 tosses: 5 to 12 minutes on two cores, as
+/// busy as they are; 8 minutes of processor time).
 ///
 /// The scenarios are built into hcm (copies of scenarios/bouncing_ball.toml,
 /// scenarios/flat_shot.toml and scenarios/peg_in_hole.toml of the source), so it runs
