@@ -3,8 +3,9 @@
 //! a tiny GA, through the binary. The fitted model must beat the frozen pose on the
 //! held-out tosses by a wide margin (5× in position; in rotation the frozen pose's
 //! 43° is within 3× of even the best fit's 19° on all the tosses, README), the output
-//! directory must hold every file, its physics.toml (with the table offset's `--set`)
-//! must give the held-out scores back through `hcm predict`, and results.json must be
+//! directory must hold every file, its physics.toml (with the `--set`s of the table
+//! offset and the inertia) must give the held-out scores back through `hcm predict`,
+//! the cross-validated rows must score all 8 tosses, and results.json must be
 //! the same bits from the binary (the machine's threads) and from the library on one
 //! thread, but for the diagnosis (not run there: it takes most of the time) and the
 //! timings.
@@ -98,8 +99,11 @@ fn the_small_reproduction_beats_the_frozen_pose_and_its_physics_file_predicts_th
     for text in ["first impact", "settling", "Drake", "MuJoCo", "**Answer:**"] {
         assert!(report.contains(text), "report lacks {text}:\n{report}");
     }
-    let set = results["table_set"].as_str().unwrap();
-    assert!(report.contains(set), "{report}");
+    let sets = sets(&results);
+    assert_eq!(sets.len(), 2, "the table offset and the inertia: {sets:?}");
+    for set in &sets {
+        assert!(report.contains(set.as_str()), "{set} not in {report}");
+    }
     predict_gives_the_scores_back(&hcm, &out, &results);
 
     // The library on one thread: the same results but for the diagnosis and the timings.
@@ -113,18 +117,30 @@ fn the_small_reproduction_beats_the_frozen_pose_and_its_physics_file_predicts_th
     assert_eq!(before_diagnosis(&text), before_diagnosis(&single));
 }
 
-/// Held out, the fit beats the frozen pose by a wide margin; the diagnosis judged every
+/// The `--set`s physics.toml needs beside it.
+fn sets(results: &Value) -> Vec<String> {
+    (results["sets"].as_array().unwrap().iter())
+        .map(|s| s.as_str().unwrap().to_owned())
+        .collect()
+}
+
+/// Held out, the fit beats the frozen pose by a wide margin, and so does each fold on
+/// the tosses it did not see (the cross-validated rows: all 8); the diagnosis judged every
 /// candidate on the held-out tosses; the phases cover the held-out windows.
 fn beats_the_frozen_pose(results: &Value) {
-    let fitted = row(results, "held out", "fitted");
-    let frozen = row(results, "held out", "frozen pose");
-    for (score, margin) in [("position", 5.0), ("rotation", 1.0)] {
-        let (model, baseline) = (mean(fitted, score), mean(frozen, score));
-        assert!(
-            margin * model <= baseline,
-            "{score}: fitted {model} against the frozen pose's {baseline}"
-        );
+    for part in ["held out", "cross-validated"] {
+        let fitted = row(results, part, "fitted");
+        let frozen = row(results, part, "frozen pose");
+        for (score, margin) in [("position", 5.0), ("rotation", 1.0)] {
+            let (model, baseline) = (mean(fitted, score), mean(frozen, score));
+            assert!(
+                margin * model <= baseline,
+                "{part}, {score}: fitted {model} against the frozen pose's {baseline}"
+            );
+        }
     }
+    let all = row(results, "cross-validated", "fitted");
+    assert_eq!(all["position"]["count"], 8, "{all}");
     let rounds = results["diagnosis"]["rounds"].as_array().unwrap();
     for candidate in rounds[0]["candidates"].as_array().unwrap() {
         assert_eq!(candidate["gain"]["tosses"], 3, "{candidate}");
@@ -137,13 +153,17 @@ fn beats_the_frozen_pose(results: &Value) {
     assert_eq!(frames, windows);
 }
 
-/// `hcm predict` with `out`'s physics.toml and the table offset's `--set` gives every
-/// held-out toss's scores back, and the same predicted file.
+/// `hcm predict` with `out`'s physics.toml and the `--set`s of the table offset and the
+/// inertia gives every held-out toss's scores back, and the same predicted file.
 fn predict_gives_the_scores_back(hcm: &Hcm, out: &Path, results: &Value) {
-    hcm.run("predict")
+    let mut predict = hcm
+        .run("predict")
         .opt("--scenario", hcm_tests::scenario("cube_toss.toml"))
-        .opt("--physics", out.join("physics.toml"))
-        .opt("--set", results["table_set"].as_str().unwrap())
+        .opt("--physics", out.join("physics.toml"));
+    for set in sets(results) {
+        predict = predict.opt("--set", set);
+    }
+    predict
         .opt("--data", out.join("held_out.csv"))
         .opt("--out", "predicted.csv")
         .opt("--scores", "scores.csv")

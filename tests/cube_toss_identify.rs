@@ -58,8 +58,8 @@ fn fit(model: &Model, training: &Dataset, threads: usize) -> MotionFit {
     let target = MotionTarget::new(model, training).unwrap();
     let parameters = MotionParameters::new(model, &setup).unwrap();
     let settings = GeneticSettings {
-        population: 10,
-        generations: 5,
+        population: 24,
+        generations: 12,
         seed: 3,
         ..GeneticSettings::default()
     };
@@ -67,7 +67,7 @@ fn fit(model: &Model, training: &Dataset, threads: usize) -> MotionFit {
         .num_threads(threads)
         .build()
         .unwrap();
-    pool.install(|| identify_motion(model, &target, &parameters, &settings, 20, |_, _, _| {}))
+    pool.install(|| identify_motion(model, &target, &parameters, &settings, 60, |_, _, _| {}))
         .unwrap()
 }
 
@@ -141,18 +141,21 @@ fn identify_motion_writes_a_scenario_that_predict_replays_as_it_scored() {
         .opt("--out", "predicted.csv")
         .ok();
     assert_eq!(row(&predicted, "| simulation |", 1), fitted, "{predicted}");
-    // The physics file with the printed table offset gives the same.
-    let set = out
-        .lines()
-        .find_map(|l| l.split("--set ").nth(1))
-        .and_then(|rest| rest.split('`').next())
-        .unwrap()
-        .to_owned();
-    let again = hcm
+    // The physics file with the printed table offset and inertia gives the same.
+    let printed = (out.lines())
+        .find(|l| l.starts_with("table offset and inertia"))
+        .and_then(|l| l.split('`').nth(1))
+        .unwrap();
+    let sets: Vec<&str> = printed.split("--set ").map(str::trim).collect();
+    assert_eq!(sets.len(), 3, "{printed}");
+    let mut again = hcm
         .run("predict")
         .opt("--scenario", &scenario)
-        .opt("--physics", "fitted.toml")
-        .opt("--set", &set)
+        .opt("--physics", "fitted.toml");
+    for set in sets.iter().filter(|s| !s.is_empty()) {
+        again = again.opt("--set", set);
+    }
+    let again = again
         .opt("--data", "held_out.csv")
         .opt("--out", "again.csv")
         .ok();

@@ -6,8 +6,8 @@ use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::motion::{
-    fitted_assignments, fitted_offset, fitted_physics, fitted_scenario_text, identify_motion,
-    split_tosses, table_assignment, MotionFit, MotionParameters, MotionStage, MotionTarget,
+    beside_physics, fitted_assignments, fitted_physics, fitted_scenario_text, identify_motion,
+    set_options, split_tosses, MotionFit, MotionParameters, MotionStage, MotionTarget,
 };
 use hcm_host::output::write_bytes;
 use hcm_host::scenario::Model;
@@ -21,13 +21,14 @@ use std::path::PathBuf;
 /// Splits the runs of --data by toss number (the digits ending a run id): even numbers
 /// are the training part, odd numbers the held-out part, which the fit never sees. On
 /// the training part, fits the contact law's stiffness and damping, the friction's μ_s
-/// and μ_d and the table offset by replaying every toss from its window start (as
-/// `hcm predict` does) and minimising the mean position error (%) plus the mean
-/// rotation error (°): the genetic algorithm, then a Nelder–Mead polish, each
-/// candidate's tosses simulated in parallel. Writes the physics file (law and friction;
-/// the table offset, which a physics file cannot carry, is printed as the `--set` that
-/// applies it, and kept in the file's notes; --scenario-out writes a scenario with all
-/// of them in), and prints the scores of the scenario's parameters, the fitted ones and
+/// and μ_d, the table offset and the body's inertia (a scale on the scenario's) by
+/// replaying every toss from its window start (as `hcm predict` does) and minimising
+/// the mean position error (%) plus the mean rotation error (°): the genetic
+/// algorithm, then a Nelder–Mead polish, each candidate's tosses simulated in
+/// parallel. Writes the physics file (law and friction; the table offset and the
+/// inertia, which a physics file cannot carry, are printed as the `--set`s that apply
+/// them, and kept in the file's notes; --scenario-out writes a scenario with all of
+/// them in), and prints the scores of the scenario's parameters, the fitted ones and
 /// the frozen pose on both parts.
 ///
 /// Terms:
@@ -37,6 +38,7 @@ use std::path::PathBuf;
 ///   rotation error mean over the window's frames of the angle of R_predᵀ·R, degrees
 ///   fitness        mean position error + mean rotation error over the training tosses
 ///   table offset   the plane's surface along its normal (m): the tracker's table height
+///   inertia scale  the factor (–) on the scenario's inertia tensor of the tossed body
 ///   frozen pose    the baseline: the body held at its recorded window-start pose
 ///   physics file   the fitted law with its parameters and friction, which
 ///                  `hcm predict --physics` and `hcm simulate --physics` read
@@ -106,20 +108,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         println!("  {name:<14} {value:.6e}");
     }
     let assignments = fitted_assignments(&model, &parameters, &fit.parameters);
-    let set = table_assignment(&model, &parameters, fitted_offset(&fit.parameters));
-    println!("table offset: give `--set {set}` with the physics file");
+    let sets = beside_physics(&model, &parameters, &fit.parameters);
+    println!(
+        "table offset and inertia: give `{}` with the physics file",
+        set_options(&sets)
+    );
     print!("{}", score_table(&model, &fit.model, &training, &held_out)?);
     write_physics(
         &args,
         &scenario.name,
         &fit,
         &parameters,
-        &set,
+        &sets,
         training.runs.len(),
     )?;
     if let Some(path) = &args.scenario_out {
         let header = format!(
-            "Scenario `{}` ({}) with the contact and table height fitted by\n\
+            "Scenario `{}` ({}) with the contact, table height and inertia fitted by\n\
              hcm identify-motion to the even-numbered tosses of {}: {}",
             scenario.name,
             args.scenario.scenario.display(),
@@ -159,19 +164,19 @@ fn read_split(args: &Args, model: &Model, setup: &TossSetup) -> anyhow::Result<(
     Ok((training, held_out))
 }
 
-/// Writes the physics file: the fitted law and friction, the table offset's `--set` in
-/// the notes.
+/// Writes the physics file: the fitted law and friction, the `--set`s of the table
+/// offset and the inertia in the notes.
 fn write_physics(
     args: &Args,
     name: &str,
     fit: &MotionFit,
     parameters: &MotionParameters,
-    set: &str,
+    sets: &[String],
     runs: usize,
 ) -> anyhow::Result<()> {
     let method = "ga + Nelder–Mead on toss replays (motion only)";
     let data = args.data.display().to_string();
-    fitted_physics(fit, parameters.contact, set, method, &data, runs)
+    fitted_physics(fit, parameters.contact, sets, method, &data, runs)
         .write(
             &args.out,
             &format!("contact of scenario `{name}` fitted to tosses by hcm identify-motion"),

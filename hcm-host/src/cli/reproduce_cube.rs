@@ -78,7 +78,7 @@ fn write_files(r: &CubeReproduction, settings: &CubeSettings, out: &Path) -> any
     let method = "ga + Nelder–Mead on toss replays (motion only), hcm reproduce cube-toss";
     let data = settings.data.display().to_string();
     let runs = r.training.runs.len();
-    fitted_physics(&r.fit, r.contact, &r.table_set, method, &data, runs).write(
+    fitted_physics(&r.fit, r.contact, &r.sets, method, &data, runs).write(
         &out.join("physics.toml"),
         &format!(
             "contact of scenario `{}` fitted to tosses by hcm reproduce cube-toss",

@@ -15,10 +15,8 @@ pub mod split;
 
 pub use fitness::{fitness, toss_scores, MotionTarget};
 pub use parameters::MotionParameters;
-pub use physics_file::fitted_physics;
-pub use scenario_file::{
-    fitted_assignments, fitted_offset, fitted_scenario_text, table_assignment,
-};
+pub use physics_file::{fitted_physics, set_options};
+pub use scenario_file::{beside_physics, fitted_assignments, fitted_scenario_text};
 pub use split::{part_of, split_tosses, Part};
 
 use crate::identify::genetic::{minimize, GeneticError, GeneticSettings};

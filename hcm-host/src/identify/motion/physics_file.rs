@@ -1,17 +1,17 @@
 //! The physics file of a fit from motion: the fitted law and friction of the tossed
-//! body's contact, with the fit's fitness and the table offset's `--set` (which a
-//! physics file has no place for) in its notes — what `hcm identify-motion` and `hcm
+//! body's contact, with the fit's fitness and the `--set`s of the table offset and the
+//! body's inertia (which a physics file has no place for) in its notes — what `hcm identify-motion` and `hcm
 //! reproduce cube-toss` write.
 
 use super::MotionFit;
 use crate::identify::{FitRecord, Physics};
 
 /// `fit`'s physics file for its `contact`: made by `method` on `runs` training tosses
-/// of `data`, the table offset applied by `table_set`.
+/// of `data`, the table offset and the inertia applied by `sets` ([`super::beside_physics`]).
 pub fn fitted_physics(
     fit: &MotionFit,
     contact: usize,
-    table_set: &str,
+    sets: &[String],
     method: &str,
     data: &str,
     runs: usize,
@@ -29,10 +29,16 @@ pub fn fitted_physics(
                  (degrees) over the training tosses (even toss numbers)",
                 fit.fitness
             ),
-            format!("table offset: apply with --set {table_set}"),
+            format!("table offset and inertia: apply with {}", set_options(sets)),
         ],
         ..FitRecord::default()
     };
     let law = fit.model.contacts[contact].law();
     Physics::for_contact(&fit.model, contact, law, record)
+}
+
+/// `sets` as command-line options: `--set a --set b`.
+pub fn set_options(sets: &[String]) -> String {
+    let options: Vec<String> = sets.iter().map(|s| format!("--set {s}")).collect();
+    options.join(" ")
 }

@@ -9,7 +9,7 @@ use crate::scenario::{Model, Scenario, ScenarioError};
 
 /// The `--set` assignments that turn `model`'s scenario into the fitted one, from the
 /// fit's [`MotionParameters::named`] values: the law's two parameters, `mu_static`,
-/// `mu_dynamic` and `table_offset` (m).
+/// `mu_dynamic`, `table_offset` (m) and `inertia_scale` (–).
 pub fn fitted_assignments(
     model: &Model,
     parameters: &MotionParameters,
@@ -19,25 +19,57 @@ pub fn fitted_assignments(
     named
         .iter()
         .map(|(name, value)| match name.as_str() {
-            "table_offset" => table_assignment(model, parameters, *value),
+            "table_offset" | "inertia_scale" => body_assignment(model, parameters, name, *value),
             "mu_static" | "mu_dynamic" => format!("contact.{contact}.friction.{name}={value:e}"),
             _ => format!("contact.{contact}.parameters.{name}={value:e}"),
         })
         .collect()
 }
 
-/// The `--set` that puts the table's surface at `offset` (m) — what a physics file,
-/// which holds the law and the friction but not the plane, needs beside it.
-pub fn table_assignment(model: &Model, parameters: &MotionParameters, offset: f64) -> String {
-    let table = &model.bodies[parameters.plane].name;
-    format!("body.{table}.shape.plane.offset={offset:e}")
+/// The `--set`s a physics file — which holds the law and the friction, not the bodies —
+/// needs beside it to replay the fit: the table's surface at the fitted offset (m) and
+/// the tossed body's inertia at the fitted scale of `model`'s (the scenario's) tensor.
+pub fn beside_physics(
+    model: &Model,
+    parameters: &MotionParameters,
+    named: &[(String, f64)],
+) -> Vec<String> {
+    (named.iter())
+        .filter(|(name, _)| matches!(name.as_str(), "table_offset" | "inertia_scale"))
+        .map(|(name, value)| body_assignment(model, parameters, name, *value))
+        .collect()
 }
 
-/// The fit's table offset (m) among its [`MotionParameters::named`] values (0 if none).
-pub fn fitted_offset(named: &[(String, f64)]) -> f64 {
-    (named.iter())
-        .find(|(name, _)| name == "table_offset")
-        .map_or(0.0, |p| p.1)
+/// The `--set` of one body gene: `table_offset` puts the plane's surface at `value`
+/// (m); `inertia_scale` sets the tossed body's inertia to `value` times `model`'s,
+/// as principal moments when the tensor is diagonal (kg·m²).
+fn body_assignment(model: &Model, parameters: &MotionParameters, name: &str, value: f64) -> String {
+    if name == "table_offset" {
+        let table = &model.bodies[parameters.plane].name;
+        return format!("body.{table}.shape.plane.offset={value:e}");
+    }
+    let body = &model.bodies[parameters.body];
+    let inertia = body.inertia * value;
+    let diagonal = (0..3).all(|i| (0..3).all(|j| i == j || inertia[(i, j)] == 0.0));
+    let text = if diagonal {
+        format!(
+            "[{:e},{:e},{:e}]",
+            inertia[(0, 0)],
+            inertia[(1, 1)],
+            inertia[(2, 2)]
+        )
+    } else {
+        let row = |i: usize| {
+            format!(
+                "[{:e},{:e},{:e}]",
+                inertia[(i, 0)],
+                inertia[(i, 1)],
+                inertia[(i, 2)]
+            )
+        };
+        format!("[{},{},{}]", row(0), row(1), row(2))
+    };
+    format!("body.{}.inertia={text}", body.name)
 }
 
 /// The text of the fitted scenario file: `scenario` with `assignments` applied, checked
@@ -55,4 +87,57 @@ pub fn fitted_scenario_text(
     })?;
     let comment: String = header.lines().map(|l| format!("# {l}\n")).collect();
     Ok(comment + &body)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::toss::TossSetup;
+    use nalgebra::Matrix3;
+    use std::path::Path;
+
+    const SCENARIO: &str = include_str!("../../../../scenarios/cube_toss.toml");
+
+    fn scenario(overrides: &[String]) -> Scenario {
+        Scenario::parse(Path::new("cube_toss.toml"), SCENARIO, overrides).unwrap()
+    }
+
+    /// The `--set`s beside a physics file give the model the genes stand for: the
+    /// table at the offset, the inertia at the scale — a diagonal tensor as principal
+    /// moments, a full one row by row.
+    #[test]
+    fn the_sets_beside_the_physics_file_give_the_fitted_body_and_table() {
+        let full = "body.cube.inertia=[[8e-4, 1e-5, 0.0], [1e-5, 9e-4, 2e-5], [0.0, 2e-5, 7e-4]]";
+        for overrides in [vec![], vec![full.to_owned()]] {
+            let base = scenario(&overrides);
+            let model = base.model().unwrap();
+            let setup = TossSetup::new(&model).unwrap();
+            let parameters = MotionParameters::new(&model, &setup).unwrap();
+            let mut genes = parameters.of(&model);
+            let last = genes.len() - 1;
+            genes[last - 1] = -1.5e-3;
+            genes[last] = 1.25;
+            let named = parameters.named(&genes);
+            let sets = beside_physics(&model, &parameters, &named);
+            assert_eq!(sets.len(), 2, "{sets:?}");
+            let replayed = base.with(&sets).unwrap().model().unwrap();
+            let fitted = parameters.apply(&model, &genes);
+            let inertia: Matrix3<f64> = replayed.bodies[parameters.body].inertia;
+            let expected = fitted.bodies[parameters.body].inertia;
+            assert!(
+                (inertia - expected).abs().max() <= 1e-15,
+                "{inertia} vs {expected}"
+            );
+            assert!(
+                (expected - model.bodies[parameters.body].inertia * 1.25)
+                    .abs()
+                    .max()
+                    < 1e-18
+            );
+            match replayed.bodies[parameters.plane].shape {
+                crate::scenario::Shape::Plane { offset, .. } => assert_eq!(offset, -1.5e-3),
+                _ => panic!("the table is a plane"),
+            }
+        }
+    }
 }

@@ -1,7 +1,9 @@
 //! `hcm reproduce cube-toss`: issue 17 end to end on filmed tosses — the tosses split
 //! by toss number ([`split_tosses`]), the contact fitted from motion alone on the
 //! training part ([`identify_motion`]), the held-out tosses predicted with the fitted
-//! model and with the scenario's own parameters beside the frozen pose, their error over
+//! model and with the scenario's own parameters beside the frozen pose, the second fold
+//! (the same fit on the held-out part, judged on the training part: every toss
+//! predicted by a fit that never saw it), their error over
 //! time and per phase ([`errors`], [`phases`]), the diagnosis of what the fitted model
 //! still gets wrong ([`diagnose_motion`]), and the report's figures ([`figures`]).
 //! Nothing here prints or writes a file: progress goes to a [`CubeProgress`], and the
@@ -16,7 +18,7 @@ mod stages;
 
 pub use figures::toss_figures;
 pub use results::{CubeResults, ModelScores, Published, TossRow, PUBLISHED};
-pub use stages::{ErrorProfile, Predictions, Timeline};
+pub use stages::{ErrorProfile, Predictions, SecondFold, Timeline};
 
 use crate::dataset::{DataError, Dataset};
 use crate::diagnose::motion::{diagnose_motion, MotionDiagnoseError, MotionDiagnosis};
@@ -30,6 +32,9 @@ use super::{NamedFigure, Silent, StageClock};
 
 /// The scenario shipped with hcm, so that the example runs from any directory.
 pub const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/cube_toss.toml");
+
+/// The first fold's progress stages.
+const FIT_STAGES: [&str; 2] = ["fit: GA", "fit: polish"];
 
 /// What [`reproduce_cube`] runs.
 #[derive(Clone, Debug, PartialEq)]
@@ -146,12 +151,15 @@ pub struct CubeReproduction {
     pub held_out: Dataset,
     /// The fit.
     pub fit: MotionFit,
-    /// The fitted table offset as the `--set` that applies it beside the physics file.
-    pub table_set: String,
+    /// The fitted table offset and inertia as the `--set`s that apply them beside the
+    /// physics file.
+    pub sets: Vec<String>,
     /// The index of the fitted contact.
     pub contact: usize,
     /// Both parts predicted with both models.
     pub predicted: Predictions,
+    /// The second fold: the fit on the held-out part, the training part predicted.
+    pub second_fold: SecondFold,
     /// The diagnosis of the fitted model, unless the settings skip it.
     pub diagnosis: Option<MotionDiagnosis>,
     /// Scores, errors over time and per phase, timings.
@@ -173,11 +181,14 @@ pub fn reproduce_cube(
     let (training, held_out) =
         clock.time("read + split", || read_split(settings, &setup, &model))?;
     let (fit, parameters) = clock.time("fit (GA + polish)", || {
-        stages::fit(settings, &model, &setup, &training, progress)
+        stages::fit(settings, &model, &setup, &training, FIT_STAGES, progress)
     })?;
-    let table_set = stages::table_set(&model, &parameters, &fit);
+    let sets = stages::sets(&model, &parameters, &fit);
     let predicted = clock.time("predict", || {
         stages::predict(&model, &fit.model, &training, &held_out, progress)
+    })?;
+    let second_fold = clock.time("second fold (fit on odd, predict even)", || {
+        stages::second_fold(settings, &model, &setup, &held_out, &training, progress)
     })?;
     let timeline = clock.time("errors over time and per phase", || {
         stages::timeline(&setup, &held_out, &predicted)
@@ -191,23 +202,22 @@ pub fn reproduce_cube(
     let figures = clock.time("figures", || {
         toss_figures(&setup, &held_out, &predicted, &timeline)
     })?;
-    let results = CubeResults::gather(
-        settings,
-        &fit,
-        &table_set,
-        &predicted,
-        timeline,
-        diagnosis.as_ref(),
-        clock.0,
-    );
+    let folds = results::Folds {
+        fit: &fit,
+        sets: &sets,
+        predicted: &predicted,
+        second: &second_fold,
+    };
+    let results = CubeResults::gather(settings, folds, timeline, diagnosis.as_ref(), clock.0);
     Ok(CubeReproduction {
         scenario,
         training,
         held_out,
         fit,
-        table_set,
+        sets,
         contact: parameters.contact,
         predicted,
+        second_fold,
         diagnosis,
         results,
         figures,

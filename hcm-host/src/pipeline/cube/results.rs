@@ -1,6 +1,6 @@
 //! What `results.json` holds: every figure of the report, unrounded.
 
-use super::stages::{Predictions, Timeline};
+use super::stages::{Predictions, SecondFold, Timeline};
 use super::CubeSettings;
 use crate::diagnose::motion::MotionDiagnosis;
 use crate::identify::motion::MotionFit;
@@ -42,7 +42,8 @@ pub const PUBLISHED: [Published; 3] = [
 /// One row of the score table: a model on one part of the split.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ModelScores {
-    /// `held out` or `training`.
+    /// `held out`, `cross-validated` (every toss, each predicted by the fold that did
+    /// not fit on it) or `training`.
     pub part: &'static str,
     /// `fitted`, `scenario's parameters` or `frozen pose`.
     pub model: &'static str,
@@ -81,6 +82,19 @@ pub struct FitSummary {
     pub evaluations: usize,
 }
 
+impl FitSummary {
+    /// `fit` without its time.
+    pub fn of(fit: &MotionFit) -> FitSummary {
+        FitSummary {
+            parameters: fit.parameters.clone(),
+            start_fitness: fit.start_fitness,
+            genetic_fitness: fit.genetic_fitness,
+            fitness: fit.fitness,
+            evaluations: fit.evaluations,
+        }
+    }
+}
+
 /// Everything the report states.
 #[derive(Clone, Debug, Serialize)]
 pub struct CubeResults {
@@ -98,8 +112,10 @@ pub struct CubeResults {
     pub held_out_tosses: usize,
     /// The fit.
     pub fit: FitSummary,
-    /// The `--set` the fitted table offset needs beside physics.toml.
-    pub table_set: String,
+    /// The second fold's fit (on the held-out part).
+    pub second_fit: FitSummary,
+    /// The `--set`s the fitted table offset and inertia need beside physics.toml.
+    pub sets: Vec<String>,
     /// The score table.
     pub scores: Vec<ModelScores>,
     /// The published figures, for comparison.
@@ -114,13 +130,20 @@ pub struct CubeResults {
     pub timings: Vec<StageTiming>,
 }
 
+/// What the two folds made: the fit on the training part with its `--set`s, both parts
+/// predicted, and the second fold.
+pub struct Folds<'a> {
+    pub fit: &'a MotionFit,
+    pub sets: &'a [String],
+    pub predicted: &'a Predictions,
+    pub second: &'a SecondFold,
+}
+
 impl CubeResults {
     /// The results of one run.
     pub fn gather(
         settings: &CubeSettings,
-        fit: &MotionFit,
-        table_set: &str,
-        predicted: &Predictions,
+        folds: Folds<'_>,
         timeline: Timeline,
         diagnosis: Option<&MotionDiagnosis>,
         timings: Vec<StageTiming>,
@@ -133,19 +156,17 @@ impl CubeResults {
             population: settings.population,
             generations: settings.generations,
             polish: settings.polish,
-            training_tosses: predicted.training_fitted.len(),
-            held_out_tosses: predicted.held_out_fitted.len(),
-            fit: FitSummary {
-                parameters: fit.parameters.clone(),
-                start_fitness: fit.start_fitness,
-                genetic_fitness: fit.genetic_fitness,
-                fitness: fit.fitness,
-                evaluations: fit.evaluations,
-            },
-            table_set: table_set.to_owned(),
-            scores: score_rows(predicted),
+            training_tosses: folds.predicted.training_fitted.len(),
+            held_out_tosses: folds.predicted.held_out_fitted.len(),
+            fit: FitSummary::of(folds.fit),
+            second_fit: FitSummary::of(&folds.second.fit),
+            sets: folds.sets.to_vec(),
+            scores: score_rows(folds.predicted, folds.second),
             published: PUBLISHED.to_vec(),
-            held_out: toss_rows(&predicted.held_out_fitted, &predicted.held_out_scenario),
+            held_out: toss_rows(
+                &folds.predicted.held_out_fitted,
+                &folds.predicted.held_out_scenario,
+            ),
             timeline,
             diagnosis: diagnosis.cloned(),
             timings,
@@ -158,11 +179,16 @@ impl CubeResults {
     }
 }
 
-/// The score table: held out first, then training; fitted, scenario's, frozen pose.
-fn score_rows(p: &Predictions) -> Vec<ModelScores> {
+/// The score table: held out first, then both folds (every toss, each by the fit that
+/// did not see it), then training; fitted, scenario's, frozen pose.
+fn score_rows(p: &Predictions, second: &SecondFold) -> Vec<ModelScores> {
     let mut rows = Vec::new();
+    let both = |a: &[TossEvaluation], b: &[TossEvaluation]| [a, b].concat();
+    let cross_fitted = both(&p.held_out_fitted, &second.predicted);
+    let cross_scenario = both(&p.held_out_scenario, &p.training_scenario);
     let parts = [
         ("held out", &p.held_out_fitted, &p.held_out_scenario),
+        ("cross-validated", &cross_fitted, &cross_scenario),
         ("training", &p.training_fitted, &p.training_scenario),
     ];
     for (part, fitted, scenario) in parts {

@@ -7,20 +7,20 @@ use super::{CubeError, CubeProgress, CubeSettings};
 use crate::dataset::Dataset;
 use crate::identify::genetic::GeneticSettings;
 use crate::identify::motion::{
-    fitted_offset, identify_motion, table_assignment, MotionFit, MotionParameters, MotionStage,
-    MotionTarget,
+    beside_physics, identify_motion, MotionFit, MotionParameters, MotionStage, MotionTarget,
 };
 use crate::scenario::Model;
 use crate::toss::{evaluate_tosses, TossEvaluation, TossSetup};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// The fit on the training tosses, with a progress stage for the GA and one for the
-/// polish.
+/// The fit on the `training` tosses, with a progress stage for the GA and one for the
+/// polish, named `label` (e.g. `fit`).
 pub fn fit(
     settings: &CubeSettings,
     model: &Model,
     setup: &TossSetup,
     training: &Dataset,
+    label: [&'static str; 2],
     progress: &dyn CubeProgress,
 ) -> Result<(MotionFit, MotionParameters), CubeError> {
     let target = MotionTarget::new(model, training)?;
@@ -32,7 +32,7 @@ pub fn fit(
         ..GeneticSettings::default()
     };
     let (generations, polish) = (settings.generations as u64, settings.polish as u64);
-    progress.begin("fit: GA", generations);
+    progress.begin(label[0], generations);
     let mut polishing = false;
     let fit = identify_motion(
         model,
@@ -44,7 +44,7 @@ pub fn fit(
             if stage == MotionStage::Polish && !polishing {
                 polishing = true;
                 progress.end();
-                progress.begin("fit: polish", polish);
+                progress.begin(label[1], polish);
             }
             let steps = if polishing { polish } else { generations };
             progress.advance(done as u64, steps);
@@ -54,10 +54,41 @@ pub fn fit(
     Ok((fit?, parameters))
 }
 
-/// The fitted table offset as the `--set` that applies it (a physics file holds the
-/// law and the friction, not the plane).
-pub fn table_set(model: &Model, parameters: &MotionParameters, fit: &MotionFit) -> String {
-    table_assignment(model, parameters, fitted_offset(&fit.parameters))
+/// The fitted table offset and inertia as the `--set`s that apply them (a physics file
+/// holds the law and the friction, not the bodies).
+pub fn sets(model: &Model, parameters: &MotionParameters, fit: &MotionFit) -> Vec<String> {
+    beside_physics(model, parameters, &fit.parameters)
+}
+
+/// The split's second fold: the same fit on the held-out tosses (odd numbers), judged
+/// on the training ones (even), which it never saw — so that every toss is predicted
+/// once by a fit that did not see it (two-fold cross-validation).
+pub struct SecondFold {
+    /// The fit on the held-out part.
+    pub fit: MotionFit,
+    /// The training tosses predicted with it, in the data's order.
+    pub predicted: Vec<TossEvaluation>,
+}
+
+/// The second fold: `settings`' fit on `odd`, its predictions of `even`.
+pub fn second_fold(
+    settings: &CubeSettings,
+    model: &Model,
+    setup: &TossSetup,
+    odd: &Dataset,
+    even: &Dataset,
+    progress: &dyn CubeProgress,
+) -> Result<SecondFold, CubeError> {
+    let stages = ["second fold (fit on odd): GA", "second fold: polish"];
+    let (fit, _) = self::fit(settings, model, setup, odd, stages, progress)?;
+    let steps = even.runs.len() as u64;
+    let done = AtomicU64::new(0);
+    progress.begin("second fold: predict", steps);
+    let predicted = evaluate_tosses(&fit.model, even, || {
+        progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1, steps)
+    })?;
+    progress.end();
+    Ok(SecondFold { fit, predicted })
 }
 
 /// Both parts predicted with both models (each in the data's order).
