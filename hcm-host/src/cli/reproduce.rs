@@ -43,12 +43,13 @@ enum ExampleArg {
 /// blobs, report.md, results.json and the figures).
 ///
 /// cube-toss works on real data, not on PM1: it splits the tosses of --data by toss
-/// number (even train, odd are held out), fits the contact from motion alone (GA +
-/// Nelder–Mead), predicts the held-out tosses, measures their error over time and per
-/// phase, runs the diagnosis from motion on the fitted model, and writes to OUT:
-/// physics.toml, training.csv, held_out.csv, predicted_held_out.csv, report.md,
-/// results.json and the figures (the 456 tosses: 5 to 12 minutes on two cores, as
-/// busy as they are; 8 minutes of processor time).
+/// number (even train, odd are held out), fits the contact and the body's inertia from
+/// motion alone (GA + Nelder–Mead), predicts the held-out tosses, fits again on the odd
+/// tosses and predicts the even ones (cross-validated scores: every toss predicted by a
+/// fit that never saw it), measures the held-out error over time and per phase, runs the
+/// diagnosis from motion on the fitted model, and writes to OUT: physics.toml,
+/// training.csv, held_out.csv, predicted_held_out.csv, report.md, results.json and the
+/// figures (the 456 tosses: about 9 minutes on two cores, 18 minutes of processor time).
 ///
 /// The scenarios are built into hcm (copies of scenarios/bouncing_ball.toml,
 /// scenarios/flat_shot.toml and scenarios/peg_in_hole.toml of the source), so it runs
