@@ -1,6 +1,7 @@
 //! What a motion-only diagnosis may find wrong with a tossed or sliding body's contact:
 //! the friction law (its coefficient, its shape, a viscous part), resistance to
-//! rotation (torsional, rolling), and the measurement (the table's height or tilt, the
+//! rotation (torsional, rolling), the impact's restitution (falling with the impact
+//! speed), and the measurement (the table's height or tilt, the
 //! tracker's length scale). Each candidate is a small change of the user's model (or
 //! of how the data are read) with its own parameters, every one of which has a neutral
 //! value that changes nothing.
@@ -8,12 +9,19 @@
 use crate::dataset::Dataset;
 use crate::identify::genetic::Bound;
 use crate::scenario::{Model, Shape};
+use hcm_core::effect::{ContactEffect, HysteresisDamping};
 use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};
 use nalgebra::{UnitQuaternion, Vector3};
 
 /// Rotation rate (rad/s) below which the resistance couples fade: slow against a
 /// tumbling cube (rad/s to tens of rad/s), fast against a body at rest.
 const RESISTANCE_RATE: f64 = 0.1;
+
+/// The stiffness k and exponent n of `model`'s `contact` law, if it has both.
+fn stiffness_exponent(model: &Model, contact: usize) -> Option<(f64, f64)> {
+    let law = model.contacts[contact].law();
+    Some((law.get("stiffness").ok()?, law.get("exponent").ok()?))
+}
 
 /// What kind of cause a candidate is: a diagnosis calls two candidates of different
 /// kinds that explain the data equally well ambiguous rather than pick one.
@@ -23,6 +31,8 @@ pub enum Family {
     Friction,
     /// A couple against the bodies' relative rotation.
     Resistance,
+    /// The normal impact's dissipation.
+    Impact,
     /// How the data were measured, not the physics.
     Measurement,
     /// The body's own properties.
@@ -35,6 +45,7 @@ impl Family {
         match self {
             Family::Friction => "friction",
             Family::Resistance => "resistance",
+            Family::Impact => "impact",
             Family::Measurement => "measurement",
             Family::Body => "body",
         }
@@ -54,6 +65,10 @@ pub enum MotionEffect {
     TorsionalResistance,
     /// Rolling resistance a_r (m).
     RollingResistance,
+    /// A restitution that falls with the impact speed: Hunt–Crossley's damping
+    /// χ·k·δ^n·δ̇ added to the law (k, n the law's stiffness and exponent; χ in s/m),
+    /// e ≈ 1 − 2·χ·v/3 at impact speed v where the law alone keeps e about constant.
+    SpeedDependentRestitution,
     /// The table's surface moved along its normal by Δz (m).
     TableOffset,
     /// The table tilted by small angles about the world x and y axes (rad).
@@ -67,12 +82,13 @@ pub enum MotionEffect {
 
 impl MotionEffect {
     /// The catalogue, in the order a report lists it.
-    pub const ALL: [MotionEffect; 9] = [
+    pub const ALL: [MotionEffect; 10] = [
         MotionEffect::FrictionCoefficient,
         MotionEffect::CoulombFriction,
         MotionEffect::ViscousFriction,
         MotionEffect::TorsionalResistance,
         MotionEffect::RollingResistance,
+        MotionEffect::SpeedDependentRestitution,
         MotionEffect::TableOffset,
         MotionEffect::TableTilt,
         MotionEffect::LengthScale,
@@ -88,6 +104,7 @@ impl MotionEffect {
             MotionEffect::ViscousFriction => ViscousFriction::<f64>::NAME,
             MotionEffect::TorsionalResistance => TorsionalResistance::<f64>::NAME,
             MotionEffect::RollingResistance => RollingResistance::<f64>::NAME,
+            MotionEffect::SpeedDependentRestitution => "speed_dependent_restitution",
             MotionEffect::TableOffset => "table_offset",
             MotionEffect::TableTilt => "table_tilt",
             MotionEffect::LengthScale => "length_scale",
@@ -104,6 +121,7 @@ impl MotionEffect {
             MotionEffect::TorsionalResistance | MotionEffect::RollingResistance => {
                 Family::Resistance
             }
+            MotionEffect::SpeedDependentRestitution => Family::Impact,
             MotionEffect::TableOffset | MotionEffect::TableTilt | MotionEffect::LengthScale => {
                 Family::Measurement
             }
@@ -132,6 +150,8 @@ impl MotionEffect {
             MotionEffect::ViscousFriction => vec![bound("coefficient", 0.0, 5.0 * mass, false)],
             MotionEffect::TorsionalResistance => vec![bound("arm", 0.0, 0.5 * size, false)],
             MotionEffect::RollingResistance => vec![bound("arm", 0.0, 0.5 * size, false)],
+            // Up to e ≈ 0 at 0.5 m/s.
+            MotionEffect::SpeedDependentRestitution => vec![bound("chi", 0.0, 3.0, false)],
             MotionEffect::TableOffset => vec![bound("offset", -0.05 * size, 0.05 * size, false)],
             MotionEffect::TableTilt => vec![
                 bound("about_x", -0.05, 0.05, false),
@@ -144,13 +164,18 @@ impl MotionEffect {
 
     /// Whether it can change `model`'s `contact` at all: a coefficient or a shape needs
     /// a friction law, and Coulomb's law is no change of shape for a law whose μ_s = μ_d
-    /// already (it would only repeat the coefficient's candidate).
+    /// already (it would only repeat the coefficient's candidate); the restitution's
+    /// damping needs a law with a stiffness and an exponent, and room for an effect.
     pub fn changes(self, model: &Model, contact: usize) -> bool {
         let friction = model.contacts[contact].model.friction;
         match self {
             MotionEffect::FrictionCoefficient => friction.is_some(),
             MotionEffect::CoulombFriction => {
                 friction.is_some_and(|f| f.static_coefficient != f.dynamic_coefficient)
+            }
+            MotionEffect::SpeedDependentRestitution => {
+                let normal = &model.contacts[contact].model.normal;
+                stiffness_exponent(model, contact).is_some() && !normal.effects.is_full()
             }
             _ => true,
         }
@@ -205,6 +230,19 @@ impl MotionEffect {
                     arm: first,
                     roll_rate: RESISTANCE_RATE,
                 });
+            }
+            MotionEffect::SpeedDependentRestitution => {
+                if let Some((k, n)) = stiffness_exponent(model, contact) {
+                    let damping = HysteresisDamping {
+                        coefficient: first * k,
+                        exponent: n,
+                    };
+                    // `changes` checked the room: a full list leaves the model as it is.
+                    let _ = physics
+                        .normal
+                        .effects
+                        .push(ContactEffect::HysteresisDamping(damping));
+                }
             }
             MotionEffect::TableOffset => {
                 if let Shape::Plane { offset, .. } = &mut out.bodies[plane].shape {

@@ -12,8 +12,11 @@
 //! force channel, its mean force error (% of the body's weight). A candidate *helps*
 //! when that gain is at least [`HELPS_T`] standard errors above zero and at least
 //! [`MIN_GAIN`] of the model's held-out score. The one with the largest gain is named
-//! only if it also beats every other helping candidate by [`RIVAL_T`] standard errors
-//! on the same tosses; otherwise the answer is "ambiguous" and names none. A named
+//! only if it also beats by [`RIVAL_T`] standard errors, on the same tosses, every other
+//! helping candidate and every candidate whose mean gain is larger than its own though
+//! less sure (a large gain carried by a few tosses may be the true cause, of which a
+//! small steady gain is only a shadow); otherwise the answer is "ambiguous" and names
+//! none. A named
 //! cause is added to the model, and the search repeats on what is left (at most
 //! [`MAX_ROUNDS`] causes). Nothing helping: the answer is "none".
 
@@ -250,8 +253,9 @@ fn judge(
     }
 }
 
-/// The helping candidate with the largest gain, if it beats every other helping one
-/// by [`RIVAL_T`] on the same tosses; else the tied names (best first).
+/// The helping candidate with the largest gain, if it beats by [`RIVAL_T`] on the same
+/// tosses every other helping one and every one with a larger mean gain; else the
+/// tied names (best first).
 fn choose(
     results: &[CandidateResult],
     held: &[(MotionEffect, Fitted, Option<Vec<f64>>)],
@@ -264,8 +268,9 @@ fn choose(
         return (None, Vec::new());
     };
     let best_scores = held[best].2.as_deref().unwrap_or(&[]);
-    let tied: Vec<&'static str> = (helping.iter().copied())
-        .filter(|&i| i != best)
+    let larger = |i: usize| results[i].gain.mean > results[best].gain.mean;
+    let tied: Vec<&'static str> = (0..results.len())
+        .filter(|&i| i != best && (results[i].helps || larger(i)))
         .filter(|&i| {
             let other = held[i].2.as_deref().unwrap_or(&[]);
             Paired::of(other, best_scores).t() < RIVAL_T
@@ -308,7 +313,8 @@ fn answer(
     }
     if !ambiguous.is_empty() {
         text.push_str(&format!(
-            "; then ambiguous ({}): each helps, none clearly more, so none is named",
+            "; then ambiguous ({}): the first helps, the others help or gain as much on \
+             average, none clearly more, so none is named",
             ambiguous.join(" or ")
         ));
     } else if parts.is_empty() {
