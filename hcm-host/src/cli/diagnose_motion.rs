@@ -76,7 +76,7 @@ fn print_diagnosis(d: &MotionDiagnosis) {
             round.held_out
         );
         println!(
-            "  {:<22} {:>10} {:>10} {:>8}  {:<6} parameters",
+            "  {:<27} {:>10} {:>10} {:>8}  {:<6} parameters",
             "candidate", "gain", "± se", "t", ""
         );
         for c in &round.candidates {
@@ -84,7 +84,7 @@ fn print_diagnosis(d: &MotionDiagnosis) {
                 .map(|(n, v)| format!("{n} = {v:.4e}"))
                 .collect();
             println!(
-                "  {:<22} {:>10.4} {:>10.4} {:>8.1}  {:<6} {}",
+                "  {:<27} {:>10.4} {:>10.4} {:>8.1}  {:<6} {}",
                 c.name,
                 c.gain.mean,
                 c.gain.standard_error,
