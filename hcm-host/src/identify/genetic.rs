@@ -42,6 +42,16 @@ pub struct Bound {
 }
 
 impl Bound {
+    /// The bound of a parameter table's row `(name, lower, upper, log_scale)`.
+    pub fn of_row(&(name, lower, upper, log_scale): &(&str, f64, f64, bool)) -> Bound {
+        Bound {
+            name: name.to_owned(),
+            lower,
+            upper,
+            log_scale,
+        }
+    }
+
     /// The value at fraction `at` of the interval, clamped into [0, 1] (through
     /// log(value) on a log scale): how a local search walks the box on the scale the
     /// genetic algorithm searches.

@@ -100,24 +100,9 @@ impl MotionParameters {
 
     /// The genetic algorithm's box, in [`MotionParameters::names`] order.
     pub fn bounds(&self) -> Vec<Bound> {
-        let law = self
-            .law
-            .iter()
-            .map(|&(name, lower, upper, log_scale)| Bound {
-                name: name.to_owned(),
-                lower,
-                upper,
-                log_scale,
-            });
-        let other = OTHER_GENES
-            .iter()
-            .map(|&(name, lower, upper, log_scale)| Bound {
-                name: name.to_owned(),
-                lower,
-                upper,
-                log_scale,
-            });
-        law.chain(other).collect()
+        (self.law.iter().chain(&OTHER_GENES))
+            .map(Bound::of_row)
+            .collect()
     }
 
     /// The genes of `model` as it is (the scenario's values), clamped into the box.

@@ -63,16 +63,7 @@ impl RigidParameters {
     pub fn genetic(&self) -> Vec<Bound> {
         let mut bounds = self.law.genetic();
         if self.friction {
-            bounds.extend(
-                FRICTION
-                    .iter()
-                    .map(|&(name, lower, upper, log_scale)| Bound {
-                        name: name.to_owned(),
-                        lower,
-                        upper,
-                        log_scale,
-                    }),
-            );
+            bounds.extend(FRICTION.iter().map(Bound::of_row));
         }
         bounds
     }
