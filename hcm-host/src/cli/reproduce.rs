@@ -49,7 +49,7 @@ enum ExampleArg {
 /// fit that never saw it), measures the held-out error over time and per phase, runs the
 /// diagnosis from motion on the fitted model, and writes to OUT: physics.toml,
 /// training.csv, held_out.csv, predicted_held_out.csv, report.md, results.json and the
-/// figures (the 456 tosses: about 9 minutes on two cores, 18 minutes of processor time).
+/// figures (the 456 tosses: about 10 minutes on two cores, 20 minutes of processor time).
 ///
 /// The scenarios are built into hcm (copies of scenarios/bouncing_ball.toml,
 /// scenarios/flat_shot.toml and scenarios/peg_in_hole.toml of the source), so it runs
