@@ -37,8 +37,8 @@ use std::time::Instant;
 ///   frozen pose    the baseline: the body held at its recorded window-start pose
 ///   physics file   a contact law with its parameters and friction, as `hcm identify`
 ///                  or `hcm identify-motion` writes it (`--physics`); without it, the
-///                  scenario's own. A table offset `hcm identify-motion` found is given
-///                  as the `--set` it prints
+///                  scenario's own. The table offset and inertia `hcm identify-motion`
+///                  found are given as the `--set`s it prints
 #[derive(clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
