@@ -9,6 +9,7 @@ use hcm_host::scenario::Model;
 use hcm_host::simulate::simulate;
 use hcm_tests::hidden::model;
 use hcm_tests::rig::{Base, Motion, Physical, Recording, Resonance, Rig};
+use rayon::prelude::*;
 
 /// Runs per data set (a quarter is held out for the gain).
 const RUNS: usize = 16;
@@ -396,7 +397,12 @@ fn no_hidden_effect_names_none() {
 #[derive(Clone, Copy, Debug)]
 enum Effect {
     Viscous,
+    /// c·δ^0.5·δ̇.
     Hysteresis,
+    /// c·δ·δ̇.
+    HysteresisLinear,
+    /// c·δ^1.5·δ̇: Hunt–Crossley's shape on a Hertzian law.
+    HysteresisHertzian,
     StiffnessExponent,
     Adhesion,
     Plasticity,
@@ -436,10 +442,15 @@ fn hide(mut rig: Rig, effect: Effect, share: f64) -> (Rig, &'static str, usize, 
             rig.effects.push(Physical::Viscous(coefficient));
             ("viscous_damping", 0, coefficient)
         }
-        Effect::Hysteresis => {
-            let coefficient = target / largest(&c, |d, v, _, _| d.sqrt() * v);
-            rig.effects.push(Physical::Hysteresis(coefficient, 0.5));
-            ("hysteresis_damping", 1, 0.5)
+        Effect::Hysteresis | Effect::HysteresisLinear | Effect::HysteresisHertzian => {
+            let p = match effect {
+                Effect::Hysteresis => 0.5,
+                Effect::HysteresisLinear => 1.0,
+                _ => 1.5,
+            };
+            let coefficient = target / largest(&c, |d, v, _, _| d.powf(p) * v);
+            rig.effects.push(Physical::Hysteresis(coefficient, p));
+            ("hysteresis_damping", 1, p)
         }
         Effect::StiffnessExponent => {
             let change = target / largest(&c, |d, _, _, _| k * d.powf(n) * (d / deepest).ln());
@@ -501,10 +512,8 @@ catalogued! {
     viscous_damping_at_5_percent_is_named: Viscous, 0.05, 41, 0.15;
     viscous_damping_at_half_a_percent_is_named: Viscous, 0.005, 42, 0.3;
     hysteresis_damping_at_5_percent_is_named: Hysteresis, 0.05, 43, 0.4;
-    #[ignore = "issue 16: below the power at 0.5 % (measured, seed 44): the best re-fit is a stiffness-exponent change (ΔRSS 36.7 σ²) with a sensor delay 3.1 behind it in the criterion (< 10), the true damping further: ambiguous, nothing named; the power curve (README) names it from 2 %"]
-    hysteresis_damping_at_half_a_percent_is_named: Hysteresis, 0.005, 44, 0.4;
+    hysteresis_damping_linear_at_5_percent_is_named: HysteresisLinear, 0.05, 55, 0.2;
     stiffness_exponent_at_5_percent_is_named: StiffnessExponent, 0.05, 45, 0.15;
-    #[ignore = "issue 16: below the power at 0.5 % (measured, seed 46): Δ = 0.02 is k·δ^(n+Δ); the base re-fitted alone (its free exponent n) leaves noise only, so nothing is tried: none; the power curve (README) names it from 1 %"]
     stiffness_exponent_at_half_a_percent_is_named: StiffnessExponent, 0.005, 46, 0.3;
     adhesion_at_5_percent_is_named: Adhesion, 0.05, 47, 0.15;
     adhesion_at_half_a_percent_is_named: Adhesion, 0.005, 48, 0.3;
@@ -514,6 +523,95 @@ catalogued! {
     force_offset_at_half_a_percent_is_named: Offset, 0.005, 52, 0.3;
     sensor_delay_at_5_percent_is_named: Delay, 0.05, 53, 0.15;
     sensor_delay_at_half_a_percent_is_named: Delay, 0.005, 54, 0.3;
+}
+
+/// A hysteresis damping at 0.5 % of the peak (15 N, the sensor noise) lies, to first
+/// order, in the span of what the Lankarani–Nikravesh base and the catalogue already
+/// offer: with p = 0.5 it is a sensor reading early on a Hertzian law (f(t + τ) − f(t)
+/// ≈ τ·1.5·k·δ^0.5·δ̇), with p = 1.5 the base's own damping (k·δ^1.5·δ̇ through its
+/// restitution), and p = 1 lies between. 12 runs cannot name it (the power curve in the
+/// README: 2 %; the 5 % tests name it); the answer must then name nothing — "none" or
+/// "ambiguous" between the damping family and the delay — never another cause.
+#[test]
+fn hysteresis_damping_below_its_power_is_never_misnamed() {
+    for (effect, seed) in [
+        (Effect::Hysteresis, 44),
+        (Effect::Hysteresis, 57),
+        (Effect::Hysteresis, 58),
+        (Effect::HysteresisLinear, 56),
+        (Effect::HysteresisHertzian, 59),
+    ] {
+        let (rig, _, _, _) = hide(ball(), effect, 0.005);
+        let label = format!("{effect:?} at 0.5 %, seed {seed}");
+        let d = diagnosed(&label, &rig, seed);
+        assert!(d.causes.is_empty(), "{label}: {:#?}", d.causes);
+        // The damping family (viscous is hysteresis with p = 0) against the delay.
+        let mut pair = d.ambiguous.clone();
+        pair.sort();
+        assert!(
+            pair.is_empty()
+                || pair == ["hysteresis_damping", "sensor_delay"]
+                || pair == ["sensor_delay", "viscous_damping"],
+            "{label}: ambiguous {pair:?}"
+        );
+    }
+}
+
+/// The exponent is the stiffness-exponent effect's, not the base re-fit's
+/// (`hcm_host::diagnose::select::free_parameters`): its power and false alarms on the
+/// rig, 10 seeds per cell, counted when the answer is `stiffness_exponent` alone. The
+/// base (Lankarani–Nikravesh, n = 1.5) is the rig's own, so any other answer with
+/// nothing hidden is a false alarm. Run with `--nocapture` for the table in the README.
+#[test]
+fn a_stiffness_exponent_change_has_power_without_false_alarms() {
+    let seeds: Vec<u64> = (300..310).collect();
+    let shares = [0.0, 0.0025, 0.005];
+    let cells: Vec<(f64, u64)> = shares
+        .iter()
+        .flat_map(|&x| seeds.iter().map(move |&s| (x, s)))
+        .collect();
+    let settings = DiagnoseSettings {
+        hcm_epochs: 2,
+        ..DiagnoseSettings::default()
+    };
+    let answers: Vec<Vec<&'static str>> = cells
+        .par_iter()
+        .map(|&(share, seed)| {
+            let rig = if share > 0.0 {
+                hide(ball(), Effect::StiffnessExponent, share).0
+            } else {
+                ball()
+            };
+            let data = read(&rig.record(RUNS, seed));
+            let d = diagnose(&base_model(&rig), &data, &settings).expect("diagnose runs");
+            names(&d)
+        })
+        .collect();
+    let mut wrong = 0;
+    for (k, &share) in shares.iter().enumerate() {
+        let cell = &answers[k * seeds.len()..(k + 1) * seeds.len()];
+        let named = cell
+            .iter()
+            .filter(|a| **a == ["stiffness_exponent"])
+            .count();
+        let other = cell
+            .iter()
+            .filter(|a| !a.is_empty() && **a != ["stiffness_exponent"])
+            .count();
+        wrong += other;
+        println!(
+            "exponent change at {:.2} % of the peak: named alone {named}/10, another name {other}/10 {:?}",
+            100.0 * share,
+            cell
+        );
+        if share == 0.0 {
+            assert!(named + other <= 1, "false alarms: {cell:?}");
+        }
+        if share >= 0.005 {
+            assert!(named >= 8, "power at {share}: {cell:?}");
+        }
+    }
+    assert_eq!(wrong, 0, "wrong names");
 }
 
 // ---------------------------------------------------------------------------------
