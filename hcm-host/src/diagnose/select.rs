@@ -698,3 +698,43 @@ fn fitted(p: &[f64], covariance: Option<&[Vec<f64>]>, name: &str, k: usize) -> F
         ci: (p[k] - half, p[k] + half),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::law_catalogue::build;
+
+    /// Two in-contact samples, their δ recorded (sd 0) or reconstructed (sd > 0).
+    fn samples(depth_sd: f64) -> ContactSamples {
+        ContactSamples {
+            run: vec![0, 0],
+            time: vec![0.0, 1e-6],
+            depth: vec![1e-6, 2e-6],
+            rate: vec![1.0, 1.0],
+            approach_speed: vec![1.0, 1.0],
+            max_depth: vec![1e-6, 2e-6],
+            in_contact: vec![true, true],
+            measured: vec![1.0, 2.0],
+            depth_sd: vec![0.0, depth_sd],
+            rate_sd: vec![0.0, 0.0],
+        }
+    }
+
+    #[test]
+    fn the_exponent_is_re_tuned_only_where_the_motion_was_reconstructed() {
+        let values = [
+            ("stiffness".to_owned(), 1e10),
+            ("exponent".to_owned(), 1.5),
+            ("restitution".to_owned(), 0.9),
+        ];
+        let law = build("lankarani_nikravesh", &values).unwrap();
+        assert_eq!(
+            free_parameters(&samples(0.0), &law),
+            ["stiffness", "restitution"]
+        );
+        assert_eq!(
+            free_parameters(&samples(1e-7), &law),
+            ["stiffness", "exponent", "restitution"]
+        );
+    }
+}
