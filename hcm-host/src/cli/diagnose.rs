@@ -381,7 +381,7 @@ fn report(d: &Diagnosis, figures: &[&str]) -> String {
             s.accepted
         );
     }
-    let _ = writeln!(md, "\nThe decision, on full re-fits (each step adds every effect not yet named to the model, re-fits base and effects together, and takes the best if it passes the information criterion with determined parameters; a cause is named only if the residual then holds nothing but noise):\n\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|");
+    let _ = writeln!(md, "\nThe decision, on full re-fits (each step adds every effect not yet named to the model, re-fits base and effects together — the base's exponent only where the motion was reconstructed, elsewhere a change of it is `stiffness_exponent` — and takes the best if it passes the information criterion with determined parameters; a cause is named only if the residual then holds nothing but noise):\n\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|");
     for t in &d.naming {
         let _ = writeln!(
             md,
