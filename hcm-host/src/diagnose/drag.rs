@@ -115,12 +115,8 @@ pub fn fit_drag(samples: &ContactSamples, mass: f64) -> Option<DragFit> {
 /// flight measurements: their motion is gravity's alone by construction, and mixed
 /// with recorded rows it would fake a drag.
 fn flight_segments(samples: &ContactSamples) -> Vec<std::ops::Range<usize>> {
-    let flight = |j: usize| {
-        !samples.in_contact[j]
-            && samples.depth[j] < 0.0
-            && samples.depth_sd[j] == 0.0
-            && samples.rate_sd[j] == 0.0
-    };
+    let flight =
+        |j: usize| !samples.in_contact[j] && samples.depth[j] < 0.0 && !samples.reconstructed(j);
     let mut segments = Vec::new();
     let mut i = 0;
     while i < samples.len() {

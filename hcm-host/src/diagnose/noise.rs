@@ -96,8 +96,7 @@ fn uniform_clock(t: &[f64]) -> bool {
 /// whose motion shares every row with the force the sds are 0 and σ_eff = σ.
 pub fn effective_sigma(samples: &ContactSamples, law: &ExtendedLaw<f64>, sigma: f64) -> f64 {
     let contact: Vec<usize> = (0..samples.len())
-        .filter(|&i| samples.in_contact[i])
-        .filter(|&i| samples.depth_sd[i] > 0.0 || samples.rate_sd[i] > 0.0)
+        .filter(|&i| samples.in_contact[i] && samples.reconstructed(i))
         .collect();
     if contact.is_empty() {
         return sigma;

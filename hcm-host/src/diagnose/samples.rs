@@ -50,6 +50,12 @@ impl ContactSamples {
         self.time.is_empty()
     }
 
+    /// Whether sample `i`'s motion was reconstructed (`dataset::reconstruct`,
+    /// `dataset::newton`) rather than recorded there: it carries a standard deviation.
+    pub fn reconstructed(&self, i: usize) -> bool {
+        self.depth_sd[i] != 0.0 || self.rate_sd[i] != 0.0
+    }
+
     /// The contact state of sample `i` as a law reads it.
     pub fn state(&self, i: usize) -> (Indentation<f64>, ContactMemory<f64>) {
         (

@@ -93,7 +93,7 @@ pub struct Selection {
 /// and an exponent change is named only beyond what that re-tuning absorbs.
 pub fn free_parameters(samples: &ContactSamples, law: &AnyNormalLaw<f64>) -> Vec<String> {
     let reconstructed =
-        (0..samples.len()).any(|i| samples.in_contact[i] && samples.depth_sd[i] > 0.0);
+        (0..samples.len()).any(|i| samples.in_contact[i] && samples.reconstructed(i));
     Bounds::for_law(law.name(), None)
         .map(|b| {
             b.free()
