@@ -81,14 +81,25 @@ fn read(recording: &Recording) -> Dataset {
     Dataset::from_reader("rig.csv", recording.csv.as_bytes()).expect("the rig's CSV reads")
 }
 
-/// What `hcm diagnose` answers on `runs` runs of `rig` (seed `seed`), printed.
-fn diagnosed(label: &str, rig: &Rig, seed: u64) -> Diagnosis {
-    let data = read(&rig.record(RUNS, seed));
+/// What `hcm diagnose` answers on `data` against `model` (its HCM comparison trained
+/// for 2 epochs only: the tests judge the naming).
+fn answer(model: &Model, data: &Dataset) -> Diagnosis {
     let settings = DiagnoseSettings {
         hcm_epochs: 2,
         ..DiagnoseSettings::default()
     };
-    let d = diagnose(&base_model(rig), &data, &settings).expect("diagnose runs");
+    diagnose(model, data, &settings).expect("diagnose runs")
+}
+
+/// What `hcm diagnose` answers on `runs` runs of `rig` (seed `seed`) against the rig's
+/// own base model.
+fn answer_on(rig: &Rig, runs: usize, seed: u64) -> Diagnosis {
+    answer(&base_model(rig), &read(&rig.record(runs, seed)))
+}
+
+/// What `hcm diagnose` answers on [`RUNS`] runs of `rig` (seed `seed`), printed.
+fn diagnosed(label: &str, rig: &Rig, seed: u64) -> Diagnosis {
+    let d = answer_on(rig, RUNS, seed);
     println!(
         "{label}: σ = {:.2} N, structured {}, unexplained {:.3}",
         d.noise.sigma, d.base_structured, d.unexplained_share
@@ -504,12 +515,7 @@ fn catalogued(effect: Effect, share: f64, seed: u64, tolerance: f64) {
 #[test]
 fn hysteresis_damping_at_half_a_percent_is_named_from_128_runs() {
     let (rig, name, index, truth) = hide(ball(), Effect::Hysteresis, 0.005);
-    let data = read(&rig.record(128, 62));
-    let settings = DiagnoseSettings {
-        hcm_epochs: 2,
-        ..DiagnoseSettings::default()
-    };
-    let d = diagnose(&base_model(&rig), &data, &settings).expect("diagnose runs");
+    let d = answer_on(&rig, 128, 62);
     named_alone(&d, name, index, truth, 0.4);
     let p = &d.causes[0].parameters[index];
     assert!(p.ci.0 < truth && truth < p.ci.1, "p {p:?}");
@@ -591,10 +597,6 @@ fn a_stiffness_exponent_change_has_power_without_false_alarms() {
         .iter()
         .flat_map(|&x| seeds.iter().map(move |&s| (x, s)))
         .collect();
-    let settings = DiagnoseSettings {
-        hcm_epochs: 2,
-        ..DiagnoseSettings::default()
-    };
     let answers: Vec<Vec<&'static str>> = cells
         .par_iter()
         .map(|&(share, seed)| {
@@ -603,9 +605,7 @@ fn a_stiffness_exponent_change_has_power_without_false_alarms() {
             } else {
                 ball()
             };
-            let data = read(&rig.record(RUNS, seed));
-            let d = diagnose(&base_model(&rig), &data, &settings).expect("diagnose runs");
-            names(&d)
+            names(&answer_on(&rig, RUNS, seed))
         })
         .collect();
     let mut wrong = 0;
@@ -821,11 +821,7 @@ fn camera_frames_with_a_wrong_mass_get_a_verdict_not_a_wrong_name() {
     let rig = camera();
     let data = read(&rig.record(RUNS, 88));
     let heavier = base_model_with(&rig, &[format!("body.ball.mass={:e}", 1.1 * rig.mass)]);
-    let settings = DiagnoseSettings {
-        hcm_epochs: 2,
-        ..DiagnoseSettings::default()
-    };
-    let d = diagnose(&heavier, &data, &settings).expect("diagnose runs");
+    let d = answer(&heavier, &data);
     println!("wrong mass, camera rows: {:?}", d.data_quality);
     assert!(!d.data_quality.sufficient, "{:?}", d.data_quality);
     assert!(d.causes.is_empty(), "{:#?}", d.causes);
@@ -853,12 +849,7 @@ fn camera_frames_with_empty_cells_are_read_and_diagnosed() {
 /// What `hcm diagnose` answers on the paper's ball (Lankarani–Nikravesh, e = 0.9) when
 /// the base model holds another law, `base` (its stiffness and exponent the rig's).
 fn with_base(label: &str, base: Model, seed: u64) -> Diagnosis {
-    let data = read(&ball().record(RUNS, seed));
-    let settings = DiagnoseSettings {
-        hcm_epochs: 2,
-        ..DiagnoseSettings::default()
-    };
-    let d = diagnose(&base, &data, &settings).expect("diagnose runs");
+    let d = answer(&base, &read(&ball().record(RUNS, seed)));
     println!(
         "{label}: causes {:?}, ambiguous {:?}, unexplained {:.3}",
         d.causes
