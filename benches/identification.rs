@@ -8,8 +8,8 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use hcm_host::experiment::generate;
 use hcm_host::identify::evolve::Fitness;
-use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::{identify, Method};
+use hcm_host::numerics::optimize::genetic::GeneticSettings;
 use hcm_host::scenario::Scenario;
 use std::path::Path;
 use std::time::Duration;

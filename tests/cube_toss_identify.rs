@@ -7,10 +7,10 @@
 //! README's.
 
 use hcm_host::dataset::{Dataset, Run};
-use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::motion::{
     identify_motion, split_tosses, MotionFit, MotionParameters, MotionTarget,
 };
+use hcm_host::numerics::optimize::genetic::GeneticSettings;
 use hcm_host::scenario::{Model, Scenario};
 use hcm_host::toss::{evaluate_tosses, summarize, TossSetup};
 

@@ -6,10 +6,11 @@
 //! Run with `--nocapture` to see the fitness values and the identified parameters.
 
 use hcm_host::experiment::generate;
-use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::rigid::{
     event_errors, fitness, identify_rigid, replay, RigidParameters, WrenchTarget,
 };
+use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::numerics::optimize::Parameters;
 use hcm_host::scenario::Model;
 use std::collections::BTreeMap;
 
@@ -82,7 +83,7 @@ fn the_genetic_algorithm_fits_impact_with_a_fixed_wrong_exponent() {
         seed: 2,
         ..GeneticSettings::default()
     };
-    let first = parameters.genetic();
+    let first = parameters.bounds();
     let middle: Vec<f64> = first
         .iter()
         .map(|b| {
@@ -93,7 +94,7 @@ fn the_genetic_algorithm_fits_impact_with_a_fixed_wrong_exponent() {
             }
         })
         .collect();
-    let start = fitness(&target, &parameters.apply(&target.model, 0, &middle));
+    let start = fitness(&target, &parameters.apply(&target.model, &middle));
     let found = identify_rigid(&pm2, &target, &parameters, &settings, |_, _| {}).unwrap();
     println!(
         "fitness {start:.3e} at the box's middle → {:.3e} in {} replays, {:.1} s: {:?}",

@@ -4,8 +4,8 @@ use super::progress_bar;
 use anyhow::Context;
 use hcm_host::dataset::{needs, Dataset};
 use hcm_host::identify::evolve::Fitness;
-use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::{identify, Method, Physics};
+use hcm_host::numerics::optimize::genetic::GeneticSettings;
 use std::path::PathBuf;
 
 /// Identify a physics model (PM2) from data.

@@ -4,11 +4,11 @@
 use super::progress_bar;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
-use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::motion::{
     beside_physics, fitted_assignments, fitted_physics, fitted_scenario_text, identify_motion,
     set_options, split_tosses, MotionFit, MotionParameters, MotionStage, MotionTarget,
 };
+use hcm_host::numerics::optimize::genetic::GeneticSettings;
 use hcm_host::output::write_bytes;
 use hcm_host::scenario::Model;
 use hcm_host::toss::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};

@@ -5,9 +5,9 @@
 use super::progress_bar;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
-use hcm_host::identify::genetic::GeneticSettings;
 use hcm_host::identify::rigid::{identify_rigid, RigidParameters, WrenchTarget};
 use hcm_host::identify::{FitRecord, Physics};
+use hcm_host::numerics::optimize::genetic::GeneticSettings;
 use hcm_host::scenario::{Model, Scenario};
 use std::path::PathBuf;
 

@@ -22,7 +22,7 @@
 //! carries its own.
 
 use super::implied::Implied;
-use crate::identify::least_squares::minimize_scalar;
+use crate::numerics::optimize::minimize_scalar;
 
 /// Largest RMS misfit (in standard deviations of what a row can be off by) at which
 /// recorded motion is trusted through a contact (–). Measured on the independent rig

@@ -34,7 +34,8 @@ use super::catalogue::{reference_depth, Candidate, Kind, CATALOGUE};
 use super::sensor::Sensor;
 use super::ContactSamples;
 use crate::identify::bounds::Bounds;
-use crate::identify::levenberg_marquardt::{levenberg_marquardt, LmSettings};
+use crate::numerics::optimize::levenberg_marquardt::{levenberg_marquardt, LmSettings};
+use crate::numerics::optimize::Bound;
 use crate::numerics::{linear_least_squares, Reduction};
 use hcm_core::effect::ExtendedLaw;
 use hcm_core::law::AnyNormalLaw;
@@ -517,7 +518,7 @@ pub fn refit(
 struct Unknowns {
     initial: Vec<f64>,
     scales: Vec<f64>,
-    bounds: Vec<(f64, f64)>,
+    bounds: Vec<Bound>,
     /// Index of each chosen cause's strength (its shape, if any, follows it).
     slots: Vec<usize>,
 }
@@ -540,7 +541,7 @@ impl Unknowns {
                 let (lo, hi) = domain
                     .as_ref()
                     .map_or((f64::NEG_INFINITY, f64::INFINITY), |d| d.range(name));
-                (lo.min(v), hi.max(v))
+                Bound::linear(name, lo.min(v), hi.max(v))
             })
             .collect();
         let mut unknowns = Unknowns {
@@ -569,11 +570,16 @@ impl Unknowns {
         };
         self.initial.push(0.0);
         self.scales.push(typical);
-        self.bounds.push(bounds);
+        self.bounds
+            .push(Bound::linear(candidate.name(), bounds.0, bounds.1));
         if !shape.is_nan() {
             self.initial.push(shape);
             self.scales.push(1.0);
-            self.bounds.push((0.0, 4.0));
+            self.bounds.push(Bound::linear(
+                format!("{} shape", candidate.name()),
+                0.0,
+                4.0,
+            ));
         }
     }
 }

@@ -25,6 +25,14 @@ mod ticks;
 
 use layout::Layout;
 
+/// A figure and the file stem it is written under (`STEM.svg`, `STEM.png`).
+pub struct NamedFigure {
+    /// File stem, e.g. `contact_force`.
+    pub stem: &'static str,
+    /// The figure.
+    pub figure: Figure<'static>,
+}
+
 /// An sRGB colour, 8 bits per channel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Colour {

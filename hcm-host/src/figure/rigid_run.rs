@@ -4,9 +4,9 @@
 //! `contact_torque`).
 
 use super::side_view::{plane_trace, shape_outlines, Outline};
+use super::NamedFigure;
 use super::{Colour, Figure, Series};
 use crate::dataset::{BodyTrack, Sample};
-use crate::pipeline::NamedFigure;
 use crate::scenario::{Model, Shape};
 use crate::simulate::Simulation;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};

@@ -1,8 +1,8 @@
 //! Which parameters of a law are identified, and the box they are searched in.
 
-use super::genetic::Bound;
 use super::IdentifyError;
 use crate::law_catalogue;
+use crate::numerics::optimize::{Bound, Parameters};
 use hcm_core::law::{AnyNormalLaw, LawKind};
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
@@ -10,9 +10,9 @@ use std::f64::consts::TAU;
 /// The free parameters of one law with their search intervals.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bounds {
-    /// (name, lower, upper, log-scaled) per free parameter, in catalogue order;
-    /// every name is a parameter of the law.
-    pub parameters: Vec<(String, f64, f64, bool)>,
+    /// One bound per free parameter, in catalogue order; every name is a parameter of
+    /// the law.
+    pub parameters: Vec<Bound>,
     /// The law they are parameters of.
     kind: LawKind,
 }
@@ -53,13 +53,13 @@ impl Bounds {
         overrides: Option<&BTreeMap<String, [f64; 2]>>,
     ) -> Result<Bounds, String> {
         let kind = law_catalogue::kind(law).map_err(|e| e.to_string())?;
-        let mut parameters: Vec<(String, f64, f64, bool)> = defaults(law)
+        let mut parameters: Vec<Bound> = defaults(law).iter().map(Bound::of_row).collect();
+        let free = parameters
             .iter()
-            .map(|&(n, lo, hi, log)| (n.to_owned(), lo, hi, log))
-            .collect();
-        let free = parameters.iter().map(|p| p.0.clone()).collect::<Vec<_>>();
+            .map(|p| p.name.clone())
+            .collect::<Vec<_>>();
         for (name, [lower, upper]) in overrides.into_iter().flatten() {
-            let Some(slot) = parameters.iter_mut().find(|p| &p.0 == name) else {
+            let Some(slot) = parameters.iter_mut().find(|p| &p.name == name) else {
                 let what = if kind.parameter_index(name).is_some() {
                     "is fixed by the scenario, not a free parameter"
                 } else {
@@ -71,11 +71,11 @@ impl Bounds {
                 ));
             };
             if !(lower < upper && lower.is_finite() && upper.is_finite())
-                || (slot.3 && *lower <= 0.0)
+                || (slot.log_scale && *lower <= 0.0)
             {
                 return Err(format!("identify.bounds.{law}.{name}: needs finite lower < upper (and > 0 for {name}), found [{lower}, {upper}]"));
             }
-            (slot.1, slot.2) = (*lower, *upper);
+            (slot.lower, slot.upper) = (*lower, *upper);
         }
         Ok(Bounds { parameters, kind })
     }
@@ -107,7 +107,7 @@ impl Bounds {
     /// The values of the free parameters in `law`, in [`Bounds::free`] order.
     pub fn values(&self, law: &AnyNormalLaw<f64>) -> Result<Vec<f64>, IdentifyError> {
         self.check(law)?;
-        let value = |p: &(String, f64, f64, bool)| law.get(&p.0);
+        let value = |p: &Bound| law.get(&p.name);
         let values = self.parameters.iter().map(value).collect::<Result<_, _>>();
         values.map_err(|e| IdentifyError::Setup(e.to_string()))
     }
@@ -116,22 +116,22 @@ impl Bounds {
     /// the others unchanged: the model a fitness or a residual evaluates.
     pub fn with(&self, law: &AnyNormalLaw<f64>, values: &[f64]) -> AnyNormalLaw<f64> {
         law.map_named(|name, v| {
-            let free = self.parameters.iter().position(|p| p.0 == name);
+            let free = self.parameters.iter().position(|p| p.name == name);
             free.map_or(v, |i| values[i])
         })
     }
 
     /// Names of the free parameters.
     pub fn free(&self) -> Vec<&str> {
-        self.parameters.iter().map(|p| p.0.as_str()).collect()
+        self.parameters.iter().map(|p| p.name.as_str()).collect()
     }
 
     /// Interval of parameter `name` ((−∞, ∞) if it is not free).
     pub fn range(&self, name: &str) -> (f64, f64) {
         self.parameters
             .iter()
-            .find(|p| p.0 == name)
-            .map_or((f64::NEG_INFINITY, f64::INFINITY), |p| (p.1, p.2))
+            .find(|p| p.name == name)
+            .map_or((f64::NEG_INFINITY, f64::INFINITY), Bound::range)
     }
 
     /// `law` with each free parameter clamped into its interval.
@@ -146,34 +146,41 @@ impl Bounds {
         })
     }
 
-    /// The box as the genetic algorithm's bounds.
-    pub fn genetic(&self) -> Vec<Bound> {
-        self.parameters
-            .iter()
-            .map(|(name, lower, upper, log_scale)| Bound {
-                name: name.clone(),
-                lower: *lower,
-                upper: *upper,
-                log_scale: *log_scale,
-            })
-            .collect()
-    }
-
     /// A point inside the box: the (geometric, where log-scaled) middle.
     pub fn middle(&self) -> Vec<(String, f64)> {
         self.parameters
             .iter()
-            .map(|(n, lo, hi, log)| {
+            .map(|b| {
                 (
-                    n.clone(),
-                    if *log {
-                        (lo * hi).sqrt()
+                    b.name.clone(),
+                    if b.log_scale {
+                        (b.lower * b.upper).sqrt()
                     } else {
-                        0.5 * (lo + hi)
+                        0.5 * (b.lower + b.upper)
                     },
                 )
             })
             .collect()
+    }
+}
+
+/// A law's free parameters as one searchable vector: the genetic algorithm's box,
+/// Levenberg–Marquardt's projection box.
+impl Parameters for Bounds {
+    type Target = AnyNormalLaw<f64>;
+
+    fn bounds(&self) -> Vec<Bound> {
+        self.parameters.clone()
+    }
+
+    /// NaN for a parameter `law` lacks (a law of another kind: see [`Bounds::check`]).
+    fn values(&self, law: &AnyNormalLaw<f64>) -> Vec<f64> {
+        let value = |p: &Bound| law.get(&p.name).unwrap_or(f64::NAN);
+        self.parameters.iter().map(value).collect()
+    }
+
+    fn apply(&self, law: &AnyNormalLaw<f64>, values: &[f64]) -> AnyNormalLaw<f64> {
+        self.with(law, values)
     }
 }
 

@@ -2,10 +2,11 @@
 //! a candidate law with the measured data, replayed per condition ([`super::replay`]).
 
 use super::bounds::Bounds;
-use super::genetic::{minimize, GeneticSettings};
-use super::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use super::replay::{simulate_target, Target};
 use super::IdentifyError;
+use crate::numerics::optimize::genetic::{minimize, GeneticSettings};
+use crate::numerics::optimize::levenberg_marquardt::{levenberg_marquardt, LmSettings};
+use crate::numerics::optimize::Parameters;
 use hcm_core::law::AnyNormalLaw;
 
 /// What the genetic algorithm minimises.
@@ -100,11 +101,10 @@ pub fn fit(
     mut progress: impl FnMut(usize, usize, f64),
 ) -> Result<GaOutcome, IdentifyError> {
     bounds.check(template)?;
-    let free = bounds.free();
     let with = |p: &[f64]| bounds.with(template, p);
     let generations = settings.generations;
     let result = minimize(
-        &bounds.genetic(),
+        &bounds.bounds(),
         settings,
         |p| fitness(&with(p), targets, c, kind),
         |generation, best| progress(generation, generations, best),
@@ -113,7 +113,7 @@ pub fn fit(
     // The GA finds the basin; in the narrow k–n valley of these laws it would need
     // thousands more simulations to reach the bottom that LM reaches in a few dozen.
     let scales: Vec<f64> = result.best.iter().map(|v| v.abs().max(1e-12)).collect();
-    let box_bounds: Vec<(f64, f64)> = free.iter().map(|name| bounds.range(name)).collect();
+    let box_bounds = bounds.bounds();
     let polished = levenberg_marquardt(
         |p: &[f64], out: &mut [f64]| residuals(&with(p), targets, c, kind, out),
         residual_count(targets, kind),

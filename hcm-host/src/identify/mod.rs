@@ -3,9 +3,6 @@
 
 pub mod bounds;
 pub mod evolve;
-pub mod genetic;
-pub mod least_squares;
-pub mod levenberg_marquardt;
 pub mod motion;
 pub mod physics;
 pub mod replay;
@@ -50,10 +47,10 @@ pub enum IdentifyError {
     UnsupportedLaw(String),
     /// The least-squares solver failed.
     #[error("least squares: {0}")]
-    LeastSquares(#[from] least_squares::LeastSquaresError),
+    LeastSquares(#[from] crate::numerics::optimize::LeastSquaresError),
     /// The genetic algorithm failed.
     #[error("genetic algorithm: {0}")]
-    Genetic(#[from] genetic::GeneticError),
+    Genetic(#[from] crate::numerics::optimize::genetic::GeneticError),
 }
 
 /// How to identify.
@@ -62,7 +59,10 @@ pub enum Method {
     /// Separable least squares + Levenberg–Marquardt on the force samples.
     Lsq,
     /// Genetic algorithm on simulated vs measured data.
-    Ga(evolve::Fitness, genetic::GeneticSettings),
+    Ga(
+        evolve::Fitness,
+        crate::numerics::optimize::genetic::GeneticSettings,
+    ),
 }
 
 /// An identified law.

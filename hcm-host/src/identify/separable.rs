@@ -14,11 +14,11 @@
 //! | impact | e, δ_max | k (δ^e), d_max (step(δ, 0, 0, δ_max, 1)·δ̇) |
 
 use super::bounds::Bounds;
-use super::least_squares::{minimize_box2, minimize_scalar, LeastSquaresError};
-use super::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use super::samples::ForceSample;
 use super::IdentifyError;
 use crate::numerics::linear_least_squares;
+use crate::numerics::optimize::levenberg_marquardt::{levenberg_marquardt, LmSettings};
+use crate::numerics::optimize::{minimize_box2, minimize_scalar, LeastSquaresError, Parameters};
 use hcm_core::law::{step, AnyNormalLaw};
 use hcm_core::model::ContactModel;
 
@@ -200,7 +200,7 @@ fn refine(
     let free = bounds.free();
     let start = bounds.values(&law)?;
     let scales: Vec<f64> = start.iter().map(|v| v.abs().max(1e-12)).collect();
-    let box_bounds: Vec<(f64, f64)> = free.iter().map(|name| bounds.range(name)).collect();
+    let box_bounds = bounds.bounds();
     let with = |p: &[f64]| bounds.with(&law, p);
     let residuals = |p: &[f64], out: &mut [f64]| {
         let candidate = ContactModel::physics(with(p));

@@ -8,10 +8,14 @@
 //! - [`euclidean_norm`]: ‖x‖₂ without overflow.
 //! - [`median`]: of a list, in place (the noise floors, the data-quality checks, the
 //!   toss scores' summaries).
+//! - [`optimize`]: the bounded minimisers (genetic algorithm, Levenberg–Marquardt,
+//!   scalar and two-variable searches, Nelder–Mead) behind one bounds type, one
+//!   progress observer and one trait for a vector of named parameters.
 
 pub mod linear_least_squares;
 mod median;
 mod norm;
+pub mod optimize;
 
 pub use linear_least_squares::{
     linear_least_squares, Covariance, LinearFit, LinearLeastSquaresError, Reduction,

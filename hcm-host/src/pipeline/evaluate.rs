@@ -4,20 +4,12 @@
 use super::{Blobs, PipelineError, Progress, Stage, CONTACT};
 use crate::dataset::Dataset;
 use crate::evaluate::{evaluate, ConditionTable};
-use crate::figure::{Band, Colour, Figure, Series};
+use crate::figure::{Band, Colour, Figure, NamedFigure, Series};
 use crate::identify::replay::{curve, simulate_target_with, targets, Target};
 use crate::scenario::Model;
 
 /// The column labels of the models compared, in the table's order.
 pub const MODELS: [&str; 3] = ["PM2", "HCM", "HCM int8"];
-
-/// A figure and the file stem it is written under (`STEM.svg`, `STEM.png`).
-pub struct NamedFigure {
-    /// File stem, e.g. `contact_force`.
-    pub stem: &'static str,
-    /// The figure.
-    pub figure: Figure<'static>,
-}
 
 /// What stage 5 finds.
 pub struct Evaluation {

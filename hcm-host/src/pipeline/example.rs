@@ -3,8 +3,8 @@
 use super::results::PaperErrors;
 use crate::evaluate::IndicatorErrors;
 use crate::identify::evolve::Fitness;
-use crate::identify::genetic::GeneticSettings;
 use crate::identify::Method;
+use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::scenario::{Scenario, ScenarioError};
 use serde::Serialize;
 use std::path::PathBuf;

@@ -3,7 +3,8 @@
 
 use super::PipelineError;
 use crate::export::encode;
-use crate::residual::{round_trip_error, ContactResidual};
+use crate::export::round_trip_error;
+use crate::residual::ContactResidual;
 use crate::train::TrainedResidual;
 use hcm_core::residual::Quantisation;
 

@@ -31,7 +31,8 @@ mod results;
 mod setup;
 mod train;
 
-pub use evaluate::{evaluate_on_s2, Evaluation, NamedFigure};
+pub use crate::figure::NamedFigure;
+pub use evaluate::{evaluate_on_s2, Evaluation};
 pub use example::{Example, Pm2Method, ReproduceSettings};
 pub use export::{blob, export_blobs, Blob, Blobs};
 pub use generate::experiment;

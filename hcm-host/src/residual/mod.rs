@@ -15,10 +15,8 @@
 //!   per-output networks of width 8 merged block-diagonally
 //!   (`crate::train::per_output`), or one joint network of width 48.
 
-mod round_trip;
 mod stored;
 
-pub use round_trip::{round_trip_error, round_trip_error_over};
 pub use stored::Stored;
 
 use hcm_core::model::{ContactModel, Correction, Residual};

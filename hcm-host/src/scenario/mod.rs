@@ -6,6 +6,7 @@
 //! deserialised and checked ([`Scenario::resolve`]) into a [`Model`] ready to simulate.
 //! Every key is documented in the README ("Scenario files").
 
+pub mod geometry;
 pub mod overrides;
 mod resolve;
 mod rigid;

@@ -2,9 +2,8 @@
 //! resolves can still be impossible (a Poisson's ratio of 0.6, a ball starting half
 //! a metre inside the ground), and would then simulate without a word.
 
+use super::geometry::{pair_contacts, pair_kinematics, Pose};
 use super::{Model, Scenario, ScenarioError, Shape};
-use crate::simulate::pair_kinematics;
-use crate::simulate::rigid::{pair_contacts, Pose};
 use hcm_core::geometry::{sphere_sphere, Material};
 use hcm_core::LawError;
 use std::path::Path;

@@ -2,14 +2,12 @@
 //! adaptive Dormand–Prince solver, locate every touch-down and lift-off (δ = 0) to
 //! 1e-13 s, and collect each contact event's indicators and a sampled trajectory.
 
-mod kinematics;
 mod peak;
 mod record;
 pub mod rigid;
 mod state;
 mod system;
 
-pub use kinematics::{pair_kinematics, PairKinematics};
 pub use state::{Layout, StateVector};
 pub use system::{ContactModes, ContactSystem, Loads};
 

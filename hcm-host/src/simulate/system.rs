@@ -2,8 +2,8 @@
 //! under gravity and contact forces (Eq 17 and Eq 21 are special cases), plus the
 //! impulse and work of each contact.
 
-use super::kinematics::{pair_kinematics, PairKinematics};
 use super::state::{Layout, StateVector};
+use crate::scenario::geometry::{pair_kinematics, PairKinematics};
 use crate::scenario::Model;
 use hcm_core::effect::ContactMemory;
 use hcm_core::integrate::OdeSystem;

@@ -26,6 +26,7 @@
 pub mod adam;
 pub mod envelope;
 pub mod explained;
+mod int8;
 pub mod network;
 pub mod per_output;
 pub mod quantise;
@@ -35,6 +36,7 @@ pub mod wrench_samples;
 pub mod wrench_settings;
 
 pub use envelope::envelope_tolerance;
+pub use int8::int8_row;
 pub use network::{Activation, Network};
 pub use per_output::OutputNets;
 pub use quantise::{quantisation_aware, QuantiseReport};

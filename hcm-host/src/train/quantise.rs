@@ -1,7 +1,7 @@
 //! Quantisation-aware fine-tuning: an int8 twin of a trained network.
 //!
 //! The int8 blob stores the hidden → hidden layers (WIDTH × WIDTH weights each, the
-//! bulk of the network) as int8 with one f32 scale per row ([`crate::export::int8_row`]);
+//! bulk of the network) as int8 with one f32 scale per row ([`super::int8_row`]);
 //! the input layer (INPUTS weights per row) and the linear output layer stay f32
 //! (`hcm_core::residual::mlp`). Rounding moves each weight by up to half a level, and
 //! those small moves add up. Measured on the flat shot's residual (`hcm reproduce
@@ -30,9 +30,9 @@
 //! like [`super::train`].
 
 use super::adam::Adam;
+use super::int8::int8_row;
 use super::network::Layout;
 use super::{shuffle, Network, Normalised, TrainError, CHUNK_ROWS};
-use crate::export::int8_row;
 use crate::numerics::{LinearFit, Reduction};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

@@ -7,7 +7,7 @@
 //! value that changes nothing.
 
 use crate::dataset::Dataset;
-use crate::identify::genetic::Bound;
+use crate::numerics::optimize::Bound;
 use crate::scenario::{Model, Shape};
 use hcm_core::effect::{ContactEffect, HysteresisDamping};
 use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};

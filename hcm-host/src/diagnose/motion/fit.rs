@@ -7,10 +7,10 @@
 
 use super::catalogue::MotionEffect;
 use crate::dataset::Dataset;
-use crate::identify::genetic::Bound;
-use crate::identify::least_squares::minimize_scalar;
-use crate::identify::motion::polish::polish;
 use crate::identify::motion::MotionTarget;
+use crate::numerics::optimize::minimize_scalar;
+use crate::numerics::optimize::nelder_mead::polish;
+use crate::numerics::optimize::Bound;
 use crate::scenario::Model;
 use crate::toss::predict::{simulate_toss, PreparedToss};
 use crate::toss::{score_toss, TossError};

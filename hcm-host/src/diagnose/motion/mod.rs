@@ -227,7 +227,7 @@ pub fn diagnose_motion(
 /// A candidate's verdict from its fit and held-out scores.
 fn judge(
     effect: MotionEffect,
-    bounds: &[crate::identify::genetic::Bound],
+    bounds: &[crate::numerics::optimize::Bound],
     fitted: &Fitted,
     base_held: &[f64],
     held: Option<&[f64]>,

@@ -2,14 +2,13 @@
 //! and table height fitted to filmed tosses — poses, no force — by replaying each
 //! training toss from its window start ([`crate::toss`]) and minimising the mean score
 //! `hcm predict` prints ([`fitness`]). The genetic algorithm
-//! ([`crate::identify::genetic`], seeded, its generation evaluated in parallel) searches
-//! the box of [`parameters`]; Nelder–Mead ([`polish`]) refines its best. The tosses are
+//! ([`crate::numerics::optimize::genetic`], seeded, its generation evaluated in parallel) searches
+//! the box of [`parameters`]; Nelder–Mead ([`crate::numerics::optimize::nelder_mead`]) refines its best. The tosses are
 //! split by [`split`]: the fit never sees the held-out part.
 
 pub mod fitness;
 pub mod parameters;
 pub mod physics_file;
-pub mod polish;
 pub mod scenario_file;
 pub mod split;
 
@@ -19,7 +18,8 @@ pub use physics_file::{fitted_physics, set_options};
 pub use scenario_file::{beside_physics, fitted_assignments, fitted_scenario_text};
 pub use split::{part_of, split_tosses, Part};
 
-use crate::identify::genetic::{minimize, GeneticError, GeneticSettings};
+use crate::numerics::optimize::genetic::{minimize, GeneticError, GeneticSettings};
+use crate::numerics::optimize::{nelder_mead, Parameters};
 use crate::scenario::Model;
 use std::time::Instant;
 
@@ -67,7 +67,7 @@ pub fn identify_motion(
     let started = Instant::now();
     let bounds = parameters.bounds();
     let score = |genes: &[f64]| fitness(target, &parameters.apply(model, genes));
-    let start = parameters.of(model);
+    let start = parameters.values(model);
     let start_fitness = score(&start);
     let genetic = minimize(&bounds, settings, score, |generation, best| {
         progress(MotionStage::Genetic, generation, best)
@@ -78,7 +78,7 @@ pub fn identify_motion(
     } else {
         (&genetic.best, genetic.fitness)
     };
-    let polished = polish::polish(
+    let polished = nelder_mead::polish(
         &bounds,
         from,
         from_fitness,

@@ -10,7 +10,7 @@
 //!
 //! Friction is searched as μ_s and μ_d/μ_s ∈ [0.3, 1], so every candidate is a valid law.
 
-use crate::identify::genetic::Bound;
+use crate::numerics::optimize::{Bound, Parameters};
 use crate::scenario::{Model, Shape};
 use crate::toss::{TossError, TossSetup};
 
@@ -88,25 +88,22 @@ impl MotionParameters {
             law,
         })
     }
+}
 
-    /// Gene names, in order: the law's two, `mu_static`, `mu_ratio` (μ_d/μ_s),
-    /// `table_offset` (m, the plane's surface along its normal), `inertia_scale` (–,
-    /// on the scenario's inertia tensor of the tossed body).
-    pub fn names(&self) -> Vec<&'static str> {
-        let mut names: Vec<&'static str> = self.law.iter().map(|g| g.0).collect();
-        names.extend(OTHER_GENES.iter().map(|g| g.0));
-        names
-    }
+/// The genes, in order: the law's two, `mu_static`, `mu_ratio` (μ_d/μ_s),
+/// `table_offset` (m, the plane's surface along its normal), `inertia_scale` (–, on
+/// the scenario's inertia tensor of the tossed body).
+impl Parameters for MotionParameters {
+    type Target = Model;
 
-    /// The genetic algorithm's box, in [`MotionParameters::names`] order.
-    pub fn bounds(&self) -> Vec<Bound> {
+    fn bounds(&self) -> Vec<Bound> {
         (self.law.iter().chain(&OTHER_GENES))
             .map(Bound::of_row)
             .collect()
     }
 
     /// The genes of `model` as it is (the scenario's values), clamped into the box.
-    pub fn of(&self, model: &Model) -> Vec<f64> {
+    fn values(&self, model: &Model) -> Vec<f64> {
         let contact = &model.contacts[self.contact];
         let law = contact.law();
         let (mu_static, mu_ratio) = match contact.model.friction {
@@ -136,7 +133,7 @@ impl MotionParameters {
 
     /// `model` with the parameters `genes` stand for (the inertia scale on `model`'s
     /// own tensor: give it the scenario's model, not a fitted one).
-    pub fn apply(&self, model: &Model, genes: &[f64]) -> Model {
+    fn apply(&self, model: &Model, genes: &[f64]) -> Model {
         let mut out = model.clone();
         let contact = &mut out.contacts[self.contact];
         for (gene, value) in self.law.iter().zip(genes) {
@@ -158,7 +155,7 @@ impl MotionParameters {
 
     /// The named values (SI units) `genes` stand for: the law's two, `mu_static`,
     /// `mu_dynamic`, `table_offset` (m), `inertia_scale` (–).
-    pub fn named(&self, genes: &[f64]) -> Vec<(String, f64)> {
+    fn named(&self, genes: &[f64]) -> Vec<(String, f64)> {
         let mut out: Vec<(String, f64)> = (self.law.iter())
             .zip(genes)
             .map(|(g, v)| (g.0.to_owned(), *v))

@@ -92,6 +92,7 @@ pub fn fitted_scenario_text(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numerics::optimize::Parameters;
     use crate::toss::TossSetup;
     use nalgebra::Matrix3;
     use std::path::Path;
@@ -113,7 +114,7 @@ mod tests {
             let model = base.model().unwrap();
             let setup = TossSetup::new(&model).unwrap();
             let parameters = MotionParameters::new(&model, &setup).unwrap();
-            let mut genes = parameters.of(&model);
+            let mut genes = parameters.values(&model);
             let last = genes.len() - 1;
             genes[last - 1] = -1.5e-3;
             genes[last] = 1.25;

@@ -11,8 +11,9 @@ pub use fitness::{event_errors, fitness, replay};
 pub use parameters::RigidParameters;
 pub use target::{EventTarget, WrenchTarget};
 
-use super::genetic::{minimize, GeneticError, GeneticSettings};
 use crate::indicators::IndicatorError;
+use crate::numerics::optimize::genetic::{minimize, GeneticError, GeneticSettings};
+use crate::numerics::optimize::{Observer, Parameters};
 use crate::scenario::Model;
 use std::time::Instant;
 
@@ -68,18 +69,17 @@ pub fn identify_rigid(
     target: &WrenchTarget,
     parameters: &RigidParameters,
     settings: &GeneticSettings,
-    progress: impl FnMut(usize, f64),
+    progress: impl Observer,
 ) -> Result<RigidIdentification, RigidIdentifyError> {
     let started = Instant::now();
-    let c = target.contact;
     let result = minimize(
-        &parameters.genetic(),
+        &parameters.bounds(),
         settings,
-        |genes| fitness(target, &parameters.apply(&target.model, c, genes)),
+        |genes| fitness(target, &parameters.apply(&target.model, genes)),
         progress,
     )?;
     Ok(RigidIdentification {
-        model: parameters.apply(model, c, &result.best),
+        model: parameters.apply(model, &result.best),
         parameters: parameters.named(&result.best),
         fitness: result.fitness,
         generations: result.generations,

@@ -7,7 +7,7 @@
 
 use super::RigidIdentifyError;
 use crate::identify::bounds::{Bounds, BoundsOverrides};
-use crate::identify::genetic::Bound;
+use crate::numerics::optimize::{Bound, Parameters};
 use crate::scenario::Model;
 use hcm_core::friction::VelocityStepFriction;
 
@@ -22,6 +22,8 @@ const FRICTION: [(&str, f64, f64, bool); 4] = [
 /// The free parameters of one contact and their box.
 #[derive(Clone, Debug)]
 pub struct RigidParameters {
+    /// Index of the contact they are parameters of.
+    contact: usize,
     /// The law's free parameters (the exponent excluded).
     law: Bounds,
     /// Whether the contact has friction to fit.
@@ -43,36 +45,55 @@ impl RigidParameters {
         let name = contact.law().name();
         let mut law =
             Bounds::for_law(name, overrides.get(name)).map_err(RigidIdentifyError::Setup)?;
-        law.parameters.retain(|p| p.0 != "exponent");
+        law.parameters.retain(|p| p.name != "exponent");
         Ok(RigidParameters {
+            contact: c,
             law,
             friction: contact.model.friction.is_some(),
         })
     }
 
-    /// Names of the genes, in order: the law's, then μ_s, μ_d/μ_s, v_s, v_d/v_s.
-    pub fn names(&self) -> Vec<String> {
-        let mut names: Vec<String> = self.law.free().iter().map(|n| n.to_string()).collect();
-        if self.friction {
-            names.extend(FRICTION.iter().map(|f| f.0.to_owned()));
-        }
-        names
+    /// Index of the contact the parameters belong to.
+    pub fn contact(&self) -> usize {
+        self.contact
     }
+}
 
-    /// The genetic algorithm's box, in [`RigidParameters::names`] order.
-    pub fn genetic(&self) -> Vec<Bound> {
-        let mut bounds = self.law.genetic();
+/// The genes, in order: the law's, then μ_s, μ_d/μ_s, v_s, v_d/v_s.
+impl Parameters for RigidParameters {
+    type Target = Model;
+
+    fn bounds(&self) -> Vec<Bound> {
+        let mut bounds = self.law.bounds();
         if self.friction {
             bounds.extend(FRICTION.iter().map(Bound::of_row));
         }
         bounds
     }
 
-    /// `model` with contact `c`'s free parameters set to `genes` (in
-    /// [`RigidParameters::names`] order).
-    pub fn apply(&self, model: &Model, c: usize, genes: &[f64]) -> Model {
+    /// The contact's law parameters as they are, then its friction's genes (μ_s,
+    /// μ_d/μ_s, v_s, v_d/v_s; NaN without friction).
+    fn values(&self, model: &Model) -> Vec<f64> {
+        let contact = &model.contacts[self.contact];
+        let mut values = Parameters::values(&self.law, &contact.model.normal.base);
+        if self.friction {
+            let f = contact.model.friction;
+            values.extend(f.map_or([f64::NAN; 4], |f| {
+                [
+                    f.static_coefficient,
+                    f.dynamic_coefficient / f.static_coefficient,
+                    f.stiction_speed,
+                    f.dynamic_speed / f.stiction_speed,
+                ]
+            }));
+        }
+        values
+    }
+
+    /// `model` with the contact's free parameters set to `genes`.
+    fn apply(&self, model: &Model, genes: &[f64]) -> Model {
         let mut out = model.clone();
-        let contact = &mut out.contacts[c];
+        let contact = &mut out.contacts[self.contact];
         let count = self.law.free().len();
         let (law, friction) = genes.split_at(count.min(genes.len()));
         contact.model.normal.base = self.law.with(&contact.model.normal.base, law);
@@ -89,7 +110,7 @@ impl RigidParameters {
 
     /// The named values (SI units) of the parameters `genes` stand for: the law's, then
     /// `mu_static`, `mu_dynamic`, `v_static`, `v_dynamic`.
-    pub fn named(&self, genes: &[f64]) -> Vec<(String, f64)> {
+    fn named(&self, genes: &[f64]) -> Vec<(String, f64)> {
         let count = self.law.free().len();
         let mut out: Vec<(String, f64)> = self
             .law

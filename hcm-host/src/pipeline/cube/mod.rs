@@ -22,8 +22,8 @@ pub use stages::{ErrorProfile, Predictions, SecondFold, Timeline};
 
 use crate::dataset::{DataError, Dataset};
 use crate::diagnose::motion::{diagnose_motion, MotionDiagnoseError, MotionDiagnosis};
-use crate::identify::genetic::GeneticError;
 use crate::identify::motion::{split_tosses, MotionFit};
+use crate::numerics::optimize::genetic::GeneticError;
 use crate::scenario::{Model, Scenario, ScenarioError};
 use crate::toss::{TossError, TossSetup};
 use std::path::{Path, PathBuf};

@@ -5,10 +5,10 @@
 use super::errors::{frame_errors, over_time, per_phase, PhaseErrors, TimePoint};
 use super::{CubeError, CubeProgress, CubeSettings};
 use crate::dataset::Dataset;
-use crate::identify::genetic::GeneticSettings;
 use crate::identify::motion::{
     beside_physics, identify_motion, MotionFit, MotionParameters, MotionStage, MotionTarget,
 };
+use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::scenario::Model;
 use crate::toss::{evaluate_tosses, TossEvaluation, TossSetup};
 use std::sync::atomic::{AtomicU64, Ordering};

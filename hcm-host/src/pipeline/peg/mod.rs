@@ -16,10 +16,10 @@ use super::{
     experiment, export_blobs, Blob, Blobs, PipelineError, Progress, Stage, StageClock, StageTiming,
 };
 use crate::experiment::Split;
-use crate::identify::genetic::GeneticSettings;
 use crate::identify::rigid::{
     identify_rigid, RigidIdentification, RigidIdentifyError, RigidParameters, WrenchTarget,
 };
+use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::scenario::{Scenario, ScenarioError};
 use std::path::PathBuf;
 

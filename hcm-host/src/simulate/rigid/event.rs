@@ -1,10 +1,10 @@
 //! Contact events of body pairs: touch-down and lift-off located where the pair's
 //! signed separation crosses zero, and each event's indicators.
 
-use super::geometry::pair_separation;
 use super::stepper::RigidStepper;
 use super::system::RigidSystem;
 use crate::indicators::WrenchIndicators;
+use crate::scenario::geometry::pair_separation;
 use crate::simulate::StateVector;
 use hcm_core::integrate::{locate_crossing, DenseOutput};
 use nalgebra::Vector3;

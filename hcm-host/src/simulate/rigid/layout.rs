@@ -1,10 +1,11 @@
 //! Where each rigid body's state and each contact's running integrals sit in the
 //! simulator's state vector, and the pose of a body read back from it.
 
+use crate::scenario::geometry::Pose;
 use crate::scenario::Model;
 use crate::simulate::StateVector;
 use hcm_core::rigid::RigidState;
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::Vector3;
 
 /// Components of one moving body: p (3), q (4), v (3), ω in the body frame (3), as
 /// [`RigidState`] orders them.
@@ -23,27 +24,6 @@ pub struct RigidLayout {
     contact_base: usize,
     /// Total length.
     len: usize,
-}
-
-/// A body's pose and velocities at one instant, world frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Pose {
-    /// Centre of mass (m).
-    pub position: Vector3<f64>,
-    /// Orientation, body → world (–).
-    pub orientation: UnitQuaternion<f64>,
-    /// Velocity of the centre of mass (m/s).
-    pub velocity: Vector3<f64>,
-    /// Angular velocity ω (rad/s, world frame).
-    pub angular_velocity: Vector3<f64>,
-}
-
-impl Pose {
-    /// Velocity (m/s) of the body's material point at `point` (m): v + ω × (point − p).
-    #[inline]
-    pub fn point_velocity(&self, point: &Vector3<f64>) -> Vector3<f64> {
-        self.velocity + self.angular_velocity.cross(&(point - self.position))
-    }
 }
 
 impl RigidLayout {

@@ -13,7 +13,6 @@
 //! pair's separation crosses zero, for the indicators and the sampling only.
 
 mod event;
-mod geometry;
 mod jacobian;
 mod layout;
 mod memory;
@@ -22,8 +21,7 @@ mod stepper;
 mod system;
 
 pub use event::{EventTracker, PairEvent};
-pub use geometry::{pair_contacts, pair_separation};
-pub use layout::{Pose, RigidLayout};
+pub use layout::RigidLayout;
 pub use stepper::RigidStepper;
 pub use system::{ContactLoad, PairManifold, RigidSystem};
 

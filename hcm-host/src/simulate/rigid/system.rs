@@ -4,10 +4,10 @@
 //! law + effects + STEP friction at every point, Eq 1 with the arms, plus the
 //! residual), and each contact's linear and angular impulse.
 
-use super::geometry::pair_contacts;
 use super::jacobian::Linearisation;
-use super::layout::{Pose, RigidLayout};
+use super::layout::RigidLayout;
 use super::memory::PointMemory;
+use crate::scenario::geometry::{pair_contacts, Pose};
 use crate::scenario::Model;
 use crate::simulate::StateVector;
 use hcm_core::integrate::OdeSystem;

@@ -1,4 +1,13 @@
 use super::*;
+
+/// The box of `ranges` (lower, upper), one unnamed parameter each.
+fn boxed(ranges: &[(f64, f64)]) -> Vec<Bound> {
+    ranges
+        .iter()
+        .enumerate()
+        .map(|(i, &(lower, upper))| Bound::linear(format!("p{i}"), lower, upper))
+        .collect()
+}
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::Normal;
@@ -147,7 +156,7 @@ fn bounds_hold_the_solution_on_the_boundary() {
         TIMES,
         &[1.0, 0.5],
         &[1.0, 1.0],
-        Some(&[(0.0, 10.0), (0.0, 1.0)]),
+        Some(&boxed(&[(0.0, 10.0), (0.0, 1.0)])),
         &LmSettings::default(),
     )
     .unwrap();
@@ -177,7 +186,7 @@ fn bounds_hold_the_solution_on_the_boundary() {
         3,
         &[10.0, 0.5],
         &[1.0, 1.0],
-        Some(&[(-1.0, 2.0), (-0.5, f64::INFINITY)]),
+        Some(&boxed(&[(-1.0, 2.0), (-0.5, f64::INFINITY)])),
         &LmSettings::default(),
     )
     .unwrap();
@@ -193,7 +202,7 @@ fn bounds_hold_the_solution_on_the_boundary() {
         1,
         &[0.5],
         &[0.3],
-        Some(&[(0.0, 0.7)]),
+        Some(&boxed(&[(0.0, 0.7)])),
         &LmSettings::default(),
     )
     .unwrap();
@@ -263,7 +272,14 @@ fn invalid_inputs_are_errors() {
         Err(LeastSquaresError::InvalidScale { index: 0, .. })
     ));
     assert!(matches!(
-        levenberg_marquardt(residuals, 1, &[1.0], &[1.0], Some(&[(2.0, 1.0)]), &settings),
+        levenberg_marquardt(
+            residuals,
+            1,
+            &[1.0],
+            &[1.0],
+            Some(&boxed(&[(2.0, 1.0)])),
+            &settings
+        ),
         Err(LeastSquaresError::InvalidBounds { index: 0, .. })
     ));
     assert!(matches!(
@@ -314,7 +330,7 @@ fn the_termination_says_why_it_stopped() {
         2,
         &[0.0, 0.0],
         &[1.0, 1.0],
-        Some(&[(-1.0, 2.0), (-0.5, 1.0)]),
+        Some(&boxed(&[(-1.0, 2.0), (-0.5, 1.0)])),
         &LmSettings::default(),
     )
     .unwrap();

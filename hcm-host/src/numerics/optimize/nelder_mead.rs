@@ -5,7 +5,7 @@
 //! frame), so a derivative-free method is used; its steps are deterministic, so the
 //! same start gives the same result.
 
-use crate::identify::genetic::Bound;
+use super::{Bound, Observer};
 
 /// Reflection, expansion, contraction and shrink coefficients (the standard ones).
 const REFLECT: f64 = 1.0;
@@ -36,7 +36,7 @@ pub fn polish(
     start_fitness: f64,
     budget: usize,
     fitness: impl Fn(&[f64]) -> f64,
-    mut progress: impl FnMut(usize, f64),
+    mut progress: impl Observer,
 ) -> Polished {
     let evaluations = std::cell::Cell::new(0);
     let mut evaluate = |genes: &[f64]| {
@@ -72,12 +72,12 @@ pub fn polish(
         };
         let f = evaluate(&vertex);
         simplex.push((vertex, f));
-        progress(evaluations.get(), best_of(&simplex));
+        progress.step(evaluations.get(), best_of(&simplex));
     }
     while evaluations.get() + 2 <= budget && simplex.len() == origin.len() + 1 {
         simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
         step(&mut simplex, &mut evaluate);
-        progress(evaluations.get(), best_of(&simplex));
+        progress.step(evaluations.get(), best_of(&simplex));
     }
     simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
     let (genes, fitness) = simplex.swap_remove(0);

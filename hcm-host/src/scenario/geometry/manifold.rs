@@ -1,7 +1,7 @@
 //! Where a body pair touches, from the two bodies' poses: the manifold of up to
 //! eight contact points (the core's generators) and the pair's signed separation.
 
-use super::layout::Pose;
+use super::Pose;
 use crate::scenario::{Contact, Model, Part, Shape};
 use hcm_core::geometry::{
     box_box, box_plane, compound, sphere_box, sphere_plane, sphere_sphere, ContactGeometry,

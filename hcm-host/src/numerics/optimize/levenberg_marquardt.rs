@@ -1,7 +1,7 @@
 //! Levenberg–Marquardt for small bounded nonlinear least-squares problems.
 //!
 //! Minimises ½‖r(p)‖² over a handful of parameters (≤ 8 in practice) and up to about a
-//! million residuals: after the separable search of [`super::least_squares`] has found
+//! million residuals: after the separable search of [`crate::identify::separable`] has found
 //! a good start, this refines every parameter of a contact law jointly and reports
 //! their covariance.
 //!
@@ -32,7 +32,8 @@ mod step;
 #[cfg(test)]
 mod tests;
 
-use super::least_squares::LeastSquaresError;
+use super::search::LeastSquaresError;
+use super::Bound;
 use crate::numerics::{euclidean_norm, Covariance, Reduction};
 use problem::Problem;
 use step::Linearisation;
@@ -174,7 +175,7 @@ pub fn levenberg_marquardt(
     m: usize,
     initial: &[f64],
     scales: &[f64],
-    bounds: Option<&[(f64, f64)]>,
+    bounds: Option<&[Bound]>,
     settings: &LmSettings,
 ) -> Result<LmResult, LeastSquaresError> {
     let problem = Problem::new(&residuals, m, initial, scales, bounds, settings)?;

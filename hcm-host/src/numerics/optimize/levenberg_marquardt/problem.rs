@@ -2,7 +2,7 @@
 //! u_i = p_i / scale_i, inside a box, with its forward-difference Jacobian; and the
 //! checks of the caller's inputs.
 
-use super::{LeastSquaresError, LmSettings};
+use super::{Bound, LeastSquaresError, LmSettings};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -32,7 +32,7 @@ impl<'a, F: Fn(&[f64], &mut [f64]) + Sync> Problem<'a, F> {
         m: usize,
         initial: &[f64],
         scales: &'a [f64],
-        bounds: Option<&[(f64, f64)]>,
+        bounds: Option<&[Bound]>,
         settings: &LmSettings,
     ) -> Result<Self, LeastSquaresError> {
         check_sizes(m, initial.len())?;
@@ -228,10 +228,7 @@ fn check_start(initial: &[f64], scales: &[f64]) -> Result<(), LeastSquaresError>
 
 /// The box in the caller's units, (−∞, ∞) where no bounds are given; each bound pair
 /// an interval (either end may be infinite, not both on the same side).
-fn check_bounds(
-    bounds: Option<&[(f64, f64)]>,
-    n: usize,
-) -> Result<Vec<(f64, f64)>, LeastSquaresError> {
+fn check_bounds(bounds: Option<&[Bound]>, n: usize) -> Result<Vec<(f64, f64)>, LeastSquaresError> {
     let Some(bounds) = bounds else {
         return Ok(vec![(f64::NEG_INFINITY, f64::INFINITY); n]);
     };
@@ -242,7 +239,15 @@ fn check_bounds(
             found: bounds.len(),
         });
     }
-    for (index, &(low, high)) in bounds.iter().enumerate() {
+    for (
+        index,
+        &Bound {
+            lower: low,
+            upper: high,
+            ..
+        },
+    ) in bounds.iter().enumerate()
+    {
         if low.is_nan()
             || high.is_nan()
             || low > high
@@ -256,5 +261,5 @@ fn check_bounds(
             });
         }
     }
-    Ok(bounds.to_vec())
+    Ok(bounds.iter().map(Bound::range).collect())
 }

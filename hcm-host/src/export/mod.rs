@@ -5,6 +5,11 @@
 //! with the CRC. [`ExportModel::evaluate`] is the f64 reference the core's `f32`
 //! evaluation is tested against.
 
+mod round_trip;
+
+pub use round_trip::{round_trip_error, round_trip_error_over};
+
+use crate::train::int8_row;
 use hcm_core::residual::blob::{BlobContents, Shape, MAGIC, VERSION};
 use hcm_core::residual::{crc32, Quantisation};
 
@@ -225,23 +230,6 @@ fn push_positive(out: &mut Vec<u8>, what: &str, values: &[f64]) -> Result<(), Ex
         });
     }
     push_f32s(out, what, values)
-}
-
-/// One weight row in the int8 storage: levels q = round(w / s) in −127…127 and the
-/// row's f32 scale s = max|w| / 127 (1 for an all-zero row); the core computes q·s.
-/// Finite weights expected (the encoder checks them first).
-pub fn int8_row(row: &[f64]) -> (Vec<i8>, f32) {
-    let largest = row.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
-    // The f32 scale the core multiplies by; quantise against it, not its f64 twin.
-    let scale = match (largest / 127.0) as f32 {
-        s if s > 0.0 && s.is_finite() => s,
-        _ => 1.0,
-    };
-    let levels = row
-        .iter()
-        .map(|w| (w / f64::from(scale)).round().clamp(-127.0, 127.0) as i8)
-        .collect();
-    (levels, scale)
 }
 
 /// Appends the rows of `weights` as int8 (one byte each), then one `f32` scale per row.

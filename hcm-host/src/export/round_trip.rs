@@ -1,7 +1,7 @@
 //! How faithfully the core's decoded network reproduces the host network it was
 //! exported from, over the points where the core runs it (its training envelope).
 
-use super::ContactResidual;
+use crate::residual::ContactResidual;
 use crate::train::Network;
 use hcm_core::model::{Correction, Residual};
 use rand::{RngExt, SeedableRng};

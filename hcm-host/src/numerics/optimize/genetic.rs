@@ -21,60 +21,10 @@
 //! generation run in parallel (rayon), and their results are collected in population
 //! order, so a seed gives bit-identical results whatever the number of threads.
 
+use super::{Bound, Observer};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
-
-/// One parameter's search interval; `log_scale` searches log(value) (for quantities
-/// spanning decades, e.g. stiffness).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Bound {
-    /// Parameter name, used in error messages.
-    pub name: String,
-    /// Smallest value searched (the parameter's units).
-    pub lower: f64,
-    /// Largest value searched (the parameter's units).
-    pub upper: f64,
-    /// Search uniformly in log(value) instead of value; needs `lower > 0`.
-    #[serde(default)]
-    pub log_scale: bool,
-}
-
-impl Bound {
-    /// The bound of a parameter table's row `(name, lower, upper, log_scale)`.
-    pub fn of_row(&(name, lower, upper, log_scale): &(&str, f64, f64, bool)) -> Bound {
-        Bound {
-            name: name.to_owned(),
-            lower,
-            upper,
-            log_scale,
-        }
-    }
-
-    /// The value at fraction `at` of the interval, clamped into [0, 1] (through
-    /// log(value) on a log scale): how a local search walks the box on the scale the
-    /// genetic algorithm searches.
-    pub fn value_at(&self, at: f64) -> f64 {
-        let at = at.clamp(0.0, 1.0);
-        if self.log_scale {
-            (self.lower.ln() + at * (self.upper.ln() - self.lower.ln())).exp()
-        } else {
-            self.lower + at * (self.upper - self.lower)
-        }
-    }
-
-    /// The fraction of the interval `value` lies at, clamped into [0, 1]: the inverse
-    /// of [`Bound::value_at`].
-    pub fn fraction_of(&self, value: f64) -> f64 {
-        let (lower, upper, value) = if self.log_scale {
-            (self.lower.ln(), self.upper.ln(), value.ln())
-        } else {
-            (self.lower, self.upper, value)
-        };
-        ((value - lower) / (upper - lower)).clamp(0.0, 1.0)
-    }
-}
 
 /// Tuning of [`minimize`]. The defaults suit 2–4 parameters and a fitness costing
 /// about a millisecond.
@@ -200,7 +150,7 @@ pub fn minimize(
     bounds: &[Bound],
     settings: &GeneticSettings,
     fitness: impl Fn(&[f64]) -> f64 + Sync,
-    mut progress: impl FnMut(usize, f64),
+    mut progress: impl Observer,
 ) -> Result<GeneticResult, GeneticError> {
     let genes = bounds
         .iter()
@@ -224,7 +174,7 @@ pub fn minimize(
     }
     let mut best = population[0].clone();
     let mut history = vec![best.fitness];
-    progress(1, best.fitness);
+    progress.step(1, best.fitness);
 
     let mut stalled = 0;
     while history.len() < settings.generations
@@ -252,7 +202,7 @@ pub fn minimize(
             best = generation_best.clone();
         }
         history.push(generation_best.fitness);
-        progress(history.len(), best.fitness);
+        progress.step(history.len(), best.fitness);
     }
 
     Ok(GeneticResult {
