@@ -73,7 +73,6 @@ pub fn curve(
 
 /// The targets of contact `c` in `data`, one per condition, in order of appearance.
 pub fn targets(model: &Model, data: &Dataset, c: usize) -> Result<Vec<Target>, IdentifyError> {
-    let period = model.scenario.record.contact_sample_period;
     let mut names: Vec<&str> = Vec::new();
     for run in &data.runs {
         if !names.contains(&condition_of(&run.id)) {
@@ -87,75 +86,109 @@ pub fn targets(model: &Model, data: &Dataset, c: usize) -> Result<Vec<Target>, I
             .iter()
             .filter(|r| condition_of(&r.id) == name)
             .collect();
-        // Longest contact, so every curve fits.
-        let mut len = 0;
-        let mut starts: Vec<Vec<(Vector3<f64>, Vector3<f64>)>> = Vec::new();
-        for run in &runs {
-            let history = contact_history(model, run, c)?;
-            let Some(span) = event_spans(&history).into_iter().next() else {
-                return Err(IdentifyError::NoContact {
-                    run: run.id.clone(),
-                    from: history.time.first().copied().unwrap_or(f64::NAN),
-                    to: history.time.last().copied().unwrap_or(f64::NAN),
-                });
-            };
-            len = len.max(((span.lift_off.0 - span.touch_down.0) / period).ceil() as usize + 2);
-            starts.push(pre_contact_state(
-                model,
-                run,
-                span.inside.start.saturating_sub(1),
-            ));
-        }
-        let mut start = model.clone();
-        for (b, body) in start.bodies.iter_mut().enumerate() {
-            if !body.fixed && starts.iter().all(|s| s.len() == model.bodies.len()) {
-                body.position =
-                    starts.iter().map(|s| s[b].0).sum::<Vector3<f64>>() / starts.len() as f64;
-                body.velocity =
-                    starts.iter().map(|s| s[b].1).sum::<Vector3<f64>>() / starts.len() as f64;
-            }
-        }
-        start.scenario.simulation.stop_after_contacts = 1;
-        let mut curves = Vec::new();
-        let mut indicators = Vec::new();
-        for run in &runs {
-            if let Some((values, i)) = curve(model, run, c, period, len)? {
-                curves.push(values);
-                indicators.push(i);
-            }
-        }
-        let n = curves.len() as f64;
-        let mean_curve = (0..len)
-            .map(|j| curves.iter().map(|v| v[j]).sum::<f64>() / n)
-            .collect();
-        let mean = |f: fn(&Indicators) -> f64| indicators.iter().map(f).sum::<f64>() / n;
-        // The sample standard deviation s needs two runs: with one, n − 1 = 0.
-        let standard_error = |f: fn(&Indicators) -> f64| {
-            let m = mean(f);
-            let squares = indicators.iter().map(|i| (f(i) - m).powi(2)).sum::<f64>();
-            (squares / (n - 1.0)).sqrt() / n.sqrt()
-        };
-        targets.push(Target {
-            condition: name.to_owned(),
-            runs: runs.len(),
-            model: start,
-            curve: mean_curve,
-            indicators: Indicators {
-                max_force: mean(|i| i.max_force),
-                impulse: mean(|i| i.impulse),
-                energy_loss: mean(|i| i.energy_loss),
-                duration: mean(|i| i.duration),
-            },
-            standard_error: (indicators.len() >= 2).then(|| Indicators {
-                max_force: standard_error(|i| i.max_force),
-                impulse: standard_error(|i| i.impulse),
-                energy_loss: standard_error(|i| i.energy_loss),
-                duration: standard_error(|i| i.duration),
-            }),
-            period,
-        });
+        targets.push(condition_target(model, name, &runs, c)?);
     }
     Ok(targets)
+}
+
+/// The target of one condition's `runs`: their mean state before touch-down, mean
+/// force curve and mean indicators.
+fn condition_target(
+    model: &Model,
+    name: &str,
+    runs: &[&Run],
+    c: usize,
+) -> Result<Target, IdentifyError> {
+    let period = model.scenario.record.contact_sample_period;
+    let (start, len) = mean_start(model, runs, c, period)?;
+    let mut curves = Vec::new();
+    let mut indicators = Vec::new();
+    for run in runs {
+        if let Some((values, i)) = curve(model, run, c, period, len)? {
+            curves.push(values);
+            indicators.push(i);
+        }
+    }
+    let n = curves.len() as f64;
+    let mean_curve = (0..len)
+        .map(|j| curves.iter().map(|v| v[j]).sum::<f64>() / n)
+        .collect();
+    let (mean, standard_error) = indicator_statistics(&indicators);
+    Ok(Target {
+        condition: name.to_owned(),
+        runs: runs.len(),
+        model: start,
+        curve: mean_curve,
+        indicators: mean,
+        standard_error,
+        period,
+    })
+}
+
+/// `model` started from the runs' mean pre-contact state of contact `c` and stopped
+/// after one contact, and the samples (at `period`, s) a curve needs to hold the
+/// longest of the runs' contacts.
+fn mean_start(
+    model: &Model,
+    runs: &[&Run],
+    c: usize,
+    period: f64,
+) -> Result<(Model, usize), IdentifyError> {
+    let mut len = 0;
+    let mut starts: Vec<Vec<(Vector3<f64>, Vector3<f64>)>> = Vec::new();
+    for run in runs {
+        let history = contact_history(model, run, c)?;
+        let Some(span) = event_spans(&history).into_iter().next() else {
+            return Err(IdentifyError::NoContact {
+                run: run.id.clone(),
+                from: history.time.first().copied().unwrap_or(f64::NAN),
+                to: history.time.last().copied().unwrap_or(f64::NAN),
+            });
+        };
+        len = len.max(((span.lift_off.0 - span.touch_down.0) / period).ceil() as usize + 2);
+        starts.push(pre_contact_state(
+            model,
+            run,
+            span.inside.start.saturating_sub(1),
+        ));
+    }
+    let mut start = model.clone();
+    for (b, body) in start.bodies.iter_mut().enumerate() {
+        if !body.fixed && starts.iter().all(|s| s.len() == model.bodies.len()) {
+            body.position =
+                starts.iter().map(|s| s[b].0).sum::<Vector3<f64>>() / starts.len() as f64;
+            body.velocity =
+                starts.iter().map(|s| s[b].1).sum::<Vector3<f64>>() / starts.len() as f64;
+        }
+    }
+    start.scenario.simulation.stop_after_contacts = 1;
+    Ok((start, len))
+}
+
+/// The mean of each indicator over the runs and, from two runs on, its standard
+/// error s/√n.
+fn indicator_statistics(indicators: &[Indicators]) -> (Indicators, Option<Indicators>) {
+    let n = indicators.len() as f64;
+    let mean = |f: fn(&Indicators) -> f64| indicators.iter().map(f).sum::<f64>() / n;
+    // The sample standard deviation s needs two runs: with one, n − 1 = 0.
+    let standard_error = |f: fn(&Indicators) -> f64| {
+        let m = mean(f);
+        let squares = indicators.iter().map(|i| (f(i) - m).powi(2)).sum::<f64>();
+        (squares / (n - 1.0)).sqrt() / n.sqrt()
+    };
+    let means = Indicators {
+        max_force: mean(|i| i.max_force),
+        impulse: mean(|i| i.impulse),
+        energy_loss: mean(|i| i.energy_loss),
+        duration: mean(|i| i.duration),
+    };
+    let errors = (indicators.len() >= 2).then(|| Indicators {
+        max_force: standard_error(|i| i.max_force),
+        impulse: standard_error(|i| i.impulse),
+        energy_loss: standard_error(|i| i.energy_loss),
+        duration: standard_error(|i| i.duration),
+    });
+    (means, errors)
 }
 
 /// Every body's recorded (position, velocity) at sample `i` of `run` (bodies not

@@ -19,7 +19,7 @@ use super::IdentifyError;
 use crate::numerics::linear_least_squares;
 use crate::numerics::optimize::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use crate::numerics::optimize::{minimize_box2, minimize_scalar, LeastSquaresError, Parameters};
-use hcm_core::law::{step, AnyNormalLaw};
+use hcm_core::law::{step, AnyNormalLaw, Impact, VariableStiffness};
 use hcm_core::model::ContactModel;
 
 /// The result of a least-squares fit.
@@ -80,9 +80,62 @@ fn linear_stage(
     bounds: &Bounds,
     notes: &mut Vec<String>,
 ) -> Result<AnyNormalLaw<f64>, IdentifyError> {
-    let (n_lo, n_hi) = bounds.range("exponent");
-    // Solves the linear part at exponent n with the given second regressor.
-    let two_term = |n: f64, damping: fn(&ForceSample) -> f64| {
+    let exponents = bounds.range("exponent");
+    let law = match *template {
+        AnyNormalLaw::Hertz(mut law) => {
+            (law.exponent, law.stiffness) = power_law(samples, exponents)?;
+            law.into()
+        }
+        AnyNormalLaw::LankaraniNikravesh(mut law) => {
+            let damping = |s: &ForceSample| 0.75 * relative_rate(s);
+            let (exponent, theta) = damped_power_law(samples, exponents, damping)?;
+            law.exponent = exponent;
+            law.stiffness = theta[0];
+            law.restitution = (1.0 - theta[1] / theta[0]).max(0.0).sqrt();
+            law.into()
+        }
+        AnyNormalLaw::HuntCrossley(mut law) => {
+            let (exponent, theta) = damped_power_law(samples, exponents, |s| s.rate)?;
+            law.exponent = exponent;
+            law.stiffness = theta[0];
+            law.damping = theta[1] / theta[0];
+            law.into()
+        }
+        AnyNormalLaw::Flores(mut law) => {
+            let (exponent, theta) = damped_power_law(samples, exponents, relative_rate)?;
+            law.exponent = exponent;
+            law.stiffness = theta[0];
+            law.restitution = 8.0 / (5.0 * theta[1] / theta[0] + 8.0);
+            law.into()
+        }
+        AnyNormalLaw::VariableStiffness(law) => variable_stiffness(law, samples, notes)?.into(),
+        AnyNormalLaw::Impact(law) => impact(law, samples, bounds)?.into(),
+    };
+    Ok(bounds.clamp(&law))
+}
+
+/// Hertz's f = k·δ^n: the exponent n (–) searched on `exponents`, then the stiffness k
+/// (N/m^n) solved at it.
+fn power_law(
+    samples: &[ForceSample],
+    (n_lo, n_hi): (f64, f64),
+) -> Result<(f64, f64), IdentifyError> {
+    let rss = |n: f64| {
+        solve(samples, |s, row| row[0] = s.depth.powf(n), 1).map_or(f64::INFINITY, |(_, r)| r)
+    };
+    let exponent = minimize_scalar(rss, n_lo, n_hi, GRID, TOLERANCE).0;
+    let stiffness = solve(samples, |s, row| row[0] = s.depth.powf(exponent), 1)?.0[0];
+    Ok((exponent, stiffness))
+}
+
+/// f = θ₀·δ^n + θ₁·δ^n·`damping`(sample): the exponent n (–) searched on `exponents`,
+/// then (θ₀, θ₁) solved at it; the caller turns θ into its law's parameters.
+fn damped_power_law(
+    samples: &[ForceSample],
+    (n_lo, n_hi): (f64, f64),
+    damping: fn(&ForceSample) -> f64,
+) -> Result<(f64, Vec<f64>), IdentifyError> {
+    let two_term = |n: f64| {
         solve(
             samples,
             |s, row| {
@@ -93,101 +146,64 @@ fn linear_stage(
             2,
         )
     };
-    let best_exponent = |damping: fn(&ForceSample) -> f64| {
-        minimize_scalar(
-            |n| two_term(n, damping).map_or(f64::INFINITY, |(_, rss)| rss),
-            n_lo,
-            n_hi,
-            GRID,
-            TOLERANCE,
-        )
-        .0
-    };
-    let law = match *template {
-        AnyNormalLaw::Hertz(mut law) => {
-            let rss = |n: f64| {
-                solve(samples, |s, row| row[0] = s.depth.powf(n), 1)
-                    .map_or(f64::INFINITY, |(_, r)| r)
-            };
-            law.exponent = minimize_scalar(rss, n_lo, n_hi, GRID, TOLERANCE).0;
-            law.stiffness = solve(samples, |s, row| row[0] = s.depth.powf(law.exponent), 1)?.0[0];
-            law.into()
-        }
-        AnyNormalLaw::LankaraniNikravesh(mut law) => {
-            let damping = |s: &ForceSample| 0.75 * relative_rate(s);
-            law.exponent = best_exponent(damping);
-            let (theta, _) = two_term(law.exponent, damping)?;
-            law.stiffness = theta[0];
-            law.restitution = (1.0 - theta[1] / theta[0]).max(0.0).sqrt();
-            law.into()
-        }
-        AnyNormalLaw::HuntCrossley(mut law) => {
-            let damping = |s: &ForceSample| s.rate;
-            law.exponent = best_exponent(damping);
-            let (theta, _) = two_term(law.exponent, damping)?;
-            law.stiffness = theta[0];
-            law.damping = theta[1] / theta[0];
-            law.into()
-        }
-        AnyNormalLaw::Flores(mut law) => {
-            law.exponent = best_exponent(relative_rate);
-            let (theta, _) = two_term(law.exponent, relative_rate)?;
-            law.stiffness = theta[0];
-            law.restitution = 8.0 / (5.0 * theta[1] / theta[0] + 8.0);
-            law.into()
-        }
-        AnyNormalLaw::VariableStiffness(mut law) => {
-            let (r, m) = (law.radius, law.effective_mass);
-            let (theta, _) = solve(
-                samples,
-                |s, row| {
-                    let area = (2.0 * r * s.depth - s.depth * s.depth).max(0.0).sqrt();
-                    row[0] = area * s.depth;
-                    row[1] = 2.0 * (area * m).sqrt() * s.depth * s.rate;
-                },
-                2,
-            )?;
-            law.surface_loading = theta[0] / law.effective_modulus;
-            law.damping = theta[1] / theta[0].max(f64::MIN_POSITIVE).sqrt();
-            notes.push(format!(
-                "variable_stiffness: the force fixes only c·E* = {:.6e} Pa; c is reported for E* = {:.6e} Pa from the scenario's materials",
-                theta[0], law.effective_modulus
-            ));
-            law.into()
-        }
-        AnyNormalLaw::Impact(mut law) => {
-            let (d_lo, d_hi) = bounds.range("full_damping_depth");
-            let (e_lo, e_hi) = bounds.range("exponent");
-            let rss = |e: f64, depth: f64| {
-                solve(
-                    samples,
-                    |s, row| {
-                        row[0] = s.depth.powf(e);
-                        row[1] = step(s.depth, 0.0, 0.0, depth, 1.0) * s.rate;
-                    },
-                    2,
-                )
-                .map_or(f64::INFINITY, |(_, r)| r)
-            };
-            let ((e, depth), _) = minimize_box2(rss, (e_lo, e_hi), (d_lo, d_hi), 11, TOLERANCE);
-            let (theta, _) = solve(
-                samples,
-                |s, row| {
-                    row[0] = s.depth.powf(e);
-                    row[1] = step(s.depth, 0.0, 0.0, depth, 1.0) * s.rate;
-                },
-                2,
-            )?;
-            (
-                law.exponent,
-                law.full_damping_depth,
-                law.stiffness,
-                law.max_damping,
-            ) = (e, depth, theta[0], theta[1]);
-            law.into()
+    let rss = |n: f64| two_term(n).map_or(f64::INFINITY, |(_, rss)| rss);
+    let exponent = minimize_scalar(rss, n_lo, n_hi, GRID, TOLERANCE).0;
+    let (theta, _) = two_term(exponent)?;
+    Ok((exponent, theta))
+}
+
+/// The variable-stiffness law's c (–) and damping, linear in the force once E*, R and
+/// m_e come from the scenario; `notes` says that the force fixes only c·E*.
+fn variable_stiffness(
+    mut law: VariableStiffness<f64>,
+    samples: &[ForceSample],
+    notes: &mut Vec<String>,
+) -> Result<VariableStiffness<f64>, IdentifyError> {
+    let (r, m) = (law.radius, law.effective_mass);
+    let (theta, _) = solve(
+        samples,
+        |s, row| {
+            let area = (2.0 * r * s.depth - s.depth * s.depth).max(0.0).sqrt();
+            row[0] = area * s.depth;
+            row[1] = 2.0 * (area * m).sqrt() * s.depth * s.rate;
+        },
+        2,
+    )?;
+    law.surface_loading = theta[0] / law.effective_modulus;
+    law.damping = theta[1] / theta[0].max(f64::MIN_POSITIVE).sqrt();
+    notes.push(format!(
+        "variable_stiffness: the force fixes only c·E* = {:.6e} Pa; c is reported for E* = {:.6e} Pa from the scenario's materials",
+        theta[0], law.effective_modulus
+    ));
+    Ok(law)
+}
+
+/// IMPACT's f = k·δ^e + c_max·STEP(δ; 0, d)·δ̇: the exponent e (–) and the full-damping
+/// depth d (m) searched on their box, then k (N/m^e) and c_max (N·s/m) solved there.
+fn impact(
+    mut law: Impact<f64>,
+    samples: &[ForceSample],
+    bounds: &Bounds,
+) -> Result<Impact<f64>, IdentifyError> {
+    let regressors = |e: f64, depth: f64| {
+        move |s: &ForceSample, row: &mut [f64]| {
+            row[0] = s.depth.powf(e);
+            row[1] = step(s.depth, 0.0, 0.0, depth, 1.0) * s.rate;
         }
     };
-    Ok(bounds.clamp(&law))
+    let rss = |e: f64, depth: f64| {
+        solve(samples, regressors(e, depth), 2).map_or(f64::INFINITY, |(_, r)| r)
+    };
+    let (exponents, depths) = (bounds.range("exponent"), bounds.range("full_damping_depth"));
+    let ((e, depth), _) = minimize_box2(rss, exponents, depths, 11, TOLERANCE);
+    let (theta, _) = solve(samples, regressors(e, depth), 2)?;
+    (
+        law.exponent,
+        law.full_damping_depth,
+        law.stiffness,
+        law.max_damping,
+    ) = (e, depth, theta[0], theta[1]);
+    Ok(law)
 }
 
 /// Levenberg–Marquardt on the free parameters of `law`, residual = model − measured force.

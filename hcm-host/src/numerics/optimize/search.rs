@@ -163,101 +163,162 @@ pub fn minimize_box2(
     {
         return ((f64::NAN, f64::NAN), f64::NAN);
     }
-    let (lower_x, upper_x) = (lower_x.min(upper_x), lower_x.max(upper_x));
-    let (lower_y, upper_y) = (lower_y.min(upper_y), lower_y.max(upper_y));
-    let points = grid.max(3);
-    let step_x = (upper_x - lower_x) / (points - 1) as f64;
-    let step_y = (upper_y - lower_y) / (points - 1) as f64;
-    let along = |lower: f64, upper: f64, step: f64, i: usize| {
-        if i + 1 == points {
-            upper
-        } else {
-            lower + step * i as f64
-        }
-    };
-
-    // Best point so far: (x, y, raw value, value for comparison).
-    let mut best = (f64::NAN, f64::NAN, f64::NAN, f64::INFINITY);
-    let offer = |x: f64, y: f64, value: f64, best: &mut (f64, f64, f64, f64)| {
-        let key = comparable(value);
-        if key < best.3 || best.0.is_nan() {
-            *best = (x, y, value, key);
-        }
-    };
-    for i in 0..points {
-        for j in 0..points {
-            let (x, y) = (
-                along(lower_x, upper_x, step_x, i),
-                along(lower_y, upper_y, step_y, j),
-            );
-            offer(x, y, f(x, y), &mut best);
-        }
-    }
-
+    let search = Box2::new((lower_x, upper_x), (lower_y, upper_y), grid);
+    let mut best = search.grid(&mut f);
     // End of the previous sweep's coordinate searches (before its pattern move).
     let mut previous_end: Option<(f64, f64)> = None;
     for _ in 0..MAX_SWEEPS {
-        let (x0, y0) = (best.0, best.1);
-        let y = best.1;
-        let (x, value) = minimize_scalar(
-            |x| f(x, y),
-            (best.0 - step_x).max(lower_x),
-            (best.0 + step_x).min(upper_x),
-            LOCAL_GRID,
-            tolerance,
-        );
-        offer(x, y, value, &mut best);
-        let x = best.0;
-        let (y, value) = minimize_scalar(
-            |y| f(x, y),
-            (best.1 - step_y).max(lower_y),
-            (best.1 + step_y).min(upper_y),
-            LOCAL_GRID,
-            tolerance,
-        );
-        offer(x, y, value, &mut best);
-
-        // Both sweep ends minimise f in y, so (for a quadratic) both lie on the line
-        // ∂f/∂y = 0, which passes through the minimum: search along it.
-        let end = (best.0, best.1);
-        if let Some((x1, y1)) = previous_end {
-            let (dx, dy) = (end.0 - x1, end.1 - y1);
-            if dx != 0.0 || dy != 0.0 {
-                // Points end + t·(dx, dy) inside the box; t = −1 is the previous end.
-                // In a valley the optimum along the line can be many sweeps ahead.
-                let (mut t_low, mut t_high) = (-1.0_f64, f64::INFINITY);
-                for (origin, delta, lower, upper) in
-                    [(end.0, dx, lower_x, upper_x), (end.1, dy, lower_y, upper_y)]
-                {
-                    if delta != 0.0 {
-                        let (to_lower, to_upper) =
-                            ((lower - origin) / delta, (upper - origin) / delta);
-                        t_low = t_low.max(to_lower.min(to_upper));
-                        t_high = t_high.min(to_lower.max(to_upper));
-                    }
-                }
-                if t_high > t_low {
-                    let t_tolerance = tolerance / dx.abs().max(dy.abs());
-                    let (t, value) = minimize_scalar(
-                        |t| f(end.0 + t * dx, end.1 + t * dy),
-                        t_low,
-                        t_high,
-                        LOCAL_GRID,
-                        t_tolerance,
-                    );
-                    offer(end.0 + t * dx, end.1 + t * dy, value, &mut best);
-                }
-            }
+        let (x0, y0) = (best.x, best.y);
+        search.sweep(&mut f, &mut best, tolerance);
+        let end = (best.x, best.y);
+        if let Some(previous) = previous_end {
+            search.pattern_move(&mut f, &mut best, previous, end, tolerance);
         }
         previous_end = Some(end);
 
-        let moved = (best.0 - x0).abs().max((best.1 - y0).abs());
+        let moved = (best.x - x0).abs().max((best.y - y0).abs());
         // A NaN tolerance stops after one sweep.
         if moved < tolerance || tolerance.is_nan() {
             break;
         }
     }
-    ((best.0, best.1), best.2)
+    ((best.x, best.y), best.value)
+}
+
+/// The best point so far of [`minimize_box2`].
+struct Best2 {
+    x: f64,
+    y: f64,
+    /// f(x, y) as returned.
+    value: f64,
+    /// The value for comparison ([`comparable`]).
+    key: f64,
+}
+
+impl Best2 {
+    /// Keeps (x, y) if its value beats the best so far (or nothing is kept yet).
+    fn offer(&mut self, x: f64, y: f64, value: f64) {
+        let key = comparable(value);
+        if key < self.key || self.x.is_nan() {
+            *self = Best2 { x, y, value, key };
+        }
+    }
+}
+
+/// The box of [`minimize_box2`], its ends ordered, and the steps of its grid.
+struct Box2 {
+    x: (f64, f64),
+    y: (f64, f64),
+    step_x: f64,
+    step_y: f64,
+    /// Grid points per variable (≥ 3).
+    points: usize,
+}
+
+impl Box2 {
+    fn new((lower_x, upper_x): (f64, f64), (lower_y, upper_y): (f64, f64), grid: usize) -> Box2 {
+        let x = (lower_x.min(upper_x), lower_x.max(upper_x));
+        let y = (lower_y.min(upper_y), lower_y.max(upper_y));
+        let points = grid.max(3);
+        Box2 {
+            x,
+            y,
+            step_x: (x.1 - x.0) / (points - 1) as f64,
+            step_y: (y.1 - y.0) / (points - 1) as f64,
+            points,
+        }
+    }
+
+    /// Grid point `i` of [lower, upper] with spacing `step` (the last one exactly
+    /// `upper`).
+    fn along(&self, (lower, upper): (f64, f64), step: f64, i: usize) -> f64 {
+        if i + 1 == self.points {
+            upper
+        } else {
+            lower + step * i as f64
+        }
+    }
+
+    /// The best point of the `points × points` grid.
+    fn grid(&self, f: &mut impl FnMut(f64, f64) -> f64) -> Best2 {
+        let mut best = Best2 {
+            x: f64::NAN,
+            y: f64::NAN,
+            value: f64::NAN,
+            key: f64::INFINITY,
+        };
+        for i in 0..self.points {
+            for j in 0..self.points {
+                let (x, y) = (
+                    self.along(self.x, self.step_x, i),
+                    self.along(self.y, self.step_y, j),
+                );
+                best.offer(x, y, f(x, y));
+            }
+        }
+        best
+    }
+
+    /// One coordinate sweep: x, then y, each over one grid cell either side of the
+    /// best point.
+    fn sweep(&self, f: &mut impl FnMut(f64, f64) -> f64, best: &mut Best2, tolerance: f64) {
+        let y = best.y;
+        let (x, value) = minimize_scalar(
+            |x| f(x, y),
+            (best.x - self.step_x).max(self.x.0),
+            (best.x + self.step_x).min(self.x.1),
+            LOCAL_GRID,
+            tolerance,
+        );
+        best.offer(x, y, value);
+        let x = best.x;
+        let (y, value) = minimize_scalar(
+            |y| f(x, y),
+            (best.y - self.step_y).max(self.y.0),
+            (best.y + self.step_y).min(self.y.1),
+            LOCAL_GRID,
+            tolerance,
+        );
+        best.offer(x, y, value);
+    }
+
+    /// Powell's conjugate-direction step: both sweep ends minimise f in y, so (for a
+    /// quadratic) both lie on the line ∂f/∂y = 0, which passes through the minimum:
+    /// search along the line from `previous` through `end`, inside the box.
+    fn pattern_move(
+        &self,
+        f: &mut impl FnMut(f64, f64) -> f64,
+        best: &mut Best2,
+        (x1, y1): (f64, f64),
+        end: (f64, f64),
+        tolerance: f64,
+    ) {
+        let (dx, dy) = (end.0 - x1, end.1 - y1);
+        if dx == 0.0 && dy == 0.0 {
+            return;
+        }
+        // Points end + t·(dx, dy) inside the box; t = −1 is the previous end.
+        // In a valley the optimum along the line can be many sweeps ahead.
+        let (mut t_low, mut t_high) = (-1.0_f64, f64::INFINITY);
+        for (origin, delta, (lower, upper)) in [(end.0, dx, self.x), (end.1, dy, self.y)] {
+            if delta != 0.0 {
+                let (to_lower, to_upper) = ((lower - origin) / delta, (upper - origin) / delta);
+                t_low = t_low.max(to_lower.min(to_upper));
+                t_high = t_high.min(to_lower.max(to_upper));
+            }
+        }
+        if t_high > t_low {
+            let t_tolerance = tolerance / dx.abs().max(dy.abs());
+            let (t, value) = minimize_scalar(
+                |t| f(end.0 + t * dx, end.1 + t * dy),
+                t_low,
+                t_high,
+                LOCAL_GRID,
+                t_tolerance,
+            );
+            best.offer(end.0 + t * dx, end.1 + t * dy, value);
+        }
+    }
 }
 
 /// The value used to compare function values: non-finite ones are worst.
