@@ -10,7 +10,7 @@ use hcm_host::identify::motion::{
 };
 use hcm_host::numerics::optimize::genetic::GeneticSettings;
 use hcm_host::output::write_bytes;
-use hcm_host::scenario::Model;
+use hcm_host::scenario::{Assignment, Model};
 use hcm_host::toss::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};
 use std::path::PathBuf;
 
@@ -129,7 +129,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             scenario.name,
             args.scenario.scenario.display(),
             args.data.display(),
-            assignments.join(" ")
+            (assignments.iter().map(Assignment::to_string))
+                .collect::<Vec<_>>()
+                .join(" ")
         );
         let text = fitted_scenario_text(&scenario, &assignments, &header)?;
         write_bytes(path, text.as_bytes())?;
@@ -171,7 +173,7 @@ fn write_physics(
     name: &str,
     fit: &MotionFit,
     parameters: &MotionParameters,
-    sets: &[String],
+    sets: &[Assignment],
     runs: usize,
 ) -> anyhow::Result<()> {
     let method = "ga + Nelder–Mead on toss replays (motion only)";

@@ -14,7 +14,7 @@ pub use physics::{FitRecord, Physics};
 
 use crate::dataset::Dataset;
 use crate::indicators::IndicatorError;
-use crate::scenario::{Model, Scenario, ScenarioError};
+use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
 use bounds::Bounds;
 use hcm_core::law::AnyNormalLaw;
 use hcm_core::model::ContactModel;
@@ -92,17 +92,14 @@ pub fn template(
     if bounds.parameters.is_empty() {
         return Err(IdentifyError::UnsupportedLaw(law_name.to_owned()));
     }
-    let middle: Vec<String> = bounds
-        .middle()
-        .iter()
-        .map(|(n, v)| format!("{n} = {v:?}"))
-        .collect();
+    let middle = bounds.middle();
+    let middle: Vec<(&str, f64)> = middle.iter().map(|(n, v)| (n.as_str(), *v)).collect();
     let assignments = [
-        format!("contact.{c}.law=\"{law_name}\""),
-        format!("contact.{c}.parameters={{ {} }}", middle.join(", ")),
-        format!("contact.{c}.noise={{}}"),
+        Assignment::contact(c, &["law"], law_name),
+        Assignment::contact(c, &["parameters"], physics::float_table(&middle)),
+        Assignment::contact(c, &["noise"], toml::Table::new()),
     ];
-    let model = scenario.with(&assignments)?.model()?;
+    let model = scenario.with_assignments(&assignments)?.model()?;
     Ok((*model.contacts[c].law(), bounds))
 }
 

@@ -4,7 +4,7 @@
 use crate::law_catalogue::{self, LawInputError};
 use crate::output::write_atomically;
 
-use crate::scenario::{FrictionSpec, Model, Scenario, ScenarioError};
+use crate::scenario::{Assignment, FrictionSpec, Model, Scenario, ScenarioError};
 use hcm_core::effect::{AirDrag, ContactEffect};
 use hcm_core::law::AnyNormalLaw;
 use hcm_core::LawError;
@@ -180,12 +180,10 @@ impl Physics {
                     path: path.display().to_string(),
                     bodies: contact.bodies.clone(),
                 })?;
-            assignments.push(format!("contact.{index}.law=\"{}\"", contact.law));
-            assignments.push(format!(
-                "contact.{index}.parameters={}",
-                inline_table(&contact.parameters)
-            ));
-            assignments.push(format!("contact.{index}.noise={{}}"));
+            let set = |key: &str, value: toml::Value| Assignment::contact(index, &[key], value);
+            assignments.push(set("law", contact.law.clone().into()));
+            assignments.push(set("parameters", contact.parameters.clone().into()));
+            assignments.push(set("noise", toml::Table::new().into()));
             // The physics file is the whole model of the contact: its effects replace
             // the scenario's (none clears them).
             let effects =
@@ -193,25 +191,26 @@ impl Physics {
                     path: path.display().to_string(),
                     message: format!("effects: {e}"),
                 })?;
-            assignments.push(format!("contact.{index}.effects={effects}"));
+            assignments.push(set("effects", effects));
             if let Some(f) = &contact.friction {
-                assignments.push(format!(
-                    "contact.{index}.friction={{ mu_static = {:?}, mu_dynamic = {:?}, v_static = {:?}, v_dynamic = {:?} }}",
-                    f.mu_static, f.mu_dynamic, f.v_static, f.v_dynamic
-                ));
+                let friction = [
+                    ("mu_static", f.mu_static),
+                    ("mu_dynamic", f.mu_dynamic),
+                    ("v_static", f.v_static),
+                    ("v_dynamic", f.v_dynamic),
+                ];
+                assignments.push(set("friction", float_table(&friction)));
             }
         }
         for body in &self.bodies {
-            assignments.push(format!(
-                "body.{}.air_drag={{ coefficient = {:?} }}",
-                body.name, body.air_drag.coefficient
-            ));
+            let drag = float_table(&[("coefficient", body.air_drag.coefficient)]);
+            assignments.push(Assignment::body(&body.name, &["air_drag"], drag));
         }
         let misfit = |scenario_error| PhysicsError::Misfit {
             path: path.display().to_string(),
             scenario_error,
         };
-        let applied = scenario.with(&assignments).map_err(misfit)?;
+        let applied = scenario.with_assignments(&assignments).map_err(misfit)?;
         // What `check` cannot see alone (parameters derived from the bodies): the
         // scenario resolves without the physics but not with it.
         match applied.model() {
@@ -286,14 +285,10 @@ fn domain_parameter(error: &LawError) -> Option<&'static str> {
     }
 }
 
-/// `{ a = 1.0, b = 2.0 }` with round-trip float formatting.
-fn inline_table(table: &toml::Table) -> String {
-    let items: Vec<String> = table
-        .iter()
-        .map(|(k, v)| match v.as_float() {
-            Some(x) => format!("{k} = {x:?}"),
-            None => format!("{k} = {v}"),
-        })
+/// The TOML table `{ name = value, … }` of `entries`.
+pub(crate) fn float_table(entries: &[(&str, f64)]) -> toml::Value {
+    let table: toml::Table = (entries.iter())
+        .map(|&(name, value)| (name.to_owned(), value.into()))
         .collect();
-    format!("{{ {} }}", items.join(", "))
+    table.into()
 }

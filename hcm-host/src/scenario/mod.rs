@@ -6,12 +6,14 @@
 //! deserialised and checked ([`Scenario::resolve`]) into a [`Model`] ready to simulate.
 //! Every key is documented in the README ("Scenario files").
 
+mod assignment;
 pub mod geometry;
 pub mod overrides;
 mod resolve;
 mod rigid;
 pub mod validate;
 
+pub use assignment::{Assignment, IntoAssignment};
 pub use resolve::{Body, Contact, Model, Shape};
 pub use rigid::{FrictionSpec, InertiaSpec, OrientationSpec, Part, PartSpec};
 
@@ -359,9 +361,7 @@ impl Scenario {
             toml::from_str(text).map_err(|e: toml::de::Error| syntax(e.to_string()))?
         } else {
             let base = document.clone();
-            for assignment in assignments {
-                overrides::apply(&mut document, assignment)?;
-            }
+            apply_all(&mut document, assignments)?;
             Self::from_overridden(path, &base, &document, assignments)?
         };
         scenario.source = Source {
@@ -373,10 +373,18 @@ impl Scenario {
 
     /// This scenario with more `key=value` overrides applied.
     pub fn with(&self, assignments: &[String]) -> Result<Scenario, ScenarioError> {
+        self.with_any(assignments)
+    }
+
+    /// This scenario with typed assignments applied (what the library builds).
+    pub fn with_assignments(&self, assignments: &[Assignment]) -> Result<Scenario, ScenarioError> {
+        self.with_any(assignments)
+    }
+
+    /// [`Self::with`] for `key=value` texts or typed assignments alike.
+    fn with_any<A: IntoAssignment>(&self, assignments: &[A]) -> Result<Scenario, ScenarioError> {
         let mut document = self.source.document.clone();
-        for assignment in assignments {
-            overrides::apply(&mut document, assignment)?;
-        }
+        apply_all(&mut document, assignments)?;
         let base = &self.source.document;
         let mut scenario = Self::from_overridden(&self.source.path, base, &document, assignments)?;
         scenario.source = Source {
@@ -388,11 +396,11 @@ impl Scenario {
 
     /// [`Self::from_document`] for `document`, which is `base` with `assignments`
     /// applied; a failure caused by one assignment alone names its key.
-    fn from_overridden(
+    fn from_overridden<A: IntoAssignment>(
         path: &Path,
         base: &toml::Table,
         document: &toml::Table,
-        assignments: &[String],
+        assignments: &[A],
     ) -> Result<Scenario, ScenarioError> {
         Self::from_document(path, document).map_err(|error| {
             let check = |candidate: &toml::Table| {
@@ -413,4 +421,23 @@ impl Scenario {
                 message: format!("{} (after the --set overrides)", e.message().trim()),
             })
     }
+}
+
+/// Applies `assignments` to `document` in order; the first that fails is the error,
+/// quoting it as given.
+fn apply_all<A: IntoAssignment>(
+    document: &mut toml::Table,
+    assignments: &[A],
+) -> Result<(), ScenarioError> {
+    for given in assignments {
+        let assignment = given.assignment()?;
+        overrides::apply(document, &assignment).map_err(|error| match error {
+            ScenarioError::Override { message, .. } => ScenarioError::Override {
+                assignment: given.to_string(),
+                message,
+            },
+            other => other,
+        })?;
+    }
+    Ok(())
 }

@@ -7,27 +7,23 @@
 //! the path must exist; the last key may be new (typos are caught when the
 //! scenario is read, since unknown keys are rejected there).
 
+use super::assignment::{Assignment, IntoAssignment};
 use super::ScenarioError;
 
-/// Applies one `key=value` assignment to `document`.
-pub fn apply(document: &mut toml::Table, assignment: &str) -> Result<(), ScenarioError> {
+/// Applies one assignment to `document`.
+pub fn apply(document: &mut toml::Table, assignment: &Assignment) -> Result<(), ScenarioError> {
     let fail = |message: String| ScenarioError::Override {
-        assignment: assignment.to_owned(),
+        assignment: assignment.to_string(),
         message,
     };
-    let (path, text) = assignment
-        .split_once('=')
-        .ok_or_else(|| fail("expected key=value, e.g. body.ball.velocity=[0,0,-1.4]".into()))?;
-    let value = parse_value(text.trim()).map_err(&fail)?;
-    let keys: Vec<&str> = path.trim().split('.').map(str::trim).collect();
-    let (last, parents) = keys.split_last().ok_or_else(|| fail("empty key".into()))?;
-    if last.is_empty() {
-        return Err(fail("empty key".into()));
-    }
+    let (last, parents) = assignment
+        .key
+        .split_last()
+        .ok_or_else(|| fail("empty key".into()))?;
     let mut table = document;
     let mut i = 0;
     while i < parents.len() {
-        let key = parents[i];
+        let key = parents[i].as_str();
         let at = if i == 0 {
             "at the top level".to_owned()
         } else {
@@ -50,7 +46,7 @@ pub fn apply(document: &mut toml::Table, assignment: &str) -> Result<(), Scenari
         };
         i += 1;
     }
-    table.insert(last.to_string(), value);
+    table.insert(last.to_string(), assignment.value.clone());
     Ok(())
 }
 
@@ -60,20 +56,20 @@ pub fn apply(document: &mut toml::Table, assignment: &str) -> Result<(), Scenari
 ///
 /// Deserialising the document after the overrides loses the keys (serde reports
 /// "invalid type: string "abc", expected f64" with no path); this finds the culprit.
-pub fn blame(
+pub fn blame<A: IntoAssignment>(
     base: &toml::Table,
-    assignments: &[String],
+    assignments: &[A],
     check: impl Fn(&toml::Table) -> Result<(), String>,
 ) -> Option<ScenarioError> {
     check(base).ok()?;
-    assignments.iter().find_map(|assignment| {
+    assignments.iter().find_map(|given| {
+        let assignment = given.assignment().ok()?;
         let mut document = base.clone();
-        apply(&mut document, assignment).ok()?;
+        apply(&mut document, &assignment).ok()?;
         let message = check(&document).err()?;
-        let key = assignment.split_once('=').map_or("", |(key, _)| key.trim());
         Some(ScenarioError::Override {
-            assignment: assignment.clone(),
-            message: format!("`{key}` {}", in_words(&message)),
+            assignment: given.to_string(),
+            message: format!("`{}` {}", assignment.key.join("."), in_words(&message)),
         })
     })
 }
@@ -113,19 +109,6 @@ fn type_in_words(expected: &str) -> &str {
         "i8" | "i16" | "i32" | "i64" | "isize" => "a whole number",
         "a sequence" => "an array [...]",
         other => other,
-    }
-}
-
-/// Parses a TOML value; a bare word that is not TOML is taken as a string.
-fn parse_value(text: &str) -> Result<toml::Value, String> {
-    match format!("value = {text}").parse::<toml::Table>() {
-        Ok(mut table) => table.remove("value").ok_or_else(|| "no value".to_owned()),
-        Err(_) if !text.is_empty() && text.chars().all(|c| c.is_alphanumeric() || c == '_') => {
-            Ok(toml::Value::String(text.to_owned()))
-        }
-        Err(_) => Err(format!(
-            "`{text}` is not a TOML value (number, [array], \"string\")"
-        )),
     }
 }
 
@@ -172,9 +155,21 @@ mod tests {
     #[test]
     fn selects_tables_by_name_and_by_index() {
         let mut doc = document();
-        apply(&mut doc, "body.ball.velocity=[0, 0, -1.4]").unwrap();
-        apply(&mut doc, "contact.0.parameters.exponent=1.6").unwrap();
-        apply(&mut doc, "contact.0.law=flores").unwrap();
+        apply(
+            &mut doc,
+            &Assignment::parse("body.ball.velocity=[0, 0, -1.4]").unwrap(),
+        )
+        .unwrap();
+        apply(
+            &mut doc,
+            &Assignment::parse("contact.0.parameters.exponent=1.6").unwrap(),
+        )
+        .unwrap();
+        apply(
+            &mut doc,
+            &Assignment::parse("contact.0.law=flores").unwrap(),
+        )
+        .unwrap();
         let body = &doc["body"][0];
         assert_eq!(body["velocity"][2].as_float(), Some(-1.4));
         assert_eq!(
@@ -187,15 +182,18 @@ mod tests {
     #[test]
     fn errors_name_the_missing_step() {
         let mut doc = document();
-        let e = apply(&mut doc, "body.plate.mass=1")
+        let e = apply(&mut doc, &Assignment::parse("body.plate.mass=1").unwrap())
             .unwrap_err()
             .to_string();
         assert!(e.contains("plate") && e.contains("ball"), "{e}");
-        let e = apply(&mut doc, "simulation.end_time=1")
-            .unwrap_err()
-            .to_string();
+        let e = apply(
+            &mut doc,
+            &Assignment::parse("simulation.end_time=1").unwrap(),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("simulation") && e.contains("gravity"), "{e}");
-        let e = apply(&mut doc, "gravity").unwrap_err().to_string();
+        let e = Assignment::parse("gravity").unwrap_err().to_string();
         assert!(e.contains("key=value"), "{e}");
     }
 

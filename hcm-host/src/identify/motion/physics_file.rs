@@ -5,13 +5,15 @@
 
 use super::MotionFit;
 use crate::identify::{FitRecord, Physics};
+use crate::scenario::Assignment;
+use std::fmt::Display;
 
 /// `fit`'s physics file for its `contact`: made by `method` on `runs` training tosses
 /// of `data`, the table offset and the inertia applied by `sets` ([`super::beside_physics`]).
 pub fn fitted_physics(
     fit: &MotionFit,
     contact: usize,
-    sets: &[String],
+    sets: &[Assignment],
     method: &str,
     data: &str,
     runs: usize,
@@ -38,7 +40,7 @@ pub fn fitted_physics(
 }
 
 /// `sets` as command-line options: `--set a --set b`.
-pub fn set_options(sets: &[String]) -> String {
+pub fn set_options(sets: &[impl Display]) -> String {
     let options: Vec<String> = sets.iter().map(|s| format!("--set {s}")).collect();
     options.join(" ")
 }

@@ -5,81 +5,75 @@
 //! table's height; this file carries all three (the original's comments are not kept).
 
 use super::MotionParameters;
-use crate::scenario::{Model, Scenario, ScenarioError};
+use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
 
-/// The `--set` assignments that turn `model`'s scenario into the fitted one, from the
+/// The assignments that turn `model`'s scenario into the fitted one, from the
 /// fit's [`MotionParameters::named`] values: the law's two parameters, `mu_static`,
 /// `mu_dynamic`, `table_offset` (m) and `inertia_scale` (–).
 pub fn fitted_assignments(
     model: &Model,
     parameters: &MotionParameters,
     named: &[(String, f64)],
-) -> Vec<String> {
+) -> Vec<Assignment> {
     let contact = parameters.contact;
     named
         .iter()
         .map(|(name, value)| match name.as_str() {
             "table_offset" | "inertia_scale" => body_assignment(model, parameters, name, *value),
-            "mu_static" | "mu_dynamic" => format!("contact.{contact}.friction.{name}={value:e}"),
-            _ => format!("contact.{contact}.parameters.{name}={value:e}"),
+            "mu_static" | "mu_dynamic" => Assignment::contact(contact, &["friction", name], *value),
+            _ => Assignment::contact(contact, &["parameters", name], *value),
         })
         .collect()
 }
 
-/// The `--set`s a physics file — which holds the law and the friction, not the bodies —
+/// The assignments (`--set`s) a physics file — which holds the law and the friction, not the bodies —
 /// needs beside it to replay the fit: the table's surface at the fitted offset (m) and
 /// the tossed body's inertia at the fitted scale of `model`'s (the scenario's) tensor.
 pub fn beside_physics(
     model: &Model,
     parameters: &MotionParameters,
     named: &[(String, f64)],
-) -> Vec<String> {
+) -> Vec<Assignment> {
     (named.iter())
         .filter(|(name, _)| matches!(name.as_str(), "table_offset" | "inertia_scale"))
         .map(|(name, value)| body_assignment(model, parameters, name, *value))
         .collect()
 }
 
-/// The `--set` of one body gene: `table_offset` puts the plane's surface at `value`
+/// The assignment of one body gene: `table_offset` puts the plane's surface at `value`
 /// (m); `inertia_scale` sets the tossed body's inertia to `value` times `model`'s,
 /// as principal moments when the tensor is diagonal (kg·m²).
-fn body_assignment(model: &Model, parameters: &MotionParameters, name: &str, value: f64) -> String {
+fn body_assignment(
+    model: &Model,
+    parameters: &MotionParameters,
+    name: &str,
+    value: f64,
+) -> Assignment {
     if name == "table_offset" {
         let table = &model.bodies[parameters.plane].name;
-        return format!("body.{table}.shape.plane.offset={value:e}");
+        return Assignment::body(table, &["shape", "plane", "offset"], value);
     }
     let body = &model.bodies[parameters.body];
     let inertia = body.inertia * value;
     let diagonal = (0..3).all(|i| (0..3).all(|j| i == j || inertia[(i, j)] == 0.0));
-    let text = if diagonal {
-        format!(
-            "[{:e},{:e},{:e}]",
-            inertia[(0, 0)],
-            inertia[(1, 1)],
-            inertia[(2, 2)]
-        )
+    let row = |values: [f64; 3]| toml::Value::Array(values.map(toml::Value::from).to_vec());
+    let tensor = if diagonal {
+        row([inertia[(0, 0)], inertia[(1, 1)], inertia[(2, 2)]])
     } else {
-        let row = |i: usize| {
-            format!(
-                "[{:e},{:e},{:e}]",
-                inertia[(i, 0)],
-                inertia[(i, 1)],
-                inertia[(i, 2)]
-            )
-        };
-        format!("[{},{},{}]", row(0), row(1), row(2))
+        let rows = (0..3).map(|i| row([inertia[(i, 0)], inertia[(i, 1)], inertia[(i, 2)]]));
+        toml::Value::Array(rows.collect())
     };
-    format!("body.{}.inertia={text}", body.name)
+    Assignment::body(&body.name, &["inertia"], tensor)
 }
 
 /// The text of the fitted scenario file: `scenario` with `assignments` applied, checked
 /// by reading it back, under a header saying where it came from.
 pub fn fitted_scenario_text(
     scenario: &Scenario,
-    assignments: &[String],
+    assignments: &[Assignment],
     header: &str,
 ) -> Result<String, ScenarioError> {
-    let fitted = scenario.with(assignments)?;
+    let fitted = scenario.with_assignments(assignments)?;
     fitted.model()?;
     let body = toml::to_string(&fitted.source.document).map_err(|e| ScenarioError::Syntax {
         path: fitted.source.path.clone(),
@@ -121,7 +115,7 @@ mod tests {
             let named = parameters.named(&genes);
             let sets = beside_physics(&model, &parameters, &named);
             assert_eq!(sets.len(), 2, "{sets:?}");
-            let replayed = base.with(&sets).unwrap().model().unwrap();
+            let replayed = base.with_assignments(&sets).unwrap().model().unwrap();
             let fitted = parameters.apply(&model, &genes);
             let inertia: Matrix3<f64> = replayed.bodies[parameters.body].inertia;
             let expected = fitted.bodies[parameters.body].inertia;

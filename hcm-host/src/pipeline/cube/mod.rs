@@ -24,7 +24,7 @@ use crate::dataset::{DataError, Dataset};
 use crate::diagnose::motion::{diagnose_motion, MotionDiagnoseError, MotionDiagnosis};
 use crate::identify::motion::{split_tosses, MotionFit};
 use crate::numerics::optimize::genetic::GeneticError;
-use crate::scenario::{Model, Scenario, ScenarioError};
+use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
 use crate::toss::{TossError, TossSetup};
 use std::path::{Path, PathBuf};
 
@@ -153,7 +153,7 @@ pub struct CubeReproduction {
     pub fit: MotionFit,
     /// The fitted table offset and inertia as the `--set`s that apply them beside the
     /// physics file.
-    pub sets: Vec<String>,
+    pub sets: Vec<Assignment>,
     /// The index of the fitted contact.
     pub contact: usize,
     /// Both parts predicted with both models.

@@ -5,6 +5,7 @@ use super::CubeSettings;
 use crate::diagnose::motion::MotionDiagnosis;
 use crate::identify::motion::MotionFit;
 use crate::pipeline::StageTiming;
+use crate::scenario::Assignment;
 use crate::toss::{summarize, Summary, TossEvaluation};
 use serde::Serialize;
 
@@ -134,7 +135,7 @@ pub struct CubeResults {
 /// predicted, and the second fold.
 pub struct Folds<'a> {
     pub fit: &'a MotionFit,
-    pub sets: &'a [String],
+    pub sets: &'a [Assignment],
     pub predicted: &'a Predictions,
     pub second: &'a SecondFold,
 }
@@ -160,7 +161,7 @@ impl CubeResults {
             held_out_tosses: folds.predicted.held_out_fitted.len(),
             fit: FitSummary::of(folds.fit),
             second_fit: FitSummary::of(&folds.second.fit),
-            sets: folds.sets.to_vec(),
+            sets: folds.sets.iter().map(Assignment::to_string).collect(),
             scores: score_rows(folds.predicted, folds.second),
             published: PUBLISHED.to_vec(),
             held_out: toss_rows(

@@ -9,7 +9,7 @@ use crate::identify::motion::{
     beside_physics, identify_motion, MotionFit, MotionParameters, MotionStage, MotionTarget,
 };
 use crate::numerics::optimize::genetic::GeneticSettings;
-use crate::scenario::Model;
+use crate::scenario::{Assignment, Model};
 use crate::toss::{evaluate_tosses, TossEvaluation, TossSetup};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -56,7 +56,7 @@ pub fn fit(
 
 /// The fitted table offset and inertia as the `--set`s that apply them (a physics file
 /// holds the law and the friction, not the bodies).
-pub fn sets(model: &Model, parameters: &MotionParameters, fit: &MotionFit) -> Vec<String> {
+pub fn sets(model: &Model, parameters: &MotionParameters, fit: &MotionFit) -> Vec<Assignment> {
     beside_physics(model, parameters, &fit.parameters)
 }
 
