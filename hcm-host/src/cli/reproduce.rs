@@ -4,16 +4,14 @@
 //! and the figures written to the output directory.
 
 use super::progress_bar;
-use anyhow::Context;
-use hcm_host::output::{write_bytes, StagedDirectory};
+use hcm_host::output::StagedDirectory;
 use hcm_host::pipeline::{
-    reproduce, Example, NamedFigure, Pm2Method, Progress, ReproduceSettings, Reproduction, Stage,
-    StageTiming,
+    reproduce, write_reproduction, Example, Pm2Method, Progress, ReproduceSettings, Reproduced,
+    Stage,
 };
 use indicatif::ProgressBar;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard};
-use std::time::Instant;
 
 /// The paper's examples.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -140,18 +138,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // that --out appears complete or not at all; made before the minutes of work, so
     // that an unwritable place or an --out that may not be replaced fails at once.
     let staged = StagedDirectory::create(&args.out, "results.json")?;
-    let out = staged.path();
-    let mut reproduction = reproduce(&settings, &Bars::default())?;
-    let clock = Instant::now();
-    write_stages(&reproduction, out)?;
-    let results = &mut reproduction.results;
-    results.timings.push(StageTiming {
-        stage: "write files".into(),
-        seconds: clock.elapsed().as_secs_f64(),
-    });
-    write_bytes(&out.join("results.json"), results.json()?.as_bytes())?;
-    let report = results.markdown();
-    write_bytes(&out.join("report.md"), report.as_bytes())?;
+    let reproduction = reproduce(&settings, &Bars::default())?;
+    finish(staged, reproduction)
+}
+
+/// Writes `reproduction` into the staged output directory, moves it into place and
+/// prints the report: the same for every example.
+pub(super) fn finish(
+    staged: StagedDirectory,
+    mut reproduction: impl Reproduced,
+) -> anyhow::Result<()> {
+    let report = write_reproduction(&mut reproduction, staged.path())?;
     staged.commit()?;
     print!("{report}");
     Ok(())
@@ -188,33 +185,6 @@ impl From<Args> for super::reproduce_cube::CubeArgs {
     }
 }
 
-/// Every stage's output in `out`: S1 and S2, PM2, the trained network, its blobs and
-/// the figures (SVG and PNG).
-fn write_stages(r: &Reproduction, out: &Path) -> anyhow::Result<()> {
-    r.sets.training.write(&out.join("s1.csv"))?;
-    r.sets.validation.write(&out.join("s2.csv"))?;
-    let comment = format!("PM2 of `{}` from hcm reproduce", r.scenario.name);
-    r.pm2.physics.write(&out.join("pm2.toml"), &comment)?;
-    r.trained.residual.write(&out.join("residual.json"))?;
-    write_bytes(&out.join("residual.bin"), &r.blobs.f32.bytes)?;
-    write_bytes(&out.join("residual.int8.bin"), &r.blobs.int8.bytes)?;
-    write_figures(&r.figures, out)
-}
-
-/// Each figure as `STEM.svg` and `STEM.png` in `out`.
-pub(super) fn write_figures(figures: &[NamedFigure], out: &Path) -> anyhow::Result<()> {
-    for named in figures {
-        let (svg, png) = (format!("{}.svg", named.stem), format!("{}.png", named.stem));
-        write_bytes(&out.join(&svg), named.figure.svg().as_bytes())?;
-        let bytes = named
-            .figure
-            .png()
-            .with_context(|| format!("drawing {png}"))?;
-        write_bytes(&out.join(&png), &bytes)?;
-    }
-    Ok(())
-}
-
 /// One progress bar per stage on standard error (hidden when it is not a terminal).
 #[derive(Default)]
 pub(super) struct Bars(Mutex<Option<ProgressBar>>);
@@ -230,14 +200,7 @@ impl Bars {
 
 impl Progress for Bars {
     fn begin(&self, stage: Stage, steps: u64) {
-        let message = match stage {
-            Stage::Generate => "1/5 generate",
-            Stage::Identify => "2/5 identify",
-            Stage::Train => "3/5 train",
-            Stage::Int8Twin => "3/5 int8 twin",
-            Stage::Evaluate => "5/5 evaluate",
-        };
-        *self.bar() = Some(progress_bar(steps, message));
+        *self.bar() = Some(progress_bar(steps, stage.label()));
     }
 
     fn advance(&self, done: u64, steps: u64) {

@@ -17,6 +17,7 @@
 //! prints or writes a file: progress goes to the caller's [`Progress`], and the
 //! intermediate values come back in the [`Reproduction`] for the caller to write.
 
+mod artifacts;
 pub mod cube;
 mod evaluate;
 mod example;
@@ -32,12 +33,13 @@ mod setup;
 mod train;
 
 pub use crate::figure::NamedFigure;
+pub use artifacts::{write_figures, write_reproduction, Artifact, Reproduced};
 pub use evaluate::{evaluate_on_s2, Evaluation};
 pub use example::{Example, Pm2Method, ReproduceSettings};
 pub use export::{blob, export_blobs, Blob, Blobs};
 pub use generate::experiment;
 pub use identify::{identify_pm2, Pm2};
-pub use progress::{Progress, Silent, Stage};
+pub use progress::{Fold, Progress, Silent, Stage};
 pub use results::{
     BlobSummary, NamedValue, PaperErrors, Pm2Summary, ReproduceResults, ResidualSummary,
     StageClock, StageTiming,
@@ -52,6 +54,7 @@ use crate::identify::IdentifyError;
 use crate::scenario::{Scenario, ScenarioError};
 use crate::train::TrainError;
 use hcm_core::residual::BlobError;
+use std::borrow::Cow;
 
 /// The contact of the paper's examples that PM2 and the residual model: they have one.
 pub const CONTACT: usize = 0;
@@ -114,6 +117,35 @@ pub struct Reproduction {
     pub figures: Vec<NamedFigure>,
     /// Every table of the report.
     pub results: ReproduceResults,
+}
+
+/// The ball's and the flat shot's files: S1 and S2, PM2, the trained network, its
+/// blobs and the figures (SVG and PNG).
+impl Reproduced for Reproduction {
+    fn artifacts(&self) -> anyhow::Result<Vec<Artifact<'_>>> {
+        let comment = format!("PM2 of `{}` from hcm reproduce", self.scenario.name);
+        Ok(vec![
+            Artifact::Data("s1.csv", Cow::Borrowed(&self.sets.training)),
+            Artifact::Data("s2.csv", Cow::Borrowed(&self.sets.validation)),
+            Artifact::Physics("pm2.toml", self.pm2.physics.clone(), comment),
+            Artifact::Residual("residual.json", &self.trained.residual),
+            Artifact::Bytes("residual.bin", &self.blobs.f32.bytes),
+            Artifact::Bytes("residual.int8.bin", &self.blobs.int8.bytes),
+            Artifact::Figures(&self.figures),
+        ])
+    }
+
+    fn record(&mut self, timing: StageTiming) {
+        self.results.timings.push(timing);
+    }
+
+    fn results_json(&self) -> anyhow::Result<String> {
+        Ok(self.results.json()?)
+    }
+
+    fn report(&self) -> String {
+        self.results.markdown()
+    }
 }
 
 /// Reads the scenario of `settings` and runs stages 1–5 on it, timing each (wall

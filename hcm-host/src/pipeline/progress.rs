@@ -1,7 +1,8 @@
 //! How the pipeline tells its caller how far it is: the library never prints, the
 //! caller shows what it likes (the CLI draws progress bars).
 
-/// A stage of the pipeline that reports its steps.
+/// A stage of a reproduction that reports its steps: the paper's five (the ball, the
+/// flat shot, the peg-in-hole) and those of a fit from motion (the cube tosses).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
     /// Stage 1: steps are generated runs.
@@ -14,6 +15,43 @@ pub enum Stage {
     Int8Twin,
     /// Stage 5: one step.
     Evaluate,
+    /// A fit from motion's genetic algorithm; steps are generations.
+    MotionGenetic(Fold),
+    /// A fit from motion's Nelder–Mead polish; steps are fitness evaluations.
+    MotionPolish(Fold),
+    /// Tosses predicted; steps are tosses.
+    Predict(Fold),
+    /// The motion diagnosis; steps are its candidates' fits.
+    Diagnose,
+}
+
+/// Which fold of a two-fold split a stage works on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fold {
+    /// Fitted on the training part (even toss numbers).
+    First,
+    /// Fitted on the held-out part (odd toss numbers), the training part predicted.
+    Second,
+}
+
+impl Stage {
+    /// The stage's name as a progress display shows it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Stage::Generate => "1/5 generate",
+            Stage::Identify => "2/5 identify",
+            Stage::Train => "3/5 train",
+            Stage::Int8Twin => "3/5 int8 twin",
+            Stage::Evaluate => "5/5 evaluate",
+            Stage::MotionGenetic(Fold::First) => "fit: GA",
+            Stage::MotionPolish(Fold::First) => "fit: polish",
+            Stage::Predict(Fold::First) => "predict",
+            Stage::MotionGenetic(Fold::Second) => "second fold (fit on odd): GA",
+            Stage::MotionPolish(Fold::Second) => "second fold: polish",
+            Stage::Predict(Fold::Second) => "second fold: predict",
+            Stage::Diagnose => "diagnose",
+        }
+    }
 }
 
 /// Receives the pipeline's progress. Every method defaults to doing nothing. Calls may

@@ -6,7 +6,7 @@
 //! predicted by a fit that never saw it), their error over
 //! time and per phase ([`errors`], [`phases`]), the diagnosis of what the fitted model
 //! still gets wrong ([`diagnose_motion`]), and the report's figures ([`figures`]).
-//! Nothing here prints or writes a file: progress goes to a [`CubeProgress`], and the
+//! Nothing here prints or writes a file: progress goes to a [`Progress`], and the
 //! caller writes what comes back.
 
 pub mod errors;
@@ -28,13 +28,13 @@ use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
 use crate::toss::{TossError, TossSetup};
 use std::path::{Path, PathBuf};
 
-use super::{NamedFigure, Silent, StageClock};
+use super::{Artifact, Fold, NamedFigure, Progress, Reproduced, Stage, StageClock, StageTiming};
+use crate::identify::motion::fitted_physics;
+use crate::toss::predicted_dataset;
+use std::borrow::Cow;
 
 /// The scenario shipped with hcm, so that the example runs from any directory.
 pub const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/cube_toss.toml");
-
-/// The first fold's progress stages.
-const FIT_STAGES: [&str; 2] = ["fit: GA", "fit: polish"];
 
 /// What [`reproduce_cube`] runs.
 #[derive(Clone, Debug, PartialEq)]
@@ -98,22 +98,6 @@ impl CubeSettings {
     }
 }
 
-/// How the cube pipeline tells its caller how far it is (the CLI draws bars).
-pub trait CubeProgress: Sync {
-    /// A stage of `steps` steps begins.
-    fn begin(&self, stage: &'static str, steps: u64) {
-        let _ = (stage, steps);
-    }
-    /// `done` of `steps` steps are done.
-    fn advance(&self, done: u64, steps: u64) {
-        let _ = (done, steps);
-    }
-    /// The stage ended.
-    fn end(&self) {}
-}
-
-impl CubeProgress for Silent {}
-
 /// Why the cube pipeline stopped.
 #[derive(Debug, thiserror::Error)]
 pub enum CubeError {
@@ -168,11 +152,53 @@ pub struct CubeReproduction {
     pub figures: Vec<NamedFigure>,
 }
 
+/// The cube's files: the fit as a physics file, the two parts of the split, the
+/// fitted model's held-out predictions and the figures.
+impl Reproduced for CubeReproduction {
+    fn artifacts(&self) -> anyhow::Result<Vec<Artifact<'_>>> {
+        let method = "ga + Nelder–Mead on toss replays (motion only), hcm reproduce cube-toss";
+        let runs = self.training.runs.len();
+        let physics = fitted_physics(
+            &self.fit,
+            self.contact,
+            &self.sets,
+            method,
+            &self.results.data,
+            runs,
+        );
+        let comment = format!(
+            "contact of scenario `{}` fitted to tosses by hcm reproduce cube-toss",
+            self.scenario.name
+        );
+        let body = TossSetup::new(&self.fit.model)?.name;
+        let predicted = predicted_dataset(&self.predicted.held_out_fitted, &body);
+        Ok(vec![
+            Artifact::Physics("physics.toml", physics, comment),
+            Artifact::Data("training.csv", Cow::Borrowed(&self.training)),
+            Artifact::Data("held_out.csv", Cow::Borrowed(&self.held_out)),
+            Artifact::Data("predicted_held_out.csv", Cow::Owned(predicted)),
+            Artifact::Figures(&self.figures),
+        ])
+    }
+
+    fn record(&mut self, timing: StageTiming) {
+        self.results.timings.push(timing);
+    }
+
+    fn results_json(&self) -> anyhow::Result<String> {
+        Ok(serde_json::to_string_pretty(&self.results)?)
+    }
+
+    fn report(&self) -> String {
+        self.results.markdown()
+    }
+}
+
 /// Runs the cube toss's stages. Bit-identical results (but for the timings) for the
 /// same settings, whatever the thread count.
 pub fn reproduce_cube(
     settings: &CubeSettings,
-    progress: &dyn CubeProgress,
+    progress: &dyn Progress,
 ) -> Result<CubeReproduction, CubeError> {
     let mut clock = StageClock::default();
     let scenario = settings.load_scenario()?;
@@ -181,7 +207,7 @@ pub fn reproduce_cube(
     let (training, held_out) =
         clock.time("read + split", || read_split(settings, &setup, &model))?;
     let (fit, parameters) = clock.time("fit (GA + polish)", || {
-        stages::fit(settings, &model, &setup, &training, FIT_STAGES, progress)
+        stages::fit(settings, &model, &setup, &training, Fold::First, progress)
     })?;
     let sets = stages::sets(&model, &parameters, &fit);
     let predicted = clock.time("predict", || {
@@ -229,15 +255,15 @@ fn diagnose(
     fitted: &Model,
     training: &Dataset,
     held_out: &Dataset,
-    progress: &dyn CubeProgress,
+    progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, CubeError> {
     let mut data = training.clone();
     data.runs.extend(held_out.runs.iter().cloned());
-    progress.begin("diagnose", 1);
+    progress.begin(Stage::Diagnose, 1);
     let diagnosis = diagnose_motion(fitted, &data, |_, k, n| {
         progress.advance(k as u64, n as u64)
     });
-    progress.end();
+    progress.end(Stage::Diagnose);
     Ok(diagnosis?)
 }
 

@@ -3,25 +3,26 @@
 //! and per phase.
 
 use super::errors::{frame_errors, over_time, per_phase, PhaseErrors, TimePoint};
-use super::{CubeError, CubeProgress, CubeSettings};
+use super::{CubeError, CubeSettings};
 use crate::dataset::Dataset;
 use crate::identify::motion::{
     beside_physics, identify_motion, MotionFit, MotionParameters, MotionStage, MotionTarget,
 };
 use crate::numerics::optimize::genetic::GeneticSettings;
+use crate::pipeline::{Fold, Progress, Stage};
 use crate::scenario::{Assignment, Model};
 use crate::toss::{evaluate_tosses, TossEvaluation, TossSetup};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// The fit on the `training` tosses, with a progress stage for the GA and one for the
-/// polish, named `label` (e.g. `fit`).
+/// The fit on the `training` tosses of `fold`, with a progress stage for the GA and
+/// one for the polish.
 pub fn fit(
     settings: &CubeSettings,
     model: &Model,
     setup: &TossSetup,
     training: &Dataset,
-    label: [&'static str; 2],
-    progress: &dyn CubeProgress,
+    fold: Fold,
+    progress: &dyn Progress,
 ) -> Result<(MotionFit, MotionParameters), CubeError> {
     let target = MotionTarget::new(model, training)?;
     let parameters = MotionParameters::new(model, setup)?;
@@ -32,7 +33,7 @@ pub fn fit(
         ..GeneticSettings::default()
     };
     let (generations, polish) = (settings.generations as u64, settings.polish as u64);
-    progress.begin(label[0], generations);
+    progress.begin(Stage::MotionGenetic(fold), generations);
     let mut polishing = false;
     let fit = identify_motion(
         model,
@@ -43,14 +44,19 @@ pub fn fit(
         |stage, done, _| {
             if stage == MotionStage::Polish && !polishing {
                 polishing = true;
-                progress.end();
-                progress.begin(label[1], polish);
+                progress.end(Stage::MotionGenetic(fold));
+                progress.begin(Stage::MotionPolish(fold), polish);
             }
             let steps = if polishing { polish } else { generations };
             progress.advance(done as u64, steps);
         },
     );
-    progress.end();
+    let last = if polishing {
+        Stage::MotionPolish(fold)
+    } else {
+        Stage::MotionGenetic(fold)
+    };
+    progress.end(last);
     Ok((fit?, parameters))
 }
 
@@ -77,17 +83,16 @@ pub fn second_fold(
     setup: &TossSetup,
     odd: &Dataset,
     even: &Dataset,
-    progress: &dyn CubeProgress,
+    progress: &dyn Progress,
 ) -> Result<SecondFold, CubeError> {
-    let stages = ["second fold (fit on odd): GA", "second fold: polish"];
-    let (fit, _) = self::fit(settings, model, setup, odd, stages, progress)?;
+    let (fit, _) = self::fit(settings, model, setup, odd, Fold::Second, progress)?;
     let steps = even.runs.len() as u64;
     let done = AtomicU64::new(0);
-    progress.begin("second fold: predict", steps);
+    progress.begin(Stage::Predict(Fold::Second), steps);
     let predicted = evaluate_tosses(&fit.model, even, || {
         progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1, steps)
     })?;
-    progress.end();
+    progress.end(Stage::Predict(Fold::Second));
     Ok(SecondFold { fit, predicted })
 }
 
@@ -110,7 +115,7 @@ pub fn predict(
     fitted: &Model,
     training: &Dataset,
     held_out: &Dataset,
-    progress: &dyn CubeProgress,
+    progress: &dyn Progress,
 ) -> Result<Predictions, CubeError> {
     let steps = 2 * (training.runs.len() + held_out.runs.len()) as u64;
     let done = AtomicU64::new(0);
@@ -118,14 +123,14 @@ pub fn predict(
         let now = done.fetch_add(1, Ordering::Relaxed) + 1;
         progress.advance(now, steps);
     };
-    progress.begin("predict", steps);
+    progress.begin(Stage::Predict(Fold::First), steps);
     let predictions = Predictions {
         held_out_fitted: evaluate_tosses(fitted, held_out, tick)?,
         held_out_scenario: evaluate_tosses(scenario, held_out, tick)?,
         training_fitted: evaluate_tosses(fitted, training, tick)?,
         training_scenario: evaluate_tosses(scenario, training, tick)?,
     };
-    progress.end();
+    progress.end(Stage::Predict(Fold::First));
     Ok(predictions)
 }
 

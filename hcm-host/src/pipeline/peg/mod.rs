@@ -13,14 +13,17 @@ pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS, PAPER};
 pub use train::{train_peg_residual, wall_contact_pairs, PegTrained};
 
 use super::{
-    experiment, export_blobs, Blob, Blobs, PipelineError, Progress, Stage, StageClock, StageTiming,
+    experiment, export_blobs, Artifact, Blob, Blobs, PipelineError, Progress, Reproduced, Stage,
+    StageClock, StageTiming,
 };
 use crate::experiment::Split;
 use crate::identify::rigid::{
     identify_rigid, RigidIdentification, RigidIdentifyError, RigidParameters, WrenchTarget,
 };
+use crate::identify::{FitRecord, Physics};
 use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::scenario::{Scenario, ScenarioError};
+use std::borrow::Cow;
 use std::path::PathBuf;
 
 /// The peg's one contact (peg–block).
@@ -101,6 +104,47 @@ pub struct PegReproduction {
     pub evaluation: PegEvaluation,
     /// Wall clock per stage (s).
     pub timings: Vec<StageTiming>,
+    /// The seed and the number of runs it was made with (for `results.json`).
+    pub seed: u64,
+    /// Runs generated.
+    pub runs: usize,
+}
+
+/// The peg's files: S1 and S2, PM2 as a physics file, the trained network, its blobs
+/// and the figures.
+impl Reproduced for PegReproduction {
+    fn artifacts(&self) -> anyhow::Result<Vec<Artifact<'_>>> {
+        let comment = format!("PM2 of `{}` from hcm reproduce", self.scenario.name);
+        let fit = FitRecord {
+            method: "ga (contact events)".into(),
+            data: "s1.csv".into(),
+            seconds: self.pm2.seconds,
+            ..Default::default()
+        };
+        let pm2 = &self.pm2.model;
+        let physics = Physics::for_contact(pm2, 0, pm2.contacts[0].law(), fit);
+        Ok(vec![
+            Artifact::Data("s1.csv", Cow::Borrowed(&self.sets.training)),
+            Artifact::Data("s2.csv", Cow::Borrowed(&self.sets.validation)),
+            Artifact::Physics("pm2.toml", physics, comment),
+            Artifact::Residual("residual.json", &self.trained.residual),
+            Artifact::Bytes("residual.bin", &self.blobs.f32.bytes),
+            Artifact::Bytes("residual.int8.bin", &self.blobs.int8.bytes),
+            Artifact::Figures(&self.evaluation.figures),
+        ])
+    }
+
+    fn record(&mut self, timing: StageTiming) {
+        self.timings.push(timing);
+    }
+
+    fn results_json(&self) -> anyhow::Result<String> {
+        Ok(self.json(self.seed, self.runs)?)
+    }
+
+    fn report(&self) -> String {
+        self.markdown()
+    }
 }
 
 /// Stage 2: PM2 — the scenario's law with its exponent fixed at `settings.exponent`,
@@ -190,5 +234,7 @@ pub fn reproduce_peg(
         blobs,
         evaluation,
         timings,
+        seed: settings.seed,
+        runs: settings.runs,
     })
 }
