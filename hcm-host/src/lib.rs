@@ -1,6 +1,23 @@
 //! hcm-host: the std side of hybrid contact modeling — the pipeline stages behind the
 //! `hcm` command line. The library computes and returns values; only the CLI
 //! (`src/cli/`) prints.
+//!
+//! The modules are layered, each using only those of the layers below it (bottom
+//! first; `tests/layers.rs` checks it):
+//!
+//! 1. [`numerics`], [`output`], [`law_catalogue`] — generic numerics and optimisers,
+//!    atomic file output, laws by name;
+//! 2. [`residual`] — the stored residual network;
+//! 3. [`scenario`] — scenario files, assignments, contact geometry;
+//! 4. [`dataset`] — measured data;
+//! 5. [`indicators`] — the paper's indicators of contact events;
+//! 6. [`simulate`] — the simulator;
+//! 7. [`experiment`], [`toss`], [`figure`] — noisy experiments, toss replays, figures;
+//! 8. [`identify`] — physics parameters (PM2);
+//! 9. [`train`], [`evaluate`] — the residual network, held-out evaluation;
+//! 10. [`export`] — the blob a controller embeds;
+//! 11. [`diagnose`] — what the simulation gets wrong, and why;
+//! 12. [`pipeline`] — `hcm reproduce`'s presets over the stages.
 
 pub mod dataset;
 pub mod diagnose;
