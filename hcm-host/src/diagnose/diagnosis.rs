@@ -1,8 +1,8 @@
 //! The whole diagnosis of one contact: what is wrong, the named causes, the extended
 //! model and its gain — the data behind `DIR/report.md` and `DIR/diagnosis.json`.
 
-use super::gain::{gain, group_table, holdout, GainTable, Holdout, Judged};
-use super::naming::{name_causes, unnamed, NotAccepted, Trial};
+use super::gain::{gain, group_table, holdout, GainTable, Judged};
+use super::naming::{name_causes, unnamed, Naming, NotAccepted, Trial};
 use super::noise::{noise_floor, NoiseFloor};
 use super::quality::{assess, reconstruction_gap, DataQuality, MAX_GAP_SIGMAS};
 use super::samples::contact_samples_of;
@@ -10,8 +10,8 @@ use super::select::{select, Cause, Fitted, Step};
 use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
 use super::ContactSamples;
-use crate::dataset::delay::DELAY_SIGMAS;
-use crate::dataset::reconstruct::{complete_with, Checks};
+use crate::dataset::delay::{Delay, DELAY_SIGMAS};
+use crate::dataset::reconstruct::{complete_with, Checks, Completed};
 use crate::dataset::Dataset;
 use crate::export::encode;
 use crate::identify::samples::force_samples;
@@ -104,14 +104,27 @@ pub struct RunSplit {
     pub condition: Option<String>,
 }
 
-/// Diagnoses contact `settings.contact` of `base` (the scenario with the base physics
-/// applied) against `data`.
-pub fn diagnose(
-    base: &Model,
-    data: &Dataset,
-    settings: &DiagnoseSettings,
-) -> Result<Diagnosis, IdentifyError> {
-    let c = settings.contact;
+/// What the training runs show before anything is extended: their samples, noise floor
+/// and data quality, the base law's residual, the linear selection and the decision.
+struct Findings {
+    /// The training runs' samples of the contact.
+    samples: ContactSamples,
+    /// Noise floor of the force signal.
+    noise: NoiseFloor,
+    /// Whether the data can support a diagnosis.
+    quality: DataQuality,
+    /// What is wrong with the base model.
+    before: Structure,
+    /// The linear forward selection's steps.
+    selection: Vec<Step>,
+    /// The decision on full re-fits.
+    naming: Naming,
+}
+
+/// Reconstructs `data` for `base`: motion at a camera's frames and force at the
+/// sensor's rate become full rows, re-timed by a fitted sensor delay where that puts
+/// the contacts on their flights.
+fn reconstruct<'a>(base: &Model, data: &'a Dataset) -> Result<Completed<'a>, IdentifyError> {
     // Motion at a camera's frames and force at the sensor's rate become full rows once,
     // here (`dataset::reconstruct`): the gain, the sensor and the HCM read them too.
     // Motion on every row is checked against the force first: a camera's frames splined
@@ -139,17 +152,18 @@ pub fn diagnose(
             }
         }
     }
-    let data: &Dataset = &completed.data;
-    let Holdout {
-        training,
-        held_out,
-        condition,
-    } = holdout(base, data, settings.seed, settings.holdout_fraction);
-    // The training runs with their reconstructions, so that each sample carries its
-    // reconstruction's uncertainty (0 where motion and force share every row).
-    let fitted = completed.subset(&training);
-    let fit_data: &Dataset = &fitted.data;
-    let samples: ContactSamples = contact_samples_of(base, &fitted, c)?;
+    Ok(completed)
+}
+
+/// Examines contact `c` on the training runs `fitted` (reconstructed from `completed`):
+/// noise, data quality, the base law's residual, and the causes named.
+fn examine(
+    base: &Model,
+    completed: &Completed<'_>,
+    fitted: &Completed<'_>,
+    c: usize,
+) -> Result<Findings, IdentifyError> {
+    let samples: ContactSamples = contact_samples_of(base, fitted, c)?;
     let noise = noise_floor(&samples);
     let sigma = noise.sigma;
     let law = base.contacts[c].model.normal.clone();
@@ -159,7 +173,7 @@ pub fn diagnose(
     let selection = select(&samples, &law, sigma);
     // Data that cannot show a shape get no cause, only the reasons why.
     let mut quality = assess(&samples, sigma);
-    quality.check_reconstruction(&completed);
+    quality.check_reconstruction(completed);
     // What the contact's reconstruction (camera-rate motion) adds to the noise.
     let judged_sigma = super::noise::effective_sigma(&samples, &law, sigma);
     let naming = if quality.sufficient {
@@ -167,14 +181,26 @@ pub fn diagnose(
     } else {
         unnamed(&samples, &law, judged_sigma)
     };
-    let fit = naming.fit.clone();
-    let after = naming.after.clone();
-    // Named: the chosen causes (entered first); a provisional term is in the extended
-    // law and the sensor, not among the causes.
-    let mut causes: Vec<Cause> = fit.causes.into_iter().take(naming.chosen.len()).collect();
+    Ok(Findings {
+        samples,
+        noise,
+        quality,
+        before,
+        selection: selection.steps,
+        naming,
+    })
+}
+
+/// The named causes: the `chosen` ones, their intervals widened by the sd of a `delay`
+/// the reconstruction aligned the motion with, and air drag if its fit is significant.
+fn named_causes(
+    mut causes: Vec<Cause>,
+    delay: Option<Delay>,
+    drag: Option<&super::drag::DragFit>,
+) -> Vec<Cause> {
     // A delay found by the reconstruction: the motion was aligned with it, so the delay
     // named is that alignment, uncertain by the reconstruction's own sd as well.
-    if let Some(delay) = completed.delay {
+    if let Some(delay) = delay {
         for p in causes
             .iter_mut()
             .filter(|c| c.effect == "sensor_delay")
@@ -184,9 +210,7 @@ pub fn diagnose(
             p.ci = (p.value - half, p.value + half);
         }
     }
-    let body = &base.bodies[base.contacts[c].body_1];
-    let drag = super::drag::fit_drag(&samples, body.mass);
-    if let Some(d) = drag.as_ref().filter(|d| d.significant) {
+    if let Some(d) = drag.filter(|d| d.significant) {
         causes.push(Cause {
             effect: "air_drag",
             kind: super::catalogue::Kind::Physical,
@@ -201,65 +225,128 @@ pub fn diagnose(
             share: d.share,
         });
     }
+    causes
+}
+
+/// The models the gain compares beside the base: the extended one with its sensor
+/// correction, and the HCM if it could be trained.
+struct Models {
+    /// The base with the re-fitted law and, if fitted, body 1's air drag.
+    extended: Model,
+    /// The sensor correction the extended model is judged with.
+    sensor: Sensor,
+    /// The base with a trained residual network, if any.
+    hcm: Option<Model>,
+}
+
+impl Models {
+    /// Builds the extended model from `law` and `drag` and trains the HCM on `fit_data`
+    /// (contact `settings.contact`).
+    fn new(
+        base: &Model,
+        fit_data: &Dataset,
+        law: &ExtendedLaw<f64>,
+        sensor: Sensor,
+        drag: Option<&super::drag::DragFit>,
+        settings: &DiagnoseSettings,
+    ) -> Result<Self, IdentifyError> {
+        let c = settings.contact;
+        let mut extended = base.clone();
+        extended.contacts[c].model.normal = law.clone();
+        if let Some(air_drag) = drag.and_then(|d| d.air_drag()) {
+            extended.bodies[base.contacts[c].body_1].air_drag = Some(air_drag);
+        }
+        let hcm = hcm_contact(base, fit_data, c, settings)?.map(|contact| {
+            let mut model = base.clone();
+            model.contacts[c] = contact;
+            model
+        });
+        Ok(Self {
+            extended,
+            sensor,
+            hcm,
+        })
+    }
+
+    /// The rows of the gain tables: base, extended and (if trained) HCM.
+    fn judged<'a>(&'a self, base: &'a Model) -> Vec<Judged<'a>> {
+        let ideal = Sensor::default();
+        let mut judged = vec![
+            Judged {
+                label: "base",
+                physics: base,
+                sensor: ideal,
+            },
+            Judged {
+                label: "extended",
+                physics: &self.extended,
+                sensor: self.sensor,
+            },
+        ];
+        if let Some(h) = &self.hcm {
+            judged.push(Judged {
+                label: "HCM",
+                physics: h,
+                sensor: ideal,
+            });
+        }
+        judged
+    }
+}
+
+/// Diagnoses contact `settings.contact` of `base` (the scenario with the base physics
+/// applied) against `data`.
+pub fn diagnose(
+    base: &Model,
+    data: &Dataset,
+    settings: &DiagnoseSettings,
+) -> Result<Diagnosis, IdentifyError> {
+    let c = settings.contact;
+    let completed = reconstruct(base, data)?;
+    let data: &Dataset = &completed.data;
+    let split = holdout(base, data, settings.seed, settings.holdout_fraction);
+    // The training runs with their reconstructions, so that each sample carries its
+    // reconstruction's uncertainty (0 where motion and force share every row).
+    let fitted = completed.subset(&split.training);
+    let findings = examine(base, &completed, &fitted, c)?;
+    let (naming, sigma) = (findings.naming, findings.noise.sigma);
+    let fit = naming.fit.clone();
+    // Named: the chosen causes (entered first); a provisional term is in the extended
+    // law and the sensor, not among the causes.
+    let chosen = fit.causes.into_iter().take(naming.chosen.len()).collect();
+    let body = &base.bodies[base.contacts[c].body_1];
+    let drag = super::drag::fit_drag(&findings.samples, body.mass);
+    let causes = named_causes(chosen, completed.delay, drag.as_ref());
     let unexplained_share = if naming.unexplained {
         fit.left_share
     } else {
         0.0
     };
-
     // The gain: base, extended and HCM on the held-out runs.
-    let mut extended = base.clone();
-    extended.contacts[c].model.normal = fit.law.clone();
-    if let Some(air_drag) = drag.as_ref().and_then(|d| d.air_drag()) {
-        extended.bodies[base.contacts[c].body_1].air_drag = Some(air_drag);
-    }
-    let hcm = hcm_contact(base, fit_data, c, settings)?.map(|contact| {
-        let mut model = base.clone();
-        model.contacts[c] = contact;
-        model
-    });
-    let ideal = Sensor::default();
-    let mut judged = vec![
-        Judged {
-            label: "base",
-            physics: base,
-            sensor: ideal,
-        },
-        Judged {
-            label: "extended",
-            physics: &extended,
-            sensor: fit.sensor,
-        },
-    ];
-    if let Some(h) = &hcm {
-        judged.push(Judged {
-            label: "HCM",
-            physics: h,
-            sensor: ideal,
-        });
-    }
-    let gain = gain(base, data, &held_out, c, sigma, &judged)?;
-    let in_sample = group_table(
-        "training runs".into(),
+    let models = Models::new(
         base,
-        data,
-        &training,
-        c,
-        sigma,
-        &judged,
+        &fitted.data,
+        &fit.law,
+        fit.sensor,
+        drag.as_ref(),
+        settings,
     )?;
-    let base_structured = before.structured;
+    let judged = models.judged(base);
+    let gain = gain(base, data, &split.held_out, c, sigma, &judged)?;
+    let runs = &split.training;
+    let in_sample = group_table("training runs".into(), base, data, runs, c, sigma, &judged)?;
     Ok(Diagnosis {
-        noise,
-        data_quality: quality,
+        noise: findings.noise,
+        data_quality: findings.quality,
         runs: RunSplit {
-            training: training.len(),
-            held_out: held_out.len(),
-            condition,
+            training: split.training.len(),
+            held_out: split.held_out.len(),
+            condition: split.condition,
         },
-        before,
-        after,
-        selection: selection.steps,
+        base_structured: findings.before.structured,
+        before: findings.before,
+        after: naming.after,
+        selection: findings.selection,
         naming: naming.steps,
         not_accepted: naming.not_accepted,
         ambiguous: naming.ambiguous,
@@ -267,7 +354,6 @@ pub fn diagnose(
         drag,
         drag_body: body.name.clone(),
         unexplained_share,
-        base_structured,
         base_parameters: fit.base_parameters,
         extended: fit.law,
         gain,

@@ -14,6 +14,7 @@ pub mod gain;
 pub mod naming;
 pub mod noise;
 pub mod quality;
+pub mod report;
 pub mod select;
 pub mod sensor;
 pub mod structure;

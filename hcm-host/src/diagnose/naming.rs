@@ -147,185 +147,293 @@ fn structure_of(samples: &ContactSamples, fit: &Refit, sigma: f64) -> Structure 
     residual_structure(samples, &fit.sensor.reads(samples, &fit.law), sigma)
 }
 
-/// Names the causes of `measured − base` on `samples` (noise σ in N); see the module
-/// documentation. Deterministic: trials are re-fitted in parallel but compared in
-/// catalogue order.
-pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Naming {
-    let threshold = (samples.len().max(2) as f64).ln();
-    let mut chosen: Vec<(Candidate, f64)> = Vec::new();
-    // The base re-tuned alone: the first step's reference, and the answer when nothing
-    // is named.
-    let base_fit = refit(samples, base, &chosen, sigma);
-    let base_after = structure_of(samples, &base_fit, sigma);
-    let mut fit = base_fit.clone();
-    let mut after = base_after.clone();
-    let mut steps = Vec::new();
-    let mut not_accepted = Vec::new();
-    let mut ambiguous = Vec::new();
-    let mut provisional = None;
-    while after.structured && chosen.len() < MAX_CAUSES {
-        let trials: Vec<((Candidate, f64), Refit)> = options(&chosen)
-            .into_par_iter()
-            .map(|option| {
-                let mut with = chosen.clone();
-                with.push(option);
-                (option, refit(samples, base, &with, sigma))
-            })
-            .collect();
-        // Lowest information criterion first, RSS/σ² + ln(n) per parameter: at equal
-        // RSS the simpler effect (viscous damping is hysteresis damping with p = 0);
-        // ties keep catalogue order (a stable sort).
-        let criterion = |k: usize| {
-            let ((_, shape), trial) = &trials[k];
-            trial.rss / (sigma * sigma) + threshold * parameters(*shape)
-        };
-        let mut order: Vec<usize> = (0..trials.len()).collect();
-        order.sort_by(|&a, &b| criterion(a).total_cmp(&criterion(b)));
-        let judge = |k: usize| {
-            let ((candidate, shape), trial) = &trials[k];
-            Trial {
-                effect: candidate.name(),
-                rss: (fit.rss, trial.rss),
-                bic: (
-                    (fit.rss - trial.rss) / (sigma * sigma),
-                    threshold * parameters(*shape),
-                ),
-                determined: determined(trial),
-                accepted: false,
-            }
-        };
-        // The best trial that passes both tests; else the best one, rejected.
-        let passing = order.iter().copied().find(|&k| {
-            let t = judge(k);
-            t.bic.0 > t.bic.1 && t.determined
-        });
+/// The fixed inputs of one decision: the samples, the base law, the noise σ (N) and the
+/// information criterion's price of one parameter, ln(n) (–).
+struct Problem<'a> {
+    /// The contact samples.
+    samples: &'a ContactSamples,
+    /// The base law the causes extend.
+    base: &'a ExtendedLaw<f64>,
+    /// The measured noise σ (N).
+    sigma: f64,
+    /// ln(n): the criterion's price of one parameter (–).
+    threshold: f64,
+}
+
+/// One forward step: every option re-fitted with the causes chosen so far, ranked by
+/// information criterion.
+struct Ranked {
+    /// Each (effect, start shape) with its re-fit, in catalogue order.
+    trials: Vec<((Candidate, f64), Refit)>,
+    /// Indices into `trials`, lowest criterion first (ties in catalogue order).
+    order: Vec<usize>,
+    /// RSS of the model before this step (N²).
+    reference_rss: f64,
+    /// The noise σ (N).
+    sigma: f64,
+    /// ln(n) (–).
+    threshold: f64,
+}
+
+impl Ranked {
+    /// Trial `k`'s information criterion, RSS/σ² + ln(n) per parameter (–).
+    fn criterion(&self, k: usize) -> f64 {
+        let ((_, shape), trial) = &self.trials[k];
+        trial.rss / (self.sigma * self.sigma) + self.threshold * parameters(*shape)
+    }
+
+    /// Trial `k` judged against the model before the step (not yet accepted).
+    fn judge(&self, k: usize) -> Trial {
+        let ((candidate, shape), trial) = &self.trials[k];
+        Trial {
+            effect: candidate.name(),
+            rss: (self.reference_rss, trial.rss),
+            bic: (
+                (self.reference_rss - trial.rss) / (self.sigma * self.sigma),
+                self.threshold * parameters(*shape),
+            ),
+            determined: determined(trial),
+            accepted: false,
+        }
+    }
+
+    /// Whether trial `k` passes both tests: its RSS drop beats the criterion and its
+    /// parameters are determined.
+    fn passes(&self, k: usize) -> bool {
+        let t = self.judge(k);
+        t.bic.0 > t.bic.1 && t.determined
+    }
+
+    /// The best trial that passes both tests, with the simpler member of its family
+    /// preferred unless the richer one beats it by [`EVIDENCE`].
+    fn passing(&self) -> Option<usize> {
+        let passing = self.order.iter().copied().find(|&k| self.passes(k));
         // Within a family the extra shape parameter must earn its place by the margin
         // that tells families apart: hysteresis damping is named over viscous damping
         // (its p = 0) only when its criterion is lower by EVIDENCE.
-        let passing = passing.map(|k| {
-            order
+        passing.map(|k| {
+            self.order
                 .iter()
                 .copied()
                 .filter(|&m| {
-                    let (a, b) = (trials[m].0, trials[k].0);
+                    let (a, b) = (self.trials[m].0, self.trials[k].0);
                     same_family(a.0, b.0)
                         && parameters(a.1) < parameters(b.1)
-                        && criterion(m) - criterion(k) < EVIDENCE
-                        && judge(m).bic.0 > judge(m).bic.1
-                        && judge(m).determined
+                        && self.criterion(m) - self.criterion(k) < EVIDENCE
+                        && self.judge(m).bic.0 > self.judge(m).bic.1
+                        && self.judge(m).determined
                 })
-                .min_by(|&a, &b| criterion(a).total_cmp(&criterion(b)))
+                .min_by(|&a, &b| self.criterion(a).total_cmp(&self.criterion(b)))
                 .unwrap_or(k)
-        });
-        let Some(k) = passing else {
-            if let Some(&best) = order.first() {
-                let t = judge(best);
-                not_accepted.push(rejected(&trials[best].1, &t));
-                steps.push(t);
-            }
-            break;
-        };
-        // The data must tell it from every other single cause: the best rival of
-        // another family must score worse by the margin, else the answer would be a
-        // coin toss between two names.
-        let rival = order
-            .iter()
-            .copied()
-            .find(|&m| !same_family(trials[m].0 .0, trials[k].0 .0) && judge(m).determined);
-        if let Some(m) = rival.filter(|&m| criterion(m) - criterion(k) < EVIDENCE) {
-            let (best, other) = (judge(k), judge(m));
-            let gap = criterion(m) - criterion(k);
-            let why = |a: &str, b: &str| {
-                format!(
-                    "the data cannot tell `{a}` from `{b}`: their information criteria differ \
-                     by {gap:.1}, less than {EVIDENCE}"
-                )
-            };
-            not_accepted.push(NotAccepted {
-                reason: why(best.effect, other.effect),
-                ..rejected(&trials[k].1, &best)
-            });
-            not_accepted.push(NotAccepted {
-                reason: why(other.effect, best.effect),
-                ..rejected(&trials[m].1, &other)
-            });
-            ambiguous = vec![best.effect, other.effect];
-            provisional = Some(trials[k].0);
-            steps.push(best);
-            fit = trials[k].1.clone();
-            after = structure_of(samples, &fit, sigma);
-            break;
-        }
-        let mut t = judge(k);
-        t.accepted = true;
-        steps.push(t);
-        chosen.push(trials[k].0);
-        fit = trials[k].1.clone();
-        after = structure_of(samples, &fit, sigma);
+        })
     }
-    // Backward pass: an effect taken early can be made redundant by later ones (a
-    // plasticity step mimics part of damping plus adhesion until both are in); drop the
-    // weakest while its removal costs less than the information criterion.
-    while chosen.len() > 1 {
-        let without: Vec<(usize, Refit)> = (0..chosen.len())
+
+    /// The best determined trial of another family than `k`'s, if it scores within
+    /// [`EVIDENCE`] of `k`: a rival the data cannot tell from it.
+    fn rival(&self, k: usize) -> Option<usize> {
+        let rival = self.order.iter().copied().find(|&m| {
+            !same_family(self.trials[m].0 .0, self.trials[k].0 .0) && self.judge(m).determined
+        });
+        rival.filter(|&m| self.criterion(m) - self.criterion(k) < EVIDENCE)
+    }
+}
+
+impl Problem<'_> {
+    /// The base law re-fitted with `causes`.
+    fn refit(&self, causes: &[(Candidate, f64)]) -> Refit {
+        refit(self.samples, self.base, causes, self.sigma)
+    }
+
+    /// The residual structure `fit` leaves.
+    fn structure_of(&self, fit: &Refit) -> Structure {
+        structure_of(self.samples, fit, self.sigma)
+    }
+
+    /// Every option not yet chosen re-fitted with the chosen ones (in parallel), ranked
+    /// by information criterion against the model whose RSS is `reference_rss` (N²).
+    fn rank(&self, chosen: &[(Candidate, f64)], reference_rss: f64) -> Ranked {
+        let trials: Vec<((Candidate, f64), Refit)> = options(chosen)
             .into_par_iter()
-            .map(|k| {
-                let mut fewer = chosen.clone();
-                fewer.remove(k);
-                fewer.extend(provisional);
-                (k, refit(samples, base, &fewer, sigma))
+            .map(|option| {
+                let mut with = chosen.to_vec();
+                with.push(option);
+                (option, self.refit(&with))
             })
             .collect();
-        let Some((k, weaker)) = without
-            .into_iter()
-            .min_by(|a, b| a.1.rss.total_cmp(&b.1.rss))
-        else {
-            break;
+        let mut ranked = Ranked {
+            trials,
+            order: Vec::new(),
+            reference_rss,
+            sigma: self.sigma,
+            threshold: self.threshold,
         };
-        let penalty = threshold * parameters(chosen[k].1);
-        let loss = (weaker.rss - fit.rss) / (sigma * sigma);
-        if loss > penalty {
-            break;
-        }
-        steps.push(Trial {
-            effect: chosen[k].0.name(),
-            rss: (weaker.rss, fit.rss),
-            bic: (loss, penalty),
-            determined: true,
-            accepted: false,
-        });
-        chosen.remove(k);
-        fit = weaker;
-        after = structure_of(samples, &fit, sigma);
+        // Lowest information criterion first, RSS/σ² + ln(n) per parameter: at equal
+        // RSS the simpler effect (viscous damping is hysteresis damping with p = 0);
+        // ties keep catalogue order (a stable sort).
+        let mut order: Vec<usize> = (0..ranked.trials.len()).collect();
+        order.sort_by(|&a, &b| ranked.criterion(a).total_cmp(&ranked.criterion(b)));
+        ranked.order = order;
+        ranked
     }
-    let unexplained = after.structured;
-    if unexplained && !(chosen.is_empty() && provisional.is_none()) {
-        for cause in fit.causes.iter().take(chosen.len()) {
-            not_accepted.push(NotAccepted {
+
+    /// Forward selection: add the best passing cause per step until the residual is
+    /// noise, [`MAX_CAUSES`] are in, nothing passes, or two causes are indistinguishable.
+    fn forward(&self, naming: &mut Naming) {
+        while naming.after.structured && naming.chosen.len() < MAX_CAUSES {
+            let ranked = self.rank(&naming.chosen, naming.fit.rss);
+            // The best trial that passes both tests; else the best one, rejected.
+            let Some(k) = ranked.passing() else {
+                if let Some(&best) = ranked.order.first() {
+                    let t = ranked.judge(best);
+                    naming
+                        .not_accepted
+                        .push(rejected(&ranked.trials[best].1, &t));
+                    naming.steps.push(t);
+                }
+                break;
+            };
+            // The data must tell it from every other single cause: the best rival of
+            // another family must score worse by the margin, else the answer would be a
+            // coin toss between two names.
+            if let Some(m) = ranked.rival(k) {
+                self.keep_provisional(naming, &ranked, k, m);
+                break;
+            }
+            let mut t = ranked.judge(k);
+            t.accepted = true;
+            naming.steps.push(t);
+            naming.chosen.push(ranked.trials[k].0);
+            naming.fit = ranked.trials[k].1.clone();
+            naming.after = self.structure_of(&naming.fit);
+        }
+    }
+
+    /// Two causes `k` and `m` the data cannot tell apart: name neither, report both as
+    /// not accepted, and keep the better, `k`, in the fit as a provisional term.
+    fn keep_provisional(&self, naming: &mut Naming, ranked: &Ranked, k: usize, m: usize) {
+        let (best, other) = (ranked.judge(k), ranked.judge(m));
+        let gap = ranked.criterion(m) - ranked.criterion(k);
+        let why = |a: &str, b: &str| {
+            format!(
+                "the data cannot tell `{a}` from `{b}`: their information criteria differ \
+                 by {gap:.1}, less than {EVIDENCE}"
+            )
+        };
+        naming.not_accepted.push(NotAccepted {
+            reason: why(best.effect, other.effect),
+            ..rejected(&ranked.trials[k].1, &best)
+        });
+        naming.not_accepted.push(NotAccepted {
+            reason: why(other.effect, best.effect),
+            ..rejected(&ranked.trials[m].1, &other)
+        });
+        naming.ambiguous = vec![best.effect, other.effect];
+        naming.provisional = Some(ranked.trials[k].0);
+        naming.steps.push(best);
+        naming.fit = ranked.trials[k].1.clone();
+        naming.after = self.structure_of(&naming.fit);
+    }
+
+    /// Backward pass: an effect taken early can be made redundant by later ones (a
+    /// plasticity step mimics part of damping plus adhesion until both are in); drop the
+    /// weakest while its removal costs less than the information criterion.
+    fn backward(&self, naming: &mut Naming) {
+        let sigma = self.sigma;
+        while naming.chosen.len() > 1 {
+            let chosen = &naming.chosen;
+            let provisional = naming.provisional;
+            let without: Vec<(usize, Refit)> = (0..chosen.len())
+                .into_par_iter()
+                .map(|k| {
+                    let mut fewer = chosen.clone();
+                    fewer.remove(k);
+                    fewer.extend(provisional);
+                    (k, self.refit(&fewer))
+                })
+                .collect();
+            let Some((k, weaker)) = without
+                .into_iter()
+                .min_by(|a, b| a.1.rss.total_cmp(&b.1.rss))
+            else {
+                break;
+            };
+            let penalty = self.threshold * parameters(naming.chosen[k].1);
+            let loss = (weaker.rss - naming.fit.rss) / (sigma * sigma);
+            if loss > penalty {
+                break;
+            }
+            naming.steps.push(Trial {
+                effect: naming.chosen[k].0.name(),
+                rss: (weaker.rss, naming.fit.rss),
+                bic: (loss, penalty),
+                determined: true,
+                accepted: false,
+            });
+            naming.chosen.remove(k);
+            naming.fit = weaker;
+            naming.after = self.structure_of(&naming.fit);
+        }
+    }
+}
+
+impl Naming {
+    /// The base law's re-fit `fit` and its residual `after`, with nothing named or tried.
+    fn base(fit: Refit, after: Structure) -> Self {
+        Naming {
+            chosen: Vec::new(),
+            fit,
+            steps: Vec::new(),
+            not_accepted: Vec::new(),
+            after,
+            unexplained: false,
+            ambiguous: Vec::new(),
+            provisional: None,
+        }
+    }
+
+    /// Structure is left: report every cause that entered as not accepted, with the
+    /// residual's χ², and fall back to the base re-fit `base_fit` and its residual.
+    fn withdraw(&mut self, base_fit: Refit, base_after: Structure) {
+        for cause in self.fit.causes.iter().take(self.chosen.len()) {
+            self.not_accepted.push(NotAccepted {
                 effect: cause.effect,
                 parameters: cause.parameters.clone(),
                 reason: format!(
                     "with it the residual is still structured (χ² {:.0} > {:.0}): it would \
                      explain part of a shape it does not have",
-                    after.chi_squared, after.threshold
+                    self.after.chi_squared, self.after.threshold
                 ),
             });
         }
-        chosen.clear();
-        provisional = None;
-        fit = base_fit;
-        after = base_after;
+        self.chosen.clear();
+        self.provisional = None;
+        self.fit = base_fit;
+        self.after = base_after;
     }
-    Naming {
-        chosen,
-        fit,
-        steps,
-        not_accepted,
-        after,
-        unexplained,
-        ambiguous,
-        provisional,
+}
+
+/// Names the causes of `measured − base` on `samples` (noise σ in N); see the module
+/// documentation. Deterministic: trials are re-fitted in parallel but compared in
+/// catalogue order.
+pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Naming {
+    let problem = Problem {
+        samples,
+        base,
+        sigma,
+        threshold: (samples.len().max(2) as f64).ln(),
+    };
+    // The base re-tuned alone: the first step's reference, and the answer when nothing
+    // is named.
+    let base_fit = problem.refit(&[]);
+    let base_after = problem.structure_of(&base_fit);
+    let mut naming = Naming::base(base_fit.clone(), base_after.clone());
+    problem.forward(&mut naming);
+    problem.backward(&mut naming);
+    naming.unexplained = naming.after.structured;
+    if naming.unexplained && !(naming.chosen.is_empty() && naming.provisional.is_none()) {
+        naming.withdraw(base_fit, base_after);
     }
+    naming
 }
 
 /// No decision at all: the base law re-fitted alone, nothing named, nothing tried (for
@@ -333,16 +441,7 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
 pub fn unnamed(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Naming {
     let fit = refit(samples, base, &[], sigma);
     let after = structure_of(samples, &fit, sigma);
-    Naming {
-        chosen: Vec::new(),
-        fit,
-        steps: Vec::new(),
-        not_accepted: Vec::new(),
-        after,
-        unexplained: false,
-        ambiguous: Vec::new(),
-        provisional: None,
-    }
+    Naming::base(fit, after)
 }
 
 /// The best trial of a step that stopped, as not accepted.

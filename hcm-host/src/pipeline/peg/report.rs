@@ -119,8 +119,18 @@ impl PegReproduction {
 
     /// `report.md`.
     pub fn markdown(&self) -> String {
-        let e = &self.evaluation;
         let mut md = String::new();
+        self.introduction(&mut md);
+        self.pm2_section(&mut md);
+        self.table_15(&mut md);
+        self.error_model(&mut md);
+        self.figures_and_timings(&mut md);
+        md
+    }
+
+    /// The title and what was run: the scenario and S2's runs (all, averaged).
+    fn introduction(&self, md: &mut String) {
+        let e = &self.evaluation;
         let _ = writeln!(
             md,
             "# hcm reproduce peg-in-hole: the paper's Section 5.3 (Table 15)\n"
@@ -136,6 +146,10 @@ impl PegReproduction {
             e.runs.0,
             e.runs.1
         );
+    }
+
+    /// PM2's identified parameters and the genetic algorithm's effort and fitness.
+    fn pm2_section(&self, md: &mut String) {
         let _ = writeln!(md, "## PM2\n");
         for (name, value) in &self.pm2.parameters {
             let _ = writeln!(md, "- {name} = {value:.6e}");
@@ -145,6 +159,12 @@ impl PegReproduction {
             "\nGA: {} generations, {} replays, fitness {:.3e} (mean squared relative error of the wall contacts' indicators).\n",
             self.pm2.generations, self.pm2.evaluations, self.pm2.fitness
         );
+    }
+
+    /// Table 15: each wall contact's indicators on S2 beside every model's and the
+    /// paper's errors, and how the errors are read.
+    fn table_15(&self, md: &mut String) {
+        let e = &self.evaluation;
         let _ = writeln!(md, "## Table 15: the wall contacts on S2\n");
         let mut header = "| contact | indicator | S2 mean | std. error |".to_owned();
         let mut rule = "|---|---|---|---|".to_owned();
@@ -156,40 +176,18 @@ impl PegReproduction {
         rule.push_str("---|---|---|---|");
         let _ = writeln!(md, "{header}\n{rule}");
         for row in &e.rows {
-            let label = INDICATORS
-                .iter()
-                .find(|i| i.0 == row.indicator)
-                .map_or(row.indicator, |i| i.1);
-            let _ = write!(
-                md,
-                "| {} | {label} | {:.6} {} | {:.2} % |",
-                row.contact,
-                row.mean,
-                row.unit,
-                100.0 * row.standard_error / row.mean.abs()
-            );
-            for (value, error) in row.values.iter().zip(&row.errors) {
-                match (value, error) {
-                    (Some(v), Some(err)) => {
-                        let _ = write!(md, " {v:.6} | {:.2} % |", 100.0 * err);
-                    }
-                    _ => md.push_str(" no contact | – |"),
-                }
-            }
-            match row.paper {
-                Some((pm2, hcm)) => {
-                    let _ = write!(md, " {:.2} % | {:.2} % |", 100.0 * pm2, 100.0 * hcm);
-                }
-                None => md.push_str(" – | – |"),
-            }
-            let beats = if row.beats(1, 0) { "yes" } else { "**no**" };
-            let _ = writeln!(md, " {beats} | {} |", row.verdict(1));
+            table_15_row(md, row);
         }
         let _ = writeln!(md, "\nError: the paper's Eq 20, |S2 mean − model| / S2 mean. Std. error: s/√n of the S2 mean, as a share of it. \
              Last column: the HCM's error at or below the paper's HCM error (`≤ paper`), else within two standard errors of the S2 mean (`≤ 2 SE`: \
              as close as the S2 runs can tell), else `neither`. \
              PM1 nominal: the scenario's own laws at their nominal (unscattered) parameters, replayed like the models — the true physics of a mean run. \
              What it misses is what no single deterministic replay can make: the S2 mean of each run's peak is not the peak of a mean run.\n");
+    }
+
+    /// The error model (Eq 12): its training, the variance it explains per output, the
+    /// outputs fixed at zero, and its blobs' sizes (bytes) and round trips.
+    fn error_model(&self, md: &mut String) {
         let t = &self.trained;
         let _ = writeln!(md, "## The error model (Eq 12)\n");
         let _ = writeln!(
@@ -231,14 +229,51 @@ impl PegReproduction {
             );
         }
         md.push('\n');
+    }
+
+    /// The figures, and the time each stage took (s).
+    fn figures_and_timings(&self, md: &mut String) {
         let _ = writeln!(md, "## Figures\n");
-        for f in &e.figures {
+        for f in &self.evaluation.figures {
             let _ = writeln!(md, "![{}]({}.png)\n", f.stem, f.stem);
         }
         let _ = writeln!(md, "## Time per stage\n\n| stage | s |\n|---|---|");
         for t in &self.timings {
             let _ = writeln!(md, "| {} | {:.2} |", t.stage, t.seconds);
         }
-        md
     }
+}
+
+/// One row of Table 15: contact, indicator, the S2 mean with its unit and standard
+/// error (% of the mean), each model's value and error (%), the paper's errors (%), and
+/// the HCM's two checks.
+fn table_15_row(md: &mut String, row: &PegRow) {
+    let label = INDICATORS
+        .iter()
+        .find(|i| i.0 == row.indicator)
+        .map_or(row.indicator, |i| i.1);
+    let _ = write!(
+        md,
+        "| {} | {label} | {:.6} {} | {:.2} % |",
+        row.contact,
+        row.mean,
+        row.unit,
+        100.0 * row.standard_error / row.mean.abs()
+    );
+    for (value, error) in row.values.iter().zip(&row.errors) {
+        match (value, error) {
+            (Some(v), Some(err)) => {
+                let _ = write!(md, " {v:.6} | {:.2} % |", 100.0 * err);
+            }
+            _ => md.push_str(" no contact | – |"),
+        }
+    }
+    match row.paper {
+        Some((pm2, hcm)) => {
+            let _ = write!(md, " {:.2} % | {:.2} % |", 100.0 * pm2, 100.0 * hcm);
+        }
+        None => md.push_str(" – | – |"),
+    }
+    let beats = if row.beats(1, 0) { "yes" } else { "**no**" };
+    let _ = writeln!(md, " {beats} | {} |", row.verdict(1));
 }
