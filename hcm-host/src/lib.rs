@@ -5,8 +5,8 @@
 //! The modules are layered, each using only those of the layers below it (bottom
 //! first; `tests/layers.rs` checks it):
 //!
-//! 1. [`numerics`], [`output`], [`law_catalogue`] — generic numerics and optimisers,
-//!    atomic file output, laws by name;
+//! 1. [`numerics`], [`output`], [`law_catalogue`], [`progress`] — generic numerics and
+//!    optimisers, atomic file output, laws by name, how a stage reports progress;
 //! 2. [`residual`] — the stored residual network;
 //! 3. [`scenario`] — scenario files, assignments, contact geometry;
 //! 4. [`dataset`] — measured data;
@@ -31,6 +31,7 @@ pub mod law_catalogue;
 pub mod numerics;
 pub mod output;
 pub mod pipeline;
+pub mod progress;
 pub mod residual;
 pub mod scenario;
 pub mod simulate;

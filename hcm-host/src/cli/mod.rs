@@ -13,6 +13,7 @@ mod indicators;
 mod laws;
 mod numbers;
 mod predict;
+mod progress;
 mod report;
 mod reproduce;
 mod reproduce_cube;

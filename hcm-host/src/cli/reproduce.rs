@@ -3,15 +3,12 @@
 //! evaluate) with progress bars, and every stage's output, the report, `results.json`
 //! and the figures written to the output directory.
 
-use super::progress_bar;
+use super::progress::Bars;
 use hcm_host::output::StagedDirectory;
 use hcm_host::pipeline::{
-    reproduce, write_reproduction, Example, Pm2Method, Progress, ReproduceSettings, Reproduced,
-    Stage,
+    reproduce, write_reproduction, Example, Pm2Method, ReproduceSettings, Reproduced,
 };
-use indicatif::ProgressBar;
 use std::path::PathBuf;
-use std::sync::{Mutex, MutexGuard};
 
 /// The paper's examples.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -181,38 +178,6 @@ impl From<Args> for super::reproduce_cube::CubeArgs {
             population: args.population,
             polish: args.polish,
             no_diagnosis: args.no_diagnosis,
-        }
-    }
-}
-
-/// One progress bar per stage on standard error (hidden when it is not a terminal).
-#[derive(Default)]
-pub(super) struct Bars(Mutex<Option<ProgressBar>>);
-
-impl Bars {
-    fn bar(&self) -> MutexGuard<'_, Option<ProgressBar>> {
-        // A panic while drawing leaves the bar usable.
-        self.0
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner())
-    }
-}
-
-impl Progress for Bars {
-    fn begin(&self, stage: Stage, steps: u64) {
-        *self.bar() = Some(progress_bar(steps, stage.label()));
-    }
-
-    fn advance(&self, done: u64, steps: u64) {
-        if let Some(bar) = self.bar().as_ref() {
-            bar.set_length(steps);
-            bar.set_position(done);
-        }
-    }
-
-    fn end(&self, _: Stage) {
-        if let Some(bar) = self.bar().take() {
-            bar.finish_and_clear();
         }
     }
 }

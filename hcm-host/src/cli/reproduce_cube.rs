@@ -2,7 +2,8 @@
 //! ([`hcm_host::pipeline::cube`]) with progress bars, its physics file, data, report,
 //! `results.json` and figures written to the output directory as one unit.
 
-use super::reproduce::{finish, Bars};
+use super::progress::Bars;
+use super::reproduce::finish;
 use hcm_host::output::StagedDirectory;
 use hcm_host::pipeline::cube::{reproduce_cube, CubeSettings};
 use std::path::PathBuf;

@@ -1,12 +1,11 @@
 //! `hcm train`: the data-driven error model of the HCM, trained on S1, with its
 //! quantisation-aware int8 twin; `hcm export` turns the result into weights blobs.
 
-use super::progress_bar;
+use super::progress::Bars;
 use hcm_host::dataset::{needs, Dataset};
-use hcm_host::identify::samples::force_samples;
 use hcm_host::identify::Physics;
-use hcm_host::residual::{HIDDEN, WIDTH};
-use hcm_host::train::{quantisation_aware, residual_pairs, train, TrainSettings, TrainedResidual};
+use hcm_host::progress::Stage;
+use hcm_host::train::{train_force_residual, ResidualSettings};
 use std::path::PathBuf;
 
 /// Train the residual network of the HCM on S1 (and its int8 twin).
@@ -73,24 +72,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         &[args.contact],
         &needs::TRAIN,
     )?;
-    let (samples, _) = force_samples(&pm2, &data, args.contact)?;
-    let (inputs, targets) = residual_pairs(&samples, &pm2.contacts[args.contact].model);
-    let settings = TrainSettings {
-        hidden_layers: HIDDEN,
-        width: WIDTH,
-        max_epochs: args.epochs,
+    let settings = ResidualSettings {
+        epochs: args.epochs,
+        int8_epochs: args.int8_epochs,
         seed: args.seed,
-        ..TrainSettings::default()
     };
-    let bar = progress_bar(settings.max_epochs as u64, "training epochs");
-    let (network, report) = train(&inputs, &targets, &settings, |epoch, _, validation| {
-        bar.set_position(epoch as u64);
-        bar.set_message(format!("val RMS {:.2} N", validation.sqrt()));
-    })?;
-    bar.finish_and_clear();
+    let bars = Bars::with_status(|stage| match stage {
+        Stage::Int8Twin => "int8 fine-tuning",
+        _ => "training epochs",
+    });
+    let trained = train_force_residual(&pm2, &data, args.contact, &settings, &bars)?;
+    let (report, tuned) = (&trained.report, &trained.int8);
     println!(
         "trained on {} samples from {} runs: {} epochs (best {}), train RMS {:.3} N, validation RMS {:.3} N, {:.2} s",
-        inputs.len(),
+        trained.samples,
         data.runs.len(),
         report.epochs,
         report.best_epoch,
@@ -98,23 +93,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         report.validation_loss.sqrt(),
         report.seconds
     );
-    let bar = progress_bar(args.int8_epochs as u64, "int8 fine-tuning");
-    let (int8, tuned) = quantisation_aware(
-        &network,
-        &inputs,
-        args.int8_epochs,
-        args.seed,
-        |epoch, rms| {
-            bar.set_position(epoch as u64);
-            bar.set_message(format!("RMS to f32 {rms:.3} N"));
-        },
-    )?;
-    bar.finish_and_clear();
     println!(
         "int8 twin: RMS against the f32 network {:.3} N rounded → {:.3} N after {} epochs (worst {:.3} N), {:.2} s",
         tuned.rounded_rms, tuned.tuned_rms, tuned.epochs, tuned.tuned_max, tuned.seconds
     );
-    TrainedResidual::new(args.contact, network, int8).write(&args.out)?;
+    trained.residual.write(&args.out)?;
     println!(
         "→ {} (export with `hcm export --residual {0} --out residual.bin`)",
         args.out.display()

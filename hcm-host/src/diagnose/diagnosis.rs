@@ -14,11 +14,11 @@ use crate::dataset::delay::{Delay, DELAY_SIGMAS};
 use crate::dataset::reconstruct::{complete_with, Checks, Completed};
 use crate::dataset::Dataset;
 use crate::export::encode;
-use crate::identify::samples::force_samples;
 use crate::identify::IdentifyError;
-use crate::residual::{ContactResidual, HIDDEN, WIDTH};
+use crate::progress::Silent;
+use crate::residual::ContactResidual;
 use crate::scenario::{Contact, Model};
-use crate::train::{residual_pairs, train, TrainSettings};
+use crate::train::{train_force_network, ResidualError};
 use hcm_core::effect::ExtendedLaw;
 use hcm_core::residual::Quantisation;
 use serde::Serialize;
@@ -370,17 +370,11 @@ fn hcm_contact(
     c: usize,
     settings: &DiagnoseSettings,
 ) -> Result<Option<Contact>, IdentifyError> {
-    let (samples, _) = force_samples(base, data, c)?;
-    let (inputs, targets) = residual_pairs(&samples, &base.contacts[c].model);
-    let train_settings = TrainSettings {
-        hidden_layers: HIDDEN,
-        width: WIDTH,
-        max_epochs: settings.hcm_epochs,
-        seed: settings.seed,
-        ..TrainSettings::default()
-    };
-    let Ok((network, _)) = train(&inputs, &targets, &train_settings, |_, _, _| {}) else {
-        return Ok(None);
+    let trained = train_force_network(base, data, c, settings.hcm_epochs, settings.seed, &Silent);
+    let network = match trained {
+        Ok((network, _, _)) => network,
+        Err(ResidualError::Samples(error)) => return Err(error),
+        Err(ResidualError::Train(_)) => return Ok(None),
     };
     let Ok(bytes) = encode(&network, Quantisation::F32) else {
         return Ok(None);

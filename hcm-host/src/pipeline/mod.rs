@@ -25,7 +25,6 @@ mod export;
 mod generate;
 mod identify;
 pub mod peg;
-mod progress;
 mod quantity;
 mod report;
 mod results;
@@ -33,19 +32,20 @@ mod setup;
 mod train;
 
 pub use crate::figure::NamedFigure;
+pub use crate::progress::{Fold, Progress, Silent, Stage};
+pub use crate::train::Trained;
 pub use artifacts::{write_figures, write_reproduction, Artifact, Reproduced};
 pub use evaluate::{evaluate_on_s2, Evaluation};
 pub use example::{Example, Pm2Method, ReproduceSettings};
 pub use export::{blob, export_blobs, Blob, Blobs};
 pub use generate::experiment;
 pub use identify::{identify_pm2, Pm2};
-pub use progress::{Fold, Progress, Silent, Stage};
 pub use results::{
     BlobSummary, NamedValue, PaperErrors, Pm2Summary, ReproduceResults, ResidualSummary,
     StageClock, StageTiming,
 };
 pub use setup::Setup;
-pub use train::{train_residual, Trained};
+pub use train::train_residual;
 
 use crate::experiment::{ExperimentError, Split};
 use crate::export::ExportError;
@@ -117,6 +117,15 @@ pub struct Reproduction {
     pub figures: Vec<NamedFigure>,
     /// Every table of the report.
     pub results: ReproduceResults,
+}
+
+impl From<crate::train::ResidualError> for PipelineError {
+    fn from(error: crate::train::ResidualError) -> Self {
+        match error {
+            crate::train::ResidualError::Samples(e) => PipelineError::Identify(e),
+            crate::train::ResidualError::Train(e) => PipelineError::Train(e),
+        }
+    }
 }
 
 /// The ball's and the flat shot's files: S1 and S2, PM2, the trained network, its

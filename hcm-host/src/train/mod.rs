@@ -26,6 +26,7 @@
 pub mod adam;
 pub mod envelope;
 pub mod explained;
+mod force_residual;
 mod int8;
 pub mod network;
 pub mod per_output;
@@ -36,6 +37,9 @@ pub mod wrench_samples;
 pub mod wrench_settings;
 
 pub use envelope::envelope_tolerance;
+pub use force_residual::{
+    train_force_network, train_force_residual, ResidualError, ResidualSettings, Trained,
+};
 pub use int8::int8_row;
 pub use network::{Activation, Network};
 pub use per_output::OutputNets;

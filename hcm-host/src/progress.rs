@@ -1,5 +1,6 @@
-//! How the pipeline tells its caller how far it is: the library never prints, the
-//! caller shows what it likes (the CLI draws progress bars).
+//! How a long stage tells its caller how far it is: the library never prints, the
+//! caller shows what it likes (the CLI draws progress bars). One trait for every
+//! stage and every example.
 
 /// A stage of a reproduction that reports its steps: the paper's five (the ball, the
 /// flat shot, the peg-in-hole) and those of a fit from motion (the cube tosses).
@@ -65,6 +66,11 @@ pub trait Progress: Sync {
     /// stage learns its length).
     fn advance(&self, done: u64, steps: u64) {
         let _ = (done, steps);
+    }
+    /// A short status of the current stage (e.g. the validation error so far), for a
+    /// display to show beside its bar.
+    fn status(&self, message: &str) {
+        let _ = message;
     }
     /// `stage` ended.
     fn end(&self, stage: Stage) {

@@ -1,0 +1,114 @@
+//! The 1D contacts' residual as one stage, the same for `hcm train`, `hcm reproduce`
+//! and the diagnosis's HCM: the training rows of a contact (measured − PM2 normal force
+//! at the data's force samples inside the contact), the shipped architecture
+//! ([`HIDDEN`] × [`WIDTH`]) trained on them, and its quantisation-aware int8 twin.
+
+use super::{
+    quantisation_aware, residual_pairs, train, Network, QuantiseReport, TrainError, TrainReport,
+    TrainSettings, TrainedResidual,
+};
+use crate::dataset::Dataset;
+use crate::identify::samples::force_samples;
+use crate::identify::IdentifyError;
+use crate::progress::{Progress, Stage};
+use crate::residual::{HIDDEN, WIDTH};
+use crate::scenario::Model;
+
+/// How long and from which seed the stage trains.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ResidualSettings {
+    /// Most training epochs of the f32 network (early stopping may end sooner).
+    pub epochs: usize,
+    /// Quantisation-aware fine-tuning epochs of the int8 twin.
+    pub int8_epochs: usize,
+    /// Seed of the initial weights, the shuffles and the validation split.
+    pub seed: u64,
+}
+
+/// The trained residual and how its training went.
+#[derive(Clone, Debug)]
+pub struct Trained {
+    /// The network and its int8 twin (`residual.json`).
+    pub residual: TrainedResidual,
+    /// Training rows: the force samples inside the contact.
+    pub samples: usize,
+    /// The f32 network's training.
+    pub report: TrainReport,
+    /// The int8 twin's fine-tuning.
+    pub int8: QuantiseReport,
+}
+
+/// Why the stage failed.
+#[derive(Debug, thiserror::Error)]
+pub enum ResidualError {
+    /// The data's force samples of the contact could not be read against the model.
+    #[error(transparent)]
+    Samples(#[from] IdentifyError),
+    /// The network could not be trained on them.
+    #[error(transparent)]
+    Train(#[from] TrainError),
+}
+
+/// The shipped architecture trained on contact `c`'s measured − `pm2` force in `data`,
+/// reporting [`Stage::Train`] to `progress` (the validation RMS, N, as its status).
+/// Returns the network, its training and the training rows' inputs.
+pub fn train_force_network(
+    pm2: &Model,
+    data: &Dataset,
+    c: usize,
+    epochs: usize,
+    seed: u64,
+    progress: &dyn Progress,
+) -> Result<(Network, TrainReport, Vec<Vec<f64>>), ResidualError> {
+    let (samples, _) = force_samples(pm2, data, c)?;
+    let (inputs, targets) = residual_pairs(&samples, &pm2.contacts[c].model);
+    let settings = TrainSettings {
+        hidden_layers: HIDDEN,
+        width: WIDTH,
+        max_epochs: epochs,
+        seed,
+        ..TrainSettings::default()
+    };
+    let steps = settings.max_epochs as u64;
+    progress.begin(Stage::Train, steps);
+    let trained = train(&inputs, &targets, &settings, |epoch, _, validation| {
+        progress.advance(epoch as u64, steps);
+        progress.status(&format!("val RMS {:.2} N", validation.sqrt()));
+    });
+    progress.end(Stage::Train);
+    let (network, report) = trained?;
+    Ok((network, report, inputs))
+}
+
+/// [`train_force_network`], then its int8 twin fine-tuned over the same inputs
+/// ([`Stage::Int8Twin`], the RMS against the f32 network, N, as its status).
+pub fn train_force_residual(
+    pm2: &Model,
+    data: &Dataset,
+    c: usize,
+    settings: &ResidualSettings,
+    progress: &dyn Progress,
+) -> Result<Trained, ResidualError> {
+    let (network, report, inputs) =
+        train_force_network(pm2, data, c, settings.epochs, settings.seed, progress)?;
+    let steps = settings.int8_epochs as u64;
+    progress.begin(Stage::Int8Twin, steps);
+    let tuned = quantisation_aware(
+        &network,
+        &inputs,
+        settings.int8_epochs,
+        settings.seed,
+        |epoch, rms| {
+            progress.advance(epoch as u64, steps);
+            progress.status(&format!("RMS to f32 {rms:.3} N"));
+        },
+    );
+    progress.end(Stage::Int8Twin);
+    let (int8, tuned) = tuned?;
+    Ok(Trained {
+        residual: TrainedResidual::new(c, network, int8),
+        samples: inputs.len(),
+        report,
+        int8: tuned,
+    })
+}
