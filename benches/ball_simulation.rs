@@ -1,8 +1,8 @@
 //! Whole simulations with the shipped defaults, each including event location, peak
 //! search and sampling the trajectory: the 1D bouncing ball (drop, contact, lift-off),
 //! and the 3D peg-in-hole (two wall contacts and the bottom, IMPACT + STEP friction
-//! at up to 8 points) and cube drop (0.4 s of bouncing, tumbling and sliding), so that
-//! one run gives their ratios.
+//! at up to 8 points), the cube drop (0.4 s of bouncing, tumbling and sliding) and one
+//! cube toss (the shipped scenario's), so that one run gives their ratios.
 //!
 //! Run: `cargo bench -p hcm-tests --bench ball_simulation`
 
@@ -24,6 +24,7 @@ fn bench_simulations(c: &mut Criterion) {
         ("bouncing_ball_simulation", "bouncing_ball.toml"),
         ("peg_in_hole_simulation", "peg_in_hole.toml"),
         ("cube_drop_simulation", "cube_drop.toml"),
+        ("cube_toss_simulation", "cube_toss.toml"),
     ] {
         let model = shipped(file);
         c.bench_function(label, |b| b.iter(|| simulate(black_box(&model)).unwrap()));
