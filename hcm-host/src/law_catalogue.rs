@@ -110,7 +110,7 @@ pub fn build(name: &str, values: &[(String, f64)]) -> Result<AnyNormalLaw<f64>, 
 
 /// Builds and validates a law from its name and a TOML table of its parameters
 /// (floats or integers).
-pub fn build_from_table(
+pub(crate) fn build_from_table(
     name: &str,
     parameters: &toml::Table,
 ) -> Result<AnyNormalLaw<f64>, LawInputError> {

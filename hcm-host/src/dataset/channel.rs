@@ -75,7 +75,7 @@ impl Channel {
     }
 
     /// The column names, e.g. `fx, fy, fz`.
-    pub fn column_list(self) -> String {
+    pub(crate) fn column_list(self) -> String {
         COLUMNS[self.columns()]
             .iter()
             .map(|column| column.name)
@@ -84,12 +84,12 @@ impl Channel {
     }
 
     /// The channel in a message: `force (fx, fy, fz)`.
-    pub fn described(self) -> String {
+    pub(crate) fn described(self) -> String {
         format!("{} ({})", self.name(), self.column_list())
     }
 
     /// The channel holding column `index` of [`COLUMNS`], if it is a channel's.
-    pub fn of_column(index: usize) -> Option<Channel> {
+    pub(crate) fn of_column(index: usize) -> Option<Channel> {
         Channel::ALL
             .into_iter()
             .find(|channel| channel.columns().contains(&index))

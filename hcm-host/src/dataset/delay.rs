@@ -26,7 +26,7 @@ use super::through_contact::Integrated;
 /// chance a normal deviate passes 5 once in 1.7 million. Measured on the rig's camera
 /// rows (tests/diagnose_rig.rs, 20 data sets without a delay): |τ̂|/sd ≤ 1.7; a 1 µs
 /// delay: 6.0–7.7.
-pub const DELAY_SIGMAS: f64 = 5.0;
+pub(crate) const DELAY_SIGMAS: f64 = 5.0;
 
 /// A sensor delay fitted by the reconstruction.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]

@@ -9,7 +9,7 @@
 //! estimated by the residual sum of squares over N − 2.
 
 /// Least frames a flight fit needs: two parameters per axis and one to estimate σ.
-pub const MIN_FRAMES: usize = 3;
+pub(crate) const MIN_FRAMES: usize = 3;
 
 /// A free flight fitted to frames, referred to `t_ref`.
 #[derive(Clone, Debug, PartialEq)]
@@ -97,7 +97,7 @@ impl FlightFit {
 
     /// Variances per axis of the position (m²) and velocity ((m/s)²) the fit gives at
     /// time `t` (s): σ_k²·[1, τ]·(AᵀA)⁻¹·[1, τ]ᵀ and σ_k²·c_bb.
-    pub fn variance(&self, t: f64) -> ([f64; 3], [f64; 3]) {
+    pub(crate) fn variance(&self, t: f64) -> ([f64; 3], [f64; 3]) {
         let tau = t - self.t_ref;
         let [[c_aa, c_ab], [_, c_bb]] = self.unscaled;
         let shape = c_aa + 2.0 * tau * c_ab + tau * tau * c_bb;

@@ -107,7 +107,7 @@ impl Completed<'_> {
     }
 
     /// Runs `runs` (indices) of the data with their reconstructions, in that order.
-    pub fn subset(&self, runs: &[usize]) -> Completed<'static> {
+    pub(crate) fn subset(&self, runs: &[usize]) -> Completed<'static> {
         Completed {
             data: Cow::Owned(Dataset {
                 runs: runs.iter().map(|&r| self.data.runs[r].clone()).collect(),
@@ -171,7 +171,7 @@ pub fn complete<'a>(model: &Model, data: &'a Dataset) -> Result<Completed<'a>, R
 }
 
 /// [`complete`], and what `checks` asks for.
-pub fn complete_with<'a>(
+pub(crate) fn complete_with<'a>(
     model: &Model,
     data: &'a Dataset,
     checks: Checks,

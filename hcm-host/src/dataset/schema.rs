@@ -24,23 +24,23 @@ const fn c(name: &'static str, unit: &'static str, meaning: &'static str) -> Col
 }
 
 /// Number of columns the format defines.
-pub const COLUMN_COUNT: usize = 22;
+pub(crate) const COLUMN_COUNT: usize = 22;
 
 /// Number of numeric columns: every column after `run` and `body`.
-pub const NUMERIC_COUNT: usize = COLUMN_COUNT - FIRST_NUMERIC;
+pub(crate) const NUMERIC_COUNT: usize = COLUMN_COUNT - FIRST_NUMERIC;
 
 /// Index in [`COLUMNS`] of `run`.
-pub const RUN: usize = 0;
+pub(crate) const RUN: usize = 0;
 /// Index in [`COLUMNS`] of `body`.
-pub const BODY: usize = 1;
+pub(crate) const BODY: usize = 1;
 /// Index in [`COLUMNS`] of `time`, the first numeric column.
 pub const TIME: usize = 2;
 /// Index in [`COLUMNS`] of the first numeric column; numeric column `i` of a
 /// [`Sample`] (see [`sample_values`]) is `COLUMNS[FIRST_NUMERIC + i]`.
-pub const FIRST_NUMERIC: usize = TIME;
+pub(crate) const FIRST_NUMERIC: usize = TIME;
 
 /// The columns in the order the writer emits them. All vectors are in the world frame.
-pub const COLUMNS: [Column; COLUMN_COUNT] = [
+pub(crate) const COLUMNS: [Column; COLUMN_COUNT] = [
     c("run", "–", "run identifier (text), e.g. `0`, `trial_03`"),
     c("body", "–", "body name (text), e.g. `ball`"),
     c(
@@ -118,7 +118,7 @@ pub fn sample_values(sample: &Sample) -> [f64; NUMERIC_COUNT] {
 }
 
 /// The inverse of [`sample_values`].
-pub fn sample_from_values(values: [f64; NUMERIC_COUNT]) -> Sample {
+pub(crate) fn sample_from_values(values: [f64; NUMERIC_COUNT]) -> Sample {
     let [time, px, py, pz, qw, qx, qy, qz, vx, vy, vz, wx, wy, wz, fx, fy, fz, tx, ty, tz] = values;
     Sample {
         time,

@@ -177,7 +177,7 @@ impl<W: Write> RunWriter<W> {
     }
 
     /// Checks and writes one run.
-    pub fn write_run(&mut self, run: &Run) -> Result<(), DataError> {
+    pub(crate) fn write_run(&mut self, run: &Run) -> Result<(), DataError> {
         check_id(run, &self.destination)?;
         check_bodies(run, &self.destination)?;
         self.write_rows(run)

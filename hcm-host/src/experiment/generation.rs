@@ -93,7 +93,7 @@ impl Generation {
     /// Makes every run and hands it to `each` with its index, in order. `progress` is
     /// called once per simulated run (from worker threads). Stops at the first error,
     /// in run order: a failed simulation, or `each`'s.
-    pub fn for_each<E: From<ExperimentError>>(
+    pub(crate) fn for_each<E: From<ExperimentError>>(
         &self,
         progress: impl Fn() + Sync,
         mut each: impl FnMut(usize, Run) -> Result<(), E>,

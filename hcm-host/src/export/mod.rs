@@ -76,7 +76,7 @@ impl ExportModel {
     }
 
     /// `Ok` if every vector has the length the shape implies and the depth is 1 to 3.
-    pub fn check_shape(&self) -> Result<(), ExportError> {
+    pub(crate) fn check_shape(&self) -> Result<(), ExportError> {
         if !(1..=3).contains(&self.hidden_layers) {
             return Err(ExportError::UnsupportedDepth {
                 found: self.hidden_layers,

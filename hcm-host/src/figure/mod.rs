@@ -46,9 +46,9 @@ pub struct Colour {
 
 impl Colour {
     /// Black.
-    pub const BLACK: Colour = Colour::hex(0x000000);
+    pub(crate) const BLACK: Colour = Colour::hex(0x000000);
     /// White.
-    pub const WHITE: Colour = Colour::hex(0xffffff);
+    pub(crate) const WHITE: Colour = Colour::hex(0xffffff);
     /// The light grey of the grid lines.
     const GRID: Colour = Colour::hex(0xe4e4e4);
     /// The dark grey of the zero line and of the frames.
@@ -66,7 +66,7 @@ impl Colour {
     }
 
     /// CSS notation, `#rrggbb`.
-    pub fn css(self) -> String {
+    pub(crate) fn css(self) -> String {
         format!("#{:02x}{:02x}{:02x}", self.r, self.g, self.b)
     }
 }
@@ -134,7 +134,7 @@ impl<'a> Figure<'a> {
 
     /// The figure with `band` shaded under the curves (the y axis spans it too) and
     /// named in the legend after them.
-    pub fn with_band(self, band: Band<'a>) -> Self {
+    pub(crate) fn with_band(self, band: Band<'a>) -> Self {
         Figure {
             band: Some(band),
             ..self
@@ -143,7 +143,7 @@ impl<'a> Figure<'a> {
 
     /// The figure with a dark line at y = 0 (the y axis includes 0): for differences,
     /// where the sign matters.
-    pub fn with_zero_line(self) -> Self {
+    pub(crate) fn with_zero_line(self) -> Self {
         Figure {
             zero_line: true,
             ..self
@@ -153,7 +153,7 @@ impl<'a> Figure<'a> {
     /// The figure with an inset that zooms on the highest point of the first series,
     /// showing every series there, for curves too close together to be told apart at
     /// full scale; the zoomed window is outlined on the plot.
-    pub fn with_peak_inset(self) -> Self {
+    pub(crate) fn with_peak_inset(self) -> Self {
         Figure {
             peak_inset: true,
             ..self
@@ -163,7 +163,7 @@ impl<'a> Figure<'a> {
     /// The figure with as many px per data unit along x as along y, for pictures of
     /// space (a side view): the axis ranges are widened to the plot's proportions and
     /// the plot area narrowed to fit the round ticks.
-    pub fn with_equal_scales(self) -> Self {
+    pub(crate) fn with_equal_scales(self) -> Self {
         Figure {
             equal_scales: true,
             ..self
@@ -187,7 +187,8 @@ impl<'a> Figure<'a> {
 
     /// The plot area, where the curves are drawn: left, top, right, bottom edges (px from
     /// the image's top-left corner).
-    pub fn plot_area(&self) -> (f64, f64, f64, f64) {
+    #[cfg(test)]
+    pub(crate) fn plot_area(&self) -> (f64, f64, f64, f64) {
         let p = Layout::new(self).main.area;
         (p.left, p.top, p.right, p.bottom)
     }

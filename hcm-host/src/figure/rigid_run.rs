@@ -13,7 +13,7 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 /// Touch-downs per body at which its outline is drawn: the first ones (a body coming to
 /// rest may touch down many times; more outlines would hide each other).
-pub const MAX_TOUCH_DOWN_OUTLINES: usize = 6;
+pub(crate) const MAX_TOUCH_DOWN_OUTLINES: usize = 6;
 /// Millimetres per metre: the side view is drawn in mm.
 const MM: f64 = 1e3;
 /// Margin around the drawn bodies over which a plane's trace runs, as a fraction of

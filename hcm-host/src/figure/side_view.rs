@@ -16,7 +16,7 @@ pub type Outline = Vec<(f64, f64)>;
 /// The silhouette of the box of `half_extents` (m) centred at `centre` (m, world) and
 /// turned by `orientation` (box → world): the convex hull of its projected vertices,
 /// anticlockwise from the leftmost (then lowest) vertex, closed.
-pub fn box_silhouette(
+pub(crate) fn box_silhouette(
     centre: &Vector3<f64>,
     orientation: &UnitQuaternion<f64>,
     half_extents: &Vector3<f64>,
@@ -35,7 +35,7 @@ pub fn box_silhouette(
 }
 
 /// The outline of a sphere of `radius` (m) centred at `centre` (m, world): a circle.
-pub fn sphere_silhouette(centre: &Vector3<f64>, radius: f64) -> Outline {
+pub(crate) fn sphere_silhouette(centre: &Vector3<f64>, radius: f64) -> Outline {
     (0..=CIRCLE_SEGMENTS)
         .map(|i| {
             let angle =
@@ -51,7 +51,7 @@ pub fn sphere_silhouette(centre: &Vector3<f64>, radius: f64) -> Outline {
 /// The outlines of `shape` on a body at `position` (m) turned by `orientation` (body →
 /// world): one for a box or a sphere, one per part for a compound, none for a plane
 /// (see [`plane_trace`]).
-pub fn shape_outlines(
+pub(crate) fn shape_outlines(
     shape: &Shape,
     position: &Vector3<f64>,
     orientation: &UnitQuaternion<f64>,
@@ -85,7 +85,7 @@ fn part_silhouette(
 /// `position` (m), `orientation`, cuts the section y = `y` (m): the segment of that line
 /// across `window` ((x low, x high), (z low, z high)) (m) — along x for a plane closer to
 /// horizontal, along z otherwise. `None` for a plane parallel to the section.
-pub fn plane_trace(
+pub(crate) fn plane_trace(
     normal: &Vector3<f64>,
     offset: f64,
     position: &Vector3<f64>,

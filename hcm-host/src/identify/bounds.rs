@@ -48,7 +48,7 @@ fn defaults(law: &str) -> &'static [(&'static str, f64, f64, bool)] {
 impl Bounds {
     /// The box for `law`, with the scenario's `[identify.bounds.<law>]` entries
     /// (`name = [lower, upper]`) replacing the defaults.
-    pub fn for_law(
+    pub(crate) fn for_law(
         law: &str,
         overrides: Option<&BTreeMap<String, [f64; 2]>>,
     ) -> Result<Bounds, String> {
@@ -83,7 +83,7 @@ impl Bounds {
     /// Checks every `[identify.bounds.<law>]` table of a scenario, not only the one
     /// of the law being identified: a law or a parameter name it does not know is an
     /// error naming its key, never ignored.
-    pub fn check_scenario(all: &BoundsOverrides) -> Result<(), String> {
+    pub(crate) fn check_scenario(all: &BoundsOverrides) -> Result<(), String> {
         for (law, overrides) in all {
             law_catalogue::kind(law).map_err(|e| format!("identify.bounds.{law}: {e}"))?;
             Bounds::for_law(law, Some(overrides))?;

@@ -31,7 +31,7 @@ impl Fitness {
 }
 
 /// Number of residuals [`residuals`] writes for `targets`.
-pub fn residual_count(targets: &[Target], kind: Fitness) -> usize {
+pub(crate) fn residual_count(targets: &[Target], kind: Fitness) -> usize {
     match kind {
         Fitness::Curve => targets.iter().map(|t| t.curve.len()).sum(),
         Fitness::Indicators => 4 * targets.len(),

@@ -81,7 +81,7 @@ pub struct Identification {
 /// The law `law_name` for contact `c` of `scenario`, with its fixed parameters
 /// (geometry, masses) derived from the scenario and its free ones at the middle of
 /// their box, and that box.
-pub fn template(
+pub(crate) fn template(
     scenario: &Scenario,
     c: usize,
     law_name: &str,

@@ -212,7 +212,7 @@ pub(crate) fn pre_contact_state(
 
 /// Simulates `target` with contact `c` under `law`: its force curve and indicators,
 /// or None when the simulation fails or makes no complete contact.
-pub fn simulate_target(
+pub(crate) fn simulate_target(
     target: &Target,
     c: usize,
     law: &AnyNormalLaw<f64>,
@@ -236,7 +236,7 @@ pub fn with_physics(model: &Model, physics: &Model) -> Model {
 
 /// Simulates `target` under the physics of `physics` (see [`with_physics`]): its
 /// force curve on contact `c` and indicators, or None as [`simulate_target`].
-pub fn simulate_target_as(
+pub(crate) fn simulate_target_as(
     target: &Target,
     c: usize,
     physics: &Model,
@@ -249,7 +249,7 @@ pub fn simulate_target_as(
 }
 
 /// Simulates `target` with contact `c` replaced by `contact` (law and residual).
-pub fn simulate_target_with(
+pub(crate) fn simulate_target_with(
     target: &Target,
     c: usize,
     contact: &Contact,

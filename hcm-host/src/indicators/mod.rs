@@ -65,6 +65,6 @@ impl Indicators {
 }
 
 /// The paper's error, Eq 20: |(γ1 − γ2)/γ1| (dimensionless; ×100 for %).
-pub fn eq20_error(reference: f64, other: f64) -> f64 {
+pub(crate) fn eq20_error(reference: f64, other: f64) -> f64 {
     ((reference - other) / reference).abs()
 }

@@ -27,7 +27,7 @@ fn live() -> MutexGuard<'static, Vec<PathBuf>> {
 }
 
 /// A new temporary name in `directory` for the destination called `name`.
-pub fn temporary_name(directory: &Path, name: &OsStr) -> PathBuf {
+pub(crate) fn temporary_name(directory: &Path, name: &OsStr) -> PathBuf {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
     let mut file_name = std::ffi::OsString::from(format!(
         "{PREFIX}{}-{}-",
@@ -65,7 +65,7 @@ fn create<T>(
 }
 
 /// A new, registered temporary file in `directory` for the destination called `name`.
-pub fn create_file(directory: &Path, name: &OsStr) -> io::Result<(File, PathBuf)> {
+pub(crate) fn create_file(directory: &Path, name: &OsStr) -> io::Result<(File, PathBuf)> {
     create(directory, name, |path| {
         OpenOptions::new().write(true).create_new(true).open(path)
     })
@@ -73,7 +73,7 @@ pub fn create_file(directory: &Path, name: &OsStr) -> io::Result<(File, PathBuf)
 
 /// A new, registered, empty temporary directory in `directory` for the destination
 /// called `name`.
-pub fn create_directory(directory: &Path, name: &OsStr) -> io::Result<PathBuf> {
+pub(crate) fn create_directory(directory: &Path, name: &OsStr) -> io::Result<PathBuf> {
     create(directory, name, |path| fs::create_dir(path)).map(|((), path)| path)
 }
 
@@ -95,21 +95,21 @@ impl Held<'_> {
     }
 
     /// Registers `path` (an existing directory moved aside, to be removed).
-    pub fn adopt(&mut self, path: &Path) {
+    pub(crate) fn adopt(&mut self, path: &Path) {
         self.0.push(path.to_owned());
     }
 }
 
 /// Runs `moves` (renames of registered temporaries into place) with the registry held, so
 /// that no signal handler acts in between; `moves` forgets what it moved.
-pub fn while_held<T>(moves: impl FnOnce(&mut Held) -> T) -> T {
+pub(crate) fn while_held<T>(moves: impl FnOnce(&mut Held) -> T) -> T {
     let mut live = live();
     moves(&mut Held(&mut live))
 }
 
 /// Removes every live temporary and exits with `code`, holding the registry so that no
 /// thread makes or moves another in between.
-pub fn remove_all_and_exit(code: i32) -> ! {
+pub(crate) fn remove_all_and_exit(code: i32) -> ! {
     let live = live();
     for path in live.iter() {
         remove_path(path);
@@ -128,7 +128,7 @@ fn remove_path(path: &Path) {
 
 /// Removes the temporaries in `directory` that processes which no longer exist left
 /// behind (killed by SIGKILL, or the machine stopped). Best effort.
-pub fn remove_leftovers(directory: &Path) {
+pub(crate) fn remove_leftovers(directory: &Path) {
     let Ok(entries) = fs::read_dir(directory) else {
         return;
     };

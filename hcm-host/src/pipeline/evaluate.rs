@@ -9,7 +9,7 @@ use crate::identify::replay::{curve, simulate_target_with, targets, Target};
 use crate::scenario::Model;
 
 /// The column labels of the models compared, in the table's order.
-pub const MODELS: [&str; 3] = ["PM2", "HCM", "HCM int8"];
+pub(crate) const MODELS: [&str; 3] = ["PM2", "HCM", "HCM int8"];
 
 /// What stage 5 finds.
 pub struct Evaluation {

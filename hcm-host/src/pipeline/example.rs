@@ -46,7 +46,7 @@ impl Example {
 
     /// The text of its scenario file, built into the program so that `hcm reproduce`
     /// runs the same scenario from any directory, with or without the repository.
-    pub fn shipped_scenario(self) -> &'static str {
+    pub(crate) fn shipped_scenario(self) -> &'static str {
         match self {
             Example::BouncingBall => include_str!("../../../scenarios/bouncing_ball.toml"),
             Example::FlatShot => include_str!("../../../scenarios/flat_shot.toml"),
@@ -141,7 +141,7 @@ impl ReproduceSettings {
 impl ReproduceSettings {
     /// The scenario with the overrides applied. The shipped one is named
     /// `scenarios/bouncing_ball.toml (built in)` in errors and reports.
-    pub fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
+    pub(crate) fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
         match &self.scenario {
             Some(path) => Scenario::load(path, &self.overrides),
             None => Scenario::parse(
@@ -154,7 +154,7 @@ impl ReproduceSettings {
 
     /// The scenario file as given, or `scenarios/NAME.toml (built in)` for the
     /// shipped one.
-    pub fn scenario_label(&self) -> PathBuf {
+    pub(crate) fn scenario_label(&self) -> PathBuf {
         match &self.scenario {
             Some(path) => path.clone(),
             None => PathBuf::from(format!("scenarios/{} (built in)", self.example.file())),

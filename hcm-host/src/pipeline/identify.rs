@@ -7,7 +7,7 @@ use crate::scenario::{Model, Scenario};
 use std::path::Path;
 
 /// The law PM2 uses, as in the paper.
-pub const PM2_LAW: &str = "lankarani_nikravesh";
+pub(crate) const PM2_LAW: &str = "lankarani_nikravesh";
 
 /// PM2 in its three forms.
 #[derive(Clone, Debug)]

@@ -68,7 +68,7 @@ impl Scale {
 
     /// `value` (SI) to at most `significant` digits, trailing zeros dropped
     /// (`12.7 mm`, `0.95 m/s`): for prose.
-    pub fn brief(&self, value: f64, significant: usize) -> String {
+    pub(crate) fn brief(&self, value: f64, significant: usize) -> String {
         let text = trimmed(decimals(value / self.factor, significant));
         format!("{text} {}", self.unit).trim_end().to_owned()
     }

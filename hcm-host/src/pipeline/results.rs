@@ -125,7 +125,7 @@ impl StageClock {
 
 impl ReproduceResults {
     /// The results of the stages' values; `setup` describes the experiment.
-    pub fn gather(
+    pub(crate) fn gather(
         settings: &ReproduceSettings,
         setup: Setup,
         pm2: &Pm2,

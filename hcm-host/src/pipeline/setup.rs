@@ -33,7 +33,7 @@ pub struct Setup {
 impl Setup {
     /// The setup of `scenario` (as read, PM1 in place), split into `sets`, whose S2
     /// table is that of `condition` ("" without conditions).
-    pub fn describe(scenario: &Scenario, sets: &Split, condition: &str) -> Self {
+    pub(crate) fn describe(scenario: &Scenario, sets: &Split, condition: &str) -> Self {
         let experiment = &scenario.experiment;
         let model = condition_model(scenario, condition);
         let contact = model.as_ref().and_then(|m| m.contacts.get(CONTACT));
@@ -79,7 +79,10 @@ fn condition_model(scenario: &Scenario, condition: &str) -> Option<Model> {
 
 /// "the Lankarani–Nikravesh law of the paper's Eq 4–5, with k = …, n = …, ce = …" for the law called
 /// `name` with `parameters` (name, SI value) in any order.
-pub fn law_phrase<'a>(name: &str, parameters: impl IntoIterator<Item = (&'a str, f64)>) -> String {
+pub(crate) fn law_phrase<'a>(
+    name: &str,
+    parameters: impl IntoIterator<Item = (&'a str, f64)>,
+) -> String {
     let kind = LawKind::from_name(name);
     let info =
         |parameter: &str| kind.and_then(|k| k.parameters().iter().find(|p| p.name == parameter));

@@ -7,7 +7,7 @@ use crate::scenario::Model;
 use crate::train::{train_force_residual, ResidualSettings, TrainSettings, Trained};
 
 /// Epochs of quantisation-aware fine-tuning of the int8 twin.
-pub const INT8_EPOCHS: usize = 20;
+pub(crate) const INT8_EPOCHS: usize = 20;
 
 /// Trains the shipped residual architecture on the measured − PM2 force of the
 /// `training` set's contact samples (`pm2` is the scenario with PM2 in place), then

@@ -32,15 +32,15 @@ pub const WIDTH: usize = 16;
 pub const HIDDEN: usize = 2;
 
 /// Inputs of the wrench residual: the moving body's 13 state components.
-pub const WRENCH_INPUTS: usize = 13;
+pub(crate) const WRENCH_INPUTS: usize = 13;
 /// Outputs of the wrench residual: force x, y, z (N), torque x, y, z (N·m).
-pub const WRENCH_OUTPUTS: usize = 6;
+pub(crate) const WRENCH_OUTPUTS: usize = 6;
 /// Hidden-layer width of the joint wrench network (one network, six outputs).
-pub const WRENCH_WIDTH: usize = 32;
+pub(crate) const WRENCH_WIDTH: usize = 32;
 /// Hidden-layer width of each of the six per-output networks.
-pub const PER_OUTPUT_WIDTH: usize = 8;
+pub(crate) const PER_OUTPUT_WIDTH: usize = 8;
 /// Hidden-layer width of the six per-output networks merged (6 × 8).
-pub const WIDE_WRENCH_WIDTH: usize = WRENCH_OUTPUTS * PER_OUTPUT_WIDTH;
+pub(crate) const WIDE_WRENCH_WIDTH: usize = WRENCH_OUTPUTS * PER_OUTPUT_WIDTH;
 
 /// A decoded residual network of one of the shipped shapes, either weight storage.
 #[derive(Clone, Debug)]

@@ -377,7 +377,10 @@ impl Scenario {
     }
 
     /// This scenario with typed assignments applied (what the library builds).
-    pub fn with_assignments(&self, assignments: &[Assignment]) -> Result<Scenario, ScenarioError> {
+    pub(crate) fn with_assignments(
+        &self,
+        assignments: &[Assignment],
+    ) -> Result<Scenario, ScenarioError> {
         self.with_any(assignments)
     }
 

@@ -56,7 +56,7 @@ pub fn apply(document: &mut toml::Table, assignment: &Assignment) -> Result<(), 
 ///
 /// Deserialising the document after the overrides loses the keys (serde reports
 /// "invalid type: string "abc", expected f64" with no path); this finds the culprit.
-pub fn blame<A: IntoAssignment>(
+pub(crate) fn blame<A: IntoAssignment>(
     base: &toml::Table,
     assignments: &[A],
     check: impl Fn(&toml::Table) -> Result<(), String>,

@@ -69,7 +69,8 @@ pub struct FrictionSpec {
 impl FrictionSpec {
     /// The scenario names of the friction parameters, which a contact's `noise` table
     /// may name beside its law's (Eq 18 on friction): μ_s, μ_d (–), v_s, v_d (m/s).
-    pub const PARAMETERS: [&'static str; 4] = ["mu_static", "mu_dynamic", "v_static", "v_dynamic"];
+    pub(crate) const PARAMETERS: [&'static str; 4] =
+        ["mu_static", "mu_dynamic", "v_static", "v_dynamic"];
 
     /// The value of the friction parameter called `name` (a [`Self::PARAMETERS`] name)
     /// in `law`, for Eq 18's noise.

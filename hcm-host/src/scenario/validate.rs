@@ -18,7 +18,7 @@ use std::path::Path;
 /// of the bodies, not a contact state: usually a sign error or a position in the
 /// wrong unit. 10⁻³·R is 12.7 µm for the 12.7 mm ball, ten orders of magnitude
 /// above the rounding of positions written in metres.
-pub const MAX_INITIAL_INDENTATION: f64 = 1e-3;
+pub(crate) const MAX_INITIAL_INDENTATION: f64 = 1e-3;
 
 /// Every material of `scenario` physically possible ([`Material::validate`]); the
 /// field named is `material.<name>.<property>`.

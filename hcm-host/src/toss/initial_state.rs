@@ -24,10 +24,10 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 /// Frames fitted up to the window start (–): 8 frames are 47 ms at 148 Hz, enough to
 /// average the tracker's noise while the cube is surely in free flight.
-pub const FIT_FRAMES: usize = 8;
+pub(crate) const FIT_FRAMES: usize = 8;
 
 /// Fewest frames fitted (–): two unknowns per axis, and two more frames to average.
-pub const MIN_FIT_FRAMES: usize = 4;
+pub(crate) const MIN_FIT_FRAMES: usize = 4;
 
 /// How far a recorded quaternion's norm may lie from 1 (–) before it is refused.
 const UNIT_TOLERANCE: f64 = 1e-6;

@@ -57,7 +57,7 @@ pub struct PreparedToss<'a> {
 }
 
 /// Checks `run` and finds its window, initial state and frame grid.
-pub fn prepare<'a>(setup: &TossSetup, run: &'a Run) -> Result<PreparedToss<'a>, TossError> {
+pub(crate) fn prepare<'a>(setup: &TossSetup, run: &'a Run) -> Result<PreparedToss<'a>, TossError> {
     let track = run
         .body(&setup.name)
         .ok_or_else(|| TossError::MissingBody {
@@ -128,7 +128,7 @@ pub fn replay_model(model: &Model, setup: &TossSetup, toss: &PreparedToss<'_>) -
 }
 
 /// Simulates a prepared toss with `model`'s physics.
-pub fn simulate_toss(
+pub(crate) fn simulate_toss(
     model: &Model,
     setup: &TossSetup,
     toss: &PreparedToss<'_>,

@@ -100,7 +100,7 @@ impl Summary {
     }
 
     /// The position and rotation summaries of `scores`.
-    pub fn of_scores(scores: &[TossScore]) -> (Summary, Summary) {
+    pub(crate) fn of_scores(scores: &[TossScore]) -> (Summary, Summary) {
         let position: Vec<f64> = scores.iter().map(|s| s.position_error).collect();
         let rotation: Vec<f64> = scores.iter().map(|s| s.rotation_error).collect();
         (Summary::of(&position), Summary::of(&rotation))

@@ -19,7 +19,7 @@
 //! outside. The data give S and σ; ρ is the one chosen number.
 
 /// ρ: the tolerance as a fraction of the varying inputs' mean normalised spread.
-pub const TOLERANCE_FRACTION: f64 = 0.01;
+pub(crate) const TOLERANCE_FRACTION: f64 = 0.01;
 
 /// A normalised spread below this counts as constant and does not enter S.
 const CONSTANT_SPREAD: f64 = 1e-6;

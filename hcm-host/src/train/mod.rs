@@ -107,7 +107,7 @@ pub struct TrainSettings {
 }
 
 /// Below this fraction of its vector's largest spread a component is constant.
-pub const VECTOR_CONSTANT: f64 = 1e-6;
+pub(crate) const VECTOR_CONSTANT: f64 = 1e-6;
 
 impl Default for TrainSettings {
     fn default() -> Self {

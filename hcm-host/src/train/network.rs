@@ -175,7 +175,7 @@ impl Layout {
     /// Random weights, zero biases: Glorot & Bengio (2010) uniform U(±√(6/(in+out)))
     /// for tanh, He et al. (2015) uniform U(±√(6/in)) for relu (keeping the variance
     /// of the activations from layer to layer). The linear output layer follows Glorot.
-    pub fn initial_parameters(&self, rng: &mut ChaCha8Rng) -> Vec<f64> {
+    pub(crate) fn initial_parameters(&self, rng: &mut ChaCha8Rng) -> Vec<f64> {
         let mut parameters = vec![0.0; self.parameter_count()];
         let hidden = self.sizes.len() - 2;
         for (l, (offset, n_in, n_out)) in self.shapes().enumerate() {
@@ -250,7 +250,7 @@ impl Layout {
     /// Adds ∂/∂θ Σ_o (ŷ_o − t_o)² for one sample (x, t) to `gradient` (backpropagation:
     /// δ at the output is 2(ŷ − t); each layer adds δ·aᵀ to its weights' gradient and δ
     /// to its biases', and passes (Wᵀ·δ)⊙σ'(a) down). The output ŷ stays in `scratch`.
-    pub fn accumulate_gradient(
+    pub(crate) fn accumulate_gradient(
         &self,
         parameters: &[f64],
         x: &[f64],

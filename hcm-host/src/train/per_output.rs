@@ -80,7 +80,7 @@ pub(super) fn train_each(
 /// The block-diagonal network whose output o is `parts[o]`'s single output. All parts
 /// share inputs, depth, width, activation and input normalisation (they were trained
 /// on the same rows with the same split).
-pub fn merge(parts: &[Network]) -> Network {
+pub(crate) fn merge(parts: &[Network]) -> Network {
     let first = &parts[0];
     let (width, n_in, blocks) = (first.width, first.inputs, parts.len());
     let merged_width = width * blocks;

@@ -16,9 +16,9 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// The `format` field's value.
-pub const FORMAT: &str = "hcm-residual";
+pub(crate) const FORMAT: &str = "hcm-residual";
 /// The version this build reads and writes.
-pub const FILE_VERSION: u32 = 1;
+pub(crate) const FILE_VERSION: u32 = 1;
 
 /// A trained residual network file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -34,9 +34,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 use rayon::prelude::*;
 
 /// Residual inputs of a rigid contact: the moving body's 13 state components.
-pub const STATE_INPUTS: usize = 13;
-/// Residual outputs of a rigid contact: force x, y, z (N), torque x, y, z (N·m).
-pub const WRENCH_OUTPUTS: usize = 6;
+pub(crate) const STATE_INPUTS: usize = 13;
 
 /// The training pairs of one contact, one row per touching sample, runs in file
 /// order and samples in time order.

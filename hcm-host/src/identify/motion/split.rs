@@ -17,7 +17,7 @@ pub enum Part {
 }
 
 /// The number of a toss: the digits that end its run id, or `position` without any.
-pub fn toss_number(id: &str, position: usize) -> u64 {
+pub(crate) fn toss_number(id: &str, position: usize) -> u64 {
     let digits = id.len() - id.trim_end_matches(|c: char| c.is_ascii_digit()).len();
     id[id.len() - digits..].parse().unwrap_or(position as u64)
 }

@@ -89,7 +89,7 @@ pub fn identify_rigid(
 }
 
 /// The name of the one moving body of contact `c` (the other must be fixed).
-pub fn mover_name(model: &Model, c: usize) -> Result<String, RigidIdentifyError> {
+pub(crate) fn mover_name(model: &Model, c: usize) -> Result<String, RigidIdentifyError> {
     let contact = model
         .contacts
         .get(c)

@@ -35,7 +35,7 @@ pub use reduction::Reduction;
 /// A diagonal entry of the pivoted triangle at or below this fraction of the largest
 /// one marks its column as numerically dependent on the columns before it (the
 /// columns scaled to unit norm: a relative, unit-free threshold).
-pub const RANK_TOLERANCE: f64 = 1e-12;
+pub(crate) const RANK_TOLERANCE: f64 = 1e-12;
 
 /// Which covariance of the coefficients [`Reduction::solve`] returns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

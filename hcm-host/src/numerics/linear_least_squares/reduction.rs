@@ -46,7 +46,7 @@ impl Reduction {
     /// `fill(i, regressors, targets)` writes row i's regressors and targets (both
     /// zeroed before the call). Called once per row, in order. Zero rows give an empty
     /// reduction (to stack with others); solving needs at least `columns` rows.
-    pub fn from_rows(
+    pub(crate) fn from_rows(
         rows: usize,
         columns: usize,
         targets: usize,
@@ -102,25 +102,25 @@ impl Reduction {
     }
 
     /// Rows of the triangle R: min(n, columns).
-    pub fn triangle_rows(&self) -> usize {
+    pub(crate) fn triangle_rows(&self) -> usize {
         self.triangle.nrows()
     }
 
     /// R[i, j] (0 below the diagonal); RᵀR = AᵀA.
-    pub fn triangle(&self, i: usize, j: usize) -> f64 {
+    pub(crate) fn triangle(&self, i: usize, j: usize) -> f64 {
         self.triangle[(i, j)]
     }
 
     /// Entry i of (Qᵀb)₁ for target `target`, i < [`Reduction::triangle_rows`];
     /// Rᵀ·(Qᵀb)₁ = Aᵀb.
-    pub fn projected_target(&self, i: usize, target: usize) -> f64 {
+    pub(crate) fn projected_target(&self, i: usize, target: usize) -> f64 {
         self.projected[(i, target)]
     }
 
     /// ‖b‖² − ‖(Qᵀb)₁‖² of target `target`, accumulated without cancellation: what no
     /// combination of the columns fits (the RSS of the least-squares solution when A
     /// has full rank), in the target's unit squared.
-    pub fn orthogonal_sum_of_squares(&self, target: usize) -> f64 {
+    pub(crate) fn orthogonal_sum_of_squares(&self, target: usize) -> f64 {
         self.orthogonal[target]
     }
 

@@ -23,7 +23,7 @@ impl Reduction {
     /// if `covariance` asks, the coefficients' covariance (see [`LinearFit`]).
     ///
     /// Errors: no rows, fewer rows than columns, or a target the problem does not have.
-    pub fn solve(
+    pub(crate) fn solve(
         &self,
         target: usize,
         covariance: Option<Covariance>,
@@ -76,7 +76,7 @@ impl Reduction {
     /// collinear columns whose exact coefficients are large and cancel. The fit's RSS is
     /// ‖A·x − b‖² (without the penalty), its rank that of the stacked matrix, and it has
     /// no covariance. Needs no more rows than columns when μ > 0.
-    pub fn solve_ridge(
+    pub(crate) fn solve_ridge(
         &self,
         target: usize,
         ridge: f64,

@@ -22,7 +22,7 @@ pub struct Bound {
 
 impl Bound {
     /// The bound of a parameter table's row `(name, lower, upper, log_scale)`.
-    pub fn of_row(&(name, lower, upper, log_scale): &(&str, f64, f64, bool)) -> Bound {
+    pub(crate) fn of_row(&(name, lower, upper, log_scale): &(&str, f64, f64, bool)) -> Bound {
         Bound {
             name: name.to_owned(),
             lower,
@@ -34,7 +34,7 @@ impl Bound {
     /// The value at fraction `at` of the interval, clamped into [0, 1] (through
     /// log(value) on a log scale): how a local search walks the box on the scale the
     /// genetic algorithm searches.
-    pub fn value_at(&self, at: f64) -> f64 {
+    pub(crate) fn value_at(&self, at: f64) -> f64 {
         let at = at.clamp(0.0, 1.0);
         if self.log_scale {
             (self.lower.ln() + at * (self.upper.ln() - self.lower.ln())).exp()
@@ -45,7 +45,7 @@ impl Bound {
 
     /// The fraction of the interval `value` lies at, clamped into [0, 1]: the inverse
     /// of [`Bound::value_at`].
-    pub fn fraction_of(&self, value: f64) -> f64 {
+    pub(crate) fn fraction_of(&self, value: f64) -> f64 {
         let (lower, upper, value) = if self.log_scale {
             (self.lower.ln(), self.upper.ln(), value.ln())
         } else {

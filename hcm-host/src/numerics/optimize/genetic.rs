@@ -146,7 +146,7 @@ pub enum GeneticError {
 /// `progress` is called once per generation with (generations done so far, 1 for the
 /// initial population, up to `settings.generations`; best fitness so far) — the CLI
 /// draws a progress bar with it.
-pub fn minimize(
+pub(crate) fn minimize(
     bounds: &[Bound],
     settings: &GeneticSettings,
     fitness: impl Fn(&[f64]) -> f64 + Sync,

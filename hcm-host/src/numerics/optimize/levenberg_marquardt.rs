@@ -170,7 +170,7 @@ pub struct LmResult {
 /// wrong length, a non-positive scale, a bound that is not an interval, a non-finite
 /// start or a non-finite residual there, a setting outside its domain, or a derivative
 /// that is non-finite on both sides of a point.
-pub fn levenberg_marquardt(
+pub(crate) fn levenberg_marquardt(
     residuals: impl Fn(&[f64], &mut [f64]) + Sync,
     m: usize,
     initial: &[f64],

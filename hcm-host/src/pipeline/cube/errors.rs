@@ -41,7 +41,7 @@ pub fn recorded<'a>(
 }
 
 /// The frame errors of every toss of `evaluations` (predictions of `data`'s runs).
-pub fn frame_errors(
+pub(crate) fn frame_errors(
     setup: &TossSetup,
     data: &Dataset,
     evaluations: &[TossEvaluation],
@@ -90,7 +90,7 @@ pub struct TimePoint {
 }
 
 /// The error over time: per frame index, the means over the tosses that reach it.
-pub fn over_time(tosses: &[FrameErrors]) -> Vec<TimePoint> {
+pub(crate) fn over_time(tosses: &[FrameErrors]) -> Vec<TimePoint> {
     let longest = tosses.iter().map(|t| t.time.len()).max().unwrap_or(0);
     (0..longest)
         .map(|frame| {
@@ -128,7 +128,7 @@ pub struct PhaseErrors {
 }
 
 /// Each phase's errors (in [`Phase::ALL`] order).
-pub fn per_phase(tosses: &[FrameErrors]) -> Vec<PhaseErrors> {
+pub(crate) fn per_phase(tosses: &[FrameErrors]) -> Vec<PhaseErrors> {
     let total = |f: &dyn Fn(&FrameErrors) -> &Vec<f64>| -> f64 {
         tosses.iter().map(|t| f(t).iter().sum::<f64>()).sum()
     };

@@ -34,7 +34,7 @@ use crate::toss::predicted_dataset;
 use std::borrow::Cow;
 
 /// The scenario shipped with hcm, so that the example runs from any directory.
-pub const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/cube_toss.toml");
+pub(crate) const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/cube_toss.toml");
 
 /// What [`reproduce_cube`] runs.
 #[derive(Clone, Debug, PartialEq)]
@@ -78,7 +78,7 @@ impl CubeSettings {
     }
 
     /// How the report names the scenario.
-    pub fn scenario_label(&self) -> String {
+    pub(crate) fn scenario_label(&self) -> String {
         match &self.scenario {
             Some(path) => path.display().to_string(),
             None => "scenarios/cube_toss.toml (built in)".to_owned(),
@@ -86,7 +86,7 @@ impl CubeSettings {
     }
 
     /// The scenario, overrides applied.
-    pub fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
+    pub(crate) fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
         match &self.scenario {
             Some(path) => Scenario::load(path, &self.overrides),
             None => Scenario::parse(

@@ -23,15 +23,15 @@ use serde::Serialize;
 
 /// Frames of the first impact after the centre stops falling (–): 20 ms at 148 Hz,
 /// the rebound of a body that lands with restitution about 0.1.
-pub const IMPACT_AFTER: usize = 3;
+pub(crate) const IMPACT_AFTER: usize = 3;
 /// Frames ahead a frame must stay still over to be at rest (–): 47 ms at 148 Hz,
 /// several times the tracker's frame-to-frame jitter.
-pub const REST_SPAN: usize = 7;
+pub(crate) const REST_SPAN: usize = 7;
 /// The centre's largest move over [`REST_SPAN`] frames at rest, as a fraction of the
 /// body's width (–): 2.1 mm for the ContactNets cube, 0.04 m/s.
-pub const REST_DISTANCE: f64 = 0.02;
+pub(crate) const REST_DISTANCE: f64 = 0.02;
 /// The orientation's largest turn over [`REST_SPAN`] frames at rest (°).
-pub const REST_ANGLE: f64 = 2.0;
+pub(crate) const REST_ANGLE: f64 = 2.0;
 
 /// A phase of a toss.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]

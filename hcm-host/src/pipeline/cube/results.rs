@@ -142,7 +142,7 @@ pub struct Folds<'a> {
 
 impl CubeResults {
     /// The results of one run.
-    pub fn gather(
+    pub(crate) fn gather(
         settings: &CubeSettings,
         folds: Folds<'_>,
         timeline: Timeline,

@@ -77,7 +77,7 @@ pub struct SecondFold {
 }
 
 /// The second fold: `settings`' fit on `odd`, its predictions of `even`.
-pub fn second_fold(
+pub(crate) fn second_fold(
     settings: &CubeSettings,
     model: &Model,
     setup: &TossSetup,

@@ -30,7 +30,7 @@ use std::path::PathBuf;
 pub const CONTACT: usize = 0;
 
 /// The scenario shipped with hcm, so that the example runs from any directory.
-pub const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/peg_in_hole.toml");
+pub(crate) const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/peg_in_hole.toml");
 
 /// What [`reproduce_peg`] runs.
 #[derive(Clone, Debug, PartialEq)]
@@ -76,7 +76,7 @@ impl PegSettings {
     }
 
     /// The scenario, overrides applied.
-    pub fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
+    pub(crate) fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
         match &self.scenario {
             Some(path) => Scenario::load(path, &self.overrides),
             None => Scenario::parse(

@@ -111,7 +111,7 @@ impl PegReproduction {
     }
 
     /// The figure files written (SVG and PNG of each).
-    pub fn figure_files(&self) -> Vec<String> {
+    pub(crate) fn figure_files(&self) -> Vec<String> {
         (self.evaluation.figures.iter())
             .flat_map(|f| [format!("{}.svg", f.stem), format!("{}.png", f.stem)])
             .collect()

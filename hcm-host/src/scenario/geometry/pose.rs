@@ -18,7 +18,7 @@ pub struct Pose {
 impl Pose {
     /// Velocity (m/s) of the body's material point at `point` (m): v + ω × (point − p).
     #[inline]
-    pub fn point_velocity(&self, point: &Vector3<f64>) -> Vector3<f64> {
+    pub(crate) fn point_velocity(&self, point: &Vector3<f64>) -> Vector3<f64> {
         self.velocity + self.angular_velocity.cross(&(point - self.position))
     }
 }
