@@ -293,6 +293,166 @@ impl Verdict {
     }
 }
 
+/// The regression's design: the residual's candidate columns, scaled to unit RMS.
+struct Design {
+    /// The base law's sensitivities first, then one column per (candidate, shape).
+    columns: Vec<Vec<f64>>,
+    /// How many leading columns are the base's sensitivities (always in the model).
+    always: usize,
+    /// (candidate, shape, index of its column) of every catalogued column.
+    groups: Vec<(Candidate, f64, usize)>,
+}
+
+impl Design {
+    /// The columns on `samples` of `n` residual values: the free base parameters'
+    /// sensitivities and every catalogued (candidate, shape), each scaled to unit RMS.
+    fn new(
+        samples: &ContactSamples,
+        base: &ExtendedLaw<f64>,
+        base_force: &[f64],
+        n: usize,
+    ) -> Self {
+        let delta_ref = reference_depth(samples);
+        // Columns: base sensitivities first, then every (candidate, shape); scaled to unit RMS.
+        let mut columns = sensitivities(samples, base, &free_parameters(samples, &base.base));
+        let always = columns.len();
+        let mut groups: Vec<(Candidate, f64, usize)> = Vec::new();
+        for candidate in CATALOGUE {
+            for &shape in candidate.shapes() {
+                groups.push((candidate, shape, columns.len()));
+                columns.push(candidate.column(samples, base, base_force, shape, delta_ref));
+            }
+        }
+        for c in &mut columns {
+            let rms = (c.iter().map(|v| v * v).sum::<f64>() / n.max(1) as f64).sqrt();
+            if rms > 0.0 && rms.is_finite() {
+                c.iter_mut().for_each(|v| *v /= rms);
+            }
+        }
+        Design {
+            columns,
+            always,
+            groups,
+        }
+    }
+}
+
+/// The structured residual (N²) of a base model with RSS `base_rss` on `n` samples of
+/// noise σ (N): what the noise does not explain, and at least what all candidates
+/// together explain (`all_rss` is the RSS with every column in).
+fn structured_rss(base_rss: f64, all_rss: f64, n: usize, sigma: f64) -> f64 {
+    // σ from second differences can sit a little above the true noise, which would
+    // leave nothing "structured" to share.
+    let explainable = base_rss - all_rss;
+    (base_rss - n as f64 * sigma * sigma)
+        .max(if explainable.is_finite() {
+            explainable
+        } else {
+            0.0
+        })
+        .max(f64::MIN_POSITIVE)
+}
+
+/// The stepwise selection under way: the columns in the model, the effects chosen, the
+/// steps taken and the current (RSS, cross-validated RSS) (N²).
+struct Stepwise<'a> {
+    /// The per-fold reductions every subset is scored on.
+    reduced: &'a FoldReductions,
+    /// How many leading columns are the base's sensitivities.
+    always: usize,
+    /// Noise σ (N).
+    sigma: f64,
+    /// The structured residual shares are taken of (N²).
+    structured: f64,
+    /// ln(n), the BIC's price of one parameter (–).
+    threshold: f64,
+    /// Columns in the model.
+    subset: Vec<usize>,
+    /// Effects chosen, with their shapes.
+    chosen: Vec<(Candidate, f64)>,
+    /// Every step, for the report.
+    steps: Vec<Step>,
+    /// RSS of the current model (N²).
+    rss: f64,
+    /// Its cross-validated RSS (N²).
+    cv: f64,
+}
+
+impl Stepwise<'_> {
+    /// The verdict on an effect of `shape`: the model `without` it against the one
+    /// `with` it, each as (RSS, cross-validated RSS) (N²).
+    fn verdict(&self, without: (f64, f64), with: (f64, f64), shape: f64) -> Verdict {
+        Verdict::judge(
+            without,
+            with,
+            shape,
+            self.sigma,
+            self.structured,
+            self.threshold,
+        )
+    }
+
+    /// Forward pass: add the catalogued column of `groups` with the lowest
+    /// cross-validated RSS while it earns its place.
+    fn forward(&mut self, groups: &[(Candidate, f64, usize)]) {
+        loop {
+            let best = groups
+                .iter()
+                .filter(|(c, _, _)| !self.chosen.iter().any(|(d, _)| d == c))
+                .map(|&(c, shape, column)| {
+                    let mut s = self.subset.clone();
+                    s.push(column);
+                    let (train, cross) = self.reduced.score(&s);
+                    (c, shape, column, train, cross)
+                })
+                .min_by(|a, b| a.4.total_cmp(&b.4));
+            let Some((candidate, shape, column, train, cross)) = best else {
+                break;
+            };
+            let step = self
+                .verdict((self.rss, self.cv), (train, cross), shape)
+                .step(candidate, shape, "add");
+            let accepted = step.accepted;
+            self.steps.push(step);
+            if !accepted {
+                break;
+            }
+            self.subset.push(column);
+            self.chosen.push((candidate, shape));
+            (self.rss, self.cv) = (train, cross);
+        }
+    }
+
+    /// Backward pass: an effect taken early can be made redundant by later ones (one
+    /// effect's column can mimic the sum of two others for a while); drop the weakest
+    /// that no longer passes the same three tests, until all do.
+    fn backward(&mut self) {
+        loop {
+            let weakest = (0..self.chosen.len())
+                .map(|k| {
+                    let mut without = self.subset.clone();
+                    without.remove(self.always + k);
+                    let (train, cross) = self.reduced.score(&without);
+                    (k, without, train, cross)
+                })
+                .min_by(|a, b| a.2.total_cmp(&b.2));
+            let Some((k, without, train, cross)) = weakest else {
+                break;
+            };
+            let (candidate, shape) = self.chosen[k];
+            let verdict = self.verdict((train, cross), (self.rss, self.cv), shape);
+            let keep = verdict.earns;
+            self.steps.push(verdict.step(candidate, shape, "remove"));
+            if keep {
+                break;
+            }
+            self.subset = without;
+            self.chosen.remove(k);
+            (self.rss, self.cv) = (train, cross);
+        }
+    }
+}
+
 /// Forward selection of catalogued effects explaining `measured − base` on `samples`
 /// (noise σ in N).
 pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Selection {
@@ -306,113 +466,32 @@ pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> 
     let n = y.len();
     let fold: Vec<usize> = samples.run.iter().map(|r| r % FOLDS).collect();
     let folds = fold.iter().copied().max().map_or(1, |m| m + 1);
-    let delta_ref = reference_depth(samples);
-    // Columns: base sensitivities first, then every (candidate, shape); scaled to unit RMS.
-    let mut columns = sensitivities(samples, base, &free_parameters(samples, &base.base));
-    let always: Vec<usize> = (0..columns.len()).collect();
-    let mut groups: Vec<(Candidate, f64, usize)> = Vec::new();
-    for candidate in CATALOGUE {
-        for &shape in candidate.shapes() {
-            groups.push((candidate, shape, columns.len()));
-            columns.push(candidate.column(samples, base, &base_force, shape, delta_ref));
-        }
-    }
-    for c in &mut columns {
-        let rms = (c.iter().map(|v| v * v).sum::<f64>() / n.max(1) as f64).sqrt();
-        if rms > 0.0 && rms.is_finite() {
-            c.iter_mut().for_each(|v| *v /= rms);
-        }
-    }
-    let reduced = FoldReductions::new(&columns, &y, &fold, folds);
-    let mut subset = always.clone();
-    let (base_rss, mut cv) = reduced.score(&subset);
-    let mut rss = base_rss;
-    // The structured residual: what the noise does not explain, and at least what all
-    // candidates together explain (σ from second differences can sit a little above
-    // the true noise, which would leave nothing "structured" to share).
-    let all: Vec<usize> = (0..columns.len()).collect();
-    let explainable = base_rss - reduced.score(&all).0;
-    let structured = (base_rss - n as f64 * sigma * sigma)
-        .max(if explainable.is_finite() {
-            explainable
-        } else {
-            0.0
-        })
-        .max(f64::MIN_POSITIVE);
-    let threshold = (n.max(2) as f64).ln();
-    let mut chosen: Vec<(Candidate, f64)> = Vec::new();
-    let mut steps = Vec::new();
-    loop {
-        let best = groups
-            .iter()
-            .filter(|(c, _, _)| !chosen.iter().any(|(d, _)| d == c))
-            .map(|&(c, shape, column)| {
-                let mut s = subset.clone();
-                s.push(column);
-                let (train, cross) = reduced.score(&s);
-                (c, shape, column, train, cross)
-            })
-            .min_by(|a, b| a.4.total_cmp(&b.4));
-        let Some((candidate, shape, column, train, cross)) = best else {
-            break;
-        };
-        let step = Verdict::judge(
-            (rss, cv),
-            (train, cross),
-            shape,
-            sigma,
-            structured,
-            threshold,
-        )
-        .step(candidate, shape, "add");
-        let accepted = step.accepted;
-        steps.push(step);
-        if !accepted {
-            break;
-        }
-        subset.push(column);
-        chosen.push((candidate, shape));
-        (rss, cv) = (train, cross);
-    }
-    // Backward pass: an effect taken early can be made redundant by later ones (one
-    // effect's column can mimic the sum of two others for a while); drop the weakest
-    // that no longer passes the same three tests, until all do.
-    loop {
-        let weakest = (0..chosen.len())
-            .map(|k| {
-                let mut without = subset.clone();
-                without.remove(always.len() + k);
-                let (train, cross) = reduced.score(&without);
-                (k, without, train, cross)
-            })
-            .min_by(|a, b| a.2.total_cmp(&b.2));
-        let Some((k, without, train, cross)) = weakest else {
-            break;
-        };
-        let (candidate, shape) = chosen[k];
-        let verdict = Verdict::judge(
-            (train, cross),
-            (rss, cv),
-            shape,
-            sigma,
-            structured,
-            threshold,
-        );
-        let keep = verdict.earns;
-        steps.push(verdict.step(candidate, shape, "remove"));
-        if keep {
-            break;
-        }
-        subset = without;
-        chosen.remove(k);
-        (rss, cv) = (train, cross);
-    }
+    let design = Design::new(samples, base, &base_force, n);
+    let reduced = FoldReductions::new(&design.columns, &y, &fold, folds);
+    let subset: Vec<usize> = (0..design.always).collect();
+    let (base_rss, cv) = reduced.score(&subset);
+    let all: Vec<usize> = (0..design.columns.len()).collect();
+    let structured = structured_rss(base_rss, reduced.score(&all).0, n, sigma);
+    let mut stepwise = Stepwise {
+        reduced: &reduced,
+        always: design.always,
+        sigma,
+        structured,
+        threshold: (n.max(2) as f64).ln(),
+        subset,
+        chosen: Vec::new(),
+        steps: Vec::new(),
+        rss: base_rss,
+        cv,
+    };
+    stepwise.forward(&design.groups);
+    stepwise.backward();
     Selection {
-        chosen,
-        steps,
+        chosen: stepwise.chosen,
+        steps: stepwise.steps,
         base_rss,
         samples: n,
-        final_rss: rss,
+        final_rss: stepwise.rss,
     }
 }
 

@@ -123,6 +123,186 @@ fn mean(values: &[f64]) -> f64 {
     values.iter().sum::<f64>() / values.len().max(1) as f64
 }
 
+/// A candidate fitted in one round: its fit and its held-out scores, toss by toss
+/// (% + °; None where the replay failed).
+type Fit = (MotionEffect, Fitted, Option<Vec<f64>>);
+
+/// What a round's candidates are fitted and judged on: the round's model and the
+/// tosses read through it.
+struct Stage<'a> {
+    /// The round's model, its contact and plane.
+    subject: Subject<'a>,
+    /// The training tosses, prepared from the round's model.
+    training: Part<'a>,
+    /// The held-out tosses, prepared from the round's model.
+    held_out: Part<'a>,
+    /// The round's model's held-out scores, toss by toss (% + °).
+    base_held: Vec<f64>,
+    /// The least held-out gain that helps (% + °).
+    floor: f64,
+    /// The body's mass (kg), which scales the candidates' bounds.
+    mass: f64,
+    /// The body's half width (m), which scales the candidates' bounds.
+    size: f64,
+}
+
+/// Every open candidate fitted on the training tosses and judged on the held-out ones,
+/// in catalogue order; `progress(round, k, candidates)` before each fit.
+fn fit_candidates(
+    stage: &Stage<'_>,
+    open: &[MotionEffect],
+    round: usize,
+    progress: &mut impl FnMut(usize, usize, usize),
+) -> (Vec<CandidateResult>, Vec<Fit>) {
+    let subject = &stage.subject;
+    let mut results = Vec::new();
+    let mut held_scores = Vec::new();
+    for (k, &effect) in open.iter().enumerate() {
+        progress(round, k, open.len());
+        let bounds = effect.bounds(stage.mass, stage.size);
+        let neutral = effect.neutral(subject.model, subject.contact);
+        let fitted = fit::fit(subject, effect, &bounds, &neutral, &stage.training);
+        let held = subject.scores(effect, &fitted.values, &stage.held_out);
+        let base_held = &stage.base_held;
+        let result = judge(
+            effect,
+            &bounds,
+            &fitted,
+            base_held,
+            held.as_deref(),
+            stage.floor,
+        );
+        results.push(result);
+        held_scores.push((effect, fitted, held));
+    }
+    (results, held_scores)
+}
+
+/// The search under way: the model with every cause named so far, the tosses as read
+/// through it, and what the rounds found.
+struct Search {
+    /// The user's model with the causes named so far.
+    current: Model,
+    /// The training tosses (transformed by any measurement cause named).
+    training: Dataset,
+    /// The held-out tosses (likewise).
+    held_out: Dataset,
+    /// The body's contact with the plane, and the plane.
+    indices: MotionParameters,
+    /// The body's mass (kg).
+    mass: f64,
+    /// The body's half width (m).
+    size: f64,
+    /// The rounds so far.
+    rounds: Vec<Round>,
+    /// Causes named, with their parameters.
+    named: Vec<(String, Vec<(String, f64)>)>,
+    /// The candidates the last round could not tell apart.
+    ambiguous: Vec<&'static str>,
+    /// The user's model's held-out scores, toss by toss (% + °).
+    first_scores: Option<Vec<f64>>,
+    /// The extended model's held-out scores after the last cause named.
+    last_scores: Option<Vec<f64>>,
+}
+
+impl Search {
+    /// One round: every open candidate fitted and judged against the current model,
+    /// and the one chosen (if any) named. Whether one was named.
+    fn round(
+        &mut self,
+        round: usize,
+        progress: &mut impl FnMut(usize, usize, usize),
+    ) -> Result<bool, MotionDiagnoseError> {
+        let (contact, plane) = (self.indices.contact, self.indices.plane);
+        let subject = Subject {
+            model: &self.current,
+            contact,
+            plane,
+        };
+        let (training_part, held_part) = (
+            Part::new(&self.current, &self.training)?,
+            Part::new(&self.current, &self.held_out)?,
+        );
+        let base_held = subject
+            .base_scores(&held_part)
+            .ok_or(MotionDiagnoseError::Replay { part: "held-out" })?;
+        let base_training = fit::mean_or_infinity(subject.base_scores(&training_part).as_deref());
+        if !base_training.is_finite() {
+            return Err(MotionDiagnoseError::Replay { part: "training" });
+        }
+        let floor = MIN_GAIN * mean(self.first_scores.get_or_insert_with(|| base_held.clone()));
+        let open: Vec<MotionEffect> = (MotionEffect::ALL.iter().copied())
+            .filter(|e| !self.named.iter().any(|(n, _)| n == e.name()))
+            .filter(|e| e.changes(&self.current, contact))
+            .collect();
+        let stage = Stage {
+            subject,
+            training: training_part,
+            held_out: held_part,
+            base_held,
+            floor,
+            mass: self.mass,
+            size: self.size,
+        };
+        let (results, held_scores) = fit_candidates(&stage, &open, round, progress);
+        let (chosen, tied) = choose(&results, &held_scores);
+        let this = Round {
+            training: base_training,
+            held_out: mean(&stage.base_held),
+            candidates: results,
+            named: None,
+            ambiguous: tied.clone(),
+        };
+        let Some(index) = chosen else {
+            self.ambiguous = tied;
+            self.rounds.push(this);
+            return Ok(false);
+        };
+        self.name(this, held_scores, index);
+        Ok(true)
+    }
+
+    /// Names candidate `index` of the round `this`: adds it to the model, reads the
+    /// tosses through it where it is a measurement effect, and records the round.
+    fn name(&mut self, mut this: Round, mut held_scores: Vec<Fit>, index: usize) {
+        let (contact, plane) = (self.indices.contact, self.indices.plane);
+        let (effect, fitted, held) = held_scores.swap_remove(index);
+        this.named = Some(effect.name());
+        self.named.push((
+            effect.name().to_owned(),
+            this.candidates[index].parameters.clone(),
+        ));
+        self.current = effect.apply(&self.current, contact, plane, &fitted.values);
+        if let Some(read) = effect.transform(&self.training, &fitted.values) {
+            self.training = read;
+        }
+        if let Some(read) = effect.transform(&self.held_out, &fitted.values) {
+            self.held_out = read;
+        }
+        self.last_scores = held;
+        self.rounds.push(this);
+    }
+
+    /// The diagnosis the search reached.
+    fn diagnosis(self) -> MotionDiagnosis {
+        let total_gain = match (&self.first_scores, &self.last_scores) {
+            (Some(first), Some(last)) => Some(Paired::of(first, last)),
+            _ => None,
+        };
+        let answer = answer(&self.named, &self.ambiguous, total_gain.as_ref());
+        MotionDiagnosis {
+            training_tosses: self.training.runs.len(),
+            held_out_tosses: self.held_out.runs.len(),
+            rounds: self.rounds,
+            named: self.named,
+            ambiguous: self.ambiguous,
+            total_gain,
+            answer,
+            extended: self.current,
+        }
+    }
+}
+
 /// Diagnoses `model` against `data` (poses of one body tossed or sliding on a plane);
 /// `progress(round, candidate, candidates)` before each candidate's fit.
 pub fn diagnose_motion(
@@ -132,96 +312,30 @@ pub fn diagnose_motion(
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     let setup = TossSetup::new(model)?;
     let indices = MotionParameters::new(model, &setup)?;
-    let (mut training, mut held_out) = split_tosses(data);
+    let (training, held_out) = split_tosses(data);
     let found = held_out.runs.len().min(training.runs.len());
     if found < MIN_HELD_OUT {
         return Err(MotionDiagnoseError::TooFewTosses { found });
     }
-    let (mass, size) = (model.bodies[setup.body].mass, setup.width / 2.0);
-    let mut current = model.clone();
-    let mut rounds = Vec::new();
-    let mut named = Vec::new();
-    let mut ambiguous = Vec::new();
-    let mut first_scores = None;
-    let mut last_scores = None;
-    for round in 0..MAX_ROUNDS {
-        let subject = Subject {
-            model: &current,
-            contact: indices.contact,
-            plane: indices.plane,
-        };
-        let (training_part, held_part) = (
-            Part::new(&current, &training)?,
-            Part::new(&current, &held_out)?,
-        );
-        let base_held = subject
-            .base_scores(&held_part)
-            .ok_or(MotionDiagnoseError::Replay { part: "held-out" })?;
-        let base_training = fit::mean_or_infinity(subject.base_scores(&training_part).as_deref());
-        if !base_training.is_finite() {
-            return Err(MotionDiagnoseError::Replay { part: "training" });
-        }
-        let floor = MIN_GAIN * mean(first_scores.get_or_insert_with(|| base_held.clone()));
-        let open: Vec<MotionEffect> = (MotionEffect::ALL.iter().copied())
-            .filter(|e| !named.iter().any(|(n, _)| n == e.name()))
-            .filter(|e| e.changes(&current, indices.contact))
-            .collect();
-        let mut results = Vec::new();
-        let mut held_scores = Vec::new();
-        for (k, &effect) in open.iter().enumerate() {
-            progress(round, k, open.len());
-            let bounds = effect.bounds(mass, size);
-            let neutral = effect.neutral(&current, indices.contact);
-            let fitted = fit::fit(&subject, effect, &bounds, &neutral, &training_part);
-            let held = subject.scores(effect, &fitted.values, &held_part);
-            let result = judge(effect, &bounds, &fitted, &base_held, held.as_deref(), floor);
-            results.push(result);
-            held_scores.push((effect, fitted, held));
-        }
-        let (chosen, tied) = choose(&results, &held_scores);
-        let mut this = Round {
-            training: base_training,
-            held_out: mean(&base_held),
-            candidates: results,
-            named: None,
-            ambiguous: tied.clone(),
-        };
-        let Some(index) = chosen else {
-            ambiguous = tied;
-            rounds.push(this);
-            break;
-        };
-        let (effect, fitted, held) = held_scores.swap_remove(index);
-        this.named = Some(effect.name());
-        named.push((
-            effect.name().to_owned(),
-            this.candidates[index].parameters.clone(),
-        ));
-        current = effect.apply(&current, indices.contact, indices.plane, &fitted.values);
-        if let Some(read) = effect.transform(&training, &fitted.values) {
-            training = read;
-        }
-        if let Some(read) = effect.transform(&held_out, &fitted.values) {
-            held_out = read;
-        }
-        last_scores = held;
-        rounds.push(this);
-    }
-    let total_gain = match (&first_scores, &last_scores) {
-        (Some(first), Some(last)) => Some(Paired::of(first, last)),
-        _ => None,
+    let mut search = Search {
+        current: model.clone(),
+        training,
+        held_out,
+        indices,
+        mass: model.bodies[setup.body].mass,
+        size: setup.width / 2.0,
+        rounds: Vec::new(),
+        named: Vec::new(),
+        ambiguous: Vec::new(),
+        first_scores: None,
+        last_scores: None,
     };
-    let answer = answer(&named, &ambiguous, total_gain.as_ref());
-    Ok(MotionDiagnosis {
-        training_tosses: training.runs.len(),
-        held_out_tosses: held_out.runs.len(),
-        rounds,
-        named,
-        ambiguous,
-        total_gain,
-        answer,
-        extended: current,
-    })
+    for round in 0..MAX_ROUNDS {
+        if !search.round(round, &mut progress)? {
+            break;
+        }
+    }
+    Ok(search.diagnosis())
 }
 
 /// A candidate's verdict from its fit and held-out scores.
