@@ -308,11 +308,22 @@ impl Search {
 pub fn diagnose_motion(
     model: &Model,
     data: &Dataset,
+    progress: impl FnMut(usize, usize, usize),
+) -> Result<MotionDiagnosis, MotionDiagnoseError> {
+    let (training, held_out) = split_tosses(data);
+    diagnose_motion_split(model, training, held_out, progress)
+}
+
+/// [`diagnose_motion`] on tosses already split into a `training` part (the candidates
+/// are fitted on it) and a `held_out` one (their gain is judged on it).
+pub fn diagnose_motion_split(
+    model: &Model,
+    training: Dataset,
+    held_out: Dataset,
     mut progress: impl FnMut(usize, usize, usize),
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     let setup = TossSetup::new(model)?;
     let indices = MotionParameters::new(model, &setup)?;
-    let (training, held_out) = split_tosses(data);
     let found = held_out.runs.len().min(training.runs.len());
     if found < MIN_HELD_OUT {
         return Err(MotionDiagnoseError::TooFewTosses { found });

@@ -21,7 +21,7 @@ pub use results::{CubeResults, ModelScores, Published, TossRow, PUBLISHED};
 pub use stages::{ErrorProfile, Predictions, SecondFold, Timeline};
 
 use crate::dataset::{DataError, Dataset};
-use crate::diagnose::motion::{diagnose_motion, MotionDiagnoseError, MotionDiagnosis};
+use crate::diagnose::motion::{diagnose_motion_split, MotionDiagnoseError, MotionDiagnosis};
 use crate::identify::motion::{split_tosses, MotionFit};
 use crate::numerics::optimize::genetic::GeneticError;
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
@@ -257,10 +257,9 @@ fn diagnose(
     held_out: &Dataset,
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, CubeError> {
-    let mut data = training.clone();
-    data.runs.extend(held_out.runs.iter().cloned());
     progress.begin(Stage::Diagnose, 1);
-    let diagnosis = diagnose_motion(fitted, &data, |_, k, n| {
+    let (training, held_out) = (training.clone(), held_out.clone());
+    let diagnosis = diagnose_motion_split(fitted, training, held_out, |_, k, n| {
         progress.advance(k as u64, n as u64)
     });
     progress.end(Stage::Diagnose);
