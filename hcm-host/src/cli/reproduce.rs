@@ -12,7 +12,7 @@ use std::path::PathBuf;
 
 /// The paper's examples.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
-enum ExampleArg {
+pub(super) enum ExampleArg {
     /// The paper's Section 5.1 (Table 5): a steel ball dropped on concrete.
     BouncingBall,
     /// The paper's Section 5.2 (Table 10): a plate hits a resting ball at ten speeds.
@@ -63,58 +63,58 @@ enum ExampleArg {
 #[command(verbatim_doc_comment)]
 pub struct Args {
     /// Which example.
-    example: ExampleArg,
+    pub(super) example: ExampleArg,
     /// Peg-in-hole, cube-toss: generations of the genetic algorithm that identifies PM2
     /// (the cube's contact).
     #[arg(long)]
-    generations: Option<usize>,
+    pub(super) generations: Option<usize>,
     /// Peg-in-hole, cube-toss: individuals per generation of that algorithm.
     #[arg(long)]
-    population: Option<usize>,
+    pub(super) population: Option<usize>,
     /// Cube-toss: fitness evaluations of the Nelder–Mead polish after the GA.
     #[arg(long)]
-    polish: Option<usize>,
+    pub(super) polish: Option<usize>,
     /// Cube-toss: the filmed tosses (measured-data CSV).
     #[arg(long)]
-    data: Option<PathBuf>,
+    pub(super) data: Option<PathBuf>,
     /// Cube-toss: use only the first N runs of --data (before the split).
     #[arg(long, value_name = "N")]
-    first: Option<usize>,
+    pub(super) first: Option<usize>,
     /// Cube-toss: skip the diagnosis of the fitted model (most of the run's time).
     #[arg(long)]
-    no_diagnosis: bool,
+    pub(super) no_diagnosis: bool,
     /// Output directory (created): data, pm2.toml, residual blobs, report.md,
     /// results.json, figures.
     #[arg(long)]
-    out: PathBuf,
+    pub(super) out: PathBuf,
     /// Seed of the experiment, the GA and the training.
     #[arg(long, default_value_t = 1)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
-    seed: u64,
+    pub(super) seed: u64,
     /// Runs per condition (default: the paper's).
     #[arg(long)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::runs)]
-    runs: Option<usize>,
+    pub(super) runs: Option<usize>,
     /// Identification method of PM2: `ga` (the paper's, polished by LM) or `lsq`
     /// (1D examples; the peg-in-hole's PM2 is always found by the GA).
     #[arg(long, value_parser = ["ga", "lsq"], default_value = "ga")]
-    method: String,
+    pub(super) method: String,
     /// Scenario file to run instead of the example's built-in one (which is a copy of
     /// scenarios/<example>.toml of the source).
     #[arg(long)]
-    scenario: Option<PathBuf>,
+    pub(super) scenario: Option<PathBuf>,
     /// Override a scenario value, e.g. `--set 'contact.0.noise={}'` (no parameter
     /// scatter between runs). Repeatable; the report names them.
     #[arg(long = "set", value_name = "KEY=VALUE")]
-    overrides: Vec<String>,
+    pub(super) overrides: Vec<String>,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     let example = match args.example {
         ExampleArg::BouncingBall => Example::BouncingBall,
         ExampleArg::FlatShot => Example::FlatShot,
-        ExampleArg::PegInHole => return super::reproduce_peg::run(args.into()),
-        ExampleArg::CubeToss => return super::reproduce_cube::run(args.into()),
+        ExampleArg::PegInHole => return super::reproduce_peg::run(args),
+        ExampleArg::CubeToss => return super::reproduce_cube::run(args),
     };
     anyhow::ensure!(
         args.data.is_none() && args.first.is_none() && args.polish.is_none() && !args.no_diagnosis,
@@ -149,35 +149,4 @@ pub(super) fn finish(
     staged.commit()?;
     print!("{report}");
     Ok(())
-}
-
-impl From<Args> for super::reproduce_peg::PegArgs {
-    fn from(args: Args) -> Self {
-        super::reproduce_peg::PegArgs {
-            out: args.out,
-            seed: args.seed,
-            runs: args.runs,
-            scenario: args.scenario,
-            overrides: args.overrides,
-            generations: args.generations,
-            population: args.population,
-        }
-    }
-}
-
-impl From<Args> for super::reproduce_cube::CubeArgs {
-    fn from(args: Args) -> Self {
-        super::reproduce_cube::CubeArgs {
-            out: args.out,
-            data: args.data,
-            first: args.first,
-            seed: args.seed,
-            scenario: args.scenario,
-            overrides: args.overrides,
-            generations: args.generations,
-            population: args.population,
-            polish: args.polish,
-            no_diagnosis: args.no_diagnosis,
-        }
-    }
 }

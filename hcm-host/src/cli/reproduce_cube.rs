@@ -3,26 +3,11 @@
 //! `results.json` and figures written to the output directory as one unit.
 
 use super::progress::Bars;
-use super::reproduce::finish;
+use super::reproduce::{finish, Args};
 use hcm_host::output::StagedDirectory;
 use hcm_host::pipeline::cube::{reproduce_cube, CubeSettings};
-use std::path::PathBuf;
 
-/// The options `hcm reproduce` passes on for the cube toss.
-pub struct CubeArgs {
-    pub out: PathBuf,
-    pub data: Option<PathBuf>,
-    pub first: Option<usize>,
-    pub seed: u64,
-    pub scenario: Option<PathBuf>,
-    pub overrides: Vec<String>,
-    pub generations: Option<usize>,
-    pub population: Option<usize>,
-    pub polish: Option<usize>,
-    pub no_diagnosis: bool,
-}
-
-pub fn run(args: CubeArgs) -> anyhow::Result<()> {
+pub fn run(args: Args) -> anyhow::Result<()> {
     let data = args.data.ok_or_else(|| {
         anyhow::anyhow!(
             "`hcm reproduce cube-toss` needs --data: the filmed tosses, e.g. \

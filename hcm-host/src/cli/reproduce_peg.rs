@@ -3,23 +3,11 @@
 //! and figures written to the output directory as one unit.
 
 use super::progress::Bars;
-use super::reproduce::finish;
+use super::reproduce::{finish, Args};
 use hcm_host::output::StagedDirectory;
 use hcm_host::pipeline::peg::{reproduce_peg, PegSettings};
-use std::path::PathBuf;
 
-/// The options `hcm reproduce` passes on for the peg-in-hole.
-pub struct PegArgs {
-    pub out: PathBuf,
-    pub seed: u64,
-    pub runs: Option<usize>,
-    pub scenario: Option<PathBuf>,
-    pub overrides: Vec<String>,
-    pub generations: Option<usize>,
-    pub population: Option<usize>,
-}
-
-pub fn run(args: PegArgs) -> anyhow::Result<()> {
+pub fn run(args: Args) -> anyhow::Result<()> {
     let shipped = PegSettings::shipped();
     let mut genetic = shipped.genetic.clone();
     genetic.generations = args.generations.unwrap_or(genetic.generations);
