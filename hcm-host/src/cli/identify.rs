@@ -4,8 +4,9 @@ use super::progress_bar;
 use anyhow::Context;
 use hcm_host::dataset::{needs, Dataset};
 use hcm_host::identify::evolve::Fitness;
-use hcm_host::identify::{identify, Method, Physics};
+use hcm_host::identify::{identify, FitRecord, Identification, Method, Physics};
 use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::scenario::{Model, Scenario};
 use std::path::PathBuf;
 
 /// Identify a physics model (PM2) from data.
@@ -116,6 +117,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
          exponent with [identify.bounds.<law>] exponent = [lo, hi] instead",
         scenario.name
     );
+    identify_one_dimensional(&args, &scenario, &model, &data, settings)
+}
+
+/// The 1D path: fits `--law` to the force samples by the method asked for, prints the
+/// result and writes the physics file.
+fn identify_one_dimensional(
+    args: &Args,
+    scenario: &Scenario,
+    model: &Model,
+    data: &Dataset,
+    settings: GeneticSettings,
+) -> anyhow::Result<()> {
     let method = match (args.method.as_str(), args.fitness.as_str()) {
         ("lsq", _) => Method::Lsq,
         (_, "indicators") => Method::Ga(Fitness::Indicators, settings),
@@ -126,9 +139,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         bar.finish_and_clear();
     }
     let result = identify(
-        &scenario,
-        &model,
-        &data,
+        scenario,
+        model,
+        data,
         args.contact,
         &args.law,
         method.clone(),
@@ -141,9 +154,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let mut fit = result.fit.clone();
     fit.data = args.data.display().to_string();
+    print_identification(&args.law, &result, &fit);
+    let physics = Physics::for_contact(model, args.contact, &result.law, fit);
+    write_physics(&physics, &scenario.name, &args.out)
+}
+
+/// Prints the fit of `law`: runs, events and samples used, time (s), each parameter
+/// with its standard error, the force RMS errors (N) and the notes.
+fn print_identification(law: &str, result: &Identification, fit: &FitRecord) {
     println!(
         "{} by {} on {} runs ({} events, {} force samples) in {:.3} s",
-        args.law, fit.method, fit.runs, fit.events, fit.samples, fit.seconds
+        law, fit.method, fit.runs, fit.events, fit.samples, fit.seconds
     );
     for (name, value) in result.law.named() {
         let error = result
@@ -165,8 +186,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for note in &fit.notes {
         println!("  note: {note}");
     }
-    let physics = Physics::for_contact(&model, args.contact, &result.law, fit);
-    write_physics(&physics, &scenario.name, &args.out)
 }
 
 /// Writes `physics` (PM2 of scenario `name`) to `out` and says so.

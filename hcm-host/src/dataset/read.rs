@@ -6,7 +6,7 @@ use std::io::Read;
 
 use super::channel::Channel;
 use super::schema::{self, Column, BODY, COLUMNS, COLUMN_COUNT, FIRST_NUMERIC, NUMERIC_COUNT, RUN};
-use super::{BodyTrack, DataError, Dataset, Run};
+use super::{BodyTrack, DataError, Dataset, Run, Sample};
 
 /// Reads a whole dataset from `reader`; `source` names it in errors.
 pub(super) fn read(source: &str, reader: impl Read) -> Result<Dataset, DataError> {
@@ -294,76 +294,10 @@ impl Groups {
         line: u64,
         record: &csv::StringRecord,
     ) -> Result<(), DataError> {
-        let cell = |index: usize| {
-            layout.cell[index]
-                .and_then(|position| record.get(position))
-                .unwrap_or("")
-                .trim()
-        };
-        let run = text(source, line, &COLUMNS[RUN], cell(RUN), "a run identifier")?;
-        let body = text(source, line, &COLUMNS[BODY], cell(BODY), "a body name")?;
-        let mut values = [f64::NAN; NUMERIC_COUNT];
-        values[0] = number(source, line, &COLUMNS[schema::TIME], cell(schema::TIME))?;
-        let mut filled = false;
-        for channel in Channel::ALL {
-            let columns = channel.columns();
-            let empty = columns
-                .clone()
-                .filter(|&index| cell(index).is_empty())
-                .count();
-            if empty == columns.len() {
-                continue;
-            }
-            if empty > 0 {
-                return Err(partial(source, line, channel, &cell));
-            }
-            for index in columns {
-                values[index - FIRST_NUMERIC] = number(source, line, &COLUMNS[index], cell(index))?;
-            }
-            filled = true;
-        }
-        if !filled {
-            return Err(DataError::new(
-                source,
-                format!(
-                    "every channel cell of the row is empty; a row holds at least one of {}",
-                    channel_list()
-                ),
-            )
-            .at_line(line));
-        }
-        let sample = schema::sample_from_values(values);
-
-        let run_index = match self.runs.get(run) {
-            Some(&index) => index,
-            None => {
-                let index = self.dataset.runs.len();
-                self.runs.insert(run.to_owned(), index);
-                self.dataset.runs.push(Run {
-                    id: run.to_owned(),
-                    bodies: Vec::new(),
-                });
-                self.bodies.push(HashMap::new());
-                self.last_line.push(Vec::new());
-                index
-            }
-        };
-        let bodies = &mut self.bodies[run_index];
-        let tracks = &mut self.dataset.runs[run_index].bodies;
-        let body_index = match bodies.get(body) {
-            Some(&index) => index,
-            None => {
-                let index = tracks.len();
-                bodies.insert(body.to_owned(), index);
-                tracks.push(BodyTrack {
-                    body: body.to_owned(),
-                    samples: Vec::new(),
-                });
-                self.last_line[run_index].push(line);
-                index
-            }
-        };
-        let track = &mut tracks[body_index];
+        let Row { run, body, sample } = parse_row(source, layout, line, record)?;
+        let run_index = self.run_index(run);
+        let body_index = self.body_index(run_index, body, line);
+        let track = &mut self.dataset.runs[run_index].bodies[body_index];
         let last_line = &mut self.last_line[run_index][body_index];
         if let Some(previous) = track.samples.last() {
             if sample.time <= previous.time {
@@ -383,6 +317,115 @@ impl Groups {
         *last_line = line;
         Ok(())
     }
+
+    /// The index of run `run` in the dataset; a new, empty run is appended at its first
+    /// row.
+    fn run_index(&mut self, run: &str) -> usize {
+        match self.runs.get(run) {
+            Some(&index) => index,
+            None => {
+                let index = self.dataset.runs.len();
+                self.runs.insert(run.to_owned(), index);
+                self.dataset.runs.push(Run {
+                    id: run.to_owned(),
+                    bodies: Vec::new(),
+                });
+                self.bodies.push(HashMap::new());
+                self.last_line.push(Vec::new());
+                index
+            }
+        }
+    }
+
+    /// The index of `body`'s track in run `run_index`; a new, empty track is appended at
+    /// its first row (on line `line`).
+    fn body_index(&mut self, run_index: usize, body: &str, line: u64) -> usize {
+        let bodies = &mut self.bodies[run_index];
+        let tracks = &mut self.dataset.runs[run_index].bodies;
+        match bodies.get(body) {
+            Some(&index) => index,
+            None => {
+                let index = tracks.len();
+                bodies.insert(body.to_owned(), index);
+                tracks.push(BodyTrack {
+                    body: body.to_owned(),
+                    samples: Vec::new(),
+                });
+                self.last_line[run_index].push(line);
+                index
+            }
+        }
+    }
+}
+
+/// One data row parsed: its run, its body and its sample.
+struct Row<'r> {
+    /// The run identifier.
+    run: &'r str,
+    /// The body's name.
+    body: &'r str,
+    /// The sample (SI units).
+    sample: Sample,
+}
+
+/// Parses the data row `record` (on line `line`) whose columns `layout` places.
+fn parse_row<'r>(
+    source: &str,
+    layout: &'r Layout,
+    line: u64,
+    record: &'r csv::StringRecord,
+) -> Result<Row<'r>, DataError> {
+    let cell = |index: usize| {
+        layout.cell[index]
+            .and_then(|position| record.get(position))
+            .unwrap_or("")
+            .trim()
+    };
+    let run = text(source, line, &COLUMNS[RUN], cell(RUN), "a run identifier")?;
+    let body = text(source, line, &COLUMNS[BODY], cell(BODY), "a body name")?;
+    let mut values = [f64::NAN; NUMERIC_COUNT];
+    values[0] = number(source, line, &COLUMNS[schema::TIME], cell(schema::TIME))?;
+    if !read_channels(source, line, &cell, &mut values)? {
+        return Err(DataError::new(
+            source,
+            format!(
+                "every channel cell of the row is empty; a row holds at least one of {}",
+                channel_list()
+            ),
+        )
+        .at_line(line));
+    }
+    let sample = schema::sample_from_values(values);
+    Ok(Row { run, body, sample })
+}
+
+/// Reads into `values` every channel the row fills (a channel is filled whole, or left
+/// empty whole); whether it fills any.
+fn read_channels<'a>(
+    source: &str,
+    line: u64,
+    cell: &impl Fn(usize) -> &'a str,
+    values: &mut [f64; NUMERIC_COUNT],
+) -> Result<bool, DataError> {
+    let mut filled = false;
+    for channel in Channel::ALL {
+        let columns = channel.columns();
+        let empty = columns
+            .clone()
+            .filter(|&index| cell(index).is_empty())
+            .count();
+        if empty == columns.len() {
+            continue;
+        }
+        if empty > 0 {
+            return Err(partial(source, line, channel, cell));
+        }
+        for index in columns {
+            values[index - FIRST_NUMERIC] = number(source, line, &COLUMNS[index], cell(index))?;
+        }
+        filled = true;
+    }
+    Ok(filled)
 }
 
 /// The error for a channel only partly filled in a row: its first empty cell.

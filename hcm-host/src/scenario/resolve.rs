@@ -205,7 +205,39 @@ impl Scenario {
         }
         let mass = body_mass(spec).map_err(|m| invalid.error(field("mass"), m))?;
         let shape = body_shape(&spec.shape).map_err(|(key, m)| invalid.error(field(&key), m))?;
-        let material = match &spec.material {
+        let material = self.body_material(spec, &field, invalid)?;
+        let state = initial_state(spec, &field, invalid)?;
+        if !spec.fixed && matches!(shape, Shape::Compound { .. }) {
+            return Err(invalid.error(
+                field("shape"),
+                "a compound body must be fixed (set fixed = true); moving bodies are a sphere or a box".into(),
+            ));
+        }
+        let inertia =
+            body_inertia(spec, &shape, mass).map_err(|m| invalid.error(field("inertia"), m))?;
+        Ok(Body {
+            name: spec.name.clone(),
+            mass,
+            fixed: spec.fixed,
+            shape,
+            material,
+            position: state.position,
+            velocity: state.velocity,
+            orientation: state.orientation,
+            angular_velocity: state.angular_velocity,
+            inertia,
+            air_drag: spec.air_drag,
+        })
+    }
+
+    /// The material `spec` names, if any (an error naming the known ones if unknown).
+    fn body_material(
+        &self,
+        spec: &super::BodySpec,
+        field: &impl Fn(&str) -> String,
+        invalid: &Invalid<'_>,
+    ) -> Result<Option<Material<f64>>, ScenarioError> {
+        Ok(match &spec.material {
             None => None,
             Some(name) => Some(*self.materials.get(name).ok_or_else(|| {
                 let known: Vec<_> = self.materials.keys().cloned().collect();
@@ -217,67 +249,6 @@ impl Scenario {
                     ),
                 )
             })?),
-        };
-        let (position, velocity) = (Vector3::from(spec.position), Vector3::from(spec.velocity));
-        if !position
-            .iter()
-            .chain(velocity.iter())
-            .all(|x| x.is_finite())
-        {
-            return Err(invalid.error(field("position/velocity"), "must be finite".into()));
-        }
-        if let Some(drag) = &spec.air_drag {
-            drag.validate()
-                .map_err(|e| invalid.error(field("air_drag"), e.to_string()))?;
-        }
-        let orientation = rigid::orientation(spec.orientation.as_ref())
-            .map_err(|m| invalid.error(field("orientation"), m))?;
-        let angular_velocity = Vector3::from(spec.angular_velocity);
-        if !angular_velocity.iter().all(|w| w.is_finite()) {
-            return Err(invalid.error(field("angular_velocity"), "must be finite (rad/s)".into()));
-        }
-        if spec.fixed && angular_velocity != Vector3::zeros() {
-            return Err(invalid.error(
-                field("angular_velocity"),
-                "a fixed body cannot spin; remove it or set fixed = false".into(),
-            ));
-        }
-        if !spec.fixed && matches!(shape, Shape::Compound { .. }) {
-            return Err(invalid.error(
-                field("shape"),
-                "a compound body must be fixed (set fixed = true); moving bodies are a sphere or a box".into(),
-            ));
-        }
-        let inertia = if spec.fixed {
-            Matrix3::identity()
-        } else {
-            let default = match &shape {
-                Shape::Sphere { radius } => {
-                    Some(Matrix3::identity() * (0.4 * mass * radius * radius))
-                }
-                Shape::Box { half_extents } => Some(rigid::box_inertia(mass, half_extents)),
-                _ => None,
-            };
-            match (spec.inertia.as_ref(), default) {
-                // A moving plane (the flat shot's plate) never turns in the 1D
-                // simulator; a 3D scenario asks for its inertia (`resolve`).
-                (None, None) => Matrix3::from_element(f64::NAN),
-                (given, default) => rigid::inertia(given, mass, default)
-                    .map_err(|m| invalid.error(field("inertia"), m))?,
-            }
-        };
-        Ok(Body {
-            name: spec.name.clone(),
-            mass,
-            fixed: spec.fixed,
-            shape,
-            material,
-            position,
-            velocity,
-            orientation,
-            angular_velocity,
-            inertia,
-            air_drag: spec.air_drag,
         })
     }
 
@@ -428,6 +399,76 @@ impl Invalid<'_> {
             field,
             message,
         }
+    }
+}
+
+/// A body's initial state.
+struct InitialState {
+    /// Position (m).
+    position: Vector3<f64>,
+    /// Velocity (m/s).
+    velocity: Vector3<f64>,
+    /// Orientation (body → world).
+    orientation: UnitQuaternion<f64>,
+    /// Angular velocity (rad/s).
+    angular_velocity: Vector3<f64>,
+}
+
+/// The initial state of body `spec`, checked finite (its air drag checked on the way):
+/// a fixed body may not spin.
+fn initial_state(
+    spec: &super::BodySpec,
+    field: &impl Fn(&str) -> String,
+    invalid: &Invalid<'_>,
+) -> Result<InitialState, ScenarioError> {
+    let (position, velocity) = (Vector3::from(spec.position), Vector3::from(spec.velocity));
+    if !position
+        .iter()
+        .chain(velocity.iter())
+        .all(|x| x.is_finite())
+    {
+        return Err(invalid.error(field("position/velocity"), "must be finite".into()));
+    }
+    if let Some(drag) = &spec.air_drag {
+        drag.validate()
+            .map_err(|e| invalid.error(field("air_drag"), e.to_string()))?;
+    }
+    let orientation = rigid::orientation(spec.orientation.as_ref())
+        .map_err(|m| invalid.error(field("orientation"), m))?;
+    let angular_velocity = Vector3::from(spec.angular_velocity);
+    if !angular_velocity.iter().all(|w| w.is_finite()) {
+        return Err(invalid.error(field("angular_velocity"), "must be finite (rad/s)".into()));
+    }
+    if spec.fixed && angular_velocity != Vector3::zeros() {
+        return Err(invalid.error(
+            field("angular_velocity"),
+            "a fixed body cannot spin; remove it or set fixed = false".into(),
+        ));
+    }
+    Ok(InitialState {
+        position,
+        velocity,
+        orientation,
+        angular_velocity,
+    })
+}
+
+/// The inertia (kg·m²) of body `spec` of `shape` and `mass` (kg): given, else a sphere's
+/// or a box's; identity for a fixed body, NaN for a moving plane.
+fn body_inertia(spec: &super::BodySpec, shape: &Shape, mass: f64) -> Result<Matrix3<f64>, String> {
+    if spec.fixed {
+        return Ok(Matrix3::identity());
+    }
+    let default = match shape {
+        Shape::Sphere { radius } => Some(Matrix3::identity() * (0.4 * mass * radius * radius)),
+        Shape::Box { half_extents } => Some(rigid::box_inertia(mass, half_extents)),
+        _ => None,
+    };
+    match (spec.inertia.as_ref(), default) {
+        // A moving plane (the flat shot's plate) never turns in the 1D
+        // simulator; a 3D scenario asks for its inertia (`resolve`).
+        (None, None) => Ok(Matrix3::from_element(f64::NAN)),
+        (given, default) => rigid::inertia(given, mass, default),
     }
 }
 

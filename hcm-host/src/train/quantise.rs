@@ -145,20 +145,96 @@ fn refit_output(
     layout.flatten(&layers)
 }
 
-/// Fine-tunes an int8 twin of `teacher` on the rows `inputs` (raw units, the training
-/// inputs) for at most `epochs` epochs, then returns it with a report. `progress` is
-/// called after each epoch with (epoch, RMS against the teacher).
-pub fn quantisation_aware(
-    teacher: &Network,
-    inputs: &[Vec<f64>],
-    epochs: usize,
-    seed: u64,
-    mut progress: impl FnMut(usize, f64),
-) -> Result<(Network, QuantiseReport), TrainError> {
-    let started = Instant::now();
-    if inputs.is_empty() {
-        return Err(TrainError::NoData);
+/// The int8 twin under training: the shadow weights the gradient moves, and the
+/// rounded weights of the best epoch so far.
+struct Twin<'a> {
+    /// The network's shape.
+    layout: &'a Layout,
+    /// The training rows with the teacher's outputs as targets, normalised.
+    data: &'a Normalised,
+    /// Every row.
+    rows: &'a [usize],
+    /// Outputs per row.
+    outputs: usize,
+    /// The unrounded weights the gradient updates.
+    shadow: Vec<f64>,
+    /// The best rounded weights so far.
+    best: Vec<f64>,
+    /// Their mean squared mismatch to the teacher (normalised units).
+    best_loss: f64,
+    /// The optimiser.
+    adam: Adam,
+    /// The rows in this epoch's order.
+    order: Vec<usize>,
+    /// The last epoch that improved or halved the step.
+    last_change: usize,
+}
+
+impl Twin<'_> {
+    /// One epoch: Adam steps on shuffled batches with the gradient taken at the rounded
+    /// weights (straight-through); the rounded weights reached and their loss on every
+    /// row (normalised units), or Diverged.
+    fn epoch(&mut self, epoch: usize, rng: &mut ChaCha8Rng) -> Result<(Vec<f64>, f64), TrainError> {
+        let layout = self.layout;
+        shuffle(&mut self.order, rng);
+        for batch in self.order.chunks(32 * CHUNK_ROWS) {
+            let (mut gradient, _) =
+                self.data
+                    .gradient(layout, &rounded(layout, &self.shadow), batch);
+            let mean = 1.0 / (batch.len() * self.outputs) as f64;
+            gradient.iter_mut().for_each(|g| *g *= mean);
+            self.adam.step(&mut self.shadow, &gradient);
+        }
+        let candidate = rounded(layout, &self.shadow);
+        let loss = self.data.loss(layout, &candidate, self.rows);
+        if !loss.is_finite() {
+            return Err(TrainError::Diverged { epoch });
+        }
+        Ok((candidate, loss))
     }
+
+    /// Keeps `candidate` if its `loss` is the lowest yet, else halves the step after
+    /// two epochs without improvement.
+    fn keep(&mut self, candidate: Vec<f64>, loss: f64, epoch: usize) {
+        if loss < self.best_loss {
+            (self.best, self.best_loss, self.last_change) = (candidate, loss, epoch);
+        } else if epoch - self.last_change >= 2 {
+            self.adam.learning_rate *= 0.5;
+            self.last_change = epoch;
+        }
+    }
+
+    /// The best weights with the output layer re-fitted by least squares, if that
+    /// lowers the loss; with their loss (normalised units).
+    fn refitted(self) -> (Vec<f64>, f64) {
+        let refitted = refit_output(self.layout, self.data, &self.best, self.rows);
+        let refitted_loss = self.data.loss(self.layout, &refitted, self.rows);
+        if refitted_loss < self.best_loss {
+            (refitted, refitted_loss)
+        } else {
+            (self.best, self.best_loss)
+        }
+    }
+}
+
+/// Largest |network − target| over every output of every row (raw output units).
+fn largest_error(network: &Network, inputs: &[Vec<f64>], targets: &[Vec<f64>]) -> f64 {
+    inputs
+        .iter()
+        .zip(targets)
+        .flat_map(|(x, t)| {
+            let y = network.evaluate(x);
+            y.into_iter()
+                .zip(t)
+                .map(|(a, b)| (a - b).abs())
+                .collect::<Vec<_>>()
+        })
+        .fold(0.0_f64, f64::max)
+}
+
+/// The distillation problem: the teacher's outputs on `inputs` as the targets (raw
+/// units), the rows normalised with the teacher's own scales, and its layout.
+fn distillation(teacher: &Network, inputs: &[Vec<f64>]) -> (Vec<Vec<f64>>, Normalised, Layout) {
     let targets: Vec<Vec<f64>> = inputs.iter().map(|x| teacher.evaluate(x)).collect();
     let data = Normalised::with(
         inputs,
@@ -173,61 +249,60 @@ pub fn quantisation_aware(
         teacher.outputs,
         teacher.activation,
     );
+    (targets, data, layout)
+}
+
+/// Fine-tunes an int8 twin of `teacher` on the rows `inputs` (raw units, the training
+/// inputs) for at most `epochs` epochs, then returns it with a report. `progress` is
+/// called after each epoch with (epoch, RMS against the teacher).
+pub fn quantisation_aware(
+    teacher: &Network,
+    inputs: &[Vec<f64>],
+    epochs: usize,
+    seed: u64,
+    mut progress: impl FnMut(usize, f64),
+) -> Result<(Network, QuantiseReport), TrainError> {
+    let started = Instant::now();
+    if inputs.is_empty() {
+        return Err(TrainError::NoData);
+    }
+    let (targets, data, layout) = distillation(teacher, inputs);
     let rows: Vec<usize> = (0..inputs.len()).collect();
-    let mut shadow = layout.flatten(&teacher.layers);
-    let mut best = rounded(&layout, &shadow);
-    let mut best_loss = data.loss(&layout, &best, &rows);
+    let shadow = layout.flatten(&teacher.layers);
+    let best = rounded(&layout, &shadow);
+    let best_loss = data.loss(&layout, &best, &rows);
     let rounded_rms = best_loss.sqrt();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     // The trainer's default step: the shadow weights must move across rounding levels.
-    let mut adam = Adam::new(shadow.len(), 1e-4);
-    let (mut order, mut last_change, mut run) = (rows.clone(), 0, 0);
+    let adam = Adam::new(shadow.len(), 1e-4);
+    let mut twin = Twin {
+        layout: &layout,
+        data: &data,
+        rows: &rows,
+        outputs: teacher.outputs,
+        shadow,
+        best,
+        best_loss,
+        adam,
+        order: rows.clone(),
+        last_change: 0,
+    };
+    let mut run = 0;
     for epoch in 1..=epochs {
         run = epoch;
-        shuffle(&mut order, &mut rng);
-        for batch in order.chunks(32 * CHUNK_ROWS) {
-            let (mut gradient, _) = data.gradient(&layout, &rounded(&layout, &shadow), batch);
-            let mean = 1.0 / (batch.len() * teacher.outputs) as f64;
-            gradient.iter_mut().for_each(|g| *g *= mean);
-            adam.step(&mut shadow, &gradient);
-        }
-        let candidate = rounded(&layout, &shadow);
-        let loss = data.loss(&layout, &candidate, &rows);
-        if !loss.is_finite() {
-            return Err(TrainError::Diverged { epoch });
-        }
+        let (candidate, loss) = twin.epoch(epoch, &mut rng)?;
         progress(epoch, loss.sqrt());
-        if loss < best_loss {
-            (best, best_loss, last_change) = (candidate, loss, epoch);
-        } else if epoch - last_change >= 2 {
-            adam.learning_rate *= 0.5;
-            last_change = epoch;
-        }
+        twin.keep(candidate, loss, epoch);
     }
-    let refitted = refit_output(&layout, &data, &best, &rows);
-    let refitted_loss = data.loss(&layout, &refitted, &rows);
-    if refitted_loss < best_loss {
-        (best, best_loss) = (refitted, refitted_loss);
-    }
+    let (best, best_loss) = twin.refitted();
     let network = Network {
         layers: layout.layers(&best),
         ..teacher.clone()
     };
-    let tuned_max = inputs
-        .iter()
-        .zip(&targets)
-        .flat_map(|(x, t)| {
-            let y = network.evaluate(x);
-            y.into_iter()
-                .zip(t)
-                .map(|(a, b)| (a - b).abs())
-                .collect::<Vec<_>>()
-        })
-        .fold(0.0_f64, f64::max);
     let report = QuantiseReport {
         rounded_rms,
         tuned_rms: best_loss.sqrt(),
-        tuned_max,
+        tuned_max: largest_error(&network, inputs, &targets),
         epochs: run,
         seconds: started.elapsed().as_secs_f64(),
     };
