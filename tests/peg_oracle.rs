@@ -13,9 +13,10 @@
 //! About 2 minutes in release: `cargo test --release -p hcm-tests --test peg_oracle --
 //! --ignored --nocapture`.
 
+use hcm_host::export::export_blobs;
 use hcm_host::pipeline::peg::CONTACT;
 use hcm_host::pipeline::peg::{evaluate_peg, reproduce_peg, wall_contact_pairs, PegSettings};
-use hcm_host::pipeline::{export_blobs, Silent};
+use hcm_host::pipeline::Silent;
 use hcm_host::scenario::Model;
 use hcm_host::train::explained::silence_outputs;
 use hcm_host::train::{train, wrench_settings, OutputNets, TrainedResidual};
@@ -53,7 +54,7 @@ fn the_exact_residual_does_not_make_the_network_exact() {
     );
     let network = silence_outputs(&network, &r.trained.silenced);
     let blobs = export_blobs(&TrainedResidual::new(CONTACT, network.clone(), network)).unwrap();
-    let with = |blob: &hcm_host::pipeline::Blob| {
+    let with = |blob: &hcm_host::export::Blob| {
         let mut m = pm2.clone();
         m.contacts[CONTACT].model.residual = Some(blob.residual.clone());
         m

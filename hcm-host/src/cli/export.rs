@@ -52,7 +52,7 @@ fn blob(trained: &TrainedResidual, weights: Weights) -> anyhow::Result<(Vec<u8>,
         Weights::F32 => Quantisation::F32,
         Weights::Int8 => Quantisation::Int8,
     };
-    let blob = hcm_host::pipeline::blob(trained, quantisation)?;
+    let blob = hcm_host::export::blob(trained, quantisation)?;
     Ok((blob.bytes, blob.round_trip_error))
 }
 

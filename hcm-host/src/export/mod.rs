@@ -5,8 +5,10 @@
 //! with the CRC. [`ExportModel::evaluate`] is the f64 reference the core's `f32`
 //! evaluation is tested against.
 
+mod blob;
 mod round_trip;
 
+pub use blob::{blob, export_blobs, Blob, Blobs};
 pub use round_trip::{round_trip_error, round_trip_error_over};
 
 use crate::train::int8_row;
@@ -64,6 +66,11 @@ pub enum ExportError {
     /// postcard could not serialise the blob's contents.
     #[error("cannot serialise the weights blob: {0}")]
     Serialise(#[from] postcard::Error),
+    /// The core rejects the blob just encoded.
+    #[error(
+        "the exported blob does not decode in the core: {0} (shape not the shipped 3-16-16-1?)"
+    )]
+    Decode(hcm_core::residual::BlobError),
 }
 
 impl ExportModel {

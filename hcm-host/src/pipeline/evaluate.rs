@@ -1,9 +1,10 @@
 //! Stage 5: PM2, the HCM and the HCM with int8 weights replayed on S2 — the paper's
 //! table (Tables 5 and 10) and its figures (Fig 9/12 and 10/13).
 
-use super::{Blobs, PipelineError, Progress, Stage, CONTACT};
+use super::{PipelineError, Progress, Stage, CONTACT};
 use crate::dataset::Dataset;
 use crate::evaluate::{evaluate, ConditionTable};
+use crate::export::{Blob, Blobs};
 use crate::figure::{Band, Colour, Figure, NamedFigure, Series};
 use crate::identify::replay::{curve, simulate_target_with, targets, Target};
 use crate::scenario::Model;
@@ -28,7 +29,7 @@ pub fn evaluate_on_s2(
     progress: &dyn Progress,
 ) -> Result<Evaluation, PipelineError> {
     progress.begin(Stage::Evaluate, 1);
-    let with_residual = |blob: &super::Blob| {
+    let with_residual = |blob: &Blob| {
         let mut hcm = pm2.clone();
         hcm.contacts[CONTACT].model.residual = Some(blob.residual.clone());
         hcm

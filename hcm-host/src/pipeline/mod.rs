@@ -6,8 +6,8 @@
 //! 2. [`identify_pm2`] — PM2: Lankarani–Nikravesh identified on S1 ([`Pm2`]).
 //! 3. [`train_residual`] — the residual network on S1's measured − PM2 force, and its
 //!    quantisation-aware int8 twin ([`Trained`]).
-//! 4. [`export_blobs`] — both networks as the core's weights blobs, decoded back by the
-//!    core ([`Blobs`]).
+//! 4. [`crate::export::export_blobs`] — both networks as the core's weights blobs,
+//!    decoded back by the core ([`Blobs`]).
 //! 5. [`evaluate_on_s2`] — PM2, HCM and HCM int8 replayed on S2: the paper's table and
 //!    its figures ([`Evaluation`]).
 //!
@@ -21,7 +21,6 @@ mod artifacts;
 pub mod cube;
 mod evaluate;
 mod example;
-mod export;
 mod generate;
 mod identify;
 pub mod peg;
@@ -37,7 +36,6 @@ pub use crate::train::Trained;
 pub use artifacts::{write_figures, write_reproduction, Artifact, Reproduced};
 pub use evaluate::{evaluate_on_s2, Evaluation};
 pub use example::{Example, Pm2Method, ReproduceSettings};
-pub use export::{blob, export_blobs, Blob, Blobs};
 pub use generate::experiment;
 pub use identify::{identify_pm2, Pm2};
 pub use results::{
@@ -48,12 +46,11 @@ pub use setup::Setup;
 pub use train::train_residual;
 
 use crate::experiment::{ExperimentError, Split};
-use crate::export::ExportError;
+use crate::export::{export_blobs, Blobs, ExportError};
 use crate::identify::physics::PhysicsError;
 use crate::identify::IdentifyError;
 use crate::scenario::{Scenario, ScenarioError};
 use crate::train::TrainError;
-use hcm_core::residual::BlobError;
 use std::borrow::Cow;
 
 /// The contact of the paper's examples that PM2 and the residual model: they have one.
@@ -78,14 +75,9 @@ pub enum PipelineError {
     /// Stage 3: the residual network could not be trained.
     #[error(transparent)]
     Train(#[from] TrainError),
-    /// Stage 4: a network could not be encoded as a blob.
+    /// Stage 4: a network could not be encoded as a blob, or its blob does not decode.
     #[error(transparent)]
     Export(#[from] ExportError),
-    /// Stage 4: the core rejects the blob just encoded.
-    #[error(
-        "the exported blob does not decode in the core: {0} (shape not the shipped 3-16-16-1?)"
-    )]
-    Decode(BlobError),
     /// The peg's training rows could not be built.
     #[error(transparent)]
     WrenchSamples(#[from] crate::train::wrench_samples::WrenchSampleError),

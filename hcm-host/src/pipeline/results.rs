@@ -1,8 +1,9 @@
 //! The results of a reproduction: every table of the report as typed values, the
 //! content of `results.json` (keys documented in the README, "results.json").
 
-use super::{Blobs, Evaluation, Example, Pm2, ReproduceSettings, Setup, Trained};
+use super::{Evaluation, Example, Pm2, ReproduceSettings, Setup, Trained};
 use crate::evaluate::{ConditionTable, IndicatorErrors};
+use crate::export::Blobs;
 use serde::Serialize;
 
 /// Every table of the report.

@@ -13,10 +13,10 @@ pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS, PAPER};
 pub use train::{train_peg_residual, wall_contact_pairs, PegTrained};
 
 use super::{
-    experiment, export_blobs, Artifact, Blob, Blobs, PipelineError, Progress, Reproduced, Stage,
-    StageClock, StageTiming,
+    experiment, Artifact, PipelineError, Progress, Reproduced, Stage, StageClock, StageTiming,
 };
 use crate::experiment::Split;
+use crate::export::{export_blobs, Blob, Blobs};
 use crate::identify::rigid::{
     identify_rigid, RigidIdentification, RigidIdentifyError, RigidParameters, WrenchTarget,
 };

@@ -1,9 +1,8 @@
-//! Stage 4: the trained networks as the weights blobs a controller embeds, each
-//! decoded back by the core and compared with the host network.
+//! The export stage of a trained residual: its weights blobs, each decoded back by the
+//! core and compared with the host network. `hcm export` writes one; `hcm reproduce`
+//! both.
 
-use super::PipelineError;
-use crate::export::encode;
-use crate::export::round_trip_error;
+use super::{encode, round_trip_error, ExportError};
 use crate::residual::ContactResidual;
 use crate::train::TrainedResidual;
 use hcm_core::residual::Quantisation;
@@ -33,13 +32,13 @@ pub struct Blobs {
 
 /// The blob of `trained` in `quantisation` storage (the f32 network, or the int8
 /// twin for [`Quantisation::Int8`]), checked by decoding it in the core.
-pub fn blob(trained: &TrainedResidual, quantisation: Quantisation) -> Result<Blob, PipelineError> {
+pub fn blob(trained: &TrainedResidual, quantisation: Quantisation) -> Result<Blob, ExportError> {
     let network = match quantisation {
         Quantisation::F32 => &trained.network,
         Quantisation::Int8 => &trained.int8_network,
     };
     let bytes = encode(network, quantisation)?;
-    let residual = ContactResidual::decode(&bytes).map_err(PipelineError::Decode)?;
+    let residual = ContactResidual::decode(&bytes).map_err(ExportError::Decode)?;
     Ok(Blob {
         quantisation,
         round_trip_error: round_trip_error(network, &residual),
@@ -49,7 +48,7 @@ pub fn blob(trained: &TrainedResidual, quantisation: Quantisation) -> Result<Blo
 }
 
 /// Both blobs of `trained`.
-pub fn export_blobs(trained: &TrainedResidual) -> Result<Blobs, PipelineError> {
+pub fn export_blobs(trained: &TrainedResidual) -> Result<Blobs, ExportError> {
     Ok(Blobs {
         f32: blob(trained, Quantisation::F32)?,
         int8: blob(trained, Quantisation::Int8)?,
