@@ -18,7 +18,7 @@ fn bench_identification(c: &mut Criterion) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/bouncing_ball.toml");
     let scenario = Scenario::load(&path, &[]).unwrap();
     let model = scenario.model().unwrap();
-    let data = generate(&scenario, 20, 1, || {}).unwrap();
+    let data = generate(&scenario, 20, 1, &hcm_host::progress::Silent).unwrap();
     let ga = Method::Ga(
         Fitness::Curve,
         GeneticSettings {

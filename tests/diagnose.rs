@@ -142,7 +142,7 @@ fn two_hidden_effects_are_both_named_and_nothing_else() {
                 "contact.0.effects=[{ viscous_damping = { coefficient = 40.0 } }, { adhesion = { pull_off_force = 40.0 } }]".to_owned(),
             ],
         );
-        let data = generate(&truth.scenario, 12, 5, || {}).unwrap();
+        let data = generate(&truth.scenario, 12, 5, &hcm_host::progress::Silent).unwrap();
         (
             model("bouncing_ball.toml", &["contact.0.noise={}".to_owned()]),
             data,
@@ -217,7 +217,7 @@ fn air_drag_is_read_from_the_flight_motion() {
             "experiment.velocity_noise=1e-4".to_owned(),
         ],
     );
-    let data = generate(&truth.scenario, 12, 4, || {}).unwrap();
+    let data = generate(&truth.scenario, 12, 4, &hcm_host::progress::Silent).unwrap();
     let base = model("bouncing_ball.toml", &["contact.0.noise={}".to_owned()]);
     let d = diagnose(&base, &data, &DiagnoseSettings::default()).unwrap();
     let names: Vec<&str> = d.causes.iter().map(|c| c.effect).collect();
@@ -292,7 +292,7 @@ fn verdict_on(overrides: &str) -> hcm_host::diagnose::Diagnosis {
             overrides.to_owned(),
         ],
     );
-    let data = generate(&truth.scenario, 12, 3, || {}).unwrap();
+    let data = generate(&truth.scenario, 12, 3, &hcm_host::progress::Silent).unwrap();
     let base = model("bouncing_ball.toml", &["contact.0.noise={}".to_owned()]);
     let settings = DiagnoseSettings {
         hcm_epochs: 2,

@@ -227,7 +227,9 @@ fn drag_found(drag: f64, seed: u64) -> DragTrial {
         overrides.push(format!("body.ball.air_drag={{ coefficient = {drag} }}"));
     }
     let truth = hcm_tests::hidden::model("bouncing_ball.toml", &overrides);
-    let data = hcm_host::experiment::generate(&truth.scenario, RUNS, seed, || {}).unwrap();
+    let data =
+        hcm_host::experiment::generate(&truth.scenario, RUNS, seed, &hcm_host::progress::Silent)
+            .unwrap();
     let samples = hcm_host::diagnose::contact_samples(&truth, &data, 0).unwrap();
     let fit = hcm_host::diagnose::drag::fit_drag(&samples, truth.bodies[0].mass).unwrap();
     DragTrial {

@@ -18,7 +18,11 @@ fn the_hcm_beats_pm2_on_energy_loss_and_its_blob_reproduces_the_host_network() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/bouncing_ball.toml");
     let scenario = Scenario::load(&path, &[]).unwrap();
     let model = scenario.model().unwrap();
-    let sets = split(&scenario, generate(&scenario, 30, 5, || {}).unwrap(), 5);
+    let sets = split(
+        &scenario,
+        generate(&scenario, 30, 5, &hcm_host::progress::Silent).unwrap(),
+        5,
+    );
     let found = identify(
         &scenario,
         &model,

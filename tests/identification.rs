@@ -48,7 +48,7 @@ fn noise_free_data_of_each_law_give_back_its_parameters() {
         let scenario = noise_free_ball(law, parameters);
         let model = scenario.model().unwrap();
         let truth = *model.contacts[0].law();
-        let data = generate(&scenario, 2, 7, || {}).unwrap();
+        let data = generate(&scenario, 2, 7, &hcm_host::progress::Silent).unwrap();
         let found = identify(&scenario, &model, &data, 0, law, Method::Lsq, |_, _, _| {}).unwrap();
         for ((name, expected), (_, value)) in truth.named().zip(found.law.named()) {
             assert!(
@@ -72,7 +72,7 @@ fn the_genetic_algorithm_also_recovers_lankarani_nikravesh() {
         "{ stiffness = 6.86e9, exponent = 1.489, restitution = 0.929 }",
     );
     let model = scenario.model().unwrap();
-    let data = generate(&scenario, 1, 3, || {}).unwrap();
+    let data = generate(&scenario, 1, 3, &hcm_host::progress::Silent).unwrap();
     let settings = GeneticSettings {
         population: 24,
         generations: 25,
@@ -102,7 +102,7 @@ fn the_genetic_algorithm_also_recovers_lankarani_nikravesh() {
 /// S1 of a small noisy experiment, evaluated on its S2.
 fn pm2_errors(name: &str, runs: usize) -> [f64; 4] {
     let scenario = scenario(name, &[]);
-    let data = generate(&scenario, runs, 11, || {}).unwrap();
+    let data = generate(&scenario, runs, 11, &hcm_host::progress::Silent).unwrap();
     let sets = split(&scenario, data, 11);
     let model = scenario.model().unwrap();
     let found = identify(
@@ -160,7 +160,8 @@ fn generation_is_bit_identical_for_a_seed_whatever_the_thread_count() {
             .num_threads(threads)
             .build()
             .unwrap();
-        let data = pool.install(|| generate(&scenario, 2, seed, || {}).unwrap());
+        let data =
+            pool.install(|| generate(&scenario, 2, seed, &hcm_host::progress::Silent).unwrap());
         let mut out = Vec::new();
         data.to_writer(&mut out).unwrap();
         out
@@ -178,7 +179,7 @@ fn a_run_without_contact_is_named_not_dropped() {
         "{ stiffness = 6.86e9, exponent = 1.489, restitution = 0.929 }",
     );
     let model = scenario.model().unwrap();
-    let mut data: Dataset = generate(&scenario, 3, 1, || {}).unwrap();
+    let mut data: Dataset = generate(&scenario, 3, 1, &hcm_host::progress::Silent).unwrap();
     // Run 1 loses everything from 0.1 s on: it never reaches the ground.
     data.runs[1].bodies[0].samples.retain(|s| s.time < 0.1);
     let error = identify(

@@ -149,7 +149,7 @@ fn write_on(
         let targets = paths.each_ref().map(|p| p.as_path());
         ExperimentWriter::new(scenario, runs, seed, targets)
             .unwrap()
-            .write(|| {})
+            .write(&hcm_host::progress::Silent)
             .unwrap()
     });
     paths
@@ -174,7 +174,7 @@ fn the_files_are_bit_identical_on_one_and_two_threads_and_read_back_exactly() {
     // Read back: exactly the runs made in memory (every number bit for bit), and
     // written again, the same bytes.
     let read = Dataset::read(&one[0]).unwrap();
-    let made = generate(&scenario, 6, 3, || {}).unwrap();
+    let made = generate(&scenario, 6, 3, &hcm_host::progress::Silent).unwrap();
     assert_eq!(read, made);
     let mut again = Vec::new();
     read.to_writer(&mut again).unwrap();
@@ -193,7 +193,7 @@ fn the_files_are_bit_identical_on_one_and_two_threads_and_read_back_exactly() {
 fn bad_data_is_named_by_file_line_column_or_run() {
     let scenario = peg();
     let model = scenario.model().unwrap();
-    let data = generate(&scenario, 1, 1, || {}).unwrap();
+    let data = generate(&scenario, 1, 1, &hcm_host::progress::Silent).unwrap();
     let mut text = Vec::new();
     data.to_writer(&mut text).unwrap();
     let text = String::from_utf8(text).unwrap();

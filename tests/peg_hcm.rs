@@ -53,7 +53,7 @@ fn fixture() -> &'static Fixture {
         let law = &mut pm2.contacts[0].model.normal.base;
         law.set("exponent", 2.0).unwrap();
         law.set("stiffness", 1.4e10).unwrap();
-        let data = generate(&scenario, RUNS, 7, || {}).unwrap();
+        let data = generate(&scenario, RUNS, 7, &hcm_host::progress::Silent).unwrap();
         let pairs = wrench_pairs(&pm2, &data, 0).unwrap();
         // The rows `hcm reproduce peg-in-hole` trains on: the two wall contacts.
         let walls = hcm_host::pipeline::peg::wall_contact_pairs(&pm2, &data, 2).unwrap();

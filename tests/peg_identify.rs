@@ -25,7 +25,7 @@ fn as_replay(target: &WrenchTarget, physics: &Model) -> Model {
 fn the_target_and_its_fitness_tell_the_generating_physics_from_a_wrong_one() {
     let scenario = peg();
     let nominal = scenario.model().unwrap();
-    let data = generate(&scenario, 6, 3, || {}).unwrap();
+    let data = generate(&scenario, 6, 3, &hcm_host::progress::Silent).unwrap();
     let all = WrenchTarget::from_data(&nominal, &data, 0, None).unwrap();
     assert!(all.events.len() >= 3, "two wall contacts and the bottom");
     // The two wall contacts (Table 15's): the bottom's peak torque depends on how
@@ -68,7 +68,7 @@ fn the_target_and_its_fitness_tell_the_generating_physics_from_a_wrong_one() {
 fn the_genetic_algorithm_fits_impact_with_a_fixed_wrong_exponent() {
     let scenario = peg();
     let nominal = scenario.model().unwrap();
-    let data = generate(&scenario, 4, 5, || {}).unwrap();
+    let data = generate(&scenario, 4, 5, &hcm_host::progress::Silent).unwrap();
     // PM2: exponent 2 instead of PM1's 1.5, everything else to be found.
     let mut pm2 = nominal.clone();
     let law = &mut pm2.contacts[0].model.normal.base;

@@ -89,7 +89,7 @@ fn each_run_replays_from_its_recorded_pre_contact_state() {
 fn s2_statistics_equal_a_direct_computation_and_a_shorter_run_is_reported() {
     let scenario = peg();
     let model = scenario.model().unwrap();
-    let mut data = generate(&scenario, 8, 2, || {}).unwrap();
+    let mut data = generate(&scenario, 8, 2, &hcm_host::progress::Silent).unwrap();
     // Cut run 5 after its second contact: 2 events where the others have 3.
     let events_5 = pair_events_from_run(&model, &data.runs[5]).unwrap();
     let cut = events_5[1].lift_off + 1e-4;

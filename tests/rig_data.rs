@@ -126,7 +126,7 @@ fn camera_frames_and_force_rows_reconstruct_the_contact_motion() {
         15.0,
     );
     let model = scenario.model().unwrap();
-    let full = generate(&scenario, 3, 5, || {}).unwrap();
+    let full = generate(&scenario, 3, 5, &hcm_host::progress::Silent).unwrap();
     for (force_ticks, depth_share, rate_share) in [(1, 0.03, 0.01), (10, 0.05, 0.03)] {
         let rig = as_rig(&full, force_ticks, 9);
         // Written with empty cells and read back, as a user's file would be.
@@ -168,7 +168,7 @@ fn camera_frames_and_force_rows_reconstruct_the_contact_motion() {
 fn full_rate_data_are_read_as_recorded_with_no_uncertainty() {
     let scenario = ball("hertz", "{ stiffness = 3.6e9, exponent = 1.5 }", 15.0);
     let model = scenario.model().unwrap();
-    let full = generate(&scenario, 2, 3, || {}).unwrap();
+    let full = generate(&scenario, 2, 3, &hcm_host::progress::Silent).unwrap();
     let completed = complete(&model, &full).unwrap();
     assert!(!completed.reconstructed());
     assert!(matches!(completed.data, std::borrow::Cow::Borrowed(_)));
@@ -216,7 +216,7 @@ fn identify_on_camera_frames_recovers_the_law_about_as_well_as_on_full_rate_data
         "{ stiffness = 6.86e9, exponent = 1.5, damping = 0.07 }",
         15.0,
     );
-    let full = generate(&scenario, 6, 21, || {}).unwrap();
+    let full = generate(&scenario, 6, 21, &hcm_host::progress::Silent).unwrap();
     let on_full = identified(&scenario, &full, law);
     for force_ticks in [1, 10] {
         let rig = as_rig(&full, force_ticks, 4);
@@ -238,7 +238,7 @@ fn identify_on_camera_frames_recovers_the_law_about_as_well_as_on_full_rate_data
 fn commands_name_the_channel_they_miss() {
     let scenario = ball("hertz", "{ stiffness = 3.6e9, exponent = 1.5 }", 0.0);
     let model = scenario.model().unwrap();
-    let full = generate(&scenario, 1, 3, || {}).unwrap();
+    let full = generate(&scenario, 1, 3, &hcm_host::progress::Silent).unwrap();
     let mut filmed = full.clone();
     for sample in &mut filmed.runs[0].bodies[0].samples {
         sample.clear(Channel::Force);

@@ -30,7 +30,7 @@ pub fn hidden(effect: &str, runs: usize, seed: u64) -> (Model, Dataset) {
         overrides.push(format!("contact.0.effects=[{effect}]"));
     }
     let truth = model("bouncing_ball.toml", &overrides);
-    let data = generate(&truth.scenario, runs, seed, || {}).unwrap();
+    let data = generate(&truth.scenario, runs, seed, &hcm_host::progress::Silent).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("measured.csv");
     data.write(&path).unwrap();

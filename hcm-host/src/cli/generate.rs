@@ -1,6 +1,6 @@
 //! `hcm generate`: the noise-added experiment (PM1) and its S1/S2 split.
 
-use super::progress_bar;
+use super::progress::Bars;
 use hcm_host::experiment::ExperimentWriter;
 use hcm_host::output::bytes;
 use std::path::{Path, PathBuf};
@@ -66,9 +66,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
     }
     let conditions = writer.generation().conditions();
-    let bar = progress_bar(writer.generation().total_runs() as u64, "simulating runs");
-    let written = writer.write(|| bar.inc(1))?;
-    bar.finish_and_clear();
+    let written = writer.write(&Bars::named(|_| "simulating runs"))?;
     println!(
         "{}: {} runs ({} condition{}) → {}; S1 {} runs → {}; S2 {} runs → {}",
         scenario.name,

@@ -26,6 +26,14 @@ impl Default for Bars {
 }
 
 impl Bars {
+    /// Bars named by `label`, without status messages.
+    pub fn named(label: fn(Stage) -> &'static str) -> Self {
+        Bars {
+            label,
+            ..Bars::default()
+        }
+    }
+
     /// Bars named by `label` that show the stages' status messages.
     pub fn with_status(label: fn(Stage) -> &'static str) -> Self {
         Bars {

@@ -536,7 +536,7 @@ mod tests {
             // sensor noise σ (with it, the nominal law misses each run's own
             // parameters by ~2 % and scores ≈ 21 N).
             let exact = model.scenario.with(&["contact.0.noise={}".into()]).unwrap();
-            let data = crate::experiment::generate(&exact, 6, 7, || {}).unwrap();
+            let data = crate::experiment::generate(&exact, 6, 7, &crate::progress::Silent).unwrap();
             (model, data)
         })
     }
@@ -656,7 +656,7 @@ mod tests {
         let mut all = vec!["contact.0.noise={}".to_owned()];
         all.extend(overrides.iter().map(|o| o.to_string()));
         let truth = ball().scenario.with(&all).unwrap();
-        let data = crate::experiment::generate(&truth, 4, 11, || {}).unwrap();
+        let data = crate::experiment::generate(&truth, 4, 11, &crate::progress::Silent).unwrap();
         let path = Path::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/../scenarios/bouncing_ball.toml"

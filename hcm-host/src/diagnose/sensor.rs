@@ -192,8 +192,11 @@ mod tests {
         let mut biased = quiet.to_vec();
         biased.push("experiment.force_offset=[0.0, 0.0, 40.0]".into());
         biased.push("experiment.sensor_delay=2.5e-6".into());
-        let truth = crate::experiment::generate(&clean.scenario, 1, 1, || {}).unwrap();
-        let read = crate::experiment::generate(&ball(&biased).scenario, 1, 1, || {}).unwrap();
+        let truth =
+            crate::experiment::generate(&clean.scenario, 1, 1, &crate::progress::Silent).unwrap();
+        let read =
+            crate::experiment::generate(&ball(&biased).scenario, 1, 1, &crate::progress::Silent)
+                .unwrap();
         let sensor = Sensor {
             offset: 40.0,
             delay: 2.5e-6,

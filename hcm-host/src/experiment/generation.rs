@@ -5,8 +5,10 @@
 
 use super::{conditions, noisy_model, noisy_run, run_id, run_rng, ExperimentError};
 use crate::dataset::Run;
+use crate::progress::{Progress, Stage};
 use crate::scenario::{Model, Scenario};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// `runs_per_condition` noisy runs of every condition of a scenario, numbered condition by
 /// condition: run `i` is run `i % runs_per_condition` of condition `i / runs_per_condition`.
@@ -90,22 +92,27 @@ impl Generation {
         (model, run_id(name, k, self.runs_per_condition))
     }
 
-    /// Makes every run and hands it to `each` with its index, in order. `progress` is
-    /// called once per simulated run (from worker threads). Stops at the first error,
-    /// in run order: a failed simulation, or `each`'s.
+    /// Makes every run and hands it to `each` with its index, in order, reporting
+    /// [`Stage::Generate`] to `progress`, one step per simulated run (from worker
+    /// threads). Stops at the first error, in run order: a failed simulation, or
+    /// `each`'s.
     pub(crate) fn for_each<E: From<ExperimentError>>(
         &self,
-        progress: impl Fn() + Sync,
+        progress: &dyn Progress,
         mut each: impl FnMut(usize, Run) -> Result<(), E>,
     ) -> Result<(), E> {
         let chunk = self.chunk.max(1);
+        let steps = self.total as u64;
+        progress.begin(Stage::Generate, steps);
+        // Runs finish on worker threads in any order: count them here.
+        let done = AtomicU64::new(0);
         for start in (0..self.total).step_by(chunk) {
             let end = self.total.min(start + chunk);
             let runs: Vec<Result<Run, ExperimentError>> = (start..end)
                 .into_par_iter()
                 .map(|index| {
                     let run = self.run(index);
-                    progress();
+                    progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1, steps);
                     run
                 })
                 .collect();
@@ -113,6 +120,7 @@ impl Generation {
                 each(index, run?)?;
             }
         }
+        progress.end(Stage::Generate);
         Ok(())
     }
 }
@@ -132,7 +140,7 @@ mod tests {
             let mut runs = Vec::new();
             generation
                 .for_each(
-                    || {},
+                    &crate::progress::Silent,
                     |index, run| -> Result<(), ExperimentError> {
                         assert_eq!(index, runs.len(), "in order");
                         runs.push(run);

@@ -24,6 +24,7 @@ pub use write::{ExperimentWriter, Written};
 
 use crate::dataset::{DataError, Dataset};
 use crate::output::{NoSpace, OutputError};
+use crate::progress::Progress;
 use crate::scenario::{Model, Scenario, ScenarioError};
 use crate::simulate::SimulationError;
 use rand::SeedableRng;
@@ -134,12 +135,13 @@ fn run_rng(seed: u64, index: u64) -> ChaCha8Rng {
 }
 
 /// Generates `runs_per_condition` noisy runs of every condition of `scenario`, in
-/// memory. `progress` is called once per finished run (from worker threads).
+/// memory, reporting [`Stage::Generate`](crate::progress::Stage::Generate) to
+/// `progress` (a step per finished run).
 pub fn generate(
     scenario: &Scenario,
     runs_per_condition: usize,
     seed: u64,
-    progress: impl Fn() + Sync,
+    progress: &dyn Progress,
 ) -> Result<Dataset, ExperimentError> {
     let generation = Generation::new(scenario, runs_per_condition, seed)?;
     let mut runs = Vec::with_capacity(generation.total_runs());
@@ -148,4 +150,17 @@ pub fn generate(
         Ok(())
     })?;
     Ok(Dataset { runs })
+}
+
+/// The experiment of `scenario` in memory: `runs_per_condition` noisy runs of every
+/// condition (Eq 18–19), split into S1 (training) and S2 (validation), both drawn
+/// with `seed` — the runs and the split `hcm generate` streams to its files.
+pub fn generate_split(
+    scenario: &Scenario,
+    runs_per_condition: usize,
+    seed: u64,
+    progress: &dyn Progress,
+) -> Result<Split, ExperimentError> {
+    let data = generate(scenario, runs_per_condition, seed, progress)?;
+    Ok(split(scenario, data, seed))
 }

@@ -81,8 +81,12 @@ impl<'a> ExperimentWriter<'a> {
     }
 
     /// Makes every run and writes it to OUT and to S1 or S2, then moves the three files
-    /// into place together. `progress` is called once per simulated run.
-    pub fn write(self, progress: impl Fn() + Sync) -> Result<Written, ExperimentError> {
+    /// into place together, reporting [`crate::progress::Stage::Generate`] to `progress`
+    /// (a step per simulated run).
+    pub fn write(
+        self,
+        progress: &dyn crate::progress::Progress,
+    ) -> Result<Written, ExperimentError> {
         let ExperimentWriter {
             scenario,
             generation,
@@ -158,13 +162,13 @@ mod tests {
         let writer =
             ExperimentWriter::new(&ball, 12, 5, paths.each_ref().map(|p| p.as_path())).unwrap();
         let estimate = writer.estimated_bytes();
-        let written = writer.write(|| {}).unwrap();
+        let written = writer.write(&crate::progress::Silent).unwrap();
         assert_eq!(
             (written.runs, written.training, written.validation),
             (12, 11, 1)
         );
 
-        let data = generate(&ball, 12, 5, || {}).unwrap();
+        let data = generate(&ball, 12, 5, &crate::progress::Silent).unwrap();
         let sets = split(&ball, data.clone(), 5);
         for (set, path) in [&data, &sets.training, &sets.validation].iter().zip(&paths) {
             let mut whole = Vec::new();

@@ -1,7 +1,7 @@
 //! The paper's method as a library: the stages `hcm reproduce` strings together, each
 //! a function from one typed value to the next, in this order:
 //!
-//! 1. [`experiment`] — PM1's noisy runs of every condition (Eq 18–19), split into the
+//! 1. [`generate_split`] — PM1's noisy runs of every condition (Eq 18–19), split into the
 //!    training set S1 and the validation set S2 ([`Split`]).
 //! 2. [`identify_pm2`] — PM2: Lankarani–Nikravesh identified on S1 ([`Pm2`]).
 //! 3. [`train_residual`] — the residual network on S1's measured − PM2 force, and its
@@ -21,7 +21,6 @@ mod artifacts;
 pub mod cube;
 mod evaluate;
 mod example;
-mod generate;
 mod identify;
 pub mod peg;
 mod quantity;
@@ -36,7 +35,6 @@ pub use crate::train::Trained;
 pub use artifacts::{write_figures, write_reproduction, Artifact, Reproduced};
 pub use evaluate::{evaluate_on_s2, Evaluation};
 pub use example::{Example, Pm2Method, ReproduceSettings};
-pub use generate::experiment;
 pub use identify::{identify_pm2, Pm2};
 pub use results::{
     BlobSummary, NamedValue, PaperErrors, Pm2Summary, ReproduceResults, ResidualSummary,
@@ -45,7 +43,7 @@ pub use results::{
 pub use setup::Setup;
 pub use train::train_residual;
 
-use crate::experiment::{ExperimentError, Split};
+use crate::experiment::{generate_split, ExperimentError, Split};
 use crate::export::{export_blobs, Blobs, ExportError};
 use crate::identify::physics::PhysicsError;
 use crate::identify::IdentifyError;
@@ -165,7 +163,7 @@ pub fn reproduce(
     let mut clock = StageClock::default();
     let seed = settings.seed;
     let sets = clock.time("generate + split", || {
-        experiment(&scenario, settings.runs, seed, progress)
+        generate_split(&scenario, settings.runs, seed, progress)
     })?;
     let pm2 = clock.time("identify PM2", || {
         identify_pm2(

@@ -12,10 +12,8 @@ pub use curves::{mean_curve, replay_curve, WrenchCurve};
 pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS, PAPER};
 pub use train::{train_peg_residual, wall_contact_pairs, PegTrained};
 
-use super::{
-    experiment, Artifact, PipelineError, Progress, Reproduced, Stage, StageClock, StageTiming,
-};
-use crate::experiment::Split;
+use super::{Artifact, PipelineError, Progress, Reproduced, Stage, StageClock, StageTiming};
+use crate::experiment::{generate_split, Split};
 use crate::export::{export_blobs, Blob, Blobs};
 use crate::identify::rigid::{
     identify_rigid, RigidIdentification, RigidIdentifyError, RigidParameters, WrenchTarget,
@@ -189,7 +187,7 @@ pub fn reproduce_peg(
     crate::experiment::check_split(&scenario, settings.runs)?;
     let mut clock = StageClock::default();
     let sets = clock.time("generate + split", || {
-        experiment(&scenario, settings.runs, settings.seed, progress)
+        generate_split(&scenario, settings.runs, settings.seed, progress)
     })?;
     let pm2 = clock.time("identify PM2", || {
         identify_pm2(settings, &scenario, &model, &sets, progress)
