@@ -37,7 +37,7 @@ fn bench_identification(c: &mut Criterion) {
             0,
             "lankarani_nikravesh",
             method.clone(),
-            |_, _, _| {},
+            &hcm_host::progress::Silent,
         )
         .unwrap()
         .fit;
@@ -60,7 +60,7 @@ fn bench_identification(c: &mut Criterion) {
                     0,
                     "lankarani_nikravesh",
                     method.clone(),
-                    |_, _, _| {},
+                    &hcm_host::progress::Silent,
                 )
                 .unwrap()
             })

@@ -30,7 +30,7 @@ fn the_hcm_beats_pm2_on_energy_loss_and_its_blob_reproduces_the_host_network() {
         0,
         "lankarani_nikravesh",
         Method::Lsq,
-        |_, _, _| {},
+        &hcm_host::progress::Silent,
     )
     .unwrap();
     let pm2 = Physics::for_contact(&model, 0, &found.law, found.fit)

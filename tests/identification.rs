@@ -49,7 +49,16 @@ fn noise_free_data_of_each_law_give_back_its_parameters() {
         let model = scenario.model().unwrap();
         let truth = *model.contacts[0].law();
         let data = generate(&scenario, 2, 7, &hcm_host::progress::Silent).unwrap();
-        let found = identify(&scenario, &model, &data, 0, law, Method::Lsq, |_, _, _| {}).unwrap();
+        let found = identify(
+            &scenario,
+            &model,
+            &data,
+            0,
+            law,
+            Method::Lsq,
+            &hcm_host::progress::Silent,
+        )
+        .unwrap();
         for ((name, expected), (_, value)) in truth.named().zip(found.law.named()) {
             assert!(
                 relative(value, expected) < 5e-3,
@@ -86,7 +95,7 @@ fn the_genetic_algorithm_also_recovers_lankarani_nikravesh() {
         0,
         law,
         Method::Ga(Fitness::Curve, settings),
-        |_, _, _| {},
+        &hcm_host::progress::Silent,
     )
     .unwrap();
     let expected = [6.86e9, 1.489, 0.929];
@@ -112,7 +121,7 @@ fn pm2_errors(name: &str, runs: usize) -> [f64; 4] {
         0,
         "lankarani_nikravesh",
         Method::Lsq,
-        |_, _, _| {},
+        &hcm_host::progress::Silent,
     )
     .unwrap();
     let physics = Physics::for_contact(&model, 0, &found.law, found.fit);
@@ -189,7 +198,7 @@ fn a_run_without_contact_is_named_not_dropped() {
         0,
         "lankarani_nikravesh",
         Method::Lsq,
-        |_, _, _| {},
+        &hcm_host::progress::Silent,
     )
     .unwrap_err();
     assert!(

@@ -95,7 +95,14 @@ fn the_genetic_algorithm_fits_impact_with_a_fixed_wrong_exponent() {
         })
         .collect();
     let start = fitness(&target, &parameters.apply(&target.model, &middle));
-    let found = identify_rigid(&pm2, &target, &parameters, &settings, |_, _| {}).unwrap();
+    let found = identify_rigid(
+        &pm2,
+        &target,
+        &parameters,
+        &settings,
+        &hcm_host::progress::Silent,
+    )
+    .unwrap();
     println!(
         "fitness {start:.3e} at the box's middle → {:.3e} in {} replays, {:.1} s: {:?}",
         found.fitness, found.evaluations, found.seconds, found.parameters

@@ -185,7 +185,16 @@ fn full_rate_data_are_read_as_recorded_with_no_uncertainty() {
 fn identified(scenario: &Scenario, data: &Dataset, law: &str) -> Vec<(String, f64)> {
     let model = scenario.model().unwrap();
     let truth = *model.contacts[0].law();
-    let found = identify(scenario, &model, data, 0, law, Method::Lsq, |_, _, _| {}).unwrap();
+    let found = identify(
+        scenario,
+        &model,
+        data,
+        0,
+        law,
+        Method::Lsq,
+        &hcm_host::progress::Silent,
+    )
+    .unwrap();
     let force = |named: Vec<(&str, f64)>| {
         let value = |name: &str| named.iter().find(|n| n.0 == name).unwrap().1;
         value("stiffness") * 5e-5f64.powf(value("exponent"))

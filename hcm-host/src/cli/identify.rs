@@ -1,11 +1,12 @@
 //! `hcm identify`: fit a normal law (PM2) to measured data.
 
-use super::progress_bar;
+use super::progress::Bars;
 use anyhow::Context;
 use hcm_host::dataset::{needs, Dataset};
 use hcm_host::identify::evolve::Fitness;
 use hcm_host::identify::{identify, FitRecord, Identification, Method, Physics};
 use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::progress::{Progress, Silent};
 use hcm_host::scenario::{Model, Scenario};
 use std::path::PathBuf;
 
@@ -134,24 +135,21 @@ fn identify_one_dimensional(
         (_, "indicators") => Method::Ga(Fitness::Indicators, settings),
         _ => Method::Ga(Fitness::Curve, settings),
     };
-    let bar = progress_bar(1, "GA generations");
-    if method == Method::Lsq {
-        bar.finish_and_clear();
-    }
+    // Least squares takes a moment: no bar.
+    let bars = Bars::with_status(|_| "GA generations");
+    let progress: &dyn Progress = match method {
+        Method::Lsq => &Silent,
+        Method::Ga(..) => &bars,
+    };
     let result = identify(
         scenario,
         model,
         data,
         args.contact,
         &args.law,
-        method.clone(),
-        |generation, total, best| {
-            bar.set_length(total as u64);
-            bar.set_position(generation as u64 + 1);
-            bar.set_message(format!("best {best:.4e}"));
-        },
+        method,
+        progress,
     )?;
-    bar.finish_and_clear();
     let mut fit = result.fit.clone();
     fit.data = args.data.display().to_string();
     print_identification(&args.law, &result, &fit);

@@ -2,7 +2,7 @@
 //! law with its exponent fixed and the rest, friction included, found by the genetic
 //! algorithm replaying S1's contact events from their mean pre-contact state.
 
-use super::progress_bar;
+use super::progress::Bars;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::rigid::{
@@ -37,18 +37,8 @@ pub fn run(
     let start = start_model(args, model)?;
     let target = WrenchTarget::from_data(&start, data, c, args.events)?;
     let parameters = RigidParameters::new(&start, c, &scenario.identify.bounds)?;
-    let bar = progress_bar(settings.generations as u64, "GA generations");
-    let found = identify_rigid(
-        &start,
-        &target,
-        &parameters,
-        &settings,
-        |generation, best| {
-            bar.set_position(generation as u64);
-            bar.set_message(format!("best {best:.4e}"));
-        },
-    )?;
-    bar.finish_and_clear();
+    let bars = Bars::with_status(|_| "GA generations");
+    let found = identify_rigid(&start, &target, &parameters, &settings, &bars)?;
     print_found(law, &start.contacts[c], &target, &found);
     let fit = fit_record(args, &target, &found);
     let physics = Physics::for_contact(&found.model, c, found.model.contacts[c].law(), fit);

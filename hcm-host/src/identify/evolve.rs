@@ -6,7 +6,7 @@ use super::replay::{simulate_target, Target};
 use super::IdentifyError;
 use crate::numerics::optimize::genetic::{minimize, GeneticSettings};
 use crate::numerics::optimize::levenberg_marquardt::{levenberg_marquardt, LmSettings};
-use crate::numerics::optimize::Parameters;
+use crate::numerics::optimize::{Observer, Parameters};
 use hcm_core::law::AnyNormalLaw;
 
 /// What the genetic algorithm minimises.
@@ -90,7 +90,8 @@ pub fn fitness(law: &AnyNormalLaw<f64>, targets: &[Target], c: usize, kind: Fitn
     }
 }
 
-/// Runs the genetic algorithm over the free parameters of `template` in `bounds`.
+/// Runs the genetic algorithm over the free parameters of `template` in `bounds`,
+/// telling `observer` of each generation.
 pub fn fit(
     template: &AnyNormalLaw<f64>,
     bounds: &Bounds,
@@ -98,16 +99,15 @@ pub fn fit(
     c: usize,
     kind: Fitness,
     settings: &GeneticSettings,
-    mut progress: impl FnMut(usize, usize, f64),
+    observer: impl Observer,
 ) -> Result<GaOutcome, IdentifyError> {
     bounds.check(template)?;
     let with = |p: &[f64]| bounds.with(template, p);
-    let generations = settings.generations;
     let result = minimize(
         &bounds.bounds(),
         settings,
         |p| fitness(&with(p), targets, c, kind),
-        |generation, best| progress(generation, generations, best),
+        observer,
     )?;
     // Polish: Levenberg–Marquardt on the same mismatch, started from the GA's best.
     // The GA finds the basin; in the narrow k–n valley of these laws it would need

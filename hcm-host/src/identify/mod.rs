@@ -14,6 +14,7 @@ pub use physics::{FitRecord, Physics};
 
 use crate::dataset::Dataset;
 use crate::indicators::IndicatorError;
+use crate::progress::{Progress, Stage};
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
 use bounds::Bounds;
 use hcm_core::law::AnyNormalLaw;
@@ -116,7 +117,9 @@ pub fn force_rms(law: &AnyNormalLaw<f64>, samples: &[ForceSample]) -> f64 {
     (sum / samples.len().max(1) as f64).sqrt()
 }
 
-/// Identifies `law_name` for contact `c` of `scenario` from `data`.
+/// Identifies `law_name` for contact `c` of `scenario` from `data`, reporting
+/// [`Stage::Identify`] to `progress`: one step for least squares, the generations of
+/// the genetic algorithm (with the best fitness so far as its status).
 pub fn identify(
     scenario: &Scenario,
     model: &Model,
@@ -124,7 +127,27 @@ pub fn identify(
     c: usize,
     law_name: &str,
     method: Method,
-    progress: impl FnMut(usize, usize, f64),
+    progress: &dyn Progress,
+) -> Result<Identification, IdentifyError> {
+    let steps = match &method {
+        Method::Lsq => 1,
+        Method::Ga(_, settings) => settings.generations as u64,
+    };
+    progress.begin(Stage::Identify, steps);
+    let identification = identify_law(scenario, model, data, c, law_name, method, progress);
+    progress.end(Stage::Identify);
+    identification
+}
+
+/// [`identify`] between its progress stage's begin and end.
+fn identify_law(
+    scenario: &Scenario,
+    model: &Model,
+    data: &Dataset,
+    c: usize,
+    law_name: &str,
+    method: Method,
+    progress: &dyn Progress,
 ) -> Result<Identification, IdentifyError> {
     let started = Instant::now();
     let (template, bounds) = template(scenario, c, law_name)?;
@@ -139,8 +162,13 @@ pub fn identify(
             (fit.law, fit.notes, fit.standard_errors, "lsq".to_owned())
         }
         Method::Ga(fitness, settings) => {
+            let generations = settings.generations as u64;
+            let observer = |done: usize, best: f64| {
+                progress.advance(done as u64, generations);
+                progress.status(&format!("best {best:.4e}"));
+            };
             let outcome = evolve::fit(
-                &template, &bounds, &targets, c, fitness, &settings, progress,
+                &template, &bounds, &targets, c, fitness, &settings, observer,
             )?;
             let note = format!(
                 "GA: {} generations, {} fitness evaluations, best {} fitness {:.6e} before the Levenberg–Marquardt polish",

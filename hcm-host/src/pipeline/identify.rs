@@ -1,6 +1,6 @@
 //! Stage 2: PM2, the physics law identified on S1.
 
-use super::{PipelineError, Pm2Method, Progress, Stage, CONTACT};
+use super::{PipelineError, Pm2Method, Progress, CONTACT};
 use crate::dataset::Dataset;
 use crate::identify::{identify, Identification, Physics};
 use crate::scenario::{Model, Scenario};
@@ -32,7 +32,6 @@ pub fn identify_pm2(
     progress: &dyn Progress,
 ) -> Result<Pm2, PipelineError> {
     let model = scenario.model()?;
-    progress.begin(Stage::Identify, 1);
     let identification = identify(
         scenario,
         &model,
@@ -40,9 +39,8 @@ pub fn identify_pm2(
         CONTACT,
         PM2_LAW,
         method.method(seed),
-        |generation, generations, _| progress.advance(generation as u64, generations as u64),
+        progress,
     )?;
-    progress.end(Stage::Identify);
     let physics = Physics::for_contact(
         &model,
         CONTACT,

@@ -13,7 +13,8 @@ pub use target::{EventTarget, WrenchTarget};
 
 use crate::indicators::IndicatorError;
 use crate::numerics::optimize::genetic::{minimize, GeneticError, GeneticSettings};
-use crate::numerics::optimize::{Observer, Parameters};
+use crate::numerics::optimize::Parameters;
+use crate::progress::{Progress, Stage};
 use crate::scenario::Model;
 use std::time::Instant;
 
@@ -62,22 +63,29 @@ pub struct RigidIdentification {
 }
 
 /// Finds contact `target.contact`'s parameters of `model` (law without exponent, and
-/// friction) by the genetic algorithm. `progress(generation, best fitness)` is called
-/// once per generation.
+/// friction) by the genetic algorithm, reporting [`Stage::Identify`] to `progress`: its
+/// generations, with the best fitness so far as its status.
 pub fn identify_rigid(
     model: &Model,
     target: &WrenchTarget,
     parameters: &RigidParameters,
     settings: &GeneticSettings,
-    progress: impl Observer,
+    progress: &dyn Progress,
 ) -> Result<RigidIdentification, RigidIdentifyError> {
     let started = Instant::now();
+    let generations = settings.generations as u64;
+    progress.begin(Stage::Identify, generations);
     let result = minimize(
         &parameters.bounds(),
         settings,
         |genes| fitness(target, &parameters.apply(&target.model, genes)),
-        progress,
-    )?;
+        |done: usize, best: f64| {
+            progress.advance(done as u64, generations);
+            progress.status(&format!("best {best:.4e}"));
+        },
+    );
+    progress.end(Stage::Identify);
+    let result = result?;
     Ok(RigidIdentification {
         model: parameters.apply(model, &result.best),
         parameters: parameters.named(&result.best),

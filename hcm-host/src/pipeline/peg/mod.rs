@@ -167,13 +167,13 @@ fn identify_pm2(
         seed: settings.seed,
         ..settings.genetic.clone()
     };
-    let generations = genetic.generations as u64;
-    progress.begin(Stage::Identify, generations);
-    let pm2 = identify_rigid(&start, &target, &parameters, &genetic, |done, _| {
-        progress.advance(done as u64, generations)
-    })?;
-    progress.end(Stage::Identify);
-    Ok(pm2)
+    Ok(identify_rigid(
+        &start,
+        &target,
+        &parameters,
+        &genetic,
+        progress,
+    )?)
 }
 
 /// Runs the peg-in-hole's stages. Bit-identical results (but for the timings) for
