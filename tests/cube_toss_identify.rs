@@ -67,8 +67,18 @@ fn fit(model: &Model, training: &Dataset, threads: usize) -> MotionFit {
         .num_threads(threads)
         .build()
         .unwrap();
-    pool.install(|| identify_motion(model, &target, &parameters, &settings, 60, |_, _, _| {}))
-        .unwrap()
+    pool.install(|| {
+        identify_motion(
+            model,
+            &target,
+            &parameters,
+            &settings,
+            60,
+            hcm_host::progress::Fold::First,
+            &hcm_host::progress::Silent,
+        )
+    })
+    .unwrap()
 }
 
 #[test]

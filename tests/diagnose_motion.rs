@@ -182,7 +182,7 @@ fn diagnosed(what: &str, user: &Model, hidden: Hidden, start: Start, seed: u64) 
 
 fn diagnosed_from(what: &str, user: &Model, data: &Dataset) -> MotionDiagnosis {
     let begun = std::time::Instant::now();
-    let d = diagnose_motion(user, data, |_, _, _| {}).expect("the diagnosis runs");
+    let d = diagnose_motion(user, data, &hcm_host::progress::Silent).expect("the diagnosis runs");
     println!("== {what} ({:.1} s)", begun.elapsed().as_secs_f64());
     for round in &d.rounds {
         println!(

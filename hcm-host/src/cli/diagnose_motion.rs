@@ -1,7 +1,7 @@
 //! `hcm diagnose-motion`: what a tossed or sliding body's simulation gets wrong, from
 //! filmed motion alone (issue 17).
 
-use super::progress_bar;
+use super::progress::Bars;
 use anyhow::Context;
 use hcm_host::diagnose::motion::{diagnose_motion, MotionDiagnosis, HELPS_T, MIN_GAIN, RIVAL_T};
 use hcm_host::output::write_bytes;
@@ -44,14 +44,9 @@ pub struct Args {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (model, _, data) = args.tosses.load()?;
-    let bar = progress_bar(0, "candidates");
-    let diagnosis = diagnose_motion(&model, &data, |round, k, count| {
-        bar.set_length(count as u64);
-        bar.set_position(k as u64);
-        bar.set_message(format!("round {}", round + 1));
-    })
-    .with_context(|| format!("diagnosing the tosses of {}", args.tosses.data.display()))?;
-    bar.finish_and_clear();
+    let bars = Bars::with_status(|_| "candidates");
+    let diagnosis = diagnose_motion(&model, &data, &bars)
+        .with_context(|| format!("diagnosing the tosses of {}", args.tosses.data.display()))?;
     let json = serde_json::to_string_pretty(&diagnosis)?;
     write_bytes(&args.out, json.as_bytes())
         .with_context(|| format!("writing {}", args.out.display()))?;

@@ -1,15 +1,16 @@
 //! `hcm identify-motion`: a tossed body's contact law, friction and table height fitted
 //! to filmed tosses (poses, no force), judged on tosses the fit never saw (issue 17).
 
-use super::progress_bar;
+use super::progress::Bars;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::motion::{
     beside_physics, fitted_assignments, fitted_physics, fitted_scenario_text, identify_motion,
-    set_options, split_tosses, MotionFit, MotionParameters, MotionStage, MotionTarget,
+    set_options, split_tosses, MotionFit, MotionParameters, MotionTarget,
 };
 use hcm_host::numerics::optimize::genetic::GeneticSettings;
 use hcm_host::output::write_bytes;
+use hcm_host::progress::{Fold, Stage};
 use hcm_host::scenario::{Assignment, Model};
 use hcm_host::toss::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};
 use std::path::PathBuf;
@@ -196,26 +197,12 @@ fn run_fit(
     settings: &GeneticSettings,
     polish: usize,
 ) -> anyhow::Result<MotionFit> {
-    let genetic = progress_bar(settings.generations as u64, "GA generations");
-    let polishing = progress_bar(polish as u64, "polish");
-    polishing.set_position(0);
-    let fit = identify_motion(
-        model,
-        target,
-        parameters,
-        settings,
-        polish,
-        |stage, done, best| {
-            let bar = match stage {
-                MotionStage::Genetic => &genetic,
-                MotionStage::Polish => &polishing,
-            };
-            bar.set_position(done as u64);
-            bar.set_message(format!("best {best:.3}"));
-        },
-    )?;
-    genetic.finish_and_clear();
-    polishing.finish_and_clear();
+    let bars = Bars::with_status(|stage| match stage {
+        Stage::MotionPolish(_) => "polish",
+        _ => "GA generations",
+    });
+    let fold = Fold::First;
+    let fit = identify_motion(model, target, parameters, settings, polish, fold, &bars)?;
     Ok(fit)
 }
 

@@ -29,6 +29,7 @@ pub use paired::Paired;
 
 use crate::dataset::Dataset;
 use crate::identify::motion::{split_tosses, MotionParameters};
+use crate::progress::{Progress, Stage as ProgressStage};
 use crate::scenario::Model;
 use crate::toss::{TossError, TossSetup};
 use fit::{Fitted, Part, Subject};
@@ -147,18 +148,20 @@ struct Stage<'a> {
 }
 
 /// Every open candidate fitted on the training tosses and judged on the held-out ones,
-/// in catalogue order; `progress(round, k, candidates)` before each fit.
+/// in catalogue order; `progress` advances to `k` of the candidates, with the round as its
+/// status, before each fit.
 fn fit_candidates(
     stage: &Stage<'_>,
     open: &[MotionEffect],
     round: usize,
-    progress: &mut impl FnMut(usize, usize, usize),
+    progress: &dyn Progress,
 ) -> (Vec<CandidateResult>, Vec<Fit>) {
     let subject = &stage.subject;
     let mut results = Vec::new();
     let mut held_scores = Vec::new();
     for (k, &effect) in open.iter().enumerate() {
-        progress(round, k, open.len());
+        progress.advance(k as u64, open.len() as u64);
+        progress.status(&format!("round {}", round + 1));
         let bounds = effect.bounds(stage.mass, stage.size);
         let neutral = effect.neutral(subject.model, subject.contact);
         let fitted = fit::fit(subject, effect, &bounds, &neutral, &stage.training);
@@ -211,7 +214,7 @@ impl Search {
     fn round(
         &mut self,
         round: usize,
-        progress: &mut impl FnMut(usize, usize, usize),
+        progress: &dyn Progress,
     ) -> Result<bool, MotionDiagnoseError> {
         let (contact, plane) = (self.indices.contact, self.indices.plane);
         let subject = Subject {
@@ -303,12 +306,13 @@ impl Search {
     }
 }
 
-/// Diagnoses `model` against `data` (poses of one body tossed or sliding on a plane);
-/// `progress(round, candidate, candidates)` before each candidate's fit.
+/// Diagnoses `model` against `data` (poses of one body tossed or sliding on a plane),
+/// reporting [`ProgressStage::Diagnose`] to `progress`: its steps are each round's
+/// candidates, advanced before each candidate's fit, its status the round.
 pub fn diagnose_motion(
     model: &Model,
     data: &Dataset,
-    progress: impl FnMut(usize, usize, usize),
+    progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     let (training, held_out) = split_tosses(data);
     diagnose_motion_split(model, training, held_out, progress)
@@ -320,7 +324,20 @@ pub fn diagnose_motion_split(
     model: &Model,
     training: Dataset,
     held_out: Dataset,
-    mut progress: impl FnMut(usize, usize, usize),
+    progress: &dyn Progress,
+) -> Result<MotionDiagnosis, MotionDiagnoseError> {
+    progress.begin(ProgressStage::Diagnose, 0);
+    let diagnosis = search(model, training, held_out, progress);
+    progress.end(ProgressStage::Diagnose);
+    diagnosis
+}
+
+/// [`diagnose_motion_split`] between its progress stage's begin and end.
+fn search(
+    model: &Model,
+    training: Dataset,
+    held_out: Dataset,
+    progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     let setup = TossSetup::new(model)?;
     let indices = MotionParameters::new(model, &setup)?;
@@ -342,7 +359,7 @@ pub fn diagnose_motion_split(
         last_scores: None,
     };
     for round in 0..MAX_ROUNDS {
-        if !search.round(round, &mut progress)? {
+        if !search.round(round, progress)? {
             break;
         }
     }

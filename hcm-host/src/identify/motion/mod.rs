@@ -20,17 +20,9 @@ pub use split::{part_of, split_tosses, Part};
 
 use crate::numerics::optimize::genetic::{minimize, GeneticError, GeneticSettings};
 use crate::numerics::optimize::{nelder_mead, Parameters};
+use crate::progress::{Fold, Progress, Stage};
 use crate::scenario::Model;
 use std::time::Instant;
-
-/// Which stage of the fit a progress report is about.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MotionStage {
-    /// Steps are generations of the genetic algorithm.
-    Genetic,
-    /// Steps are fitness evaluations of the polish.
-    Polish,
-}
 
 /// What the fit found.
 #[derive(Clone, Debug)]
@@ -54,38 +46,49 @@ pub struct MotionFit {
 /// Fits `parameters` of `model` to `target`'s tosses: the genetic algorithm with
 /// `settings`, then a polish of about `polish_budget` evaluations from the better of its
 /// best and the scenario's own parameters (so the fit never ends worse than the
-/// scenario on the training tosses). `progress(stage,
-/// steps done, best fitness)` reports each generation and each polish step.
+/// scenario on the training tosses). Reports to `progress` the stages
+/// [`Stage::MotionGenetic`] (its generations) and then [`Stage::MotionPolish`] (its
+/// fitness evaluations) of `fold`, each with the best fitness so far as its status.
 pub fn identify_motion(
     model: &Model,
     target: &MotionTarget<'_>,
     parameters: &MotionParameters,
     settings: &GeneticSettings,
     polish_budget: usize,
-    mut progress: impl FnMut(MotionStage, usize, f64),
+    fold: Fold,
+    progress: &dyn Progress,
 ) -> Result<MotionFit, GeneticError> {
     let started = Instant::now();
     let bounds = parameters.bounds();
     let score = |genes: &[f64]| fitness(target, &parameters.apply(model, genes));
     let start = parameters.values(model);
     let start_fitness = score(&start);
-    let genetic = minimize(&bounds, settings, score, |generation, best| {
-        progress(MotionStage::Genetic, generation, best)
-    })?;
+    let observer = |steps: usize| {
+        move |done: usize, best: f64| {
+            progress.advance(done as u64, steps as u64);
+            progress.status(&format!("best {best:.3}"));
+        }
+    };
+    progress.begin(Stage::MotionGenetic(fold), settings.generations as u64);
+    let genetic = minimize(&bounds, settings, score, observer(settings.generations));
+    progress.end(Stage::MotionGenetic(fold));
+    let genetic = genetic?;
     // A short search may end above the scenario's own parameters: polish the better.
     let (from, from_fitness) = if start_fitness < genetic.fitness {
         (&start, start_fitness)
     } else {
         (&genetic.best, genetic.fitness)
     };
+    progress.begin(Stage::MotionPolish(fold), polish_budget as u64);
     let polished = nelder_mead::polish(
         &bounds,
         from,
         from_fitness,
         polish_budget,
         score,
-        |evaluations, best| progress(MotionStage::Polish, evaluations, best),
+        observer(polish_budget),
     );
+    progress.end(Stage::MotionPolish(fold));
     Ok(MotionFit {
         model: parameters.apply(model, &polished.best),
         parameters: parameters.named(&polished.best),

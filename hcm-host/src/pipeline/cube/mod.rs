@@ -28,7 +28,7 @@ use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
 use crate::toss::{TossError, TossSetup};
 use std::path::{Path, PathBuf};
 
-use super::{Artifact, Fold, NamedFigure, Progress, Reproduced, Stage, StageClock, StageTiming};
+use super::{Artifact, Fold, NamedFigure, Progress, Reproduced, StageClock, StageTiming};
 use crate::identify::motion::fitted_physics;
 use crate::toss::predicted_dataset;
 use std::borrow::Cow;
@@ -257,13 +257,8 @@ fn diagnose(
     held_out: &Dataset,
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, CubeError> {
-    progress.begin(Stage::Diagnose, 1);
     let (training, held_out) = (training.clone(), held_out.clone());
-    let diagnosis = diagnose_motion_split(fitted, training, held_out, |_, k, n| {
-        progress.advance(k as u64, n as u64)
-    });
-    progress.end(Stage::Diagnose);
-    Ok(diagnosis?)
+    Ok(diagnose_motion_split(fitted, training, held_out, progress)?)
 }
 
 /// The data read, cut to `first`, checked against the scenario, and split.

@@ -6,7 +6,7 @@ use super::errors::{frame_errors, over_time, per_phase, PhaseErrors, TimePoint};
 use super::{CubeError, CubeSettings};
 use crate::dataset::Dataset;
 use crate::identify::motion::{
-    beside_physics, identify_motion, MotionFit, MotionParameters, MotionStage, MotionTarget,
+    beside_physics, identify_motion, MotionFit, MotionParameters, MotionTarget,
 };
 use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::pipeline::{Fold, Progress, Stage};
@@ -32,32 +32,16 @@ pub fn fit(
         generations: settings.generations,
         ..GeneticSettings::default()
     };
-    let (generations, polish) = (settings.generations as u64, settings.polish as u64);
-    progress.begin(Stage::MotionGenetic(fold), generations);
-    let mut polishing = false;
     let fit = identify_motion(
         model,
         &target,
         &parameters,
         &genetic,
         settings.polish,
-        |stage, done, _| {
-            if stage == MotionStage::Polish && !polishing {
-                polishing = true;
-                progress.end(Stage::MotionGenetic(fold));
-                progress.begin(Stage::MotionPolish(fold), polish);
-            }
-            let steps = if polishing { polish } else { generations };
-            progress.advance(done as u64, steps);
-        },
-    );
-    let last = if polishing {
-        Stage::MotionPolish(fold)
-    } else {
-        Stage::MotionGenetic(fold)
-    };
-    progress.end(last);
-    Ok((fit?, parameters))
+        fold,
+        progress,
+    )?;
+    Ok((fit, parameters))
 }
 
 /// The fitted table offset and inertia as the `--set`s that apply them (a physics file
