@@ -56,7 +56,8 @@ fn fixture() -> &'static Fixture {
         let data = generate(&scenario, RUNS, 7, &hcm_host::progress::Silent).unwrap();
         let pairs = wrench_pairs(&pm2, &data, 0).unwrap();
         // The rows `hcm reproduce peg-in-hole` trains on: the two wall contacts.
-        let walls = hcm_host::pipeline::peg::wall_contact_pairs(&pm2, &data, 2).unwrap();
+        let walls =
+            hcm_host::train::wrench_residual::pairs_before_event(&pm2, &data, 0, 2).unwrap();
         Fixture {
             nominal,
             pm2,

@@ -15,10 +15,11 @@
 
 use hcm_host::export::export_blobs;
 use hcm_host::pipeline::peg::CONTACT;
-use hcm_host::pipeline::peg::{evaluate_peg, reproduce_peg, wall_contact_pairs, PegSettings};
+use hcm_host::pipeline::peg::{evaluate_peg, reproduce_peg, PegSettings};
 use hcm_host::pipeline::Silent;
 use hcm_host::scenario::Model;
 use hcm_host::train::explained::silence_outputs;
+use hcm_host::train::wrench_residual::pairs_before_event;
 use hcm_host::train::{train, wrench_settings, OutputNets, TrainedResidual};
 
 #[test]
@@ -32,8 +33,9 @@ fn the_exact_residual_does_not_make_the_network_exact() {
     let pm2 = &r.pm2.model;
     let nominal = r.scenario.model().unwrap();
     // (measured − PM2) − (measured − PM1 nominal) at the same recorded states.
-    let to_pm2 = wall_contact_pairs(pm2, &r.sets.training, settings.events).unwrap();
-    let to_nominal = wall_contact_pairs(&nominal, &r.sets.training, settings.events).unwrap();
+    let to_pm2 = pairs_before_event(pm2, &r.sets.training, CONTACT, settings.events).unwrap();
+    let to_nominal =
+        pairs_before_event(&nominal, &r.sets.training, CONTACT, settings.events).unwrap();
     assert_eq!(to_pm2.times, to_nominal.times);
     let exact: Vec<Vec<f64>> = to_pm2
         .targets

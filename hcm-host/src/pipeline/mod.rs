@@ -109,6 +109,16 @@ pub struct Reproduction {
     pub results: ReproduceResults,
 }
 
+impl From<crate::train::WrenchResidualError> for PipelineError {
+    fn from(error: crate::train::WrenchResidualError) -> Self {
+        match error {
+            crate::train::WrenchResidualError::Samples(e) => PipelineError::WrenchSamples(e),
+            crate::train::WrenchResidualError::Events(e) => PipelineError::Indicators(e),
+            crate::train::WrenchResidualError::Train(e) => PipelineError::Train(e),
+        }
+    }
+}
+
 impl From<crate::train::ResidualError> for PipelineError {
     fn from(error: crate::train::ResidualError) -> Self {
         match error {

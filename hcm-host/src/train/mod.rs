@@ -33,6 +33,7 @@ pub mod per_output;
 pub mod quantise;
 pub mod samples;
 pub mod trained;
+pub mod wrench_residual;
 pub mod wrench_samples;
 pub mod wrench_settings;
 
@@ -46,6 +47,7 @@ pub use per_output::OutputNets;
 pub use quantise::{quantisation_aware, QuantiseReport};
 pub use samples::residual_pairs;
 pub use trained::TrainedResidual;
+pub use wrench_residual::{train_wrench_residual, WrenchResidualError, WrenchTrained};
 pub use wrench_samples::{wrench_pairs, WrenchPairs};
 pub use wrench_settings::wrench_settings;
 

@@ -6,11 +6,9 @@
 mod curves;
 mod evaluate;
 mod report;
-mod train;
 
 pub use curves::{mean_curve, replay_curve, WrenchCurve};
 pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS, PAPER};
-pub use train::{train_peg_residual, wall_contact_pairs, PegTrained};
 
 use super::{Artifact, PipelineError, Progress, Reproduced, Stage, StageClock, StageTiming};
 use crate::experiment::{generate_split, Split};
@@ -21,11 +19,17 @@ use crate::identify::rigid::{
 use crate::identify::{FitRecord, Physics};
 use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::scenario::{Scenario, ScenarioError};
+use crate::train::{
+    train_wrench_residual, wrench_settings, OutputNets, ResidualSettings, WrenchTrained,
+};
 use std::borrow::Cow;
 use std::path::PathBuf;
 
 /// The peg's one contact (peg–block).
 pub const CONTACT: usize = 0;
+
+/// Fine-tuning epochs of the int8 twin.
+const INT8_EPOCHS: usize = 30;
 
 /// The scenario shipped with hcm, so that the example runs from any directory.
 pub(crate) const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/peg_in_hole.toml");
@@ -95,7 +99,7 @@ pub struct PegReproduction {
     /// PM2.
     pub pm2: RigidIdentification,
     /// The error model and its int8 twin.
-    pub trained: PegTrained,
+    pub trained: WrenchTrained,
     /// Their blobs, decoded back by the core.
     pub blobs: Blobs,
     /// The comparison on S2.
@@ -193,11 +197,17 @@ pub fn reproduce_peg(
         identify_pm2(settings, &scenario, &model, &sets, progress)
     })?;
     let trained = clock.time("train (+ int8 twin)", || {
-        train_peg_residual(
+        let training = ResidualSettings {
+            epochs: wrench_settings(OutputNets::Joint, settings.seed).max_epochs,
+            int8_epochs: INT8_EPOCHS,
+            seed: settings.seed,
+        };
+        train_wrench_residual(
             &pm2.model,
             &sets.training,
+            CONTACT,
             settings.events,
-            settings.seed,
+            &training,
             progress,
         )
     })?;
