@@ -75,7 +75,8 @@ impl Recorder {
         };
         let lookback = (start - self.margin).max(0.0);
         let lookback_from = (lookback / self.tick).ceil() as u64;
-        for k in lookback_from.min(from)..=(end / self.tick).floor() as u64 {
+        let ticks = self.candidates(events, (lookback_from.min(from), from), end);
+        for k in ticks {
             let t = k as f64 * self.tick;
             let dense = in_window(events, t, self.margin);
             if self.samples.contains_key(&k) || !(dense || (k >= from && k % self.stride == 0)) {
@@ -101,6 +102,32 @@ impl Recorder {
         if self.margin > 0.0 {
             self.recent.push_back((start, end, stepper.clone()));
         }
+    }
+
+    /// The ticks from `low` to `end` (s) that may be sampled, in order: the flight
+    /// ticks from `from` on and the ticks near an event (a superset of [`in_window`]'s:
+    /// the caller decides). Walking every tick of a long flight step (1000 per ms at
+    /// 1 µs) cost more than the rest of the ball's simulation.
+    fn candidates(&self, events: &EventTracker, (low, from): (u64, u64), end: f64) -> Vec<u64> {
+        let high = (end / self.tick).floor() as u64;
+        let first_flight = from.div_ceil(self.stride) * self.stride;
+        let mut ticks: Vec<u64> = (first_flight..=high)
+            .step_by(self.stride as usize)
+            .collect();
+        let low_time = low as f64 * self.tick;
+        for e in &events.events {
+            let until = e.lift_off.map_or(f64::INFINITY, |off| off + self.margin);
+            if until < low_time || e.touch_down - self.margin > end {
+                continue;
+            }
+            // One tick of slack either side: `in_window` decides.
+            let a = ((e.touch_down - self.margin) / self.tick).floor().max(0.0) as u64;
+            let b = (until / self.tick).ceil().min(high as f64) as u64;
+            ticks.extend(a.saturating_sub(1).max(low)..=(b + 1).min(high));
+        }
+        ticks.sort_unstable();
+        ticks.dedup();
+        ticks
     }
 
     /// The run sampled so far (id `"0"`).
