@@ -105,8 +105,11 @@ pub struct EventTracker {
     pub events: Vec<ContactEvent>,
     /// Per contact, the index of its open event.
     open: Vec<Option<usize>>,
-    /// Per open event, the impulse integrals (N·s, N·m·s) at its touch-down.
+    /// Per event, the impulse integrals (N·s, N·m·s) at its touch-down.
     start_impulse: Vec<[f64; 6]>,
+    /// Per event, the end (s) of the last step it was tracked in and the contact's
+    /// power there (W): the next step's first Boole point.
+    end_power: Vec<(f64, f64)>,
     /// Lift-offs so far.
     pub lift_offs: usize,
 }
@@ -192,6 +195,7 @@ impl EventTracker {
         let i = system.layout.impulse_index(c);
         self.open[c] = Some(self.events.len());
         self.start_impulse.push(std::array::from_fn(|k| y[i + k]));
+        self.end_power.push((f64::NAN, 0.0));
         self.events.push(ContactEvent {
             contact: c,
             touch_down: time,
@@ -222,7 +226,7 @@ impl EventTracker {
     ) {
         let end = stepper.time();
         let intervals = (PEAK_SUBSTEPS + 1) as f64;
-        for event in &mut self.events {
+        for (event, last) in self.events.iter_mut().zip(&mut self.end_power) {
             if event.lift_off.is_some_and(|t| t < step_start) {
                 continue;
             }
@@ -235,8 +239,15 @@ impl EventTracker {
                     continue;
                 }
                 if k == 0 {
-                    let start = stepper.previous_state();
-                    work += weight * system.contact_load(&start.0, event.contact).dissipation;
+                    // The last step's end: the same state (renormalised at most), and
+                    // the same force (a latch keeps it continuous); else evaluated.
+                    let power = if last.0 == step_start {
+                        last.1
+                    } else {
+                        let start = &stepper.previous_state().0;
+                        system.contact_load(start, event.contact).dissipation
+                    };
+                    work += weight * power;
                     continue;
                 }
                 stepper.dense_output(t, scratch);
@@ -245,6 +256,9 @@ impl EventTracker {
                 event.max_torque = event.max_torque.max(load.on_mover.1.norm());
                 event.max_points = event.max_points.max(load.points);
                 work += weight * load.dissipation;
+                if k == PEAK_SUBSTEPS + 1 {
+                    *last = (end, load.dissipation);
+                }
             }
             event.work += work * (end - step_start) / 90.0;
         }

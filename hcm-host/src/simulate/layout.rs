@@ -9,8 +9,21 @@ use nalgebra::Vector3;
 
 /// A heap-backed state for the core's integrator: the host simulates as many
 /// bodies and contacts as the scenario has.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct StateVector(pub Vec<f64>);
+
+/// By hand for `clone_from`, which the integrator calls in every stage and dense
+/// output: it copies into the existing buffer instead of allocating one (the derived
+/// `clone_from` allocates).
+impl Clone for StateVector {
+    fn clone(&self) -> Self {
+        StateVector(self.0.clone())
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.0.clone_from(&source.0);
+    }
+}
 
 impl OdeState<f64> for StateVector {
     fn components(&self) -> &[f64] {
@@ -96,12 +109,16 @@ impl RigidLayout {
     /// put it.
     pub fn pose(&self, model: &Model, y: &[f64], body: usize) -> Pose {
         match self.rigid_state(y, body) {
-            Some(state) => Pose {
-                position: state.position(),
-                orientation: state.orientation(),
-                velocity: state.velocity(),
-                angular_velocity: state.world_angular_velocity(),
-            },
+            Some(state) => {
+                // `world_angular_velocity` would normalise q a second time.
+                let orientation = state.orientation();
+                Pose {
+                    position: state.position(),
+                    orientation,
+                    velocity: state.velocity(),
+                    angular_velocity: orientation * state.body_angular_velocity(),
+                }
+            }
             None => {
                 let b = &model.bodies[body];
                 Pose {

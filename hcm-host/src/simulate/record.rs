@@ -1,8 +1,9 @@
-//! Sampling a 3D run into the measured-data format while it is integrated: the
+//! Sampling a run into the measured-data format while it is integrated: the
 //! contact rate inside contact events (and a margin around them), the flight rate
 //! elsewhere, on one grid of integer ticks.
 
 use super::event::EventTracker;
+use super::layout::StateVector;
 use super::stepper::RigidStepper;
 use super::system::RigidSystem;
 use crate::dataset::{BodyTrack, Run, Sample};
@@ -11,8 +12,9 @@ use hcm_core::integrate::DenseOutput;
 use nalgebra::Vector3;
 use std::collections::{BTreeMap, VecDeque};
 
-/// One accepted step kept for sampling: (start (s), end (s), its dense output).
-type Step = (f64, f64, RigidStepper);
+/// The state at one tick near the end of an accepted step, kept for a later
+/// touch-down's margin: (tick, end of its step (s), the step's dense output there).
+type Kept = (u64, f64, StateVector);
 
 /// Collects the samples of a run.
 pub struct Recorder {
@@ -26,9 +28,14 @@ pub struct Recorder {
     recorded: Vec<usize>,
     /// Samples by tick, one per recorded body.
     samples: BTreeMap<u64, Vec<Sample>>,
-    /// Earlier steps covering `margin` before the current one (none when the margin
-    /// is 0).
-    recent: VecDeque<Step>,
+    /// The states at the contact-rate ticks within `margin` before the end of each
+    /// earlier step still within `margin` of the current one, oldest first (none when
+    /// the margin is 0): a few dense outputs per step instead of a copy of the stepper.
+    recent: VecDeque<Kept>,
+    /// Buffers of `recent` no longer needed, and the working state.
+    spare: Vec<StateVector>,
+    /// The ticks a step may sample, reused.
+    ticks: Vec<u64>,
 }
 
 impl Recorder {
@@ -47,6 +54,8 @@ impl Recorder {
                 .collect(),
             samples: BTreeMap::new(),
             recent: VecDeque::new(),
+            spare: Vec::new(),
+            ticks: Vec::new(),
         }
     }
 
@@ -61,13 +70,14 @@ impl Recorder {
         first: bool,
     ) {
         let (start, end) = (stepper.previous_time(), stepper.time());
-        while self
-            .recent
-            .front()
-            .is_some_and(|s| s.1 < start - self.margin)
-        {
-            self.recent.pop_front();
+        while let Some(kept) = self.recent.pop_front() {
+            if kept.1 >= start - self.margin {
+                self.recent.push_front(kept);
+                break;
+            }
+            self.spare.push(kept.2);
         }
+        let mut y = self.buffer(stepper);
         let from = if first {
             0
         } else {
@@ -75,45 +85,72 @@ impl Recorder {
         };
         let lookback = (start - self.margin).max(0.0);
         let lookback_from = (lookback / self.tick).ceil() as u64;
-        let ticks = self.candidates(events, (lookback_from.min(from), from), end);
-        for k in ticks {
+        let mut ticks = std::mem::take(&mut self.ticks);
+        self.candidates(events, (lookback_from.min(from), from), end, &mut ticks);
+        for &k in &ticks {
             let t = k as f64 * self.tick;
             let dense = in_window(events, t, self.margin);
             if self.samples.contains_key(&k) || !(dense || (k >= from && k % self.stride == 0)) {
                 continue;
             }
             // This step's own ticks from its dense output; earlier ones (the margin
-            // before a touch-down) from the steps kept for it.
-            let step = if t >= start {
-                Some(stepper)
+            // before a touch-down) from the states kept for it.
+            let state = if t >= start {
+                stepper.dense_output(t, &mut y);
+                Some(&y)
             } else {
-                self.recent
-                    .iter()
-                    .find(|s| s.0 <= t && t <= s.1)
-                    .map(|s| &s.2)
+                self.recent.iter().find(|s| s.0 == k).map(|s| &s.2)
             };
-            if let Some(step) = step {
-                let samples = sample_at(system, step, t, &self.recorded);
+            if let Some(state) = state {
+                let samples = sample_at(system, &state.0, t, &self.recorded);
                 self.samples.insert(k, samples);
             }
         }
-        // Kept only when a later touch-down may need samples before its step; with no
-        // margin, no step is copied.
-        if self.margin > 0.0 {
-            self.recent.push_back((start, end, stepper.clone()));
+        self.ticks = ticks;
+        self.spare.push(y);
+        self.keep(stepper);
+    }
+
+    /// A working state of the stepper's length.
+    fn buffer(&mut self, stepper: &RigidStepper) -> StateVector {
+        self.spare.pop().unwrap_or_else(|| stepper.state().clone())
+    }
+
+    /// Keeps the step's states at its contact-rate ticks within `margin` (and one tick)
+    /// before its end, for a touch-down found in a later step; with no margin, none.
+    fn keep(&mut self, stepper: &RigidStepper) {
+        if self.margin <= 0.0 {
+            return;
+        }
+        let (start, end) = (stepper.previous_time(), stepper.time());
+        let first = ((end - self.margin) / self.tick).floor().max(0.0) as u64;
+        for k in first.saturating_sub(1)..=(end / self.tick).floor() as u64 {
+            let t = k as f64 * self.tick;
+            // Flight ticks are sampled already.
+            if t < start || t > end || k % self.stride == 0 {
+                continue;
+            }
+            let mut y = self.buffer(stepper);
+            stepper.dense_output(t, &mut y);
+            self.recent.push_back((k, end, y));
         }
     }
 
-    /// The ticks from `low` to `end` (s) that may be sampled, in order: the flight
-    /// ticks from `from` on and the ticks near an event (a superset of [`in_window`]'s:
-    /// the caller decides). Walking every tick of a long flight step (1000 per ms at
-    /// 1 µs) cost more than the rest of the ball's simulation.
-    fn candidates(&self, events: &EventTracker, (low, from): (u64, u64), end: f64) -> Vec<u64> {
+    /// Writes into `ticks` those from `low` to `end` (s) that may be sampled, in order:
+    /// the flight ticks from `from` on and the ticks near an event (a superset of
+    /// [`in_window`]'s: the caller decides). Walking every tick of a long flight step
+    /// (1000 per ms at 1 µs) cost more than the rest of the ball's simulation.
+    fn candidates(
+        &self,
+        events: &EventTracker,
+        (low, from): (u64, u64),
+        end: f64,
+        ticks: &mut Vec<u64>,
+    ) {
         let high = (end / self.tick).floor() as u64;
         let first_flight = from.div_ceil(self.stride) * self.stride;
-        let mut ticks: Vec<u64> = (first_flight..=high)
-            .step_by(self.stride as usize)
-            .collect();
+        ticks.clear();
+        ticks.extend((first_flight..=high).step_by(self.stride as usize));
         let low_time = low as f64 * self.tick;
         for e in &events.events {
             let until = e.lift_off.map_or(f64::INFINITY, |off| off + self.margin);
@@ -127,7 +164,6 @@ impl Recorder {
         }
         ticks.sort_unstable();
         ticks.dedup();
-        ticks
     }
 
     /// The run sampled so far (id `"0"`).
@@ -160,21 +196,14 @@ fn in_window(events: &EventTracker, t: f64, margin: f64) -> bool {
         .any(|e| e.touch_down - margin <= t && e.lift_off.is_none_or(|off| t <= off + margin))
 }
 
-/// Every recorded body at time `t` (s) of `step`'s dense output.
-fn sample_at(
-    system: &RigidSystem<'_>,
-    step: &RigidStepper,
-    t: f64,
-    recorded: &[usize],
-) -> Vec<Sample> {
-    let mut y = step.state().clone();
-    step.dense_output(t, &mut y);
+/// Every recorded body at time `t` (s), in state `y`.
+fn sample_at(system: &RigidSystem<'_>, y: &[f64], t: f64, recorded: &[usize]) -> Vec<Sample> {
     let mut loads: Vec<(Vector3<f64>, Vector3<f64>)> = Vec::new();
-    system.body_loads(&y.0, &mut loads);
+    system.body_loads(y, &mut loads);
     recorded
         .iter()
         .map(|&b| {
-            let pose = system.layout.pose(system.model, &y.0, b);
+            let pose = system.layout.pose(system.model, y, b);
             let q = pose.orientation.quaternion();
             Sample {
                 time: t,

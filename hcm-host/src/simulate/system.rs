@@ -12,7 +12,7 @@ use crate::scenario::geometry::{pair_contacts, Pose};
 use crate::scenario::Model;
 use hcm_core::integrate::OdeSystem;
 use hcm_core::law::Indentation;
-use hcm_core::model::{ContactPoint, Manifold, PairLoad};
+use hcm_core::model::{ContactPoint, Manifold, PairLoad, MAX_POINTS};
 use hcm_core::rigid::RigidBody;
 use nalgebra::Vector3;
 
@@ -37,7 +37,7 @@ pub struct PairManifold {
     /// The points, as the contact model reads them.
     pub points: Manifold<f64>,
     /// Each point's feature id (see [`hcm_core::geometry::ContactGeometry`]).
-    pub features: heapless::Vec<u32, { hcm_core::model::MAX_POINTS }>,
+    pub features: heapless::Vec<u32, MAX_POINTS>,
     /// Body 1's pose.
     pub pose_1: Pose,
     /// Body 2's pose.
@@ -80,12 +80,40 @@ impl RigidSystem<'_> {
     /// The manifold of contact `c` in state `y`: every touching point with its
     /// indentation, history, normal, position and slip velocity.
     pub fn manifold(&self, y: &[f64], c: usize) -> PairManifold {
+        let (pose_1, pose_2) = self.poses(y, c);
+        let mut pair = PairManifold {
+            points: Manifold::new(),
+            features: heapless::Vec::new(),
+            pose_1,
+            pose_2,
+        };
+        self.each_point(c, &pose_1, &pose_2, |point, feature| {
+            // Both hold at most MAX_POINTS: the pushes cannot fail.
+            let _ = pair.points.push(point);
+            let _ = pair.features.push(feature);
+        });
+        pair
+    }
+
+    /// The poses of contact `c`'s two bodies in state `y`.
+    fn poses(&self, y: &[f64], c: usize) -> (Pose, Pose) {
         let contact = &self.model.contacts[c];
-        let pose_1 = self.layout.pose(self.model, y, contact.body_1);
-        let pose_2 = self.layout.pose(self.model, y, contact.body_2);
-        let mut manifold = Manifold::new();
-        let mut features = heapless::Vec::new();
-        for g in pair_contacts(self.model, contact, &pose_1, &pose_2) {
+        let pose = |b| self.layout.pose(self.model, y, b);
+        (pose(contact.body_1), pose(contact.body_2))
+    }
+
+    /// Hands `each` every touching point of contact `c` with its bodies at `pose_1`,
+    /// `pose_2`, and its feature id (a callback: the solver's hot path then moves no
+    /// manifold).
+    fn each_point(
+        &self,
+        c: usize,
+        pose_1: &Pose,
+        pose_2: &Pose,
+        mut each: impl FnMut(ContactPoint<f64>, u32),
+    ) {
+        let contact = &self.model.contacts[c];
+        for g in pair_contacts(self.model, contact, pose_1, pose_2) {
             let relative_velocity =
                 pose_1.point_velocity(&g.point) - pose_2.point_velocity(&g.point);
             let rate = -relative_velocity.dot(&g.normal);
@@ -102,45 +130,40 @@ impl RigidSystem<'_> {
                 relative_velocity,
                 relative_angular_velocity: pose_1.angular_velocity - pose_2.angular_velocity,
             };
-            // Both hold at most MAX_POINTS: the pushes cannot fail.
-            let _ = manifold.push(point);
-            let _ = features.push(g.feature);
-        }
-        PairManifold {
-            points: manifold,
-            features,
-            pose_1,
-            pose_2,
+            each(point, g.feature);
         }
     }
 
     /// The loads of contact `c` in state `y` (zero when apart).
     pub fn contact_load(&self, y: &[f64], c: usize) -> ContactLoad {
         let contact = &self.model.contacts[c];
-        let PairManifold {
-            points,
-            pose_1,
-            pose_2,
-            ..
-        } = self.manifold(y, c);
+        let (pose_1, pose_2) = self.poses(y, c);
+        let mut points = Manifold::new();
+        self.each_point(c, &pose_1, &pose_2, |point, _| {
+            let _ = points.push(point);
+        });
         // The residual's input (Eq 12): the moving body's 13 state components.
         let mover = if self.model.bodies[contact.body_1].fixed {
             contact.body_2
         } else {
             contact.body_1
         };
-        let mut input = self
-            .layout
-            .rigid_state(y, mover)
-            .map_or([f64::NAN; WRENCH_INPUTS], |s| s.components);
-        // The 1D force residual reads [δ (m), δ̇ (m/s), δ̇0 (m/s)] of the first point.
+        let mut input = [f64::NAN; WRENCH_INPUTS];
+        // The 1D force residual reads [δ (m), δ̇ (m/s), δ̇0 (m/s)] of the first point;
+        // without a residual the input is not read.
         let inputs = match (&contact.model.residual, points.first()) {
+            (None, _) => 0,
             (Some(ContactResidual::Force(_)), Some(p)) => {
                 let i = p.indentation;
                 input[..INPUTS].copy_from_slice(&[i.depth, i.rate, i.approach_speed]);
                 INPUTS
             }
-            _ => WRENCH_INPUTS,
+            _ => {
+                if let Some(state) = self.layout.rigid_state(y, mover) {
+                    input = state.components;
+                }
+                WRENCH_INPUTS
+            }
         };
         let load = contact.model.pair_load(
             &points,
@@ -187,13 +210,12 @@ impl RigidSystem<'_> {
     /// Latches the point histories at the accepted state `y` (see [`PointMemory`]).
     pub fn latch(&mut self, y: &[f64]) {
         for c in 0..self.model.contacts.len() {
-            let pair = self.manifold(y, c);
-            let touching = pair
-                .points
-                .iter()
-                .zip(&pair.features)
-                .map(|(p, &feature)| (feature, p.indentation.depth, p.indentation.rate));
-            self.memory[c].latch(touching);
+            let (pose_1, pose_2) = self.poses(y, c);
+            let mut touching = heapless::Vec::<_, { MAX_POINTS }>::new();
+            self.each_point(c, &pose_1, &pose_2, |p, feature| {
+                let _ = touching.push((feature, p.indentation.depth, p.indentation.rate));
+            });
+            self.memory[c].latch(touching.into_iter());
         }
     }
 
