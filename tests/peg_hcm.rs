@@ -20,7 +20,7 @@ use hcm_host::identify::replay::with_physics;
 use hcm_host::identify::rigid::{event_errors, fitness, replay, WrenchTarget};
 use hcm_host::residual::ContactResidual;
 use hcm_host::scenario::{Model, Scenario};
-use hcm_host::simulate::rigid::{RigidLayout, RigidSystem};
+use hcm_host::simulate::{RigidLayout, RigidSystem};
 use hcm_host::train::explained::{explained_variance, silence_outputs, EXPLAINED_MIN};
 use hcm_host::train::network::Layout;
 use hcm_host::train::wrench_samples::{contact_wrench, moving_body, state_input};

@@ -52,10 +52,7 @@ fn each_run_replays_from_its_recorded_pre_contact_state() {
         let whole = simulate(&noisy).unwrap();
         let replay = simulate(&replay_model(&noisy, pre)).unwrap();
         let indicators = |s: &hcm_host::simulate::Simulation| -> Vec<WrenchIndicators> {
-            s.pair_events
-                .iter()
-                .filter_map(|e| e.indicators())
-                .collect()
+            s.events.iter().filter_map(|e| e.indicators()).collect()
         };
         let (a, b) = (indicators(&whole), indicators(&replay));
         if a.len() == 3 {
@@ -67,7 +64,7 @@ fn each_run_replays_from_its_recorded_pre_contact_state() {
             // the replay). The first contact still replays exactly.
             assert_events_agree(&format!("run {i}"), &a[..1], &b[..1], 1e-5);
         }
-        let shift = whole.pair_events[0].touch_down - replay.pair_events[0].touch_down;
+        let shift = whole.events[0].touch_down - replay.events[0].touch_down;
         assert!(
             (shift - pre.time).abs() < 1e-9,
             "touch-down moved by {shift} − {}",

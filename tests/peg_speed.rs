@@ -52,7 +52,7 @@ const PEAK: f64 = 1e-6;
 const IMPULSE: f64 = 1.5e-4;
 
 fn indicators(run: &Simulation) -> Vec<[f64; 6]> {
-    run.pair_events
+    run.events
         .iter()
         .map(|e| {
             [
@@ -104,7 +104,7 @@ fn the_run_takes_a_tenth_of_the_explicit_steps() {
 fn two_runs_are_bit_identical() {
     let model = peg();
     let (one, two) = (simulate(&model).unwrap(), simulate(&model).unwrap());
-    assert_eq!(one.pair_events, two.pair_events);
+    assert_eq!(one.events, two.events);
     assert_eq!(one.steps, two.steps);
     assert_eq!(one.end_time.to_bits(), two.end_time.to_bits());
     let samples = |s: &Simulation| format!("{:?}", s.run);

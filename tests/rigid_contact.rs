@@ -6,8 +6,8 @@
 //! Run with `--nocapture` to see the measured figures.
 
 use hcm_host::scenario::Scenario;
-use hcm_host::simulate::rigid::{RigidLayout, RigidSystem};
 use hcm_host::simulate::simulate;
+use hcm_host::simulate::{RigidLayout, RigidSystem};
 use std::path::Path;
 
 /// A 0.1 m × 0.06 m × 0.04 m box of 0.5 kg above the plane z = 0, in `orientation`
@@ -57,7 +57,7 @@ parameters = { stiffness = 1e9, exponent = 1.5 }"#;
     let model = scenario.resolve(Path::new("box_drop.toml")).unwrap();
     assert!(model.is_rigid());
     let simulation = simulate(&model).unwrap();
-    let event = &simulation.pair_events[0];
+    let event = &simulation.events[0];
     let lift_off = event.lift_off.expect("it bounces off");
     assert_eq!(event.max_points, 4, "flat: the four bottom corners");
     // The apex from every free-flight sample after lift-off: z + v_z²/(2g).
@@ -224,7 +224,7 @@ fn every_law_acts_at_each_corner_of_a_flat_box_as_on_a_quarter_of_its_mass() {
         );
         let model = scenario.resolve(Path::new("box_drop.toml")).unwrap();
         let simulation = simulate(&model).unwrap();
-        let event = &simulation.pair_events[0];
+        let event = &simulation.events[0];
         let lift_off = event.lift_off.expect("it bounces off");
         // Approach and separation speeds from free flight: v² = 2·g·h before, and the
         // apex after (z + v_z²/2g).

@@ -28,7 +28,9 @@ fn first_event(simulation: &Simulation) -> Indicators {
         1,
         "expected exactly one contact event"
     );
-    simulation.events[0].indicators().expect("the contact ends")
+    simulation.events[0]
+        .normal_indicators()
+        .expect("the contact ends")
 }
 
 fn assert_close(name: &str, value: f64, expected: f64, tolerance: f64) {
@@ -120,7 +122,7 @@ fn dissipated_work_equals_the_kinetic_energy_lost() {
         assert_close(&format!("{name} work"), e.work, lost, 1e-6);
         assert_close(
             &format!("{name} relative-motion energy"),
-            e.indicators().unwrap().energy_loss,
+            e.normal_indicators().unwrap().energy_loss,
             lost,
             1e-6,
         );
@@ -231,7 +233,7 @@ fn contact_effects_act_in_the_simulation_and_keep_the_energy_books() {
         let e = &simulation.events[0];
         let lost = e.kinetic_energy_in - e.kinetic_energy_out;
         assert_close(&format!("{effect} work"), e.work, lost, 1e-6);
-        let i = e.indicators().unwrap();
+        let i = e.normal_indicators().unwrap();
         assert!(
             i.energy_loss > base.energy_loss * 1.01,
             "{effect}: energy loss {:e} vs {:e}",

@@ -88,7 +88,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     if model.is_rigid() {
         let rows: Vec<_> = simulation
-            .pair_events
+            .events
             .iter()
             .map(|e| {
                 let indicators = e.indicators_until(e.lift_off.unwrap_or(simulation.end_time));
@@ -116,7 +116,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 "{}–{}",
                 model.bodies[c.body_1].name, model.bodies[c.body_2].name
             );
-            (label, e.touch_down, e.indicators())
+            (label, e.touch_down, e.normal_indicators())
         })
         .collect();
     print!("{}", report::event_table(&rows));

@@ -133,7 +133,7 @@ fn instants(
     };
     let shape = &model.bodies[index].shape;
     let touch_downs = simulation
-        .pair_events
+        .events
         .iter()
         .filter(|e| {
             let c = &model.contacts[e.contact];
@@ -203,7 +203,7 @@ fn wrench(
         .fold(0.0, f64::max);
     // The marks first, so that the curves are drawn over them.
     let mut series: Vec<Series<'static>> = simulation
-        .pair_events
+        .events
         .iter()
         .map(|e| {
             curve(

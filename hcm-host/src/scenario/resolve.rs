@@ -41,8 +41,8 @@ pub enum Shape {
 }
 
 impl Shape {
-    /// Whether this shape needs the rigid-body simulator (it has corners or faces
-    /// that turn with the body).
+    /// Whether this shape makes a scenario 3D (it has corners or faces that turn with
+    /// the body).
     pub fn is_polyhedral(&self) -> bool {
         matches!(self, Shape::Box { .. } | Shape::Compound { .. })
     }
@@ -70,8 +70,8 @@ pub struct Body {
     /// Initial angular velocity ω (rad/s, world frame).
     pub angular_velocity: Vector3<f64>,
     /// Inertia tensor about the centre of mass, body frame (kg·m²); the identity for
-    /// fixed bodies (never used); NaN for a moving plane without one, which only the
-    /// 1D simulator (no rotation) accepts.
+    /// fixed bodies (never used); NaN for a moving plane without one, which only a 1D
+    /// scenario accepts (the simulator holds such a body from turning).
     pub inertia: Matrix3<f64>,
     /// Quadratic air drag in flight and in contact, if any.
     pub air_drag: Option<AirDrag<f64>>,
@@ -117,10 +117,10 @@ pub struct Model {
 }
 
 impl Model {
-    /// Whether the scenario needs the 3D rigid-body simulator: a box or compound
-    /// body, friction or a tangential effect, or a body that starts turned or spinning. Otherwise the
-    /// bodies move without rotating and the 1D simulator (its events located at
-    /// δ = 0 per contact) runs it.
+    /// Whether the scenario is 3D: a box or compound body, friction or a tangential
+    /// effect, or a body that starts turned or spinning. Otherwise it is 1D: spheres
+    /// and planes that touch on their lines of centres and never turn (the paper's
+    /// Eq 17 and Eq 21), judged by the four normal indicators. One simulator runs both.
     pub fn is_rigid(&self) -> bool {
         self.bodies.iter().any(|b| {
             b.shape.is_polyhedral()

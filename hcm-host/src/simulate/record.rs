@@ -1,89 +1,219 @@
-//! Sampling a simulated run into the measured-data format: the contact rate
-//! inside contacts (and a margin around them), the flight rate elsewhere.
+//! Sampling a run into the measured-data format while it is integrated: the
+//! contact rate inside contact events (and a margin around them), the flight rate
+//! elsewhere, on one grid of integer ticks.
 
-use super::state::{Layout, StateVector};
-use super::system::ContactSystem;
-use super::{ContactEvent, Segment};
+use super::event::EventTracker;
+use super::layout::StateVector;
+use super::stepper::RigidStepper;
+use super::system::RigidSystem;
 use crate::dataset::{BodyTrack, Run, Sample};
 use crate::scenario::Model;
-use hcm_core::integrate::OdeState;
+use hcm_core::integrate::DenseOutput;
+use nalgebra::Vector3;
+use std::collections::{BTreeMap, VecDeque};
 
-/// Sample times as integer ticks of the contact sample period, so that the two
-/// rates share one grid and no two samples nearly coincide.
-fn sample_ticks(model: &Model, events: &[ContactEvent], end_time: f64) -> Vec<u64> {
-    let record = &model.scenario.record;
-    let tick = record.contact_sample_period;
-    let stride = (record.flight_sample_period / tick).round().max(1.0) as u64;
-    let last = (end_time / tick).floor() as u64;
-    let mut ticks: Vec<u64> = (0..=last).step_by(stride as usize).collect();
-    for event in events {
-        let from = ((event.touch_down - record.contact_margin) / tick)
-            .ceil()
-            .max(0.0) as u64;
-        let until = event.lift_off.unwrap_or(end_time) + record.contact_margin;
-        let to = ((until / tick).floor() as u64).min(last);
-        ticks.extend(from..=to);
-    }
-    ticks.sort_unstable();
-    ticks.dedup();
-    ticks
+/// The state at one tick near the end of an accepted step, kept for a later
+/// touch-down's margin: (tick, end of its step (s), the step's dense output there).
+type Kept = (u64, f64, StateVector);
+
+/// Collects the samples of a run.
+pub struct Recorder {
+    /// Contact sample period (s): one tick.
+    tick: f64,
+    /// Ticks between flight samples.
+    stride: u64,
+    /// Time sampled at the contact rate around each event (s).
+    margin: f64,
+    /// The bodies recorded (indices).
+    recorded: Vec<usize>,
+    /// Samples by tick, one per recorded body.
+    samples: BTreeMap<u64, Vec<Sample>>,
+    /// The states at the contact-rate ticks within `margin` before the end of each
+    /// earlier step still within `margin` of the current one, oldest first (none when
+    /// the margin is 0): a few dense outputs per step instead of a copy of the stepper.
+    recent: VecDeque<Kept>,
+    /// Buffers of `recent` no longer needed, and the working state.
+    spare: Vec<StateVector>,
+    /// The ticks a step may sample, reused.
+    ticks: Vec<u64>,
 }
 
-/// Samples every body at the recording grid.
-pub fn sample(
-    model: &Model,
-    layout: &Layout,
-    segments: &[Segment],
-    events: &[ContactEvent],
-    end_time: f64,
-) -> Run {
-    let tick = model.scenario.record.contact_sample_period;
-    let wanted = &model.scenario.record.bodies;
-    let recorded: Vec<usize> = (0..model.bodies.len())
-        .filter(|&b| wanted.is_empty() || wanted.contains(&model.bodies[b].name))
-        .collect();
-    let mut tracks: Vec<BodyTrack> = recorded
-        .iter()
-        .map(|&b| BodyTrack {
-            body: model.bodies[b].name.clone(),
-            samples: Vec::new(),
-        })
-        .collect();
-    let Some(first) = segments.first() else {
-        return Run {
+impl Recorder {
+    /// A recorder for `model`'s `record` settings.
+    pub fn new(model: &Model) -> Self {
+        let record = &model.scenario.record;
+        let wanted = &record.bodies;
+        Recorder {
+            tick: record.contact_sample_period,
+            stride: (record.flight_sample_period / record.contact_sample_period)
+                .round()
+                .max(1.0) as u64,
+            margin: record.contact_margin,
+            recorded: (0..model.bodies.len())
+                .filter(|&b| wanted.is_empty() || wanted.contains(&model.bodies[b].name))
+                .collect(),
+            samples: BTreeMap::new(),
+            recent: VecDeque::new(),
+            spare: Vec::new(),
+            ticks: Vec::new(),
+        }
+    }
+
+    /// Samples the step just taken: the ticks in (start, end], at the contact rate
+    /// where `events` say a contact (or its margin) is, and — for a touch-down found
+    /// in this step — the margin before it, from the recent steps.
+    pub fn record_step(
+        &mut self,
+        system: &RigidSystem<'_>,
+        stepper: &RigidStepper,
+        events: &EventTracker,
+        first: bool,
+    ) {
+        let (start, end) = (stepper.previous_time(), stepper.time());
+        while let Some(kept) = self.recent.pop_front() {
+            if kept.1 >= start - self.margin {
+                self.recent.push_front(kept);
+                break;
+            }
+            self.spare.push(kept.2);
+        }
+        let mut y = self.buffer(stepper);
+        let from = if first {
+            0
+        } else {
+            (start / self.tick).floor() as u64 + 1
+        };
+        let lookback = (start - self.margin).max(0.0);
+        let lookback_from = (lookback / self.tick).ceil() as u64;
+        let mut ticks = std::mem::take(&mut self.ticks);
+        self.candidates(events, (lookback_from.min(from), from), end, &mut ticks);
+        for &k in &ticks {
+            let t = k as f64 * self.tick;
+            let dense = in_window(events, t, self.margin);
+            if self.samples.contains_key(&k) || !(dense || (k >= from && k % self.stride == 0)) {
+                continue;
+            }
+            // This step's own ticks from its dense output; earlier ones (the margin
+            // before a touch-down) from the states kept for it.
+            let state = if t >= start {
+                stepper.dense_output(t, &mut y);
+                Some(&y)
+            } else {
+                self.recent.iter().find(|s| s.0 == k).map(|s| &s.2)
+            };
+            if let Some(state) = state {
+                let samples = sample_at(system, &state.0, t, &self.recorded);
+                self.samples.insert(k, samples);
+            }
+        }
+        self.ticks = ticks;
+        self.spare.push(y);
+        self.keep(stepper);
+    }
+
+    /// A working state of the stepper's length.
+    fn buffer(&mut self, stepper: &RigidStepper) -> StateVector {
+        self.spare.pop().unwrap_or_else(|| stepper.state().clone())
+    }
+
+    /// Keeps the step's states at its contact-rate ticks within `margin` (and one tick)
+    /// before its end, for a touch-down found in a later step; with no margin, none.
+    fn keep(&mut self, stepper: &RigidStepper) {
+        if self.margin <= 0.0 {
+            return;
+        }
+        let (start, end) = (stepper.previous_time(), stepper.time());
+        let first = ((end - self.margin) / self.tick).floor().max(0.0) as u64;
+        for k in first.saturating_sub(1)..=(end / self.tick).floor() as u64 {
+            let t = k as f64 * self.tick;
+            // Flight ticks are sampled already.
+            if t < start || t > end || k % self.stride == 0 {
+                continue;
+            }
+            let mut y = self.buffer(stepper);
+            stepper.dense_output(t, &mut y);
+            self.recent.push_back((k, end, y));
+        }
+    }
+
+    /// Writes into `ticks` those from `low` to `end` (s) that may be sampled, in order:
+    /// the flight ticks from `from` on and the ticks near an event (a superset of
+    /// [`in_window`]'s: the caller decides). Walking every tick of a long flight step
+    /// (1000 per ms at 1 µs) cost more than the rest of the ball's simulation.
+    fn candidates(
+        &self,
+        events: &EventTracker,
+        (low, from): (u64, u64),
+        end: f64,
+        ticks: &mut Vec<u64>,
+    ) {
+        let high = (end / self.tick).floor() as u64;
+        let first_flight = from.div_ceil(self.stride) * self.stride;
+        ticks.clear();
+        ticks.extend((first_flight..=high).step_by(self.stride as usize));
+        let low_time = low as f64 * self.tick;
+        for e in &events.events {
+            let until = e.lift_off.map_or(f64::INFINITY, |off| off + self.margin);
+            if until < low_time || e.touch_down - self.margin > end {
+                continue;
+            }
+            // One tick of slack either side: `in_window` decides.
+            let a = ((e.touch_down - self.margin) / self.tick).floor().max(0.0) as u64;
+            let b = (until / self.tick).ceil().min(high as f64) as u64;
+            ticks.extend(a.saturating_sub(1).max(low)..=(b + 1).min(high));
+        }
+        ticks.sort_unstable();
+        ticks.dedup();
+    }
+
+    /// The run sampled so far (id `"0"`).
+    pub fn finish(self, model: &Model) -> Run {
+        let mut tracks: Vec<BodyTrack> = self
+            .recorded
+            .iter()
+            .map(|&b| BodyTrack {
+                body: model.bodies[b].name.clone(),
+                samples: Vec::new(),
+            })
+            .collect();
+        for samples in self.samples.into_values() {
+            for (track, sample) in tracks.iter_mut().zip(samples) {
+                track.samples.push(sample);
+            }
+        }
+        Run {
             id: "0".into(),
             bodies: tracks,
-        };
-    };
-    let mut y: StateVector = first.stepper.state().clone();
-    let mut index = 0;
-    for t in sample_ticks(model, events, end_time)
-        .into_iter()
-        .map(|k| k as f64 * tick)
-    {
-        // Segments are contiguous and in time order; a sample on a boundary takes
-        // the later segment (the modes after the event).
-        while index + 1 < segments.len() && segments[index].end <= t {
-            index += 1;
         }
-        let segment = &segments[index];
-        segment.stepper.dense_output(t, &mut y);
-        let system = ContactSystem::new(model, layout, segment.modes.clone());
-        let loads = system.loads(y.components());
-        for (&b, track) in recorded.iter().zip(tracks.iter_mut()) {
-            let (position, velocity) = layout.motion(model, y.components(), b);
-            track.samples.push(Sample {
+    }
+}
+
+/// Whether `t` (s) lies in an event or within `margin` (s) of one.
+fn in_window(events: &EventTracker, t: f64, margin: f64) -> bool {
+    events
+        .events
+        .iter()
+        .any(|e| e.touch_down - margin <= t && e.lift_off.is_none_or(|off| t <= off + margin))
+}
+
+/// Every recorded body at time `t` (s), in state `y`.
+fn sample_at(system: &RigidSystem<'_>, y: &[f64], t: f64, recorded: &[usize]) -> Vec<Sample> {
+    let mut loads: Vec<(Vector3<f64>, Vector3<f64>)> = Vec::new();
+    system.body_loads(y, &mut loads);
+    recorded
+        .iter()
+        .map(|&b| {
+            let pose = system.layout.pose(system.model, y, b);
+            let q = pose.orientation.quaternion();
+            Sample {
                 time: t,
-                position: position.into(),
-                velocity: velocity.into(),
-                force: loads.force[b].into(),
-                torque: loads.torque[b].into(),
-                ..Sample::at_rest(t)
-            });
-        }
-    }
-    Run {
-        id: "0".into(),
-        bodies: tracks,
-    }
+                position: pose.position.into(),
+                orientation: [q.w, q.i, q.j, q.k],
+                velocity: pose.velocity.into(),
+                angular_velocity: pose.angular_velocity.into(),
+                force: loads[b].0.into(),
+                torque: loads[b].1.into(),
+            }
+        })
+        .collect()
 }

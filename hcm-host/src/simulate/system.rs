@@ -1,214 +1,279 @@
-//! The equations of motion of a scenario as an ODE: Newton for every moving body
-//! under gravity and contact forces (Eq 17 and Eq 21 are special cases), plus the
-//! impulse and work of each contact.
+//! The equations of motion of a scenario as an ODE: Newton–Euler for every moving
+//! body (Eq 22, [`hcm_core::rigid`]; Eq 17 and Eq 21 are special cases) under gravity,
+//! air drag and the contact wrenches, each contact a manifold of points evaluated by
+//! the contact's core model (normal law + effects + STEP friction at every point, Eq 1
+//! with the arms, plus the residual), and each contact's linear and angular impulse.
 
-use super::state::{Layout, StateVector};
-use crate::scenario::geometry::{pair_kinematics, PairKinematics};
+use super::jacobian::Linearisation;
+use super::layout::{RigidLayout, StateVector};
+use super::memory::PointMemory;
+use crate::residual::{ContactResidual, INPUTS, WRENCH_INPUTS};
+use crate::scenario::geometry::{pair_contacts, Pose};
 use crate::scenario::Model;
-use hcm_core::effect::ContactMemory;
 use hcm_core::integrate::OdeSystem;
 use hcm_core::law::Indentation;
-use hcm_core::model::{ContactPoint, PairLoad};
+use hcm_core::model::{ContactPoint, Manifold, PairLoad, MAX_POINTS};
+use hcm_core::rigid::RigidBody;
 use nalgebra::Vector3;
 
-/// Per-contact discrete state: whether the pair is in contact and the approach
-/// speed latched at touch-down (the δ̇0 of Lankarani–Nikravesh and Flores).
-///
-/// Contact forces act only in contact mode; mode switches happen at located
-/// δ = 0 events, so a solver step never straddles a touch-down or lift-off.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ContactModes {
-    /// In contact, per contact.
-    pub touching: Vec<bool>,
-    /// Approach speed δ̇0 (m/s) of the current (or last) impact, per contact.
-    pub approach_speed: Vec<f64>,
-}
-
-/// A scenario's dynamics in the current contact modes.
-pub struct ContactSystem<'a> {
+/// A scenario's dynamics with the current point histories.
+pub struct RigidSystem<'a> {
     /// The model.
     pub model: &'a Model,
     /// State layout.
-    pub layout: &'a Layout,
-    /// Contact modes in force.
-    pub modes: ContactModes,
-    /// Reused by [`OdeSystem::derivative`], so the solver's hot path does not allocate.
-    scratch: Loads,
+    pub layout: &'a RigidLayout,
+    /// Each contact's point histories.
+    pub memory: Vec<PointMemory>,
+    /// Each body's mass properties (fixed bodies: unused).
+    bodies: Vec<RigidBody<f64>>,
+    /// Force and torque on each body (N, N·m), reused per evaluation.
+    scratch: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// The Jacobian and factored W of the linearly implicit steps.
+    pub(super) linear: Linearisation,
 }
 
-/// Forces and torques (N, N·m) on every body, and each contact's normal force (N).
-#[derive(Clone, Debug, Default)]
-pub struct Loads {
-    /// Force on each body (N).
-    pub force: Vec<Vector3<f64>>,
-    /// Torque on each body about its reference point (N·m).
-    pub torque: Vec<Vector3<f64>>,
-    /// Normal force f_n of each contact (N), 0 when apart.
-    pub normal_force: Vec<f64>,
-    /// Kinematics of each contact.
-    pub kinematics: Vec<PairKinematics>,
+/// A contact's touching points with their feature ids and the two bodies' poses.
+pub struct PairManifold {
+    /// The points, as the contact model reads them.
+    pub points: Manifold<f64>,
+    /// Each point's feature id (see [`hcm_core::geometry::ContactGeometry`]).
+    pub features: heapless::Vec<u32, MAX_POINTS>,
+    /// Body 1's pose.
+    pub pose_1: Pose,
+    /// Body 2's pose.
+    pub pose_2: Pose,
 }
 
-impl ContactSystem<'_> {
-    /// Kinematics of contact `c` in state `y`.
-    #[inline]
-    pub fn kinematics(&self, y: &[f64], c: usize) -> PairKinematics {
-        let contact = &self.model.contacts[c];
-        let motion = |b| self.layout.motion(self.model, y, b);
-        pair_kinematics(
-            self.model,
-            contact,
-            motion(contact.body_1),
-            motion(contact.body_2),
-        )
-    }
+/// One contact's loads at one instant and the body whose motion it reports.
+#[derive(Clone, Copy, Debug)]
+pub struct ContactLoad {
+    /// The loads on both bodies (torques about their centres of mass).
+    pub load: PairLoad<f64>,
+    /// Contact points touching.
+    pub points: usize,
+    /// The force (N) and torque (N·m, about its centre of mass) on the contact's
+    /// moving body: body 1, or body 2 when body 1 is fixed.
+    pub on_mover: (Vector3<f64>, Vector3<f64>),
+    /// The power the contact takes from the two bodies (W): −(**F**1·**v**1 +
+    /// **T**1·**ω**1 + **F**2·**v**2 + **T**2·**ω**2), f_n·δ̇ for one point without friction.
+    pub dissipation: f64,
+}
 
-    /// A system for `model` in the given contact `modes`.
-    pub fn new<'m>(model: &'m Model, layout: &'m Layout, modes: ContactModes) -> ContactSystem<'m> {
-        ContactSystem {
+impl RigidSystem<'_> {
+    /// The system of `model` with no contact history.
+    pub fn new<'m>(model: &'m Model, layout: &'m RigidLayout) -> RigidSystem<'m> {
+        let bodies = model
+            .bodies
+            .iter()
+            .map(|b| RigidBody::new(b.mass, b.inertia, model.gravity))
+            .collect();
+        RigidSystem {
             model,
             layout,
-            modes,
-            scratch: Loads::default(),
+            memory: vec![PointMemory::default(); model.contacts.len()],
+            bodies,
+            scratch: Vec::new(),
+            linear: Linearisation::default(),
         }
     }
 
-    /// Contact loads in state `y` under the current modes.
-    pub fn loads(&self, y: &[f64]) -> Loads {
-        let mut loads = Loads::default();
-        self.fill_loads(y, &mut loads);
-        loads
+    /// The manifold of contact `c` in state `y`: every touching point with its
+    /// indentation, history, normal, position and slip velocity.
+    pub fn manifold(&self, y: &[f64], c: usize) -> PairManifold {
+        let (pose_1, pose_2) = self.poses(y, c);
+        let mut pair = PairManifold {
+            points: Manifold::new(),
+            features: heapless::Vec::new(),
+            pose_1,
+            pose_2,
+        };
+        self.each_point(c, &pose_1, &pose_2, |point, feature| {
+            // Both hold at most MAX_POINTS: the pushes cannot fail.
+            let _ = pair.points.push(point);
+            let _ = pair.features.push(feature);
+        });
+        pair
     }
 
-    /// [`ContactSystem::loads`] into existing buffers.
-    fn fill_loads(&self, y: &[f64], loads: &mut Loads) {
-        let (n_bodies, n_contacts) = (self.model.bodies.len(), self.model.contacts.len());
-        loads.force.clear();
-        loads.force.resize(n_bodies, Vector3::zeros());
-        loads.torque.clear();
-        loads.torque.resize(n_bodies, Vector3::zeros());
-        loads.normal_force.clear();
-        loads.normal_force.resize(n_contacts, 0.0);
-        loads.kinematics.clear();
-        for (c, contact) in self.model.contacts.iter().enumerate() {
-            let k = self.kinematics(y, c);
-            loads.kinematics.push(k);
-            if !self.modes.touching[c] {
-                continue;
+    /// The poses of contact `c`'s two bodies in state `y`.
+    fn poses(&self, y: &[f64], c: usize) -> (Pose, Pose) {
+        let contact = &self.model.contacts[c];
+        let pose = |b| self.layout.pose(self.model, y, b);
+        (pose(contact.body_1), pose(contact.body_2))
+    }
+
+    /// Hands `each` every touching point of contact `c` with its bodies at `pose_1`,
+    /// `pose_2`, and its feature id (a callback: the solver's hot path then moves no
+    /// manifold).
+    fn each_point(
+        &self,
+        c: usize,
+        pose_1: &Pose,
+        pose_2: &Pose,
+        mut each: impl FnMut(ContactPoint<f64>, u32),
+    ) {
+        let contact = &self.model.contacts[c];
+        for g in pair_contacts(self.model, contact, pose_1, pose_2) {
+            let relative_velocity =
+                pose_1.point_velocity(&g.point) - pose_2.point_velocity(&g.point);
+            let rate = -relative_velocity.dot(&g.normal);
+            let (approach_speed, memory) = self.memory[c].recall(g.feature, g.depth, rate);
+            let point = ContactPoint {
+                indentation: Indentation {
+                    depth: g.depth,
+                    rate,
+                    approach_speed,
+                },
+                memory,
+                normal: g.normal,
+                position: g.point,
+                relative_velocity,
+                relative_angular_velocity: pose_1.angular_velocity - pose_2.angular_velocity,
+            };
+            each(point, g.feature);
+        }
+    }
+
+    /// The loads of contact `c` in state `y` (zero when apart).
+    pub fn contact_load(&self, y: &[f64], c: usize) -> ContactLoad {
+        let contact = &self.model.contacts[c];
+        let (pose_1, pose_2) = self.poses(y, c);
+        let mut points = Manifold::new();
+        self.each_point(c, &pose_1, &pose_2, |point, _| {
+            let _ = points.push(point);
+        });
+        // The residual's input (Eq 12): the moving body's 13 state components.
+        let mover = if self.model.bodies[contact.body_1].fixed {
+            contact.body_2
+        } else {
+            contact.body_1
+        };
+        let mut input = [f64::NAN; WRENCH_INPUTS];
+        // The 1D force residual reads [δ (m), δ̇ (m/s), δ̇0 (m/s)] of the first point;
+        // without a residual the input is not read.
+        let inputs = match (&contact.model.residual, points.first()) {
+            (None, _) => 0,
+            (Some(ContactResidual::Force(_)), Some(p)) => {
+                let i = p.indentation;
+                input[..INPUTS].copy_from_slice(&[i.depth, i.rate, i.approach_speed]);
+                INPUTS
             }
-            let load = self.contact_load(y, c, &k);
-            loads.normal_force[c] = load.normal_force;
-            let w = load.wrench;
-            loads.force[contact.body_1] += w.force_1;
-            loads.torque[contact.body_1] += w.torque_1;
-            loads.force[contact.body_2] += w.force_2;
-            loads.torque[contact.body_2] += w.torque_2;
+            _ => {
+                if let Some(state) = self.layout.rigid_state(y, mover) {
+                    input = state.components;
+                }
+                WRENCH_INPUTS
+            }
+        };
+        let load = contact.model.pair_load(
+            &points,
+            &pose_1.position,
+            &pose_2.position,
+            &input[..inputs],
+        );
+        let w = &load.wrench;
+        let on_mover = if mover == contact.body_1 {
+            (w.force_1, w.torque_1)
+        } else {
+            (w.force_2, w.torque_2)
+        };
+        let power = |f: &Vector3<f64>, t: &Vector3<f64>, pose: &Pose| {
+            f.dot(&pose.velocity) + t.dot(&pose.angular_velocity)
+        };
+        ContactLoad {
+            load,
+            points: points.len(),
+            on_mover,
+            dissipation: -(power(&w.force_1, &w.torque_1, &pose_1)
+                + power(&w.force_2, &w.torque_2, &pose_2)),
         }
     }
 
-    /// The loads of contact `c` (kinematics `k`) in state `y`, in contact mode:
-    /// evaluated by the contact's core model (law + effects + residual, Eq 1) at its
-    /// one point.
-    pub fn contact_load(&self, y: &[f64], c: usize, k: &PairKinematics) -> PairLoad<f64> {
-        let contact = &self.model.contacts[c];
-        let (point, input) = self.contact_point(y, c, k);
-        let origin = |b| self.layout.motion(self.model, y, b).0;
-        contact.model.pair_load(
-            &[point],
-            &origin(contact.body_1),
-            &origin(contact.body_2),
-            &input,
-        )
-    }
-
-    /// The normal force f_n (N) of contact `c` in state `y`, in contact mode: the
-    /// same model as [`ContactSystem::contact_load`] without the point's geometry and
-    /// the wrench (the peak search evaluates it often).
-    pub fn contact_normal_force(&self, y: &[f64], c: usize, k: &PairKinematics) -> f64 {
-        let (indentation, memory) = self.indentation(y, c, k);
-        let input = [k.depth, k.rate, indentation.approach_speed];
-        let model = &self.model.contacts[c].model;
-        model.normal_force(&indentation, &memory, &input).0
-    }
-
-    /// Contact `c`'s one point and the residual's input [δ (m), δ̇ (m/s), δ̇0 (m/s)].
-    fn contact_point(
-        &self,
-        y: &[f64],
-        c: usize,
-        k: &PairKinematics,
-    ) -> (ContactPoint<f64>, [f64; 3]) {
-        let (indentation, memory) = self.indentation(y, c, k);
-        let point = ContactPoint {
-            indentation,
-            memory,
-            normal: k.normal,
-            position: k.point,
-            relative_velocity: self.relative_velocity(y, c),
-            // Bodies of a 1D scenario do not rotate.
-            relative_angular_velocity: Vector3::zeros(),
+    /// Kinetic energy ½·m·v² + ½·ω·I·ω (J) of body `b` in state `y`; 0 for a fixed body.
+    pub fn kinetic_energy(&self, y: &[f64], b: usize) -> f64 {
+        let Some(state) = self.layout.rigid_state(y, b) else {
+            return 0.0;
         };
-        (point, [k.depth, k.rate, indentation.approach_speed])
-    }
-
-    /// Velocity of contact `c`'s body 1 relative to its body 2 (m/s): what friction
-    /// reads as slip. Bodies do not rotate yet, so it is the same at every point; read
-    /// only when the contact has friction (it costs two body lookups per evaluation).
-    fn relative_velocity(&self, y: &[f64], c: usize) -> Vector3<f64> {
-        let contact = &self.model.contacts[c];
-        if contact.model.friction.is_none() {
-            return Vector3::zeros();
+        if self.turns(b) {
+            self.bodies[b].kinetic_energy(&state)
+        } else {
+            0.5 * self.bodies[b].mass() * state.velocity().norm_squared()
         }
-        let velocity = |b| self.layout.motion(self.model, y, b).1;
-        velocity(contact.body_1) - velocity(contact.body_2)
     }
 
-    /// Contact `c`'s (δ, δ̇, δ̇0) and δ_max in state `y`.
-    #[inline]
-    fn indentation(
+    /// Whether body `b` may turn: every body but a moving plane given no inertia tensor
+    /// (a 1D scenario's plate, held from turning as in Eq 21).
+    fn turns(&self, b: usize) -> bool {
+        !self.model.bodies[b].inertia[(0, 0)].is_nan()
+    }
+
+    /// Latches the point histories at the accepted state `y` (see [`PointMemory`]).
+    pub fn latch(&mut self, y: &[f64]) {
+        for c in 0..self.model.contacts.len() {
+            let (pose_1, pose_2) = self.poses(y, c);
+            let mut touching = heapless::Vec::<_, { MAX_POINTS }>::new();
+            self.each_point(c, &pose_1, &pose_2, |p, feature| {
+                let _ = touching.push((feature, p.indentation.depth, p.indentation.rate));
+            });
+            self.memory[c].latch(touching.into_iter());
+        }
+    }
+
+    /// Contact force and torque (N, N·m) on every body in state `y`.
+    pub fn body_loads(&self, y: &[f64], out: &mut Vec<(Vector3<f64>, Vector3<f64>)>) {
+        self.sum_loads(y, out, |_, _| {});
+    }
+
+    /// Sums every contact's wrench in state `y` into `out`, one (force, torque) per
+    /// body, and hands each contact's load to `each` (the derivative's impulse rates).
+    fn sum_loads(
         &self,
         y: &[f64],
-        c: usize,
-        k: &PairKinematics,
-    ) -> (Indentation<f64>, ContactMemory<f64>) {
-        let indentation = Indentation {
-            depth: k.depth,
-            rate: k.rate,
-            approach_speed: self.modes.approach_speed[c],
-        };
-        let memory = ContactMemory {
-            max_depth: y[self.layout.deepest_index(c)].max(k.depth),
-        };
-        (indentation, memory)
+        out: &mut Vec<(Vector3<f64>, Vector3<f64>)>,
+        mut each: impl FnMut(usize, &ContactLoad),
+    ) {
+        out.clear();
+        out.resize(
+            self.model.bodies.len(),
+            (Vector3::zeros(), Vector3::zeros()),
+        );
+        for (c, contact) in self.model.contacts.iter().enumerate() {
+            let load = self.contact_load(y, c);
+            let w = &load.load.wrench;
+            out[contact.body_1].0 += w.force_1;
+            out[contact.body_1].1 += w.torque_1;
+            out[contact.body_2].0 += w.force_2;
+            out[contact.body_2].1 += w.torque_2;
+            each(c, &load);
+        }
     }
 }
 
-impl OdeSystem<f64, StateVector> for ContactSystem<'_> {
+impl OdeSystem<f64, StateVector> for RigidSystem<'_> {
     fn derivative(&mut self, _time: f64, state: &StateVector, derivative: &mut StateVector) {
         let (y, dy) = (&state.0, &mut derivative.0);
         let mut loads = std::mem::take(&mut self.scratch);
-        self.fill_loads(y, &mut loads);
+        let layout = self.layout;
+        self.sum_loads(y, &mut loads, |c, load| {
+            let i = layout.impulse_index(c);
+            dy[i..i + 3].copy_from_slice(load.on_mover.0.as_slice());
+            dy[i + 3..i + 6].copy_from_slice(load.on_mover.1.as_slice());
+        });
         for (b, body) in self.model.bodies.iter().enumerate() {
-            if let Some(s) = self.layout.slot(b) {
-                let mut acceleration = self.model.gravity + loads.force[b] / body.mass;
-                if let Some(drag) = &body.air_drag {
-                    let velocity = Vector3::new(y[s + 3], y[s + 4], y[s + 5]);
-                    acceleration += drag.force(&velocity) / body.mass;
-                }
-                dy[s..s + 3].copy_from_slice(&y[s + 3..s + 6]);
-                dy[s + 3..s + 6].copy_from_slice(acceleration.as_slice());
+            let (Some(s), Some(rigid)) = (self.layout.slot(b), self.layout.rigid_state(y, b))
+            else {
+                continue;
+            };
+            let (mut force, torque) = loads[b];
+            if let Some(drag) = &body.air_drag {
+                force += drag.force(&rigid.velocity());
             }
-        }
-        for (c, k) in loads.kinematics.iter().enumerate() {
-            let i = self.layout.impulse_index(c);
-            dy[i] = loads.normal_force[c];
-            dy[i + 1] = loads.normal_force[c] * k.rate;
-            // δ_max follows δ while it grows at its maximum (a relative slack of 1e-9
-            // absorbs the rounding between the two integrals), and holds otherwise.
-            let deepest = y[self.layout.deepest_index(c)];
-            let growing =
-                self.modes.touching[c] && k.rate > 0.0 && k.depth >= deepest - 1e-9 * deepest.abs();
-            dy[self.layout.deepest_index(c)] = if growing { k.rate } else { 0.0 };
+            let mut out = rigid;
+            self.bodies[b].derivative(&rigid, &force, &torque, &mut out);
+            if !self.turns(b) {
+                out.components[10..13].fill(0.0);
+            }
+            dy[s..s + 13].copy_from_slice(&out.components);
         }
         self.scratch = loads;
     }

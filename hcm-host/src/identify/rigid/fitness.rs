@@ -17,7 +17,7 @@ pub fn replay(model: &Model, c: usize) -> Option<Vec<(f64, WrenchIndicators)>> {
     let simulation = simulate(model).ok()?;
     Some(
         simulation
-            .pair_events
+            .events
             .iter()
             .filter(|e| e.contact == c)
             .filter_map(|e| Some((e.touch_down, e.indicators()?)))

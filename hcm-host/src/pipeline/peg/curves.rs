@@ -107,7 +107,7 @@ pub fn replay_curve(
         return WrenchCurve::default();
     };
     let first = simulation
-        .pair_events
+        .events
         .iter()
         .filter(|e| e.contact == c)
         .map(|e| e.touch_down)

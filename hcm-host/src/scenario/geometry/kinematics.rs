@@ -1,6 +1,7 @@
 //! Where a contact pair touches: indentation, its rate, normal and contact point,
-//! from the two bodies' positions and velocities. Used both by the simulator and
-//! to read indentation back from measured data.
+//! from the two bodies' positions and velocities, for a pair touching on its line of
+//! centres. Used to read indentation back from measured data and by the scenario's
+//! checks.
 
 use crate::scenario::{Contact, Model, Shape};
 use hcm_core::geometry::{sphere_plane, sphere_sphere};
@@ -33,7 +34,7 @@ impl PairKinematics {
 
 /// Kinematics of `contact` with body 1 at (p1, v1) and body 2 at (p2, v2) (m, m/s):
 /// a sphere against a plane or a sphere, which never turn in the 1D examples. Pairs
-/// with a box are the rigid-body simulator's ([`super::rigid`]); here they are NaN.
+/// with a box touch at a manifold of points ([`super::pair_contacts`]); here they are NaN.
 #[inline]
 pub fn pair_kinematics(
     model: &Model,
@@ -49,7 +50,7 @@ pub fn pair_kinematics(
             sphere_plane::contact(&p1, radius, &(p2 + normal * offset), &normal)
         }
         Shape::Sphere { radius: radius_2 } => sphere_sphere::contact(&p1, radius, &p2, radius_2),
-        // Pairs with corners turn with the bodies: the rigid-body simulator's manifold.
+        // Pairs with corners turn with the bodies: their manifold, not one point.
         Shape::Box { .. } | Shape::Compound { .. } => return PairKinematics::undefined(),
     };
     PairKinematics {

@@ -1,5 +1,6 @@
 //! Where a body pair touches, from the two bodies' poses: the manifold of up to
-//! eight contact points (the core's generators) and the pair's signed separation.
+//! eight contact points (the core's generators), the pair's signed separation and, for
+//! a pair touching on its line of centres, its indentation rate.
 
 use super::Pose;
 use crate::scenario::{Contact, Model, Part, Shape};
@@ -116,4 +117,21 @@ pub fn pair_separation(model: &Model, contact: &Contact, pose_1: &Pose, pose_2: 
         (Placed::Box(b), Placed::Compound(parts)) => compound::separation(b, parts),
         _ => f64::NAN,
     }
+}
+
+/// The indentation rate δ̇ (m/s, > 0 approaching) of a pair that touches on its line of
+/// centres — a sphere against a plane or a sphere — at its bodies' poses: minus the
+/// velocity of body 1's contact point relative to body 2's along the normal (the closest
+/// points' when apart). NaN for a pair with a box, whose points come and go.
+pub fn pair_rate(model: &Model, contact: &Contact, pose_1: &Pose, pose_2: &Pose) -> f64 {
+    let one = place(&model.bodies[contact.body_1].shape, pose_1);
+    let two = place(&model.bodies[contact.body_2].shape, pose_2);
+    let g = match (&one, &two) {
+        (Placed::Sphere(c, r), Placed::Plane(p, n)) => sphere_plane::contact(c, *r, p, n),
+        (Placed::Sphere(c1, r1), Placed::Sphere(c2, r2)) => {
+            sphere_sphere::contact(c1, *r1, c2, *r2)
+        }
+        _ => return f64::NAN,
+    };
+    -(pose_1.point_velocity(&g.point) - pose_2.point_velocity(&g.point)).dot(&g.normal)
 }

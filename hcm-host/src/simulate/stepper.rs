@@ -10,8 +10,8 @@
 //! step. The switch happens between steps, from the current point, so the run stays
 //! deterministic and each step's dense output is its own method's.
 
+use super::layout::StateVector;
 use super::system::RigidSystem;
-use crate::simulate::StateVector;
 use hcm_core::integrate::{DenseOutput, Dopri5, IntegrationError, Rodas4, Settings};
 
 /// One of the two steppers, with the counts of the ones it replaced.

@@ -1,11 +1,13 @@
 //! Contact events of body pairs: touch-down and lift-off located where the pair's
-//! signed separation crosses zero, and each event's indicators.
+//! signed separation crosses zero, and each event's indicators — the 3D set (peak force
+//! and torque, linear and angular impulse, duration) and, for a pair touching on its
+//! line of centres (the 1D examples), the paper's four.
 
+use super::layout::StateVector;
 use super::stepper::RigidStepper;
 use super::system::RigidSystem;
-use crate::indicators::WrenchIndicators;
-use crate::scenario::geometry::pair_separation;
-use crate::simulate::StateVector;
+use crate::indicators::{Indicators, WrenchIndicators};
+use crate::scenario::geometry::{pair_rate, pair_separation};
 use hcm_core::integrate::{locate_crossing, DenseOutput};
 use nalgebra::Vector3;
 
@@ -14,20 +16,24 @@ const EVENT_TOLERANCE: f64 = 1e-13;
 /// Points inside each solver step (besides its end) at which a contact's force and
 /// torque are evaluated for their maxima: the peaks are read off a grid of a quarter
 /// step, an error of ~(h/8)²·|F''|/2 — 3e-5 relative for a contact resolved by 50
-/// steps.
+/// steps (the shipped ball, ~100 steps: 1e-6).
 const PEAK_SUBSTEPS: usize = 3;
+/// Boole's rule on the step's start and the peak grid (weights × 90/h): the contact's
+/// work per step, exact for a power polynomial of degree 5 in time.
+const BOOLE: [f64; PEAK_SUBSTEPS + 2] = [7.0, 32.0, 12.0, 32.0, 7.0];
 
 /// One contact event of a body pair: from the first point's touch-down to the last
 /// point's lift-off.
 #[derive(Clone, Debug, PartialEq)]
-pub struct PairEvent {
+pub struct ContactEvent {
     /// Index of the contact in the model.
     pub contact: usize,
     /// Touch-down time (s): the separation's zero crossing.
     pub touch_down: f64,
     /// Lift-off time (s); `None` if the run ended in contact.
     pub lift_off: Option<f64>,
-    /// Largest ‖**F**‖ on the moving body (N).
+    /// Largest ‖**F**‖ on the moving body (N): the maximum normal force of a
+    /// frictionless pair touching on its line of centres.
     pub max_force: f64,
     /// Largest ‖**T**‖ on the moving body about its centre of mass (N·m).
     pub max_torque: f64,
@@ -37,9 +43,23 @@ pub struct PairEvent {
     pub angular_impulse: Vector3<f64>,
     /// Most points touching at once.
     pub max_points: usize,
+    /// Indentation rate at touch-down, δ̇_in (m/s), of a pair touching on its line of
+    /// centres (a sphere against a plane or a sphere); NaN for a pair with a box.
+    pub approach_speed: f64,
+    /// −δ̇ at lift-off, δ̇_out (m/s); NaN while open and for a pair with a box.
+    pub separation_speed: f64,
+    /// Work the contact took from the bodies (J), ∫f_n·δ̇ dt for one point without
+    /// friction: the energy it dissipated. Boole's rule on each solver step.
+    pub work: f64,
+    /// Kinetic energy of the pair's moving bodies at touch-down (J).
+    pub kinetic_energy_in: f64,
+    /// Kinetic energy of the pair's moving bodies at lift-off (J); NaN while open.
+    pub kinetic_energy_out: f64,
+    /// Effective mass m_e of the pair (kg).
+    pub effective_mass: f64,
 }
 
-impl PairEvent {
+impl ContactEvent {
     /// The event's indicators; `None` while it has not ended.
     pub fn indicators(&self) -> Option<WrenchIndicators> {
         let lift_off = self.lift_off?;
@@ -56,24 +76,47 @@ impl PairEvent {
             end - self.touch_down,
         )
     }
+
+    /// The paper's four indicators of a pair touching on its line of centres without
+    /// friction (the 1D examples), read off the normal component: maximum normal force
+    /// (max ‖**F**‖), normal impulse (‖∫**F** dt‖, the impulse lying along the fixed
+    /// normal), energy loss ½·m_e·(δ̇_in² − δ̇_out²) and duration. `None` if the contact
+    /// never ended or the pair has a box.
+    pub fn normal_indicators(&self) -> Option<Indicators> {
+        let lift_off = self.lift_off?;
+        if self.approach_speed.is_nan() {
+            return None;
+        }
+        Some(Indicators {
+            max_force: self.max_force,
+            impulse: self.linear_impulse.norm(),
+            energy_loss: 0.5
+                * self.effective_mass
+                * (self.approach_speed.powi(2) - self.separation_speed.powi(2)),
+            duration: lift_off - self.touch_down,
+        })
+    }
 }
 
 /// The events found so far and which are open.
 #[derive(Clone, Debug, Default)]
 pub struct EventTracker {
     /// Every event, in order of touch-down.
-    pub events: Vec<PairEvent>,
+    pub events: Vec<ContactEvent>,
     /// Per contact, the index of its open event.
     open: Vec<Option<usize>>,
-    /// Per open event, the impulse integrals (N·s, N·m·s) at its touch-down.
+    /// Per event, the impulse integrals (N·s, N·m·s) at its touch-down.
     start_impulse: Vec<[f64; 6]>,
+    /// Per event, the end (s) of the last step it was tracked in and the contact's
+    /// power there (W): the next step's first Boole point.
+    end_power: Vec<(f64, f64)>,
     /// Lift-offs so far.
     pub lift_offs: usize,
 }
 
 impl EventTracker {
     /// A tracker of `contacts` contacts with the pairs already touching in `y`
-    /// opened at `time` (s).
+    /// opened at `time` (s): overlapping, or touching (separation 0) and approaching.
     pub fn new(system: &RigidSystem<'_>, time: f64, y: &[f64]) -> Self {
         let contacts = system.model.contacts.len();
         let mut tracker = EventTracker {
@@ -81,7 +124,8 @@ impl EventTracker {
             ..EventTracker::default()
         };
         for c in 0..contacts {
-            if separation(system, y, c) < 0.0 {
+            let gap = separation(system, y, c);
+            if gap < 0.0 || (gap == 0.0 && rate(system, y, c) > 0.0) {
                 tracker.touch_down(system, c, time, y);
             }
         }
@@ -128,7 +172,10 @@ impl EventTracker {
         match self.open[c].take() {
             Some(e) => {
                 self.close(system, e, y);
-                self.events[e].lift_off = Some(time);
+                let event = &mut self.events[e];
+                event.lift_off = Some(time);
+                event.separation_speed = -rate(system, y, c);
+                event.kinetic_energy_out = kinetic_energy(system, y, c);
                 self.lift_offs += 1;
             }
             None => self.touch_down(system, c, time, y),
@@ -148,7 +195,8 @@ impl EventTracker {
         let i = system.layout.impulse_index(c);
         self.open[c] = Some(self.events.len());
         self.start_impulse.push(std::array::from_fn(|k| y[i + k]));
-        self.events.push(PairEvent {
+        self.end_power.push((f64::NAN, 0.0));
+        self.events.push(ContactEvent {
             contact: c,
             touch_down: time,
             lift_off: None,
@@ -157,12 +205,19 @@ impl EventTracker {
             linear_impulse: Vector3::zeros(),
             angular_impulse: Vector3::zeros(),
             max_points: 0,
+            approach_speed: rate(system, y, c),
+            separation_speed: f64::NAN,
+            work: 0.0,
+            kinetic_energy_in: kinetic_energy(system, y, c),
+            kinetic_energy_out: f64::NAN,
+            effective_mass: system.model.contacts[c].effective_mass,
         });
     }
 
-    /// Updates the maxima of every event that was open during the last step, on a
-    /// grid of [`PEAK_SUBSTEPS`] inner points and the step's end.
-    pub fn track_peaks(
+    /// Updates every event that was open during the last step: its maxima on a grid
+    /// of [`PEAK_SUBSTEPS`] inner points and the step's end, and its work by Boole's
+    /// rule on that grid and the step's start.
+    pub fn track_step(
         &mut self,
         system: &RigidSystem<'_>,
         stepper: &RigidStepper,
@@ -170,15 +225,29 @@ impl EventTracker {
         step_start: f64,
     ) {
         let end = stepper.time();
-        for event in &mut self.events {
+        let intervals = (PEAK_SUBSTEPS + 1) as f64;
+        for (event, last) in self.events.iter_mut().zip(&mut self.end_power) {
             if event.lift_off.is_some_and(|t| t < step_start) {
                 continue;
             }
             let from = event.touch_down.max(step_start);
             let until = event.lift_off.unwrap_or(end).min(end);
-            for k in 1..=PEAK_SUBSTEPS + 1 {
-                let t = step_start + (end - step_start) * k as f64 / (PEAK_SUBSTEPS + 1) as f64;
+            let mut work = 0.0;
+            for (k, weight) in BOOLE.iter().enumerate() {
+                let t = step_start + (end - step_start) * k as f64 / intervals;
                 if t < from || t > until {
+                    continue;
+                }
+                if k == 0 {
+                    // The last step's end: the same state (renormalised at most), and
+                    // the same force (a latch keeps it continuous); else evaluated.
+                    let power = if last.0 == step_start {
+                        last.1
+                    } else {
+                        let start = &stepper.previous_state().0;
+                        system.contact_load(start, event.contact).dissipation
+                    };
+                    work += weight * power;
                     continue;
                 }
                 stepper.dense_output(t, scratch);
@@ -186,7 +255,12 @@ impl EventTracker {
                 event.max_force = event.max_force.max(load.on_mover.0.norm());
                 event.max_torque = event.max_torque.max(load.on_mover.1.norm());
                 event.max_points = event.max_points.max(load.points);
+                work += weight * load.dissipation;
+                if k == PEAK_SUBSTEPS + 1 {
+                    *last = (end, load.dissipation);
+                }
             }
+            event.work += work * (end - step_start) / 90.0;
         }
     }
 
@@ -202,7 +276,7 @@ impl EventTracker {
 }
 
 /// Contact `c`'s signed separation (m) in state `y`.
-pub fn separation(system: &RigidSystem<'_>, y: &[f64], c: usize) -> f64 {
+fn separation(system: &RigidSystem<'_>, y: &[f64], c: usize) -> f64 {
     let contact = &system.model.contacts[c];
     let pose = |b| system.layout.pose(system.model, y, b);
     pair_separation(
@@ -211,4 +285,22 @@ pub fn separation(system: &RigidSystem<'_>, y: &[f64], c: usize) -> f64 {
         &pose(contact.body_1),
         &pose(contact.body_2),
     )
+}
+
+/// Contact `c`'s indentation rate δ̇ (m/s) in state `y` (see [`pair_rate`]).
+fn rate(system: &RigidSystem<'_>, y: &[f64], c: usize) -> f64 {
+    let contact = &system.model.contacts[c];
+    let pose = |b| system.layout.pose(system.model, y, b);
+    pair_rate(
+        system.model,
+        contact,
+        &pose(contact.body_1),
+        &pose(contact.body_2),
+    )
+}
+
+/// Kinetic energy (J) of contact `c`'s moving bodies in state `y`.
+fn kinetic_energy(system: &RigidSystem<'_>, y: &[f64], c: usize) -> f64 {
+    let contact = &system.model.contacts[c];
+    system.kinetic_energy(y, contact.body_1) + system.kinetic_energy(y, contact.body_2)
 }

@@ -14,8 +14,8 @@
 //! it thrash (13 000 steps). Measured increments u·max(10⁻⁵, |y|) with u from 10⁻²⁴ to
 //! 10⁻²⁰ under the cube root all gave 1 095–1 117 steps; 10⁻²² is their middle.
 
+use super::layout::StateVector;
 use super::system::RigidSystem;
-use crate::simulate::StateVector;
 use hcm_core::integrate::{LinearlyImplicit, OdeSystem};
 use nalgebra::{DMatrix, DVector, DVectorViewMut, Dyn, LU};
 

@@ -1,11 +1,38 @@
-//! Where each rigid body's state and each contact's running integrals sit in the
-//! simulator's state vector, and the pose of a body read back from it.
+//! The simulator's state vector: where each rigid body's state and each contact's
+//! running integrals sit in it, and the pose of a body read back from it.
 
 use crate::scenario::geometry::Pose;
 use crate::scenario::Model;
-use crate::simulate::StateVector;
+use hcm_core::integrate::OdeState;
 use hcm_core::rigid::RigidState;
 use nalgebra::Vector3;
+
+/// A heap-backed state for the core's integrator: the host simulates as many
+/// bodies and contacts as the scenario has.
+#[derive(Debug, PartialEq)]
+pub struct StateVector(pub Vec<f64>);
+
+/// By hand for `clone_from`, which the integrator calls in every stage and dense
+/// output: it copies into the existing buffer instead of allocating one (the derived
+/// `clone_from` allocates).
+impl Clone for StateVector {
+    fn clone(&self) -> Self {
+        StateVector(self.0.clone())
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.0.clone_from(&source.0);
+    }
+}
+
+impl OdeState<f64> for StateVector {
+    fn components(&self) -> &[f64] {
+        &self.0
+    }
+    fn components_mut(&mut self) -> &mut [f64] {
+        &mut self.0
+    }
+}
 
 /// Components of one moving body: p (3), q (4), v (3), ω in the body frame (3), as
 /// [`RigidState`] orders them.
@@ -29,7 +56,17 @@ pub struct RigidLayout {
 impl RigidLayout {
     /// The layout of `model`: its moving bodies in file order, then its contacts.
     pub fn new(model: &Model) -> RigidLayout {
-        let (body_slot, next) = crate::simulate::state::body_slots(model, BODY_LEN);
+        let mut next = 0;
+        let body_slot = model
+            .bodies
+            .iter()
+            .map(|b| {
+                (!b.fixed).then(|| {
+                    next += BODY_LEN;
+                    next - BODY_LEN
+                })
+            })
+            .collect();
         RigidLayout {
             body_slot,
             contact_base: next,
@@ -72,12 +109,16 @@ impl RigidLayout {
     /// put it.
     pub fn pose(&self, model: &Model, y: &[f64], body: usize) -> Pose {
         match self.rigid_state(y, body) {
-            Some(state) => Pose {
-                position: state.position(),
-                orientation: state.orientation(),
-                velocity: state.velocity(),
-                angular_velocity: state.world_angular_velocity(),
-            },
+            Some(state) => {
+                // `world_angular_velocity` would normalise q a second time.
+                let orientation = state.orientation();
+                Pose {
+                    position: state.position(),
+                    orientation,
+                    velocity: state.velocity(),
+                    angular_velocity: orientation * state.body_angular_velocity(),
+                }
+            }
             None => {
                 let b = &model.bodies[body];
                 Pose {
