@@ -78,7 +78,7 @@ pub struct Body {
 }
 
 /// A contact pair of the model: body 1 a sphere or a box, body 2 a sphere, plane, box
-/// or compound (see [`Model::is_rigid`] for which pairs need the 3D simulator).
+/// or compound (see [`Model::is_rigid`] for which pairs make a scenario 3D).
 #[derive(Clone, Debug)]
 pub struct Contact {
     /// Index of body 1 in [`Model::bodies`].

@@ -1,4 +1,4 @@
-//! The 3D system's Jacobian for the linearly implicit steps taken where the run is
+//! The system's Jacobian for the linearly implicit steps taken where the run is
 //! stiff ([`hcm_core::integrate::Rodas4`]): ∂f/∂y by central differences over the
 //! moving bodies' components, W = d·I − J factored by LU with partial pivoting.
 //!

@@ -1,4 +1,4 @@
-//! The 3D simulator's integrator: explicit Dormand–Prince ([`Dopri5`]) where its steps
+//! The simulator's integrator: explicit Dormand–Prince ([`Dopri5`]) where its steps
 //! are set by accuracy, the linearly implicit RODAS ([`Rodas4`]) where they would be
 //! set by stability.
 //!
