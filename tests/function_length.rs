@@ -3,24 +3,12 @@
 //! signature to its closing brace, blank lines and comment lines excluded; unit-test
 //! modules (`#[cfg(test)]`, `tests.rs`) are not counted.
 
+use hcm_tests::sources::rust_sources;
 use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The longest a function may be (lines of code).
 const MAX_LINES: usize = 80;
-
-/// Every `.rs` file under `dir` but test files.
-fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        if path.is_dir() && name != "tests" {
-            sources(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") && name != "tests.rs" {
-            out.push(path);
-        }
-    }
-}
 
 /// Whether `line` opens a function item: `fn name`, after any visibility and
 /// qualifiers, at the start of the line.
@@ -90,9 +78,7 @@ fn functions(source: &str) -> Vec<(String, usize, usize)> {
 #[test]
 fn no_function_of_hcm_host_is_longer_than_the_limit() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("hcm-host/src");
-    let mut files = Vec::new();
-    sources(&src, &mut files);
-    files.sort();
+    let files = rust_sources(&src);
     let mut long = Vec::new();
     for file in &files {
         for (name, line, code) in functions(&fs::read_to_string(file).unwrap()) {

@@ -2,6 +2,7 @@
 //! it (the map in `hcm-host/src/lib.rs`). These tests read the sources and fail on an
 //! import that goes up or sideways into a cycle, naming the file that makes it.
 
+use hcm_tests::sources::rust_sources;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -39,19 +40,6 @@ fn top_level_modules() -> BTreeSet<String> {
         }
     }
     modules
-}
-
-/// Every `.rs` file under `dir`, test files (`tests.rs`, `tests/`) excluded.
-fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        if path.is_dir() && name != "tests" {
-            sources(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") && name != "tests.rs" {
-            out.push(path);
-        }
-    }
 }
 
 /// `source` without comments and without `#[cfg(test)]` items (a unit-test module
@@ -193,9 +181,7 @@ fn root_references(code: &str, path: &[String]) -> BTreeSet<String> {
 fn imports() -> BTreeMap<String, BTreeMap<String, PathBuf>> {
     let src = host_src();
     let modules = top_level_modules();
-    let mut files = Vec::new();
-    sources(&src, &mut files);
-    files.sort();
+    let files = rust_sources(&src);
     let mut graph: BTreeMap<String, BTreeMap<String, PathBuf>> = BTreeMap::new();
     for file in files {
         let path = module_path(&src, &file);

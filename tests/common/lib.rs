@@ -10,6 +10,7 @@ pub mod hidden;
 pub mod reference;
 pub mod rig;
 pub mod rigid_reference;
+pub mod sources;
 
 use std::path::{Path, PathBuf};
 
