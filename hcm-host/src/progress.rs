@@ -78,6 +78,20 @@ pub trait Progress: Sync {
     }
 }
 
+/// Runs `work` as `stage` of `steps` steps: [`Progress::begin`] before it and
+/// [`Progress::end`] after it, whatever it returns (an error included).
+pub fn in_stage<T>(
+    progress: &dyn Progress,
+    stage: Stage,
+    steps: u64,
+    work: impl FnOnce() -> T,
+) -> T {
+    progress.begin(stage, steps);
+    let result = work();
+    progress.end(stage);
+    result
+}
+
 /// Progress nobody watches.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Silent;

@@ -5,7 +5,7 @@
 
 use super::{conditions, noisy_model, noisy_run, run_id, run_rng, ExperimentError};
 use crate::dataset::Run;
-use crate::progress::{Progress, Stage};
+use crate::progress::{in_stage, Progress, Stage};
 use crate::scenario::{Model, Scenario};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -103,25 +103,25 @@ impl Generation {
     ) -> Result<(), E> {
         let chunk = self.chunk.max(1);
         let steps = self.total as u64;
-        progress.begin(Stage::Generate, steps);
-        // Runs finish on worker threads in any order: count them here.
-        let done = AtomicU64::new(0);
-        for start in (0..self.total).step_by(chunk) {
-            let end = self.total.min(start + chunk);
-            let runs: Vec<Result<Run, ExperimentError>> = (start..end)
-                .into_par_iter()
-                .map(|index| {
-                    let run = self.run(index);
-                    progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1, steps);
-                    run
-                })
-                .collect();
-            for (index, run) in (start..end).zip(runs) {
-                each(index, run?)?;
+        in_stage(progress, Stage::Generate, steps, || {
+            // Runs finish on worker threads in any order: count them here.
+            let done = AtomicU64::new(0);
+            for start in (0..self.total).step_by(chunk) {
+                let end = self.total.min(start + chunk);
+                let runs: Vec<Result<Run, ExperimentError>> = (start..end)
+                    .into_par_iter()
+                    .map(|index| {
+                        let run = self.run(index);
+                        progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1, steps);
+                        run
+                    })
+                    .collect();
+                for (index, run) in (start..end).zip(runs) {
+                    each(index, run?)?;
+                }
             }
-        }
-        progress.end(Stage::Generate);
-        Ok(())
+            Ok(())
+        })
     }
 }
 

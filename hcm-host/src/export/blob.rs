@@ -4,6 +4,7 @@
 
 use super::{encode, round_trip_error, ExportError};
 use crate::residual::ContactResidual;
+use crate::scenario::Model;
 use crate::train::TrainedResidual;
 use hcm_core::residual::Quantisation;
 
@@ -28,6 +29,19 @@ pub struct Blobs {
     pub f32: Blob,
     /// The int8 twin's.
     pub int8: Blob,
+}
+
+impl Blobs {
+    /// The two HCMs: `pm2` with the f32 blob's residual on contact `c`, and with the
+    /// int8 blob's — the models a controller running either blob simulates.
+    pub fn hybrid_models(&self, pm2: &Model, c: usize) -> (Model, Model) {
+        let with = |blob: &Blob| {
+            let mut hcm = pm2.clone();
+            hcm.contacts[c].model.residual = Some(blob.residual.clone());
+            hcm
+        };
+        (with(&self.f32), with(&self.int8))
+    }
 }
 
 /// The blob of `trained` in `quantisation` storage (the f32 network, or the int8

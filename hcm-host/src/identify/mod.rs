@@ -14,7 +14,7 @@ pub use physics::{FitRecord, Physics};
 
 use crate::dataset::Dataset;
 use crate::indicators::IndicatorError;
-use crate::progress::{Progress, Stage};
+use crate::progress::{in_stage, Progress, Stage};
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
 use bounds::Bounds;
 use hcm_core::law::AnyNormalLaw;
@@ -117,30 +117,10 @@ pub fn force_rms(law: &AnyNormalLaw<f64>, samples: &[ForceSample]) -> f64 {
     (sum / samples.len().max(1) as f64).sqrt()
 }
 
-/// Identifies `law_name` for contact `c` of `scenario` from `data`, reporting
-/// [`Stage::Identify`] to `progress`: one step for least squares, the generations of
-/// the genetic algorithm (with the best fitness so far as its status).
+/// Identifies `law_name` for contact `c` of `scenario` from `data`, reporting the fit
+/// as [`Stage::Identify`] to `progress`: one step for least squares, the generations
+/// of the genetic algorithm (with the best fitness so far as its status).
 pub fn identify(
-    scenario: &Scenario,
-    model: &Model,
-    data: &Dataset,
-    c: usize,
-    law_name: &str,
-    method: Method,
-    progress: &dyn Progress,
-) -> Result<Identification, IdentifyError> {
-    let steps = match &method {
-        Method::Lsq => 1,
-        Method::Ga(_, settings) => settings.generations as u64,
-    };
-    progress.begin(Stage::Identify, steps);
-    let identification = identify_law(scenario, model, data, c, law_name, method, progress);
-    progress.end(Stage::Identify);
-    identification
-}
-
-/// [`identify`] between its progress stage's begin and end.
-fn identify_law(
     scenario: &Scenario,
     model: &Model,
     data: &Dataset,
@@ -156,35 +136,38 @@ fn identify_law(
     let data = completed.data.as_ref();
     let (samples, events) = samples::force_samples(model, data, c)?;
     let targets = replay::targets(model, data, c)?;
-    let (law, notes, standard_errors, label) = match method {
-        Method::Lsq => {
-            let fit = separable::fit(&template, &samples, &bounds)?;
-            (fit.law, fit.notes, fit.standard_errors, "lsq".to_owned())
-        }
-        Method::Ga(fitness, settings) => {
-            let generations = settings.generations as u64;
-            let observer = |done: usize, best: f64| {
-                progress.advance(done as u64, generations);
-                progress.status(&format!("best {best:.4e}"));
-            };
-            let outcome = evolve::fit(
-                &template, &bounds, &targets, c, fitness, &settings, observer,
-            )?;
-            let note = format!(
-                "GA: {} generations, {} fitness evaluations, best {} fitness {:.6e} before the Levenberg–Marquardt polish",
-                outcome.generations,
-                outcome.evaluations,
-                fitness.name(),
-                outcome.ga_fitness
-            );
-            (
-                outcome.law,
-                vec![note],
-                Vec::new(),
-                format!("ga ({})", fitness.name()),
-            )
-        }
+    let steps = match &method {
+        Method::Lsq => 1,
+        Method::Ga(_, settings) => settings.generations as u64,
     };
+    let fitted: Result<_, IdentifyError> = in_stage(progress, Stage::Identify, steps, || {
+        match method {
+            Method::Lsq => {
+                let fit = separable::fit(&template, &samples, &bounds)?;
+                Ok((fit.law, fit.notes, fit.standard_errors, "lsq".to_owned()))
+            }
+            Method::Ga(fitness, settings) => {
+                let generations = settings.generations as u64;
+                let observer = |done: usize, best: f64| {
+                    progress.advance(done as u64, generations);
+                    progress.status(&format!("best {best:.4e}"));
+                };
+                let outcome = evolve::fit(
+                    &template, &bounds, &targets, c, fitness, &settings, observer,
+                )?;
+                let note = format!(
+                    "GA: {} generations, {} fitness evaluations, best {} fitness {:.6e} before the Levenberg–Marquardt polish",
+                    outcome.generations,
+                    outcome.evaluations,
+                    fitness.name(),
+                    outcome.ga_fitness
+                );
+                let label = format!("ga ({})", fitness.name());
+                Ok((outcome.law, vec![note], Vec::new(), label))
+            }
+        }
+    });
+    let (law, notes, standard_errors, label) = fitted?;
     let seconds = started.elapsed().as_secs_f64();
     let fit = FitRecord {
         method: label,

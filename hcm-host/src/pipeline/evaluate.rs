@@ -4,9 +4,10 @@
 use super::{PipelineError, Progress, Stage, CONTACT};
 use crate::dataset::Dataset;
 use crate::evaluate::{evaluate, ConditionTable};
-use crate::export::{Blob, Blobs};
+use crate::export::Blobs;
 use crate::figure::{Band, Colour, Figure, NamedFigure, Series};
 use crate::identify::replay::{curve, simulate_target_with, targets, Target};
+use crate::progress::in_stage;
 use crate::scenario::Model;
 
 /// The column labels of the models compared, in the table's order.
@@ -28,25 +29,20 @@ pub fn evaluate_on_s2(
     validation: &Dataset,
     progress: &dyn Progress,
 ) -> Result<Evaluation, PipelineError> {
-    progress.begin(Stage::Evaluate, 1);
-    let with_residual = |blob: &Blob| {
-        let mut hcm = pm2.clone();
-        hcm.contacts[CONTACT].model.residual = Some(blob.residual.clone());
-        hcm
-    };
-    let (hcm, hcm_int8) = (with_residual(&blobs.f32), with_residual(&blobs.int8));
-    let columns = [(MODELS[0], pm2), (MODELS[1], &hcm), (MODELS[2], &hcm_int8)];
-    let table = evaluate(&columns, validation, CONTACT)?
-        .into_iter()
-        .next()
-        .ok_or(PipelineError::NoValidation)?;
-    let target = targets(pm2, validation, CONTACT)?
-        .into_iter()
-        .next()
-        .ok_or(PipelineError::NoValidation)?;
-    let figures = figures(&target, pm2, &hcm, validation);
-    progress.end(Stage::Evaluate);
-    Ok(Evaluation { table, figures })
+    in_stage(progress, Stage::Evaluate, 1, || {
+        let (hcm, hcm_int8) = blobs.hybrid_models(pm2, CONTACT);
+        let columns = [(MODELS[0], pm2), (MODELS[1], &hcm), (MODELS[2], &hcm_int8)];
+        let table = evaluate(&columns, validation, CONTACT)?
+            .into_iter()
+            .next()
+            .ok_or(PipelineError::NoValidation)?;
+        let target = targets(pm2, validation, CONTACT)?
+            .into_iter()
+            .next()
+            .ok_or(PipelineError::NoValidation)?;
+        let figures = figures(&target, pm2, &hcm, validation);
+        Ok(Evaluation { table, figures })
+    })
 }
 
 /// The S2 mean force curve of `target` beside PM2's and the HCM's replays of it (with a

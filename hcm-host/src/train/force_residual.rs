@@ -3,14 +3,15 @@
 //! at the data's force samples inside the contact), the shipped architecture
 //! ([`HIDDEN`] × [`WIDTH`]) trained on them, and its quantisation-aware int8 twin.
 
+use super::reported::{int8_twin_in_stage, train_in_stage};
 use super::{
-    quantisation_aware, residual_pairs, train, Network, QuantiseReport, TrainError, TrainReport,
-    TrainSettings, TrainedResidual,
+    residual_pairs, Network, QuantiseReport, TrainError, TrainReport, TrainSettings,
+    TrainedResidual,
 };
 use crate::dataset::Dataset;
 use crate::identify::samples::force_samples;
 use crate::identify::IdentifyError;
-use crate::progress::{Progress, Stage};
+use crate::progress::Progress;
 use crate::residual::{HIDDEN, WIDTH};
 use crate::scenario::Model;
 
@@ -52,6 +53,8 @@ pub enum ResidualError {
 /// The shipped architecture trained on contact `c`'s measured − `pm2` force in `data`,
 /// reporting [`Stage::Train`] to `progress` (the validation RMS, N, as its status).
 /// Returns the network, its training and the training rows' inputs.
+///
+/// [`Stage::Train`]: crate::progress::Stage::Train
 pub fn train_force_network(
     pm2: &Model,
     data: &Dataset,
@@ -69,19 +72,14 @@ pub fn train_force_network(
         seed,
         ..TrainSettings::default()
     };
-    let steps = settings.max_epochs as u64;
-    progress.begin(Stage::Train, steps);
-    let trained = train(&inputs, &targets, &settings, |epoch, _, validation| {
-        progress.advance(epoch as u64, steps);
-        progress.status(&format!("val RMS {:.2} N", validation.sqrt()));
-    });
-    progress.end(Stage::Train);
-    let (network, report) = trained?;
+    let (network, report) = train_in_stage(&inputs, &targets, &settings, "N", progress)?;
     Ok((network, report, inputs))
 }
 
 /// [`train_force_network`], then its int8 twin fine-tuned over the same inputs
 /// ([`Stage::Int8Twin`], the RMS against the f32 network, N, as its status).
+///
+/// [`Stage::Int8Twin`]: crate::progress::Stage::Int8Twin
 pub fn train_force_residual(
     pm2: &Model,
     data: &Dataset,
@@ -91,20 +89,14 @@ pub fn train_force_residual(
 ) -> Result<Trained, ResidualError> {
     let (network, report, inputs) =
         train_force_network(pm2, data, c, settings.epochs, settings.seed, progress)?;
-    let steps = settings.int8_epochs as u64;
-    progress.begin(Stage::Int8Twin, steps);
-    let tuned = quantisation_aware(
+    let (int8, tuned) = int8_twin_in_stage(
         &network,
         &inputs,
         settings.int8_epochs,
         settings.seed,
-        |epoch, rms| {
-            progress.advance(epoch as u64, steps);
-            progress.status(&format!("RMS to f32 {rms:.3} N"));
-        },
-    );
-    progress.end(Stage::Int8Twin);
-    let (int8, tuned) = tuned?;
+        "N",
+        progress,
+    )?;
     Ok(Trained {
         residual: TrainedResidual::new(c, network, int8),
         samples: inputs.len(),

@@ -31,6 +31,7 @@ mod int8;
 pub mod network;
 pub mod per_output;
 pub mod quantise;
+mod reported;
 pub mod samples;
 pub mod trained;
 pub mod wrench_residual;

@@ -15,15 +15,19 @@
 //! alone.
 
 use super::explained::{explained_variance, silence_outputs, EXPLAINED_MIN};
+use super::reported::{int8_twin_in_stage, train_in_stage};
 use super::wrench_samples::WrenchSampleError;
 use super::{
-    quantisation_aware, train, wrench_pairs, wrench_settings, OutputNets, QuantiseReport,
-    ResidualSettings, TrainError, TrainReport, TrainSettings, TrainedResidual, WrenchPairs,
+    wrench_pairs, wrench_settings, OutputNets, QuantiseReport, ResidualSettings, TrainError,
+    TrainReport, TrainSettings, TrainedResidual, WrenchPairs,
 };
 use crate::dataset::Dataset;
 use crate::indicators::{pair_events_from_run, IndicatorError};
-use crate::progress::{Progress, Stage};
+use crate::progress::Progress;
 use crate::scenario::Model;
+
+/// The units of the wrench's outputs, force and torque, as a status names them.
+const WRENCH_UNITS: &str = "N, N·m";
 
 /// The trained wrench residual.
 pub struct WrenchTrained {
@@ -60,6 +64,9 @@ pub enum WrenchResidualError {
 /// of [`wrench_settings`] trained for at most `settings.epochs` epochs, then its int8
 /// twin for `settings.int8_epochs`, both seeded with `settings.seed`. Reports
 /// [`Stage::Train`] and [`Stage::Int8Twin`] to `progress`.
+///
+/// [`Stage::Train`]: crate::progress::Stage::Train
+/// [`Stage::Int8Twin`]: crate::progress::Stage::Int8Twin
 pub fn train_wrench_residual(
     pm2: &Model,
     training: &Dataset,
@@ -73,32 +80,26 @@ pub fn train_wrench_residual(
         max_epochs: settings.epochs,
         ..wrench_settings(OutputNets::Joint, settings.seed)
     };
-    let epochs = train_settings.max_epochs as u64;
-    progress.begin(Stage::Train, epochs);
-    let trained = train(
+    let (network, report) = train_in_stage(
         &pairs.inputs,
         &pairs.targets,
         &train_settings,
-        |epoch, _, _| progress.advance(epoch as u64, epochs),
-    );
-    progress.end(Stage::Train);
-    let (network, report) = trained?;
+        WRENCH_UNITS,
+        progress,
+    )?;
     let explained = explained_variance(&network, &pairs.inputs, &pairs.targets);
     let silenced: Vec<usize> = (0..explained.len())
         .filter(|&k| explained[k] < EXPLAINED_MIN)
         .collect();
     let network = silence_outputs(&network, &silenced);
-    let twin_epochs = settings.int8_epochs as u64;
-    progress.begin(Stage::Int8Twin, twin_epochs);
-    let twin = quantisation_aware(
+    let (int8, tuned) = int8_twin_in_stage(
         &network,
         &pairs.inputs,
         settings.int8_epochs,
         settings.seed,
-        |e, _| progress.advance(e as u64, twin_epochs),
-    );
-    progress.end(Stage::Int8Twin);
-    let (int8, tuned) = twin?;
+        WRENCH_UNITS,
+        progress,
+    )?;
     Ok(WrenchTrained {
         residual: TrainedResidual::new(c, network, int8),
         rows: pairs.inputs.len(),

@@ -29,7 +29,7 @@ pub use paired::Paired;
 
 use crate::dataset::Dataset;
 use crate::identify::motion::{split_tosses, MotionParameters};
-use crate::progress::{Progress, Stage as ProgressStage};
+use crate::progress::{in_stage, Progress, Stage as ProgressStage};
 use crate::scenario::Model;
 use crate::toss::{TossError, TossSetup};
 use fit::{Fitted, Part, Subject};
@@ -326,13 +326,12 @@ pub fn diagnose_motion_split(
     held_out: Dataset,
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
-    progress.begin(ProgressStage::Diagnose, 0);
-    let diagnosis = search(model, training, held_out, progress);
-    progress.end(ProgressStage::Diagnose);
-    diagnosis
+    in_stage(progress, ProgressStage::Diagnose, 0, || {
+        search(model, training, held_out, progress)
+    })
 }
 
-/// [`diagnose_motion_split`] between its progress stage's begin and end.
+/// The rounds of [`diagnose_motion_split`].
 fn search(
     model: &Model,
     training: Dataset,

@@ -20,7 +20,7 @@ pub use split::{part_of, split_tosses, Part};
 
 use crate::numerics::optimize::genetic::{minimize, GeneticError, GeneticSettings};
 use crate::numerics::optimize::{nelder_mead, Parameters};
-use crate::progress::{Fold, Progress, Stage};
+use crate::progress::{in_stage, Fold, Progress, Stage};
 use crate::scenario::Model;
 use std::time::Instant;
 
@@ -69,26 +69,28 @@ pub fn identify_motion(
             progress.status(&format!("best {best:.3}"));
         }
     };
-    progress.begin(Stage::MotionGenetic(fold), settings.generations as u64);
-    let genetic = minimize(&bounds, settings, score, observer(settings.generations));
-    progress.end(Stage::MotionGenetic(fold));
-    let genetic = genetic?;
+    let generations = settings.generations;
+    let genetic = in_stage(
+        progress,
+        Stage::MotionGenetic(fold),
+        generations as u64,
+        || minimize(&bounds, settings, score, observer(generations)),
+    )?;
     // A short search may end above the scenario's own parameters: polish the better.
     let (from, from_fitness) = if start_fitness < genetic.fitness {
         (&start, start_fitness)
     } else {
         (&genetic.best, genetic.fitness)
     };
-    progress.begin(Stage::MotionPolish(fold), polish_budget as u64);
-    let polished = nelder_mead::polish(
-        &bounds,
-        from,
-        from_fitness,
-        polish_budget,
-        score,
-        observer(polish_budget),
+    let polished = in_stage(
+        progress,
+        Stage::MotionPolish(fold),
+        polish_budget as u64,
+        || {
+            let observer = observer(polish_budget);
+            nelder_mead::polish(&bounds, from, from_fitness, polish_budget, score, observer)
+        },
     );
-    progress.end(Stage::MotionPolish(fold));
     Ok(MotionFit {
         model: parameters.apply(model, &polished.best),
         parameters: parameters.named(&polished.best),

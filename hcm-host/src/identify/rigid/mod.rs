@@ -14,7 +14,7 @@ pub use target::{EventTarget, WrenchTarget};
 use crate::indicators::IndicatorError;
 use crate::numerics::optimize::genetic::{minimize, GeneticError, GeneticSettings};
 use crate::numerics::optimize::Parameters;
-use crate::progress::{Progress, Stage};
+use crate::progress::{in_stage, Progress, Stage};
 use crate::scenario::Model;
 use std::time::Instant;
 
@@ -74,18 +74,17 @@ pub fn identify_rigid(
 ) -> Result<RigidIdentification, RigidIdentifyError> {
     let started = Instant::now();
     let generations = settings.generations as u64;
-    progress.begin(Stage::Identify, generations);
-    let result = minimize(
-        &parameters.bounds(),
-        settings,
-        |genes| fitness(target, &parameters.apply(&target.model, genes)),
-        |done: usize, best: f64| {
-            progress.advance(done as u64, generations);
-            progress.status(&format!("best {best:.4e}"));
-        },
-    );
-    progress.end(Stage::Identify);
-    let result = result?;
+    let result = in_stage(progress, Stage::Identify, generations, || {
+        minimize(
+            &parameters.bounds(),
+            settings,
+            |genes| fitness(target, &parameters.apply(&target.model, genes)),
+            |done: usize, best: f64| {
+                progress.advance(done as u64, generations);
+                progress.status(&format!("best {best:.4e}"));
+            },
+        )
+    })?;
     Ok(RigidIdentification {
         model: parameters.apply(model, &result.best),
         parameters: parameters.named(&result.best),

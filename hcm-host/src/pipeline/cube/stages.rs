@@ -10,6 +10,7 @@ use crate::identify::motion::{
 };
 use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::pipeline::{Fold, Progress, Stage};
+use crate::progress::in_stage;
 use crate::scenario::{Assignment, Model};
 use crate::toss::{evaluate_tosses, TossEvaluation, TossSetup};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -72,11 +73,11 @@ pub(crate) fn second_fold(
     let (fit, _) = self::fit(settings, model, setup, odd, Fold::Second, progress)?;
     let steps = even.runs.len() as u64;
     let done = AtomicU64::new(0);
-    progress.begin(Stage::Predict(Fold::Second), steps);
-    let predicted = evaluate_tosses(&fit.model, even, || {
-        progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1, steps)
+    let predicted = in_stage(progress, Stage::Predict(Fold::Second), steps, || {
+        evaluate_tosses(&fit.model, even, || {
+            progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1, steps)
+        })
     })?;
-    progress.end(Stage::Predict(Fold::Second));
     Ok(SecondFold { fit, predicted })
 }
 
@@ -107,15 +108,14 @@ pub fn predict(
         let now = done.fetch_add(1, Ordering::Relaxed) + 1;
         progress.advance(now, steps);
     };
-    progress.begin(Stage::Predict(Fold::First), steps);
-    let predictions = Predictions {
-        held_out_fitted: evaluate_tosses(fitted, held_out, tick)?,
-        held_out_scenario: evaluate_tosses(scenario, held_out, tick)?,
-        training_fitted: evaluate_tosses(fitted, training, tick)?,
-        training_scenario: evaluate_tosses(scenario, training, tick)?,
-    };
-    progress.end(Stage::Predict(Fold::First));
-    Ok(predictions)
+    in_stage(progress, Stage::Predict(Fold::First), steps, || {
+        Ok(Predictions {
+            held_out_fitted: evaluate_tosses(fitted, held_out, tick)?,
+            held_out_scenario: evaluate_tosses(scenario, held_out, tick)?,
+            training_fitted: evaluate_tosses(fitted, training, tick)?,
+            training_scenario: evaluate_tosses(scenario, training, tick)?,
+        })
+    })
 }
 
 /// The held-out errors over time and per phase, of one model.

@@ -12,12 +12,13 @@ pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS, PAPER};
 
 use super::{Artifact, PipelineError, Progress, Reproduced, Stage, StageClock, StageTiming};
 use crate::experiment::{generate_split, Split};
-use crate::export::{export_blobs, Blob, Blobs};
+use crate::export::{export_blobs, Blobs};
 use crate::identify::rigid::{
     identify_rigid, RigidIdentification, RigidIdentifyError, RigidParameters, WrenchTarget,
 };
 use crate::identify::{FitRecord, Physics};
 use crate::numerics::optimize::genetic::GeneticSettings;
+use crate::progress::in_stage;
 use crate::scenario::{Scenario, ScenarioError};
 use crate::train::{
     train_wrench_residual, wrench_settings, OutputNets, ResidualSettings, WrenchTrained,
@@ -213,24 +214,18 @@ pub fn reproduce_peg(
     })?;
     let blobs = clock.time("export", || export_blobs(&trained.residual))?;
     let evaluation = clock.time("evaluate + figures", || {
-        progress.begin(Stage::Evaluate, 1);
-        let with_residual = |blob: &Blob| {
-            let mut hcm = pm2.model.clone();
-            hcm.contacts[CONTACT].model.residual = Some(blob.residual.clone());
-            hcm
-        };
-        let (hcm, hcm_int8) = (with_residual(&blobs.f32), with_residual(&blobs.int8));
-        // PM1 at its nominal parameters: the true physics of a mean run, the floor of
-        // any deterministic model on an indicator that is not linear in the scatter.
-        let models = [
-            ("PM2", &pm2.model),
-            ("HCM", &hcm),
-            ("HCM int8", &hcm_int8),
-            ("PM1 nominal", &model),
-        ];
-        let evaluation = evaluate_peg(&models, &sets.validation, CONTACT, settings.events);
-        progress.end(Stage::Evaluate);
-        evaluation
+        in_stage(progress, Stage::Evaluate, 1, || {
+            let (hcm, hcm_int8) = blobs.hybrid_models(&pm2.model, CONTACT);
+            // PM1 at its nominal parameters: the true physics of a mean run, the floor of
+            // any deterministic model on an indicator that is not linear in the scatter.
+            let models = [
+                ("PM2", &pm2.model),
+                ("HCM", &hcm),
+                ("HCM int8", &hcm_int8),
+                ("PM1 nominal", &model),
+            ];
+            evaluate_peg(&models, &sets.validation, CONTACT, settings.events)
+        })
     })?;
     let timings = clock.0;
 
