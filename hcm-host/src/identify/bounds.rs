@@ -105,7 +105,7 @@ impl Bounds {
     }
 
     /// The values of the free parameters in `law`, in [`Bounds::free`] order.
-    pub fn values(&self, law: &AnyNormalLaw<f64>) -> Result<Vec<f64>, IdentifyError> {
+    pub fn checked_values(&self, law: &AnyNormalLaw<f64>) -> Result<Vec<f64>, IdentifyError> {
         self.check(law)?;
         let value = |p: &Bound| law.get(&p.name);
         let values = self.parameters.iter().map(value).collect::<Result<_, _>>();
@@ -213,7 +213,7 @@ mod tests {
         )
         .unwrap();
         let bounds = Bounds::for_law("variable_stiffness", None).unwrap();
-        assert_eq!(bounds.values(&law).unwrap(), [2.0, 100.0]);
+        assert_eq!(bounds.checked_values(&law).unwrap(), [2.0, 100.0]);
         let moved = bounds.with(&law, &[3.0, 50.0]);
         let values: Vec<f64> = moved.values().to_vec();
         assert_eq!(values, [3.0, 1e10, 0.01, 50.0, 0.06]);
@@ -221,7 +221,7 @@ mod tests {
             "hertz",
             &[("stiffness".into(), 1e9), ("exponent".into(), 1.5)],
         );
-        assert!(bounds.values(&hertz.unwrap()).is_err());
+        assert!(bounds.checked_values(&hertz.unwrap()).is_err());
     }
 
     #[test]

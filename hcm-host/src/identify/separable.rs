@@ -214,7 +214,7 @@ fn refine(
     mut notes: Vec<String>,
 ) -> Result<LsqFit, IdentifyError> {
     let free = bounds.free();
-    let start = bounds.values(&law)?;
+    let start = bounds.checked_values(&law)?;
     let scales: Vec<f64> = start.iter().map(|v| v.abs().max(1e-12)).collect();
     let box_bounds = bounds.bounds();
     let with = |p: &[f64]| bounds.with(&law, p);

@@ -52,11 +52,6 @@ impl RigidParameters {
             friction: contact.model.friction.is_some(),
         })
     }
-
-    /// Index of the contact the parameters belong to.
-    pub fn contact(&self) -> usize {
-        self.contact
-    }
 }
 
 /// The genes, in order: the law's, then μ_s, μ_d/μ_s, v_s, v_d/v_s.
@@ -75,7 +70,7 @@ impl Parameters for RigidParameters {
     /// μ_d/μ_s, v_s, v_d/v_s; NaN without friction).
     fn values(&self, model: &Model) -> Vec<f64> {
         let contact = &model.contacts[self.contact];
-        let mut values = Parameters::values(&self.law, &contact.model.normal.base);
+        let mut values = self.law.values(&contact.model.normal.base);
         if self.friction {
             let f = contact.model.friction;
             values.extend(f.map_or([f64::NAN; 4], |f| {
