@@ -7,7 +7,8 @@ use super::layout::StateVector;
 use super::stepper::RigidStepper;
 use super::system::RigidSystem;
 use crate::indicators::{Indicators, WrenchIndicators};
-use crate::scenario::geometry::{pair_rate, pair_separation};
+use crate::scenario::geometry::{pair_rate, pair_separation, Pose};
+use crate::scenario::{Contact, Model};
 use hcm_core::integrate::{locate_crossing, DenseOutput};
 use nalgebra::Vector3;
 
@@ -318,21 +319,25 @@ impl EventTracker {
 
 /// Contact `c`'s signed separation (m) in state `y`.
 fn separation(system: &RigidSystem<'_>, y: &[f64], c: usize) -> f64 {
-    let contact = &system.model.contacts[c];
-    let pose = |b| system.layout.pose(system.model, y, b);
-    pair_separation(
-        system.model,
-        contact,
-        &pose(contact.body_1),
-        &pose(contact.body_2),
-    )
+    at_poses(system, y, c, pair_separation)
 }
 
 /// Contact `c`'s indentation rate δ̇ (m/s) in state `y` (see [`pair_rate`]).
 fn rate(system: &RigidSystem<'_>, y: &[f64], c: usize) -> f64 {
+    at_poses(system, y, c, pair_rate)
+}
+
+/// `of` (a pair quantity of the contact geometry) for contact `c` at its two bodies'
+/// poses in state `y`.
+fn at_poses(
+    system: &RigidSystem<'_>,
+    y: &[f64],
+    c: usize,
+    of: impl Fn(&Model, &Contact, &Pose, &Pose) -> f64,
+) -> f64 {
     let contact = &system.model.contacts[c];
     let pose = |b| system.layout.pose(system.model, y, b);
-    pair_rate(
+    of(
         system.model,
         contact,
         &pose(contact.body_1),
