@@ -48,7 +48,6 @@ use crate::export::{export_blobs, Blobs, ExportError};
 use crate::identify::physics::PhysicsError;
 use crate::identify::IdentifyError;
 use crate::scenario::{Scenario, ScenarioError};
-use crate::train::TrainError;
 use std::borrow::Cow;
 
 /// The contact of the paper's examples that PM2 and the residual model: they have one.
@@ -70,18 +69,15 @@ pub enum PipelineError {
     /// Stage 2: the identified law does not fit back into the scenario.
     #[error(transparent)]
     Physics(#[from] PhysicsError),
-    /// Stage 3: the residual network could not be trained.
+    /// Stage 3: the 1D residual's rows or training failed.
     #[error(transparent)]
-    Train(#[from] TrainError),
+    Residual(#[from] crate::train::ResidualError),
+    /// Stage 3: the peg's wrench residual's rows, events or training failed.
+    #[error(transparent)]
+    WrenchResidual(#[from] crate::train::WrenchResidualError),
     /// Stage 4: a network could not be encoded as a blob, or its blob does not decode.
     #[error(transparent)]
     Export(#[from] ExportError),
-    /// The peg's training rows could not be built.
-    #[error(transparent)]
-    WrenchSamples(#[from] crate::train::wrench_samples::WrenchSampleError),
-    /// A run's contact events could not be located.
-    #[error(transparent)]
-    Indicators(#[from] crate::indicators::IndicatorError),
     /// The rigid-body stages (peg-in-hole): PM2 or the S2 comparison failed.
     #[error(transparent)]
     Rigid(#[from] crate::identify::rigid::RigidIdentifyError),
@@ -107,25 +103,6 @@ pub struct Reproduction {
     pub figures: Vec<NamedFigure>,
     /// Every table of the report.
     pub results: ReproduceResults,
-}
-
-impl From<crate::train::WrenchResidualError> for PipelineError {
-    fn from(error: crate::train::WrenchResidualError) -> Self {
-        match error {
-            crate::train::WrenchResidualError::Samples(e) => PipelineError::WrenchSamples(e),
-            crate::train::WrenchResidualError::Events(e) => PipelineError::Indicators(e),
-            crate::train::WrenchResidualError::Train(e) => PipelineError::Train(e),
-        }
-    }
-}
-
-impl From<crate::train::ResidualError> for PipelineError {
-    fn from(error: crate::train::ResidualError) -> Self {
-        match error {
-            crate::train::ResidualError::Samples(e) => PipelineError::Identify(e),
-            crate::train::ResidualError::Train(e) => PipelineError::Train(e),
-        }
-    }
 }
 
 /// The ball's and the flat shot's files: S1 and S2, PM2, the trained network, its
