@@ -13,6 +13,7 @@
 //! book's DOPRI5 code (Section II.6).
 
 use super::interval::{next_interval, step_cap};
+use super::state::copy_states;
 use super::vector::{all_finite, combine, error_norm, increment, is_finite, scaled_rms};
 use super::{IntegrationError, OdeState, OdeSystem};
 use crate::Real;
@@ -160,7 +161,7 @@ impl<T: Real> Settings<T> {
 /// tolerances), dense output 4th order. It is an explicit method: for a stiff system
 /// (a contact spring much stiffer than the tolerance can follow) it takes very small
 /// steps, bounded by [`Settings::min_step`] and [`Settings::max_steps`].
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Dopri5<T: Real, S: OdeState<T>> {
     settings: Settings<T>,
     /// Current time t (s).
@@ -189,6 +190,62 @@ pub struct Dopri5<T: Real, S: OdeState<T>> {
     stiffness: T,
     accepted: u64,
     rejected: u64,
+}
+
+/// By hand for `clone_from`, which copies into the existing states (a recorder
+/// keeps a few steps' copies to sample after the stepper moved on, without
+/// allocating per step); the derived one would allocate every state anew.
+impl<T: Real, S: OdeState<T>> Clone for Dopri5<T, S> {
+    fn clone(&self) -> Self {
+        Dopri5 {
+            settings: self.settings,
+            time: self.time,
+            state: self.state.clone(),
+            previous_time: self.previous_time,
+            previous_state: self.previous_state.clone(),
+            last_step: self.last_step,
+            next_step: self.next_step,
+            stages: self.stages.clone(),
+            stage_state: self.stage_state.clone(),
+            trial: self.trial.clone(),
+            dense: self.dense.clone(),
+            attempt_stiffness: self.attempt_stiffness,
+            stiffness: self.stiffness,
+            accepted: self.accepted,
+            rejected: self.rejected,
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        // Destructured so that a new field cannot be forgotten here.
+        let Dopri5 {
+            settings,
+            time,
+            state,
+            previous_time,
+            previous_state,
+            last_step,
+            next_step,
+            stages,
+            stage_state,
+            trial,
+            dense,
+            attempt_stiffness,
+            stiffness,
+            accepted,
+            rejected,
+        } = source;
+        (self.settings, self.time, self.previous_time) = (*settings, *time, *previous_time);
+        (self.last_step, self.next_step) = (*last_step, *next_step);
+        (self.attempt_stiffness, self.stiffness) = (*attempt_stiffness, *stiffness);
+        (self.accepted, self.rejected) = (*accepted, *rejected);
+        self.state.clone_from(state);
+        self.previous_state.clone_from(previous_state);
+        self.stage_state.clone_from(stage_state);
+        self.trial.clone_from(trial);
+        copy_states(&mut self.stages, stages);
+        copy_states(&mut self.dense, dense);
+    }
 }
 
 impl<T: Real, S: OdeState<T>> Dopri5<T, S> {

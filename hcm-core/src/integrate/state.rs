@@ -34,6 +34,14 @@ impl<T: Real, const N: usize> OdeState<T> for [T; N] {
     }
 }
 
+/// Copies each of `from`'s states into the one at the same place in `into`, reusing
+/// its storage (`clone_from`).
+pub(crate) fn copy_states<T: Real, S: OdeState<T>>(into: &mut [S], from: &[S]) {
+    for (to, from) in into.iter_mut().zip(from) {
+        to.clone_from(from);
+    }
+}
+
 /// An ordinary differential equation y' = f(t, y), with t the time (s).
 pub trait OdeSystem<T: Real, S: OdeState<T>> {
     /// dy/dt at (time, state), written into `derivative` (same length as state).

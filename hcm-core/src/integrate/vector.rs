@@ -14,27 +14,33 @@ pub(super) fn all_finite<T: Real, S: OdeState<T>>(state: &S) -> bool {
     state.components().iter().all(|x| is_finite(*x))
 }
 
-/// Components of `out` ← h·Σ cᵢ·kᵢ.
-pub(super) fn increment<T: Real, S: OdeState<T>>(out: &mut S, h: T, terms: &[(T, &S)]) {
-    for o in out.components_mut() {
-        *o = T::zero();
-    }
+/// Components of `out` ← Σ cᵢ·kᵢ, summed from 0 in the order of `terms`.
+fn weighted_sum<T: Real, S: OdeState<T>>(out: &mut [T], terms: &[(T, &S)]) {
+    out.fill(T::zero());
     for &(c, k) in terms {
-        for (o, k) in out.components_mut().iter_mut().zip(k.components()) {
+        for (o, k) in out.iter_mut().zip(k.components()) {
             *o += c * *k;
         }
     }
-    for o in out.components_mut() {
+}
+
+/// Components of `out` ← h·Σ cᵢ·kᵢ.
+pub(super) fn increment<T: Real, S: OdeState<T>>(out: &mut S, h: T, terms: &[(T, &S)]) {
+    let out = out.components_mut();
+    weighted_sum(out, terms);
+    for o in out {
         *o = h * *o;
     }
 }
 
 /// `out` ← `base` + h·Σ cᵢ·kᵢ (the sum is formed first, then added once to `base`).
+/// One pass fewer than copying `base` first: every component is written anyway, and
+/// the steppers' states carry nothing else.
 pub(super) fn combine<T: Real, S: OdeState<T>>(out: &mut S, base: &S, h: T, terms: &[(T, &S)]) {
-    out.clone_from(base);
-    increment(out, h, terms);
-    for (o, b) in out.components_mut().iter_mut().zip(base.components()) {
-        *o = *b + *o;
+    let out = out.components_mut();
+    weighted_sum(out, terms);
+    for (o, b) in out.iter_mut().zip(base.components()) {
+        *o = *b + h * *o;
     }
 }
 

@@ -64,15 +64,23 @@ impl<T: Real> RigidBody<T> {
     ) {
         let omega = state.body_angular_velocity();
         let acceleration = force / self.mass + self.gravity;
+        let velocity = state.velocity();
+        let c = &mut out.components;
+        c[0..3].copy_from_slice(velocity.as_slice());
+        c[7..10].copy_from_slice(acceleration.as_slice());
+        // Not turning and no torque (a sphere on its line of centres, every 1D
+        // example): q̇ and ω̇ are 0, and the rotation's arithmetic can be skipped.
+        let zero = |v: &Vector3<T>| v.iter().all(|x| *x == T::zero());
+        if zero(&omega) && zero(torque) {
+            c[3..7].fill(T::zero());
+            c[10..13].fill(T::zero());
+            return;
+        }
         let spin = state.quaternion() * Quaternion::from_imag(omega) * T::of(0.5);
         let body_torque = state.orientation().inverse_transform_vector(torque);
         let gyroscopic = omega.cross(&(self.inertia * omega));
         let angular_acceleration = self.inverse_inertia * (body_torque - gyroscopic);
-        let velocity = state.velocity();
-        let c = &mut out.components;
-        c[0..3].copy_from_slice(velocity.as_slice());
         c[3..7].copy_from_slice(&[spin.w, spin.i, spin.j, spin.k]);
-        c[7..10].copy_from_slice(acceleration.as_slice());
         c[10..13].copy_from_slice(angular_acceleration.as_slice());
     }
 

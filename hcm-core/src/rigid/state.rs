@@ -47,7 +47,14 @@ impl<T: Real> RigidState<T> {
     /// Orientation (body → world): q/‖q‖. A zero or non-finite q gives NaN, no panic.
     pub fn orientation(&self) -> UnitQuaternion<T> {
         let q = self.quaternion();
-        UnitQuaternion::new_unchecked(q / q.norm())
+        let norm = q.norm();
+        // Dividing by exactly 1 changes nothing: skipped (the common case while a
+        // body does not turn).
+        if norm == T::one() {
+            UnitQuaternion::new_unchecked(q)
+        } else {
+            UnitQuaternion::new_unchecked(q / norm)
+        }
     }
 
     /// Velocity v of the centre of mass (m/s, world).

@@ -96,6 +96,7 @@ impl RigidLayout {
     }
 
     /// The rigid state of moving body `b` in `y`, if it moves.
+    #[inline]
     pub fn rigid_state(&self, y: &[f64], body: usize) -> Option<RigidState<f64>> {
         let s = self.body_slot[body]?;
         let mut state = RigidState {
@@ -107,16 +108,25 @@ impl RigidLayout {
 
     /// Pose and velocities of body `b` in `y`; a fixed body rests where the scenario
     /// put it.
+    #[inline]
     pub fn pose(&self, model: &Model, y: &[f64], body: usize) -> Pose {
         match self.rigid_state(y, body) {
             Some(state) => {
                 // `world_angular_velocity` would normalise q a second time.
                 let orientation = state.orientation();
+                let omega = state.body_angular_velocity();
+                // A body that does not turn (every 1D example) skips the rotation:
+                // it gives +0 exactly for a +0 ω.
+                let angular_velocity = if omega.iter().all(|w| w.to_bits() == 0) {
+                    omega
+                } else {
+                    orientation * omega
+                };
                 Pose {
                     position: state.position(),
                     orientation,
                     velocity: state.velocity(),
-                    angular_velocity: orientation * state.body_angular_velocity(),
+                    angular_velocity,
                 }
             }
             None => {

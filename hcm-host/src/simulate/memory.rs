@@ -11,6 +11,7 @@
 //! change of δ̇ over that step.
 
 use hcm_core::effect::ContactMemory;
+use hcm_core::model::MAX_POINTS;
 
 /// One point's history.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,7 +24,7 @@ struct History {
 /// The history of every point of one contact pair.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PointMemory {
-    points: Vec<History>,
+    points: heapless::Vec<History, MAX_POINTS>,
 }
 
 impl PointMemory {
@@ -45,16 +46,16 @@ impl PointMemory {
     /// Keeps the history of the points in `touching` (feature, δ (m), δ̇ (m/s)) —
     /// latching new ones, deepening δ_max — and forgets the points that let go.
     pub fn latch(&mut self, touching: impl Iterator<Item = (u32, f64, f64)>) {
-        let next: Vec<History> = touching
-            .map(|(feature, depth, rate)| {
-                let (approach_speed, memory) = self.recall(feature, depth, rate);
-                History {
-                    feature,
-                    approach_speed,
-                    max_depth: memory.max_depth,
-                }
-            })
-            .collect();
+        let mut next = heapless::Vec::new();
+        for (feature, depth, rate) in touching {
+            let (approach_speed, memory) = self.recall(feature, depth, rate);
+            // A manifold has at most MAX_POINTS points: the push cannot fail.
+            let _ = next.push(History {
+                feature,
+                approach_speed,
+                max_depth: memory.max_depth,
+            });
+        }
         self.points = next;
     }
 }

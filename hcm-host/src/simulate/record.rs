@@ -12,10 +12,6 @@ use hcm_core::integrate::DenseOutput;
 use nalgebra::Vector3;
 use std::collections::{BTreeMap, VecDeque};
 
-/// The state at one tick near the end of an accepted step, kept for a later
-/// touch-down's margin: (tick, end of its step (s), the step's dense output there).
-type Kept = (u64, f64, StateVector);
-
 /// Collects the samples of a run.
 pub struct Recorder {
     /// Contact sample period (s): one tick.
@@ -28,12 +24,17 @@ pub struct Recorder {
     recorded: Vec<usize>,
     /// Samples by tick, one per recorded body.
     samples: BTreeMap<u64, Vec<Sample>>,
-    /// The states at the contact-rate ticks within `margin` before the end of each
-    /// earlier step still within `margin` of the current one, oldest first (none when
-    /// the margin is 0): a few dense outputs per step instead of a copy of the stepper.
-    recent: VecDeque<Kept>,
-    /// Buffers of `recent` no longer needed, and the working state.
-    spare: Vec<StateVector>,
+    /// Copies of the earlier steps that end within `margin` of the current one's
+    /// start, oldest first (none when the margin is 0), for the margin before a
+    /// touch-down found later: a copy costs less than the dense outputs at every tick
+    /// that might be wanted.
+    recent: VecDeque<RigidStepper>,
+    /// Copies of `recent` no longer needed, reused.
+    spare: Vec<RigidStepper>,
+    /// The working state.
+    working: Option<StateVector>,
+    /// The loads on every body at a sample, reused.
+    loads: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// The ticks a step may sample, reused.
     ticks: Vec<u64>,
 }
@@ -55,6 +56,8 @@ impl Recorder {
             samples: BTreeMap::new(),
             recent: VecDeque::new(),
             spare: Vec::new(),
+            working: None,
+            loads: Vec::new(),
             ticks: Vec::new(),
         }
     }
@@ -70,14 +73,17 @@ impl Recorder {
         first: bool,
     ) {
         let (start, end) = (stepper.previous_time(), stepper.time());
-        while let Some(kept) = self.recent.pop_front() {
-            if kept.1 >= start - self.margin {
-                self.recent.push_front(kept);
-                break;
-            }
-            self.spare.push(kept.2);
+        while self
+            .recent
+            .front()
+            .is_some_and(|kept| kept.time() < start - self.margin)
+        {
+            self.spare.extend(self.recent.pop_front());
         }
-        let mut y = self.buffer(stepper);
+        let mut y = self
+            .working
+            .take()
+            .unwrap_or_else(|| stepper.state().clone());
         let from = if first {
             0
         } else {
@@ -94,46 +100,39 @@ impl Recorder {
                 continue;
             }
             // This step's own ticks from its dense output; earlier ones (the margin
-            // before a touch-down) from the states kept for it.
-            let state = if t >= start {
-                stepper.dense_output(t, &mut y);
-                Some(&y)
+            // before a touch-down) from the oldest kept step that covers them.
+            let covering = if t >= start {
+                Some(stepper)
             } else {
-                self.recent.iter().find(|s| s.0 == k).map(|s| &s.2)
+                self.recent
+                    .iter()
+                    .find(|s| s.previous_time() <= t && t <= s.time())
             };
-            if let Some(state) = state {
-                let samples = sample_at(system, &state.0, t, &self.recorded);
+            if let Some(step) = covering {
+                step.dense_output(t, &mut y);
+                let samples = sample_at(system, &y.0, t, &self.recorded, &mut self.loads);
                 self.samples.insert(k, samples);
             }
         }
         self.ticks = ticks;
-        self.spare.push(y);
+        self.working = Some(y);
         self.keep(stepper);
     }
 
-    /// A working state of the stepper's length.
-    fn buffer(&mut self, stepper: &RigidStepper) -> StateVector {
-        self.spare.pop().unwrap_or_else(|| stepper.state().clone())
-    }
-
-    /// Keeps the step's states at its contact-rate ticks within `margin` (and one tick)
-    /// before its end, for a touch-down found in a later step; with no margin, none.
+    /// Keeps a copy of the step just taken for a touch-down found in a later step;
+    /// with no margin, none.
     fn keep(&mut self, stepper: &RigidStepper) {
         if self.margin <= 0.0 {
             return;
         }
-        let (start, end) = (stepper.previous_time(), stepper.time());
-        let first = ((end - self.margin) / self.tick).floor().max(0.0) as u64;
-        for k in first.saturating_sub(1)..=(end / self.tick).floor() as u64 {
-            let t = k as f64 * self.tick;
-            // Flight ticks are sampled already.
-            if t < start || t > end || k % self.stride == 0 {
-                continue;
+        let copy = match self.spare.pop() {
+            Some(mut copy) => {
+                copy.clone_from(stepper);
+                copy
             }
-            let mut y = self.buffer(stepper);
-            stepper.dense_output(t, &mut y);
-            self.recent.push_back((k, end, y));
-        }
+            None => stepper.clone(),
+        };
+        self.recent.push_back(copy);
     }
 
     /// Writes into `ticks` those from `low` to `end` (s) that may be sampled, in order:
@@ -196,10 +195,15 @@ fn in_window(events: &EventTracker, t: f64, margin: f64) -> bool {
         .any(|e| e.touch_down - margin <= t && e.lift_off.is_none_or(|off| t <= off + margin))
 }
 
-/// Every recorded body at time `t` (s), in state `y`.
-fn sample_at(system: &RigidSystem<'_>, y: &[f64], t: f64, recorded: &[usize]) -> Vec<Sample> {
-    let mut loads: Vec<(Vector3<f64>, Vector3<f64>)> = Vec::new();
-    system.body_loads(y, &mut loads);
+/// Every recorded body at time `t` (s), in state `y`; `loads` is working space.
+fn sample_at(
+    system: &RigidSystem<'_>,
+    y: &[f64],
+    t: f64,
+    recorded: &[usize],
+    loads: &mut Vec<(Vector3<f64>, Vector3<f64>)>,
+) -> Vec<Sample> {
+    system.body_loads(y, loads);
     recorded
         .iter()
         .map(|&b| {

@@ -15,7 +15,7 @@ use super::system::RigidSystem;
 use hcm_core::integrate::{DenseOutput, Dopri5, IntegrationError, Rodas4, Settings};
 
 /// One of the two steppers, with the counts of the ones it replaced.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct RigidStepper {
     method: Method,
     settings: Settings<f64>,
@@ -41,6 +41,30 @@ const NONSTIFF_EDGE: f64 = 2.0;
 enum Method {
     Explicit(Dopri5<f64, StateVector>),
     Implicit(Rodas4<f64, StateVector>),
+}
+
+/// By hand for `clone_from`, which reuses the copy's states when both run the same
+/// method (the recorder keeps copies of the last few steps).
+impl Clone for RigidStepper {
+    fn clone(&self) -> Self {
+        RigidStepper {
+            method: self.method.clone(),
+            settings: self.settings,
+            earlier: self.earlier,
+            stiff_steps: self.stiff_steps,
+            stiff: self.stiff,
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        match (&mut self.method, &source.method) {
+            (Method::Explicit(to), Method::Explicit(from)) => to.clone_from(from),
+            (Method::Implicit(to), Method::Implicit(from)) => to.clone_from(from),
+            (to, from) => *to = from.clone(),
+        }
+        (self.settings, self.earlier) = (source.settings, source.earlier);
+        (self.stiff_steps, self.stiff) = (source.stiff_steps, source.stiff);
+    }
 }
 
 impl RigidStepper {

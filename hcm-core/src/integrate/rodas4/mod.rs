@@ -20,6 +20,7 @@ mod tests;
 
 use super::dopri5::Settings;
 use super::interval::{next_interval, step_cap};
+use super::state::copy_states;
 use super::vector::{all_finite, error_norm, is_finite};
 use super::{DenseOutput, IntegrationError, LinearlyImplicit, OdeState};
 use crate::Real;
@@ -38,7 +39,7 @@ const FALLBACK_STEP: f64 = 1e-6;
 /// `until`, [`DenseOutput`] covers the step just taken, nothing is allocated, nothing
 /// panics. Six evaluations of f, one Jacobian and one factorisation of W per
 /// accepted step (a rejected step refactors W only).
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Rodas4<T: Real, S: OdeState<T>> {
     settings: Settings<T>,
     time: T,
@@ -68,6 +69,70 @@ pub struct Rodas4<T: Real, S: OdeState<T>> {
     last_accepted: Option<(T, T)>,
     accepted: u64,
     rejected: u64,
+}
+
+/// By hand for `clone_from`, which copies into the existing states (see
+/// [`Dopri5`](super::Dopri5)'s).
+impl<T: Real, S: OdeState<T>> Clone for Rodas4<T, S> {
+    fn clone(&self) -> Self {
+        Rodas4 {
+            settings: self.settings,
+            time: self.time,
+            state: self.state.clone(),
+            rate: self.rate.clone(),
+            previous_time: self.previous_time,
+            previous_state: self.previous_state.clone(),
+            last_step: self.last_step,
+            next_step: self.next_step,
+            jacobian_current: self.jacobian_current,
+            time_rate: self.time_rate.clone(),
+            stages: self.stages.clone(),
+            argument: self.argument.clone(),
+            stage_rate: self.stage_rate.clone(),
+            trial: self.trial.clone(),
+            dense: self.dense.clone(),
+            last_accepted: self.last_accepted,
+            accepted: self.accepted,
+            rejected: self.rejected,
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        // Destructured so that a new field cannot be forgotten here.
+        let Rodas4 {
+            settings,
+            time,
+            state,
+            rate,
+            previous_time,
+            previous_state,
+            last_step,
+            next_step,
+            jacobian_current,
+            time_rate,
+            stages,
+            argument,
+            stage_rate,
+            trial,
+            dense,
+            last_accepted,
+            accepted,
+            rejected,
+        } = source;
+        (self.settings, self.time, self.previous_time) = (*settings, *time, *previous_time);
+        (self.last_step, self.next_step) = (*last_step, *next_step);
+        (self.jacobian_current, self.last_accepted) = (*jacobian_current, *last_accepted);
+        (self.accepted, self.rejected) = (*accepted, *rejected);
+        self.state.clone_from(state);
+        self.rate.clone_from(rate);
+        self.previous_state.clone_from(previous_state);
+        self.time_rate.clone_from(time_rate);
+        self.argument.clone_from(argument);
+        self.stage_rate.clone_from(stage_rate);
+        self.trial.clone_from(trial);
+        copy_states(&mut self.stages, stages);
+        copy_states(&mut self.dense, dense);
+    }
 }
 
 impl<T: Real, S: OdeState<T>> Rodas4<T, S> {

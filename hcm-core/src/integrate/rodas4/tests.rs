@@ -257,3 +257,40 @@ fn nan_and_singular_systems_are_errors_not_panics() {
     );
     assert_eq!(stepper.time(), 0.0);
 }
+
+/// A copy made by `clone_from` into a stepper at another point answers dense output
+/// and steps on exactly as the original does, for both steppers.
+#[test]
+fn a_copy_by_clone_from_is_the_same_stepper() {
+    let mut system = Solver::new(Pendulum);
+    let settings = Settings::new(1e-8, 1e-10);
+    let mut implicit = Rodas4::new(&mut system, 0.0, [1.0, 0.0], settings);
+    let mut explicit = Dopri5::new(&mut system, 0.0, [1.0, 0.0], settings);
+    implicit.step(&mut system, 1.0).unwrap();
+    explicit.step(&mut system, 1.0).unwrap();
+    let mut implicit_copy = Rodas4::new(&mut system, 5.0, [0.3, 0.2], settings);
+    let mut explicit_copy = Dopri5::new(&mut system, 5.0, [0.3, 0.2], settings);
+    implicit_copy.clone_from(&implicit);
+    explicit_copy.clone_from(&explicit);
+    let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
+    for s in [0.0, 0.25, 0.5, 1.0] {
+        let t = implicit.previous_time() + s * (implicit.time() - implicit.previous_time());
+        implicit.dense_output(t, &mut a);
+        implicit_copy.dense_output(t, &mut b);
+        assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "RODAS at {t}");
+        let t = explicit.previous_time() + s * (explicit.time() - explicit.previous_time());
+        explicit.dense_output(t, &mut a);
+        explicit_copy.dense_output(t, &mut b);
+        assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "Dopri5 at {t}");
+    }
+    for _ in 0..3 {
+        implicit.step(&mut system, 2.0).unwrap();
+        implicit_copy.step(&mut system, 2.0).unwrap();
+        explicit.step(&mut system, 2.0).unwrap();
+        explicit_copy.step(&mut system, 2.0).unwrap();
+    }
+    assert_eq!(implicit.state(), implicit_copy.state());
+    assert_eq!(explicit.state(), explicit_copy.state());
+    assert_eq!(implicit.accepted_steps(), implicit_copy.accepted_steps());
+    assert_eq!(explicit.rejected_steps(), explicit_copy.rejected_steps());
+}

@@ -25,6 +25,7 @@ enum Placed {
     Compound(heapless::Vec<Cuboid<f64>, MAX_PARTS>),
 }
 
+#[inline]
 fn place(shape: &Shape, pose: &Pose) -> Placed {
     match shape {
         Shape::Sphere { radius } => Placed::Sphere(pose.position, *radius),
@@ -58,6 +59,7 @@ fn place_part(part: &Part, pose: &Pose) -> Cuboid<f64> {
 /// The contact points of `contact` with its bodies at `pose_1`, `pose_2`: each with
 /// δ > 0 (m), the normal from body 2 to body 1, its point and a feature id stable
 /// while the same features touch.
+#[inline]
 pub fn pair_contacts(
     model: &Model,
     contact: &Contact,
