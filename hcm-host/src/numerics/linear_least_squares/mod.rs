@@ -92,6 +92,10 @@ pub enum LinearLeastSquaresError {
 /// regressors)` fills row i's `columns` regressors (zeroed before the call) and returns
 /// its target. Called once per row, in order. See the module documentation for the
 /// method; [`Reduction`] for several targets, stacked problems or the covariance.
+// Inlined with `Reduction::from_rows`, so that the caller's row closure (a power
+// law's δ^n per row) is compiled into the loop: without, the ball's least-squares
+// identification ran 10 % slower (criterion, `identification`).
+#[inline]
 pub fn linear_least_squares(
     rows: usize,
     columns: usize,

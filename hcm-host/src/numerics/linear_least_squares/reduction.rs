@@ -46,6 +46,7 @@ impl Reduction {
     /// `fill(i, regressors, targets)` writes row i's regressors and targets (both
     /// zeroed before the call). Called once per row, in order. Zero rows give an empty
     /// reduction (to stack with others); solving needs at least `columns` rows.
+    #[inline]
     pub(crate) fn from_rows(
         rows: usize,
         columns: usize,
