@@ -409,6 +409,35 @@ fn numeric_options_say_what_they_take() {
     );
 }
 
+#[test]
+fn a_reproduce_option_the_example_does_not_read_is_refused() {
+    let hcm = Hcm::new();
+    let out = hcm.path("peg");
+    let peg = hcm
+        .run("reproduce")
+        .arg("peg-in-hole")
+        .opt("--method", "lsq")
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, peg),
+        &[
+            "`hcm reproduce peg-in-hole` does not read --method",
+            "--generations",
+        ],
+    );
+    let out = hcm.path("ball");
+    let ball = hcm
+        .run("reproduce")
+        .arg("bouncing-ball")
+        .opt("--generations", "3")
+        .opt("--polish", "4")
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, ball),
+        &["does not read --generations, --polish: it reads --runs, --method"],
+    );
+}
+
 /// A residual blob of the bouncing ball's HCM, through generate → train → export, with
 /// the data and physics file it goes with.
 fn ball_blob(hcm: &Hcm) -> (PathBuf, PathBuf, Vec<u8>) {

@@ -16,6 +16,7 @@
 use hcm_host::export::export_blobs;
 use hcm_host::pipeline::peg::CONTACT;
 use hcm_host::pipeline::peg::{evaluate_peg, reproduce_peg, PegSettings};
+use hcm_host::pipeline::ScenarioChoice;
 use hcm_host::pipeline::Silent;
 use hcm_host::scenario::Model;
 use hcm_host::train::explained::silence_outputs;
@@ -26,7 +27,10 @@ use hcm_host::train::{train, wrench_settings, OutputNets, TrainedResidual};
 #[ignore = "about 2 minutes in release; the figures in the README"]
 fn the_exact_residual_does_not_make_the_network_exact() {
     let settings = PegSettings {
-        scenario: Some(hcm_tests::scenario("peg_in_hole.toml")),
+        scenario: ScenarioChoice {
+            file: Some(hcm_tests::scenario("peg_in_hole.toml")),
+            ..PegSettings::shipped().scenario
+        },
         ..PegSettings::shipped()
     };
     let r = reproduce_peg(&settings, &Silent).unwrap();

@@ -9,11 +9,15 @@
 //! claim is tested at the shipped size (about a minute).
 
 use hcm_host::pipeline::peg::{reproduce_peg, PegReproduction, PegSettings};
+use hcm_host::pipeline::ScenarioChoice;
 use hcm_host::pipeline::Silent;
 
 fn settings(runs: usize) -> PegSettings {
     PegSettings {
-        scenario: Some(hcm_tests::scenario("peg_in_hole.toml")),
+        scenario: ScenarioChoice {
+            file: Some(hcm_tests::scenario("peg_in_hole.toml")),
+            ..PegSettings::shipped().scenario
+        },
         runs,
         ..PegSettings::shipped()
     }

@@ -16,8 +16,6 @@ mod predict;
 mod progress;
 mod report;
 mod reproduce;
-mod reproduce_cube;
-mod reproduce_peg;
 mod simulate;
 mod tosses;
 mod train;

@@ -5,8 +5,11 @@
 
 use super::progress::Bars;
 use hcm_host::output::StagedDirectory;
+use hcm_host::pipeline::cube::CubeSettings;
+use hcm_host::pipeline::peg::PegSettings;
 use hcm_host::pipeline::{
-    reproduce, write_reproduction, Example, Pm2Method, ReproduceSettings, Reproduced,
+    write_reproduction, Example, Pm2Method, Preset, ReproduceSettings, Reproduced, ScenarioChoice,
+    Shipped,
 };
 use std::path::PathBuf;
 
@@ -33,7 +36,7 @@ pub(super) enum ExampleArg {
 /// and writes to OUT: s1.csv, s2.csv, pm2.toml, residual.json, residual.bin,
 /// residual.int8.bin, report.md (read it first), results.json and the figures.
 /// On two cores the run takes about 30 s for bouncing-ball, 3–4 minutes for flat-shot and
-/// 1 minute for peg-in-hole (400 runs; PM2 by the GA, --method does not apply; its OUT
+/// 1 minute for peg-in-hole (400 runs; PM2 by the GA, so --method is refused; its OUT
 /// holds s1.csv, s2.csv, pm2.toml with friction, residual.json, the wrench residual's
 /// blobs, report.md, results.json and the figures).
 ///
@@ -97,8 +100,9 @@ pub struct Args {
     pub(super) runs: Option<usize>,
     /// Identification method of PM2: `ga` (the paper's, polished by LM) or `lsq`
     /// (1D examples; the peg-in-hole's PM2 is always found by the GA).
-    #[arg(long, value_parser = ["ga", "lsq"], default_value = "ga")]
-    pub(super) method: String,
+    /// [default: ga]
+    #[arg(long, value_parser = ["ga", "lsq"])]
+    pub(super) method: Option<String>,
     /// Scenario file to run instead of the example's built-in one (which is a copy of
     /// scenarios/<example>.toml of the source).
     #[arg(long)]
@@ -110,42 +114,128 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let example = match args.example {
-        ExampleArg::BouncingBall => Example::BouncingBall,
-        ExampleArg::FlatShot => Example::FlatShot,
-        ExampleArg::PegInHole => return super::reproduce_peg::run(args),
-        ExampleArg::CubeToss => return super::reproduce_cube::run(args),
-    };
-    anyhow::ensure!(
-        args.data.is_none() && args.first.is_none() && args.polish.is_none() && !args.no_diagnosis,
-        "--data, --first, --polish and --no-diagnosis apply to `hcm reproduce cube-toss` only"
-    );
-    let settings = ReproduceSettings {
-        example,
-        scenario: args.scenario,
-        overrides: args.overrides,
-        seed: args.seed,
-        runs: args.runs.unwrap_or(example.runs()),
-        method: match args.method.as_str() {
-            "lsq" => Pm2Method::Lsq,
-            _ => Pm2Method::Ga,
-        },
-    };
+    let preset = preset(&args)?;
     // Built as a hidden directory beside --out and renamed into place at the end, so
     // that --out appears complete or not at all; made before the minutes of work, so
     // that an unwritable place or an --out that may not be replaced fails at once.
     let staged = StagedDirectory::create(&args.out, "results.json")?;
-    let reproduction = reproduce(&settings, &Bars::default())?;
+    let reproduction = preset.reproduce(&Bars::default())?;
     finish(staged, reproduction)
+}
+
+/// The example's preset with the options given; an option the example does not
+/// read is refused, not ignored.
+fn preset(args: &Args) -> anyhow::Result<Preset> {
+    let given = [
+        ("--generations", args.generations.is_some()),
+        ("--population", args.population.is_some()),
+        ("--polish", args.polish.is_some()),
+        ("--data", args.data.is_some()),
+        ("--first", args.first.is_some()),
+        ("--no-diagnosis", args.no_diagnosis),
+        ("--runs", args.runs.is_some()),
+        ("--method", args.method.is_some()),
+    ];
+    let (name, reads): (&str, &[&str]) = match args.example {
+        ExampleArg::BouncingBall => ("bouncing-ball", &["--runs", "--method"]),
+        ExampleArg::FlatShot => ("flat-shot", &["--runs", "--method"]),
+        ExampleArg::PegInHole => ("peg-in-hole", &["--runs", "--generations", "--population"]),
+        ExampleArg::CubeToss => (
+            "cube-toss",
+            &[
+                "--generations",
+                "--population",
+                "--polish",
+                "--data",
+                "--first",
+                "--no-diagnosis",
+            ],
+        ),
+    };
+    let unread: Vec<&str> = (given.iter())
+        .filter(|(option, set)| *set && !reads.contains(option))
+        .map(|(option, _)| *option)
+        .collect();
+    anyhow::ensure!(
+        unread.is_empty(),
+        "`hcm reproduce {name}` does not read {}: it reads {} (see `hcm reproduce --help`)",
+        unread.join(", "),
+        reads.join(", ")
+    );
+    Ok(match args.example {
+        ExampleArg::BouncingBall => Preset::Paper(paper(args, Example::BouncingBall)),
+        ExampleArg::FlatShot => Preset::Paper(paper(args, Example::FlatShot)),
+        ExampleArg::PegInHole => Preset::PegInHole(peg(args)),
+        ExampleArg::CubeToss => Preset::CubeToss(cube(args)?),
+    })
+}
+
+/// The scenario the options choose for an example whose shipped one is `shipped`.
+fn scenario(args: &Args, shipped: Shipped) -> ScenarioChoice {
+    ScenarioChoice {
+        shipped,
+        file: args.scenario.clone(),
+        overrides: args.overrides.clone(),
+    }
+}
+
+fn paper(args: &Args, example: Example) -> ReproduceSettings {
+    ReproduceSettings {
+        example,
+        scenario: scenario(args, example.shipped()),
+        seed: args.seed,
+        runs: args.runs.unwrap_or(example.runs()),
+        method: match args.method.as_deref() {
+            Some("lsq") => Pm2Method::Lsq,
+            _ => Pm2Method::Ga,
+        },
+    }
+}
+
+fn peg(args: &Args) -> PegSettings {
+    let shipped = PegSettings::shipped();
+    let mut genetic = shipped.genetic.clone();
+    genetic.generations = args.generations.unwrap_or(genetic.generations);
+    genetic.population = args.population.unwrap_or(genetic.population);
+    PegSettings {
+        scenario: scenario(args, Shipped::PegInHole),
+        seed: args.seed,
+        runs: args.runs.unwrap_or(shipped.runs),
+        genetic,
+        ..shipped
+    }
+}
+
+fn cube(args: &Args) -> anyhow::Result<CubeSettings> {
+    let data = args.data.clone().ok_or_else(|| {
+        anyhow::anyhow!(
+            "`hcm reproduce cube-toss` needs --data: the filmed tosses, e.g. \
+             data/contactnets-cube/tosses.csv of the source"
+        )
+    })?;
+    if let Some(first) = args.first {
+        anyhow::ensure!(
+            first >= 6,
+            "--first {first}: give at least 6 runs (3 per part)"
+        );
+    }
+    let shipped = CubeSettings::shipped(&data);
+    Ok(CubeSettings {
+        first: args.first,
+        scenario: scenario(args, Shipped::CubeToss),
+        seed: args.seed,
+        population: args.population.unwrap_or(shipped.population),
+        generations: args.generations.unwrap_or(shipped.generations),
+        polish: args.polish.unwrap_or(shipped.polish),
+        diagnose: !args.no_diagnosis,
+        ..shipped
+    })
 }
 
 /// Writes `reproduction` into the staged output directory, moves it into place and
 /// prints the report: the same for every example.
-pub(super) fn finish(
-    staged: StagedDirectory,
-    mut reproduction: impl Reproduced,
-) -> anyhow::Result<()> {
-    let report = write_reproduction(&mut reproduction, staged.path())?;
+fn finish(staged: StagedDirectory, mut reproduction: Box<dyn Reproduced>) -> anyhow::Result<()> {
+    let report = write_reproduction(reproduction.as_mut(), staged.path())?;
     staged.commit()?;
     print!("{report}");
     Ok(())

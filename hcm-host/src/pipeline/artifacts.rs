@@ -70,10 +70,7 @@ pub trait Reproduced {
 
 /// Writes `reproduction` into `dir`: its artifacts, then `results.json` (timing the
 /// writing as the stage "write files") and `report.md`. Returns the report.
-pub fn write_reproduction(
-    reproduction: &mut impl Reproduced,
-    dir: &Path,
-) -> anyhow::Result<String> {
+pub fn write_reproduction(reproduction: &mut dyn Reproduced, dir: &Path) -> anyhow::Result<String> {
     let clock = Instant::now();
     for artifact in reproduction.artifacts()? {
         artifact.write(dir)?;

@@ -1,13 +1,12 @@
 //! The paper's two examples and how to reproduce them.
 
+use super::preset::{ScenarioChoice, Shipped};
 use super::results::PaperErrors;
 use crate::evaluate::IndicatorErrors;
 use crate::identify::evolve::Fitness;
 use crate::identify::Method;
 use crate::numerics::optimize::genetic::GeneticSettings;
-use crate::scenario::{Scenario, ScenarioError};
 use serde::Serialize;
-use std::path::PathBuf;
 
 /// The paper's examples.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -36,20 +35,11 @@ impl Example {
         }
     }
 
-    /// Its scenario file in the repository's `scenarios/`.
-    pub fn file(self) -> &'static str {
+    /// Its scenario shipped with hcm.
+    pub fn shipped(self) -> Shipped {
         match self {
-            Example::BouncingBall => "bouncing_ball.toml",
-            Example::FlatShot => "flat_shot.toml",
-        }
-    }
-
-    /// The text of its scenario file, built into the program so that `hcm reproduce`
-    /// runs the same scenario from any directory, with or without the repository.
-    pub(crate) fn shipped_scenario(self) -> &'static str {
-        match self {
-            Example::BouncingBall => include_str!("../../../scenarios/bouncing_ball.toml"),
-            Example::FlatShot => include_str!("../../../scenarios/flat_shot.toml"),
+            Example::BouncingBall => Shipped::BouncingBall,
+            Example::FlatShot => Shipped::FlatShot,
         }
     }
 
@@ -110,12 +100,8 @@ impl Pm2Method {
 pub struct ReproduceSettings {
     /// Which example (its paper figures).
     pub example: Example,
-    /// Its scenario file; `None`: the shipped scenario built into the program
-    /// ([`Example::shipped_scenario`]).
-    pub scenario: Option<PathBuf>,
-    /// Overrides of the scenario's values (`key=value`, as
-    /// [`crate::scenario::Scenario::load`] takes them).
-    pub overrides: Vec<String>,
+    /// Its scenario: the example's shipped one unless a file is given.
+    pub scenario: ScenarioChoice,
     /// Seed of the experiment, the split, the GA and the training.
     pub seed: u64,
     /// Runs per condition.
@@ -129,35 +115,10 @@ impl ReproduceSettings {
     pub fn paper(example: Example) -> Self {
         Self {
             example,
-            scenario: None,
-            overrides: Vec::new(),
+            scenario: ScenarioChoice::shipped(example.shipped()),
             seed: 1,
             runs: example.runs(),
             method: Pm2Method::Ga,
-        }
-    }
-}
-
-impl ReproduceSettings {
-    /// The scenario with the overrides applied. The shipped one is named
-    /// `scenarios/bouncing_ball.toml (built in)` in errors and reports.
-    pub(crate) fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
-        match &self.scenario {
-            Some(path) => Scenario::load(path, &self.overrides),
-            None => Scenario::parse(
-                &self.scenario_label(),
-                self.example.shipped_scenario(),
-                &self.overrides,
-            ),
-        }
-    }
-
-    /// The scenario file as given, or `scenarios/NAME.toml (built in)` for the
-    /// shipped one.
-    pub(crate) fn scenario_label(&self) -> PathBuf {
-        match &self.scenario {
-            Some(path) => path.clone(),
-            None => PathBuf::from(format!("scenarios/{} (built in)", self.example.file())),
         }
     }
 }

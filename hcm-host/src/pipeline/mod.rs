@@ -23,6 +23,7 @@ mod evaluate;
 mod example;
 mod identify;
 pub mod peg;
+mod preset;
 mod quantity;
 mod report;
 mod results;
@@ -36,6 +37,7 @@ pub use artifacts::{write_figures, write_reproduction, Artifact, Reproduced};
 pub use evaluate::{evaluate_on_s2, Evaluation};
 pub use example::{Example, Pm2Method, ReproduceSettings};
 pub use identify::{identify_pm2, Pm2};
+pub use preset::{Preset, ScenarioChoice, Shipped};
 pub use results::{
     BlobSummary, NamedValue, PaperErrors, Pm2Summary, ReproduceResults, ResidualSummary,
     StageClock, StageTiming,
@@ -81,9 +83,18 @@ pub enum PipelineError {
     /// The rigid-body stages (peg-in-hole): PM2 or the S2 comparison failed.
     #[error(transparent)]
     Rigid(#[from] crate::identify::rigid::RigidIdentifyError),
+    /// The cube tosses' stages (boxed: the other stages' results stay small).
+    #[error(transparent)]
+    Cube(Box<cube::CubeError>),
     /// Stage 5: S2 holds no condition to evaluate.
     #[error("the validation data hold no condition")]
     NoValidation,
+}
+
+impl From<cube::CubeError> for PipelineError {
+    fn from(error: cube::CubeError) -> Self {
+        PipelineError::Cube(Box::new(error))
+    }
 }
 
 /// Everything [`reproduce`] made: each stage's value, for the caller to write, and
@@ -140,8 +151,8 @@ pub fn reproduce(
     settings: &ReproduceSettings,
     progress: &dyn Progress,
 ) -> Result<Reproduction, PipelineError> {
-    let scenario = settings.load_scenario()?;
-    let label = settings.scenario_label();
+    let scenario = settings.scenario.load()?;
+    let label = settings.scenario.label();
     let path = label.as_path();
     // A scenario that does not resolve, or a run count too small to split into S1 and
     // S2, fails here, before minutes of generation.

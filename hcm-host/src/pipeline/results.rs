@@ -153,8 +153,8 @@ impl ReproduceResults {
             example: settings.example,
             seed: settings.seed,
             runs_per_condition: settings.runs,
-            scenario: settings.scenario_label().display().to_string(),
-            overrides: settings.overrides.clone(),
+            scenario: settings.scenario.label().display().to_string(),
+            overrides: settings.scenario.overrides.clone(),
             pm2: Pm2Summary {
                 law: found.law.name().to_owned(),
                 method: found.fit.method.clone(),

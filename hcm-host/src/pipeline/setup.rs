@@ -257,10 +257,9 @@ fn sentence(model: &Model) -> String {
 mod tests {
     use super::*;
     use crate::pipeline::Example;
-    use std::path::Path;
 
     fn shipped(example: Example) -> Scenario {
-        Scenario::parse(Path::new(example.file()), example.shipped_scenario(), &[]).unwrap()
+        crate::pipeline::preset::shipped_scenario(example.shipped())
     }
 
     #[test]

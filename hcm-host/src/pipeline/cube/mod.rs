@@ -28,13 +28,13 @@ use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
 use crate::toss::{TossError, TossSetup};
 use std::path::{Path, PathBuf};
 
-use super::{Artifact, Fold, NamedFigure, Progress, Reproduced, StageClock, StageTiming};
+use super::{
+    Artifact, Fold, NamedFigure, Progress, Reproduced, ScenarioChoice, Shipped, StageClock,
+    StageTiming,
+};
 use crate::identify::motion::fitted_physics;
 use crate::toss::predicted_dataset;
 use std::borrow::Cow;
-
-/// The scenario shipped with hcm, so that the example runs from any directory.
-pub(crate) const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/cube_toss.toml");
 
 /// What [`reproduce_cube`] runs.
 #[derive(Clone, Debug, PartialEq)]
@@ -43,10 +43,8 @@ pub struct CubeSettings {
     pub data: PathBuf,
     /// Use only the first N runs of the data (before the split).
     pub first: Option<usize>,
-    /// Scenario file; `None`: [`SHIPPED_SCENARIO`].
-    pub scenario: Option<PathBuf>,
-    /// Overrides of the scenario's values (`key=value`).
-    pub overrides: Vec<String>,
+    /// Its scenario: the shipped `cube_toss.toml` unless a file is given.
+    pub scenario: ScenarioChoice,
     /// Seed of the genetic algorithm.
     pub seed: u64,
     /// GA individuals per generation.
@@ -67,33 +65,12 @@ impl CubeSettings {
         CubeSettings {
             data: data.to_owned(),
             first: None,
-            scenario: None,
-            overrides: Vec::new(),
+            scenario: ScenarioChoice::shipped(Shipped::CubeToss),
             seed: 1,
             population: 20,
             generations: 10,
             polish: 40,
             diagnose: true,
-        }
-    }
-
-    /// How the report names the scenario.
-    pub(crate) fn scenario_label(&self) -> String {
-        match &self.scenario {
-            Some(path) => path.display().to_string(),
-            None => "scenarios/cube_toss.toml (built in)".to_owned(),
-        }
-    }
-
-    /// The scenario, overrides applied.
-    pub(crate) fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
-        match &self.scenario {
-            Some(path) => Scenario::load(path, &self.overrides),
-            None => Scenario::parse(
-                Path::new(&self.scenario_label()),
-                SHIPPED_SCENARIO,
-                &self.overrides,
-            ),
         }
     }
 }
@@ -201,7 +178,7 @@ pub fn reproduce_cube(
     progress: &dyn Progress,
 ) -> Result<CubeReproduction, CubeError> {
     let mut clock = StageClock::default();
-    let scenario = settings.load_scenario()?;
+    let scenario = settings.scenario.load()?;
     let model = scenario.model()?;
     let setup = TossSetup::new(&model)?;
     let (training, held_out) =

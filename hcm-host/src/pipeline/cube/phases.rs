@@ -131,8 +131,8 @@ fn settling_start(setup: &TossSetup, run: &str, measured: &[Sample]) -> Result<u
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pipeline::cube::SHIPPED_SCENARIO;
-    use crate::scenario::Scenario;
+    use crate::pipeline::preset::shipped_scenario;
+    use crate::pipeline::Shipped;
 
     /// A cube falling at 1.5 m/s onto the table (flat, no bounce) while moving 5 mm per
     /// frame along x, stopping dead at frame 30; 50 frames at 148 Hz.
@@ -150,8 +150,8 @@ mod tests {
 
     #[test]
     fn the_phases_follow_the_recorded_fall_landing_slide_and_stop() {
-        let scenario = Scenario::parse(std::path::Path::new("cube"), SHIPPED_SCENARIO, &[]);
-        let setup = TossSetup::new(&scenario.unwrap().model().unwrap()).unwrap();
+        let scenario = shipped_scenario(Shipped::CubeToss);
+        let setup = TossSetup::new(&scenario.model().unwrap()).unwrap();
         let samples = toss();
         // Within 0.0524·√3 m from frame 11 (0.2 − 1.5·11/148 = 0.0885 m); the window
         // starts 3 frames before.
@@ -177,8 +177,8 @@ mod tests {
 
     #[test]
     fn a_toss_still_moving_at_its_end_never_settles() {
-        let scenario = Scenario::parse(std::path::Path::new("cube"), SHIPPED_SCENARIO, &[]);
-        let setup = TossSetup::new(&scenario.unwrap().model().unwrap()).unwrap();
+        let scenario = shipped_scenario(Shipped::CubeToss);
+        let setup = TossSetup::new(&scenario.model().unwrap()).unwrap();
         let samples = toss();
         let window = Window {
             start: 8,

@@ -150,7 +150,7 @@ impl CubeResults {
         timings: Vec<StageTiming>,
     ) -> CubeResults {
         CubeResults {
-            scenario: settings.scenario_label(),
+            scenario: settings.scenario.label().display().to_string(),
             data: settings.data.display().to_string(),
             first: settings.first,
             seed: settings.seed,

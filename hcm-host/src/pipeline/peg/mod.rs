@@ -10,7 +10,10 @@ mod report;
 pub use curves::{mean_curve, replay_curve, WrenchCurve};
 pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS, PAPER};
 
-use super::{Artifact, PipelineError, Progress, Reproduced, Stage, StageClock, StageTiming};
+use super::{
+    Artifact, PipelineError, Progress, Reproduced, ScenarioChoice, Shipped, Stage, StageClock,
+    StageTiming,
+};
 use crate::experiment::{generate_split, Split};
 use crate::export::{export_blobs, Blobs};
 use crate::identify::rigid::{
@@ -19,12 +22,11 @@ use crate::identify::rigid::{
 use crate::identify::{FitRecord, Physics};
 use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::progress::in_stage;
-use crate::scenario::{Scenario, ScenarioError};
+use crate::scenario::Scenario;
 use crate::train::{
     train_wrench_residual, wrench_settings, OutputNets, ResidualSettings, WrenchTrained,
 };
 use std::borrow::Cow;
-use std::path::PathBuf;
 
 /// The peg's one contact (peg–block).
 pub const CONTACT: usize = 0;
@@ -32,16 +34,11 @@ pub const CONTACT: usize = 0;
 /// Fine-tuning epochs of the int8 twin.
 const INT8_EPOCHS: usize = 30;
 
-/// The scenario shipped with hcm, so that the example runs from any directory.
-pub(crate) const SHIPPED_SCENARIO: &str = include_str!("../../../../scenarios/peg_in_hole.toml");
-
 /// What [`reproduce_peg`] runs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PegSettings {
-    /// Scenario file; `None`: [`SHIPPED_SCENARIO`].
-    pub scenario: Option<PathBuf>,
-    /// Overrides of the scenario's values (`key=value`).
-    pub overrides: Vec<String>,
+    /// Its scenario: the shipped `peg_in_hole.toml` unless a file is given.
+    pub scenario: ScenarioChoice,
     /// Seed of the experiment, the split, the GA and the training.
     pub seed: u64,
     /// Runs of PM1 (S1 + S2).
@@ -64,8 +61,7 @@ impl PegSettings {
     /// noise.
     pub fn shipped() -> PegSettings {
         PegSettings {
-            scenario: None,
-            overrides: Vec::new(),
+            scenario: ScenarioChoice::shipped(Shipped::PegInHole),
             seed: 1,
             runs: 400,
             events: 2,
@@ -75,18 +71,6 @@ impl PegSettings {
                 generations: 30,
                 ..GeneticSettings::default()
             },
-        }
-    }
-
-    /// The scenario, overrides applied.
-    pub(crate) fn load_scenario(&self) -> Result<Scenario, ScenarioError> {
-        match &self.scenario {
-            Some(path) => Scenario::load(path, &self.overrides),
-            None => Scenario::parse(
-                std::path::Path::new("scenarios/peg_in_hole.toml (built in)"),
-                SHIPPED_SCENARIO,
-                &self.overrides,
-            ),
         }
     }
 }
@@ -187,7 +171,7 @@ pub fn reproduce_peg(
     settings: &PegSettings,
     progress: &dyn Progress,
 ) -> Result<PegReproduction, PipelineError> {
-    let scenario = settings.load_scenario()?;
+    let scenario = settings.scenario.load()?;
     let model = scenario.model()?;
     crate::experiment::check_split(&scenario, settings.runs)?;
     let mut clock = StageClock::default();
