@@ -16,13 +16,13 @@ use serde::Serialize;
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct IndicatorErrors {
     /// Of the maximum normal contact force.
-    pub max_force: f64,
+    pub(crate) max_force: f64,
     /// Of the normal contact impulse.
-    pub impulse: f64,
+    pub(crate) impulse: f64,
     /// Of the contact energy loss.
-    pub energy_loss: f64,
+    pub(crate) energy_loss: f64,
     /// Of the contact duration.
-    pub duration: f64,
+    pub(crate) duration: f64,
 }
 
 impl IndicatorErrors {
@@ -61,7 +61,7 @@ pub struct ModelRow {
     pub model: String,
     /// The model's indicators (N, N·s, N·m, s); None (JSON `null`) where its
     /// simulation failed.
-    pub indicators: Option<Indicators>,
+    pub(crate) indicators: Option<Indicators>,
     /// Their Eq 20 errors against the measured means; None where its simulation failed.
     pub errors: Option<IndicatorErrors>,
 }
@@ -86,11 +86,11 @@ pub struct ConditionTable {
     /// Runs in S2 for it.
     pub runs: usize,
     /// S2 mean indicators.
-    pub measured: Indicators,
+    pub(crate) measured: Indicators,
     /// Standard error of each S2 mean (s/√n, same units): errors below about twice
     /// this, relative to the mean, are within the sampling noise of S2. None (JSON
     /// `null`) with a single run, whose spread is unknown.
-    pub standard_error: Option<Indicators>,
+    pub(crate) standard_error: Option<Indicators>,
     /// The models compared, one row each.
     pub models: Vec<ModelRow>,
 }

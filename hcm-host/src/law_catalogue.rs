@@ -15,7 +15,7 @@ pub type Parameter = ParameterInfo;
 #[derive(Clone, Copy, Debug)]
 pub struct LawEntry {
     /// Which law.
-    pub kind: LawKind,
+    pub(crate) kind: LawKind,
     /// Name used in files and on the command line.
     pub name: &'static str,
     /// Where the formula comes from.

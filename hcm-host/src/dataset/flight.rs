@@ -15,20 +15,20 @@ pub(crate) const MIN_FRAMES: usize = 3;
 #[derive(Clone, Debug, PartialEq)]
 pub struct FlightFit {
     /// Reference time t_ref (s): the fit's position and velocity are given there.
-    pub t_ref: f64,
+    pub(crate) t_ref: f64,
     /// Position at t_ref, a_k (m).
-    pub position: [f64; 3],
+    pub(crate) position: [f64; 3],
     /// Velocity at t_ref, b_k (m/s).
-    pub velocity: [f64; 3],
+    pub(crate) velocity: [f64; 3],
     /// Gravity g (m/s²).
-    pub gravity: [f64; 3],
+    pub(crate) gravity: [f64; 3],
     /// (AᵀA)⁻¹ as [[c_aa, c_ab], [c_ab, c_bb]] (1, s, s²): times σ_k² the covariance
     /// of (a_k, b_k).
-    pub unscaled: [[f64; 2]; 2],
+    pub(crate) unscaled: [[f64; 2]; 2],
     /// Residual variance σ_k² per axis (m²).
-    pub noise: [f64; 3],
+    pub(crate) noise: [f64; 3],
     /// Frames fitted.
-    pub frames: usize,
+    pub(crate) frames: usize,
 }
 
 impl FlightFit {

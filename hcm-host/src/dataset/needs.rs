@@ -24,11 +24,11 @@ pub enum Need {
 #[derive(Clone, Copy, Debug)]
 pub struct Requirement {
     /// The command, e.g. `hcm identify`.
-    pub command: &'static str,
+    pub(crate) command: &'static str,
     /// The channels and how they are needed.
-    pub channels: &'static [(Channel, Need)],
+    pub(crate) channels: &'static [(Channel, Need)],
     /// Why, in the command's terms: completes "… needs the force channel because …".
-    pub because: &'static str,
+    pub(crate) because: &'static str,
 }
 
 /// The 1D commands: motion from camera frames, force from the sensor's rows.

@@ -35,28 +35,28 @@ const DELAY_GRID: usize = 20;
 /// One contact's motion as Newton's law gives it from the recorded force.
 pub(super) struct Replaced {
     /// Position (m) and velocity (m/s) at the window's samples.
-    pub position: Vec<[f64; 3]>,
-    pub velocity: Vec<[f64; 3]>,
+    pub(crate) position: Vec<[f64; 3]>,
+    pub(crate) velocity: Vec<[f64; 3]>,
     /// Their variances per axis (m², (m/s)²).
-    pub position_variance: Vec<[f64; 3]>,
-    pub velocity_variance: Vec<[f64; 3]>,
+    pub(crate) position_variance: Vec<[f64; 3]>,
+    pub(crate) velocity_variance: Vec<[f64; 3]>,
     /// Mean square of recorded − replaced position (m²) and velocity ((m/s)²) over the
     /// rows fitted, per axis: how far off the recorded motion is, in flight too.
-    pub recorded_error: ([f64; 3], [f64; 3]),
+    pub(crate) recorded_error: ([f64; 3], [f64; 3]),
 }
 
 /// The recorded motion of one track around one contact.
 pub(super) struct Rows<'a> {
     /// Row times (s), the force series' (every row has force).
-    pub time: &'a [f64],
+    pub(crate) time: &'a [f64],
     /// Recorded positions at those rows (m).
-    pub position: &'a [[f64; 3]],
+    pub(crate) position: &'a [[f64; 3]],
     /// Recorded velocities at those rows (m/s).
-    pub velocity: &'a [[f64; 3]],
+    pub(crate) velocity: &'a [[f64; 3]],
     /// White-noise σ of the recorded position per axis (m).
-    pub noise: [f64; 3],
+    pub(crate) noise: [f64; 3],
     /// Rows around the window that the fits read, in time order.
-    pub rows: Vec<usize>,
+    pub(crate) rows: Vec<usize>,
 }
 
 /// White-noise σ per axis of positions `position` at times `time` (m), from second

@@ -79,13 +79,13 @@ pub struct Completed<'a> {
     pub data: Cow<'a, Dataset>,
     /// Per run, per body (as in `data.runs[r].bodies`): the reconstruction of that
     /// track, None for a track kept as recorded.
-    pub tracks: Vec<Vec<Option<TrackReconstruction>>>,
+    pub(crate) tracks: Vec<Vec<Option<TrackReconstruction>>>,
     /// Where motion recorded on every row was checked against Newton's law
     /// ([`Checks::recorded_motion`]): the median over contacts of its misfit, in
     /// standard deviations (–).
-    pub motion_misfit: Option<f64>,
+    pub(crate) motion_misfit: Option<f64>,
     /// The sensor delay the reconstruction was done with, if any.
-    pub delay: Option<Delay>,
+    pub(crate) delay: Option<Delay>,
 }
 
 /// What [`complete_with`] checks beyond [`complete`].
@@ -94,10 +94,10 @@ pub struct Checks {
     /// Check motion recorded on every row against the force through each contact and
     /// replace it where it does not obey Newton's law (`dataset::newton`): a camera's
     /// frames splined onto the force rows.
-    pub recorded_motion: bool,
+    pub(crate) recorded_motion: bool,
     /// Integrate the force as read this late behind the camera frames
     /// (`dataset::delay`): the motion as it was, against a lagging sensor.
-    pub sensor_delay: Option<Delay>,
+    pub(crate) sensor_delay: Option<Delay>,
 }
 
 impl Completed<'_> {
@@ -132,9 +132,9 @@ impl Completed<'_> {
 #[derive(Clone, Debug, PartialEq)]
 pub struct TrackReconstruction {
     /// Variance of the position per axis at each row (m²).
-    pub position_variance: Vec<[f64; 3]>,
+    pub(crate) position_variance: Vec<[f64; 3]>,
     /// Variance of the velocity per axis at each row ((m/s)²).
-    pub velocity_variance: Vec<[f64; 3]>,
+    pub(crate) velocity_variance: Vec<[f64; 3]>,
     /// One check per contact integrated through.
     pub contacts: Vec<ContactCheck>,
 }
@@ -143,17 +143,17 @@ pub struct TrackReconstruction {
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactCheck {
     /// Start and end of the integration (s).
-    pub span: (f64, f64),
+    pub(crate) span: (f64, f64),
     /// Camera frames fitted before and after the contact.
-    pub frames: (usize, usize),
+    pub(crate) frames: (usize, usize),
     /// Integrated minus after-flight velocity at the end (m/s), with its standard
     /// deviation per axis; None without [`MIN_FRAMES`] frames after the contact.
     pub velocity_gap: Option<([f64; 3], [f64; 3])>,
     /// Integrated minus after-flight position at the end (m), with its standard
     /// deviation per axis; None as for the velocity.
-    pub position_gap: Option<([f64; 3], [f64; 3])>,
+    pub(crate) position_gap: Option<([f64; 3], [f64; 3])>,
     /// The force's velocity change over the contact, ∫f/m (m/s), as read (no delay).
-    pub velocity_change: [f64; 3],
+    pub(crate) velocity_change: [f64; 3],
 }
 
 /// Whether `track` needs reconstructing: a row without position, velocity or force.

@@ -8,11 +8,11 @@ use super::Sample;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Column {
     /// Header name, exactly as it appears in a file (case-sensitive).
-    pub name: &'static str,
+    pub(crate) name: &'static str,
     /// SI unit; `–` for text and dimensionless columns.
-    pub unit: &'static str,
+    pub(crate) unit: &'static str,
     /// What the value is.
-    pub meaning: &'static str,
+    pub(crate) meaning: &'static str,
 }
 
 const fn c(name: &'static str, unit: &'static str, meaning: &'static str) -> Column {

@@ -16,11 +16,11 @@ const GUARD_SHARE: f64 = 0.5;
 /// The force samples of one body: times (s), force on the body (N), per-axis noise σ (N).
 pub(super) struct ForceSeries {
     /// Sample times (s), increasing.
-    pub time: Vec<f64>,
+    pub(crate) time: Vec<f64>,
     /// Force on the body (N).
-    pub force: Vec<[f64; 3]>,
+    pub(crate) force: Vec<[f64; 3]>,
     /// White-noise σ per axis (N), from second differences.
-    pub noise: [f64; 3],
+    pub(crate) noise: [f64; 3],
 }
 
 impl ForceSeries {
@@ -98,13 +98,13 @@ impl ForceSeries {
 /// The state through one contact, sample by sample.
 pub(super) struct Integrated {
     /// Position (m) at each sample of the window.
-    pub position: Vec<[f64; 3]>,
+    pub(crate) position: Vec<[f64; 3]>,
     /// Velocity (m/s) at each sample of the window.
-    pub velocity: Vec<[f64; 3]>,
+    pub(crate) velocity: Vec<[f64; 3]>,
     /// Variance of the position per axis (m²).
-    pub position_variance: Vec<[f64; 3]>,
+    pub(crate) position_variance: Vec<[f64; 3]>,
     /// Variance of the velocity per axis ((m/s)²).
-    pub velocity_variance: Vec<[f64; 3]>,
+    pub(crate) velocity_variance: Vec<[f64; 3]>,
 }
 
 /// Integrates m·ẍ = f + m·g over samples `first..=last` of `series`, from the flight

@@ -99,9 +99,9 @@ pub struct RunSplit {
     /// Fitted on.
     pub training: usize,
     /// Held out.
-    pub held_out: usize,
+    pub(crate) held_out: usize,
     /// Held-out condition outside the fitted range, if the data have conditions.
-    pub condition: Option<String>,
+    pub(crate) condition: Option<String>,
 }
 
 /// What the training runs show before anything is extended: their samples, noise floor

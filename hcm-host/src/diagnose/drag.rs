@@ -33,14 +33,14 @@ pub struct DragFit {
     /// Its standard error (kg/m).
     pub standard_error: f64,
     /// Fitted gravity component along the approach direction (m/s²).
-    pub gravity: f64,
+    pub(crate) gravity: f64,
     /// Share of the flight acceleration's structured variance (what the gravity-only
     /// fit leaves above the noise) the drag term explains.
-    pub share: f64,
+    pub(crate) share: f64,
     /// White noise σ_v of the recorded δ̇ in flight (m/s), from its second differences.
-    pub velocity_noise: f64,
+    pub(crate) velocity_noise: f64,
     /// Flight samples used.
-    pub samples: usize,
+    pub(crate) samples: usize,
     /// Whether it passes the tests.
     pub significant: bool,
 }

@@ -35,12 +35,12 @@ use serde::Serialize;
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct Holdout {
     /// Runs the models may be fitted to, ascending.
-    pub training: Vec<usize>,
+    pub(crate) training: Vec<usize>,
     /// Runs kept for judging, ascending: the held-out condition's and a random share
     /// of the others.
-    pub held_out: Vec<usize>,
+    pub(crate) held_out: Vec<usize>,
     /// The condition held out entirely, if the data have at least three.
-    pub condition: Option<String>,
+    pub(crate) condition: Option<String>,
 }
 
 /// The held-out runs of `data`: with ≥ 3 conditions, every run of the scenario's
@@ -97,13 +97,13 @@ fn held_out_condition(model: &Model, data: &Dataset) -> Option<String> {
 #[derive(Clone, Copy, Debug)]
 pub struct Judged<'a> {
     /// Row label (`base`, `extended`, `HCM`).
-    pub label: &'a str,
+    pub(crate) label: &'a str,
     /// Its physics: every contact (law, effects, residual) and every body's air drag
     /// are replayed from it (see [`with_physics`]); the start states come from the data.
-    pub physics: &'a Model,
+    pub(crate) physics: &'a Model,
     /// The sensor correction taken off the held-out data before this model is judged
     /// on them (ideal: the data as recorded).
-    pub sensor: Sensor,
+    pub(crate) sensor: Sensor,
 }
 
 /// One model scored on one group of held-out runs. NaN (indicators and errors: None)
@@ -120,14 +120,14 @@ pub struct GainRow {
     /// RMSE of the simulated against the recorded normal force over the contact
     /// samples of every run of the group (N), the recording corrected by the model's
     /// sensor (see [`Sensor::retime`]).
-    pub force_rmse: f64,
+    pub(crate) force_rmse: f64,
     /// The part of the RMSE the noise does not explain, √max(RMSE² − σ², 0) (N).
     pub excess_rmse: f64,
     /// RMSE of the simulated against the recorded indentation rate δ̇ over the flight
     /// before the first touch-down (m/s) — the recorded one and the replay's own — each
     /// run replayed from its first recorded sample; NaN when the runs record no flight
     /// before their contact.
-    pub flight_rmse: f64,
+    pub(crate) flight_rmse: f64,
     /// √max(flight RMSE² − σ_v², 0) (m/s), σ_v the white noise of the recorded δ̇.
     pub flight_excess: f64,
 }
@@ -136,9 +136,9 @@ pub struct GainRow {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct GainTable {
     /// `held-out runs` (inside the fitted range) or `condition NAME`.
-    pub group: String,
+    pub(crate) group: String,
     /// Runs in the group.
-    pub runs: usize,
+    pub(crate) runs: usize,
     /// White noise σ_v of the recorded indentation rate in flight (m/s), from its
     /// second differences; NaN without flight samples.
     pub flight_noise: f64,

@@ -65,7 +65,7 @@ pub struct Trial {
     /// ΔRSS/σ² and its threshold ln(n)·(parameters added).
     pub bic: (f64, f64),
     /// Whether every interval of its parameters is finite.
-    pub determined: bool,
+    pub(crate) determined: bool,
     /// Whether it entered.
     pub accepted: bool,
 }
@@ -76,7 +76,7 @@ pub struct NotAccepted {
     /// Catalogue name.
     pub effect: &'static str,
     /// Its parameters as fitted.
-    pub parameters: Vec<Fitted>,
+    pub(crate) parameters: Vec<Fitted>,
     /// Why it is not named.
     pub reason: String,
 }
@@ -91,19 +91,19 @@ pub struct Naming {
     pub fit: Refit,
     /// The best trial of every step (the last one rejected, unless the steps stopped
     /// because the residual was explained).
-    pub steps: Vec<Trial>,
+    pub(crate) steps: Vec<Trial>,
     /// Causes that entered but are not named, and the best rejected trial.
-    pub not_accepted: Vec<NotAccepted>,
+    pub(crate) not_accepted: Vec<NotAccepted>,
     /// The residual of `fit`.
-    pub after: Structure,
+    pub(crate) after: Structure,
     /// Whether structure is left that no named cause explains.
-    pub unexplained: bool,
+    pub(crate) unexplained: bool,
     /// Two causes the data cannot tell apart (empty otherwise): neither is named; the
     /// better one stays in `fit` as a provisional term, so that the extended model still
     /// predicts what both would, without claiming which it is.
-    pub ambiguous: Vec<&'static str>,
+    pub(crate) ambiguous: Vec<&'static str>,
     /// That provisional term.
-    pub provisional: Option<(Candidate, f64)>,
+    pub(crate) provisional: Option<(Candidate, f64)>,
 }
 
 /// How much lower a cause's information criterion must be than that of the best cause

@@ -45,9 +45,9 @@ pub struct NoiseFloor {
     /// NaN when no triple qualified.
     pub sigma: f64,
     /// Number of second differences the estimate rests on (–).
-    pub samples: usize,
+    pub(crate) samples: usize,
     /// How σ was obtained, in words.
-    pub method: &'static str,
+    pub(crate) method: &'static str,
 }
 
 /// The standard deviation of the white force noise in `samples`, estimated from the

@@ -40,21 +40,21 @@ pub struct DataQuality {
     /// Why not, one sentence each (empty when sufficient).
     pub reasons: Vec<String>,
     /// Runs with at least one sample in contact.
-    pub contacts: usize,
+    pub(crate) contacts: usize,
     /// Median number of force samples in contact per such run.
-    pub samples_per_contact: usize,
+    pub(crate) samples_per_contact: usize,
     /// Median over those runs of the peak measured force over σ (–).
-    pub peak_to_noise: f64,
+    pub(crate) peak_to_noise: f64,
     /// Where the motion was reconstructed from camera frames and the force: the median
     /// over contacts of the largest |integrated − after-flight| position or velocity in
     /// its standard deviations (–), after any sensor delay found; `None` for data whose
     /// motion and force share every row.
-    pub reconstruction_gap: Option<f64>,
+    pub(crate) reconstruction_gap: Option<f64>,
     /// Where the motion was recorded on every row: the median over contacts of its
     /// misfit to the motion the force implies, in standard deviations (–); contacts
     /// above [`crate::dataset::newton::MAX_MISFIT`] had their motion replaced by the
     /// force's (`dataset::newton`). `None` where nothing was checked.
-    pub motion_misfit: Option<f64>,
+    pub(crate) motion_misfit: Option<f64>,
     /// The delay of the force behind the camera the reconstruction found and undid
     /// (`dataset::delay`): when the gap without it was over [`MAX_GAP_SIGMAS`] or it is
     /// over `dataset::delay::DELAY_SIGMAS` of its standard deviations from 0.

@@ -26,7 +26,7 @@ pub struct ContactSamples {
     /// Approach speed δ̇0 of the sample's contact event (m/s); 0 outside events.
     pub approach_speed: Vec<f64>,
     /// Deepest δ so far in the sample's contact event (m); 0 outside events.
-    pub max_depth: Vec<f64>,
+    pub(crate) max_depth: Vec<f64>,
     /// Inside a completed contact event (between its δ = 0 crossings).
     pub in_contact: Vec<bool>,
     /// Recorded normal force on body 1 (N).

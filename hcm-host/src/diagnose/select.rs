@@ -53,7 +53,7 @@ pub struct Step {
     /// Its shape parameter (hysteresis exponent p), if any.
     pub shape: Option<f64>,
     /// Training RSS before and with it (N²).
-    pub rss: (f64, f64),
+    pub(crate) rss: (f64, f64),
     /// Cross-validated RSS before and with it (N²).
     pub cv_rss: (f64, f64),
     /// ΔRSS/σ² against its BIC threshold ln(n)·parameters.
@@ -74,11 +74,11 @@ pub struct Selection {
     /// Every step, the last one the rejected best candidate (if any).
     pub steps: Vec<Step>,
     /// RSS of the re-tuned base alone (N²) and number of samples.
-    pub base_rss: f64,
+    pub(crate) base_rss: f64,
     /// Samples used.
-    pub samples: usize,
+    pub(crate) samples: usize,
     /// RSS with the chosen effects (linearised, N²).
-    pub final_rss: f64,
+    pub(crate) final_rss: f64,
 }
 
 /// The base law's parameters a diagnosis re-tunes on `samples`: those `identify` fits,
@@ -525,18 +525,18 @@ pub struct Cause {
 #[derive(Clone, Debug)]
 pub struct Refit {
     /// Base law with re-fitted parameters plus the physical effects.
-    pub law: ExtendedLaw<f64>,
+    pub(crate) law: ExtendedLaw<f64>,
     /// Every named cause.
     pub causes: Vec<Cause>,
     /// Base parameters after the re-fit.
-    pub base_parameters: Vec<Fitted>,
+    pub(crate) base_parameters: Vec<Fitted>,
     /// The sensor's offset and delay as found (0 where not named).
-    pub sensor: Sensor,
+    pub(crate) sensor: Sensor,
     /// RSS of the re-fitted model (N²).
-    pub rss: f64,
+    pub(crate) rss: f64,
     /// What the re-fitted model leaves above the noise, max(RSS − n·σ², 0), as a share
     /// of everything structured (the causes' RSS increases plus it).
-    pub left_share: f64,
+    pub(crate) left_share: f64,
 }
 
 /// Jointly re-fits the base law's free parameters and the chosen effects on

@@ -21,9 +21,9 @@ use serde::Serialize;
 pub struct Sensor {
     /// Offset b of the normal force on body 1 (N): what the sensor reads with no
     /// contact.
-    pub offset: f64,
+    pub(crate) offset: f64,
     /// Delay τ of the force signal behind the recorded motion (s).
-    pub delay: f64,
+    pub(crate) delay: f64,
 }
 
 impl Sensor {

@@ -32,52 +32,52 @@ const STRUCTURE_SIGMAS: f64 = 5.0;
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Bin {
     /// Middle of the bin, in the abscissa's units (–).
-    pub centre: f64,
+    pub(crate) centre: f64,
     /// Mean residual measured − model in the bin (N); NaN for an empty bin.
-    pub mean: f64,
+    pub(crate) mean: f64,
     /// Number of samples in the bin.
-    pub count: usize,
+    pub(crate) count: usize,
 }
 
 /// Where and how much a model's force departs from the measured force.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Structure {
     /// Noise floor σ the residual is compared with (N).
-    pub sigma: f64,
+    pub(crate) sigma: f64,
     /// Number of samples in contact.
-    pub contact_samples: usize,
+    pub(crate) contact_samples: usize,
     /// RMS of the residual in contact (N); NaN without contact samples (as every RMS or
     /// mean below of an empty set).
-    pub contact_rms: f64,
+    pub(crate) contact_rms: f64,
     /// RMS of the residual in contact while loading, δ̇ > 0 (N).
-    pub loading_rms: f64,
+    pub(crate) loading_rms: f64,
     /// RMS of the residual in contact while unloading, δ̇ < 0 (N).
-    pub unloading_rms: f64,
+    pub(crate) unloading_rms: f64,
     /// Number of samples outside contact.
-    pub flight_samples: usize,
+    pub(crate) flight_samples: usize,
     /// Mean residual outside contact (N): the sensor's offset, as every model gives 0 there.
-    pub flight_mean: f64,
+    pub(crate) flight_mean: f64,
     /// RMS of the residual outside contact (N): ≈ σ for a sensor without offset.
-    pub flight_rms: f64,
+    pub(crate) flight_rms: f64,
     /// Part of the contact RMS the noise does not explain, √max(RMS² − σ², 0) (N).
-    pub excess_rms: f64,
+    pub(crate) excess_rms: f64,
     /// Mean residual against δ/δ_peak while loading (δ_peak the event's deepest δ).
-    pub by_depth_loading: Vec<Bin>,
+    pub(crate) by_depth_loading: Vec<Bin>,
     /// Mean residual against δ/δ_peak while unloading.
-    pub by_depth_unloading: Vec<Bin>,
+    pub(crate) by_depth_unloading: Vec<Bin>,
     /// Mean residual against δ̇/δ̇0 (δ̇0 the event's approach speed), over the range the
     /// data cover.
-    pub by_rate: Vec<Bin>,
+    pub(crate) by_rate: Vec<Bin>,
     /// Mean residual against time since touch-down / contact duration.
-    pub by_phase: Vec<Bin>,
+    pub(crate) by_phase: Vec<Bin>,
     /// χ² = Σ n_b·mean_b²/σ² over the non-empty bins of `by_phase` (–).
-    pub chi_squared: f64,
+    pub(crate) chi_squared: f64,
     /// Degrees of freedom of `chi_squared`: the number of non-empty bins of `by_phase`.
-    pub dof: usize,
+    pub(crate) dof: usize,
     /// dof + 5·√(2·dof): χ² above this is about 5 standard deviations beyond pure noise (–).
-    pub threshold: f64,
+    pub(crate) threshold: f64,
     /// Whether χ² exceeds `threshold`: the residual holds more than noise.
-    pub structured: bool,
+    pub(crate) structured: bool,
 }
 
 /// The residual `samples.measured − model_force` (N) summarised against the noise floor

@@ -20,7 +20,7 @@ pub struct Generation {
     /// Runs simulated together before they are handed on: memory holds this many runs.
     /// Enough that every thread has several, so the pause at the end of a chunk costs
     /// little.
-    pub chunk: usize,
+    pub(crate) chunk: usize,
 }
 
 impl Generation {

@@ -12,7 +12,7 @@ use hcm_core::residual::Quantisation;
 #[derive(Clone, Debug)]
 pub struct Blob {
     /// Its weight storage: the f32 network or its int8 twin.
-    pub quantisation: Quantisation,
+    pub(crate) quantisation: Quantisation,
     /// The blob (`residual.bin`, `residual.int8.bin`).
     pub bytes: Vec<u8>,
     /// Worst relative |core − host| over the envelope grid (–), see

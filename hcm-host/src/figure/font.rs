@@ -32,9 +32,9 @@ static FACE: LazyLock<FontRef<'static>> = LazyLock::new(|| {
 /// A line of text set on a baseline through (0, 0): its glyphs and its advance width.
 pub(super) struct Line {
     /// Each glyph with its position (px, y down) and scale.
-    pub glyphs: Vec<Glyph>,
+    pub(crate) glyphs: Vec<Glyph>,
     /// Distance from the start of the line to the end of its last glyph's advance (px).
-    pub width: f64,
+    pub(crate) width: f64,
 }
 
 /// `text` set in DejaVu Sans at `size` px per em (as CSS `font-size`).

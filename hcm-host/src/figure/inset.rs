@@ -35,11 +35,11 @@ const PLACES: [(f64, f64); 9] = [
 /// A zoom drawn inside the main plot.
 pub(super) struct Inset {
     /// The zoomed axes and the curves cut to its window.
-    pub plot: Plot,
+    pub(crate) plot: Plot,
     /// The white box behind the inset's frame and tick labels (px).
-    pub background: Rect,
+    pub(crate) background: Rect,
     /// The zoomed window outlined on the main plot (px).
-    pub marker: Rect,
+    pub(crate) marker: Rect,
 }
 
 /// The inset zooming on the highest point of the first series with a finite point, placed

@@ -75,15 +75,15 @@ impl TextSize {
 /// One text of the figure.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct Label {
-    pub text: String,
+    pub(crate) text: String,
     /// Reference point: horizontal position given by `anchor` (px).
-    pub x: f64,
+    pub(crate) x: f64,
     /// Reference point: the baseline (px).
-    pub y: f64,
-    pub anchor: Anchor,
-    pub size: TextSize,
+    pub(crate) y: f64,
+    pub(crate) anchor: Anchor,
+    pub(crate) size: TextSize,
     /// Turned a quarter turn anticlockwise about the reference point, to read bottom to top.
-    pub vertical: bool,
+    pub(crate) vertical: bool,
 }
 
 impl Label {
@@ -132,13 +132,13 @@ impl Label {
 
 /// Everything of a figure placed in a `width` × `height` px image.
 pub(super) struct Layout {
-    pub width: f64,
-    pub height: f64,
-    pub main: Plot,
-    pub inset: Option<Inset>,
+    pub(crate) width: f64,
+    pub(crate) height: f64,
+    pub(crate) main: Plot,
+    pub(crate) inset: Option<Inset>,
     /// Title, tick labels, axis titles, legend texts.
-    pub labels: Vec<Label>,
-    pub legend: Vec<LegendEntry>,
+    pub(crate) labels: Vec<Label>,
+    pub(crate) legend: Vec<LegendEntry>,
 }
 
 impl Layout {

@@ -21,10 +21,10 @@ pub(super) enum Swatch {
 /// One legend entry's swatch (its text is among [`Layout::labels`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct LegendEntry {
-    pub colour: Colour,
-    pub swatch: Swatch,
+    pub(crate) colour: Colour,
+    pub(crate) swatch: Swatch,
     /// Where the swatch goes (px).
-    pub area: Rect,
+    pub(crate) area: Rect,
 }
 
 /// The legend's entries: the band (if any) after the curves, each with its label's width.

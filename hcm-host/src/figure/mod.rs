@@ -37,11 +37,11 @@ pub struct NamedFigure {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Colour {
     /// Red, 0–255.
-    pub r: u8,
+    pub(crate) r: u8,
     /// Green, 0–255.
-    pub g: u8,
+    pub(crate) g: u8,
     /// Blue, 0–255.
-    pub b: u8,
+    pub(crate) b: u8,
 }
 
 impl Colour {
@@ -75,22 +75,22 @@ impl Colour {
 pub struct Series<'a> {
     /// Legend label; an empty one gives no legend entry (e.g. a curve of the same kind
     /// as one before it, which is named).
-    pub label: &'a str,
+    pub(crate) label: &'a str,
     /// Stroke colour.
-    pub colour: Colour,
+    pub(crate) colour: Colour,
     /// Points in data units; points with a non-finite coordinate are left out.
-    pub points: Vec<(f64, f64)>,
+    pub(crate) points: Vec<(f64, f64)>,
 }
 
 /// A shaded band: at each x, the range from `low` to `high` — e.g. ±2 standard errors of
 /// a measured mean, within which a model's deviation cannot be told from noise.
 pub struct Band<'a> {
     /// Legend label.
-    pub label: &'a str,
+    pub(crate) label: &'a str,
     /// Fill colour (a light one: the band is drawn under the grid and the curves).
-    pub colour: Colour,
+    pub(crate) colour: Colour,
     /// (x, low, high) in data units; points with a non-finite value are left out.
-    pub points: Vec<(f64, f64, f64)>,
+    pub(crate) points: Vec<(f64, f64, f64)>,
 }
 
 impl Band<'_> {

@@ -8,10 +8,10 @@ use super::{Band, Colour, Series};
 /// An axis-aligned rectangle, edges in px from the image's top-left corner (y down).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Rect {
-    pub left: f64,
-    pub top: f64,
-    pub right: f64,
-    pub bottom: f64,
+    pub(crate) left: f64,
+    pub(crate) top: f64,
+    pub(crate) right: f64,
+    pub(crate) bottom: f64,
 }
 
 impl Rect {
@@ -48,31 +48,31 @@ impl Rect {
 
 /// A curve in px: its colour and its polylines (one unless it was clipped to a window).
 pub(super) struct Curve {
-    pub colour: Colour,
-    pub pieces: Vec<Vec<(f64, f64)>>,
+    pub(crate) colour: Colour,
+    pub(crate) pieces: Vec<Vec<(f64, f64)>>,
 }
 
 /// A band in px: its colour and, along x, its upper and lower edge.
 pub(super) struct Shade {
-    pub colour: Colour,
+    pub(crate) colour: Colour,
     /// (x, upper edge, lower edge) (px), in the order of the band's points.
-    pub columns: Vec<(f64, f64, f64)>,
+    pub(crate) columns: Vec<(f64, f64, f64)>,
 }
 
 /// One set of axes and what is drawn in it.
 pub(super) struct Plot {
     /// The frame around the curves.
-    pub area: Rect,
-    pub x: Ticks,
-    pub y: Ticks,
+    pub(crate) area: Rect,
+    pub(crate) x: Ticks,
+    pub(crate) y: Ticks,
     /// Heights of the horizontal grid lines, one per y tick (px).
-    pub grid_y: Vec<f64>,
+    pub(crate) grid_y: Vec<f64>,
     /// Positions of the vertical grid lines, one per x tick (px).
-    pub grid_x: Vec<f64>,
+    pub(crate) grid_x: Vec<f64>,
     /// Height of the line y = 0, if it is drawn (px).
-    pub zero: Option<f64>,
-    pub curves: Vec<Curve>,
-    pub band: Option<Shade>,
+    pub(crate) zero: Option<f64>,
+    pub(crate) curves: Vec<Curve>,
+    pub(crate) band: Option<Shade>,
 }
 
 impl Plot {

@@ -12,7 +12,7 @@ use std::f64::consts::TAU;
 pub struct Bounds {
     /// One bound per free parameter, in catalogue order; every name is a parameter of
     /// the law.
-    pub parameters: Vec<Bound>,
+    pub(crate) parameters: Vec<Bound>,
     /// The law they are parameters of.
     kind: LawKind,
 }

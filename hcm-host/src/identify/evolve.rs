@@ -140,11 +140,11 @@ pub fn fit(
 #[derive(Clone, Debug)]
 pub struct GaOutcome {
     /// The law after polishing.
-    pub law: AnyNormalLaw<f64>,
+    pub(crate) law: AnyNormalLaw<f64>,
     /// The GA's own best fitness, before polishing.
-    pub ga_fitness: f64,
+    pub(crate) ga_fitness: f64,
     /// Generations run.
-    pub generations: usize,
+    pub(crate) generations: usize,
     /// Fitness evaluations (simulations of every condition).
-    pub evaluations: usize,
+    pub(crate) evaluations: usize,
 }

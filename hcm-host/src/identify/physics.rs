@@ -16,9 +16,9 @@ use std::path::Path;
 #[serde(deny_unknown_fields)]
 pub struct PhysicsContact {
     /// The pair, as in the scenario's `[[contact]] bodies`.
-    pub bodies: [String; 2],
+    pub(crate) bodies: [String; 2],
     /// Law name.
-    pub law: String,
+    pub(crate) law: String,
     /// Every parameter of the law (SI).
     pub parameters: toml::Table,
     /// Physical effects added to the law (as `hcm diagnose` writes them in
@@ -79,7 +79,7 @@ pub struct Physics {
     pub bodies: Vec<PhysicsBody>,
     /// How the fit went.
     #[serde(default)]
-    pub fit: FitRecord,
+    pub(crate) fit: FitRecord,
 }
 
 /// Why a physics file could not be used. Every variant but `Scenario` names the

@@ -17,21 +17,21 @@ use nalgebra::Vector3;
 #[derive(Clone, Debug)]
 pub struct Target {
     /// Condition name (run-id prefix; "" for none).
-    pub condition: String,
+    pub(crate) condition: String,
     /// Runs averaged.
-    pub runs: usize,
+    pub(crate) runs: usize,
     /// The model started from the mean pre-contact state.
-    pub model: Model,
+    pub(crate) model: Model,
     /// Mean measured normal force at τ = j·period after touch-down (N).
-    pub curve: Vec<f64>,
+    pub(crate) curve: Vec<f64>,
     /// Mean measured indicators.
-    pub indicators: Indicators,
+    pub(crate) indicators: Indicators,
     /// Standard error of each mean indicator, s/√n over the runs (same units): the
     /// noise floor below which a model's error against the mean cannot be told apart.
     /// None for a single run, whose spread is unknown (not zero).
-    pub standard_error: Option<Indicators>,
+    pub(crate) standard_error: Option<Indicators>,
     /// Time step of the curve (s).
-    pub period: f64,
+    pub(crate) period: f64,
 }
 
 /// The normal-force curve of the first event of contact `c` in `run`, sampled at

@@ -26,13 +26,13 @@ use hcm_core::model::ContactModel;
 #[derive(Clone, Debug)]
 pub struct LsqFit {
     /// The identified law.
-    pub law: AnyNormalLaw<f64>,
+    pub(crate) law: AnyNormalLaw<f64>,
     /// RMS force residual (N).
     pub force_rms: f64,
     /// What the data fix and what they do not.
-    pub notes: Vec<String>,
+    pub(crate) notes: Vec<String>,
     /// One-sigma standard errors of the free parameters, by name (from LM's covariance).
-    pub standard_errors: Vec<(String, f64)>,
+    pub(crate) standard_errors: Vec<(String, f64)>,
 }
 
 /// Fits `template`'s law (its fixed parameters, e.g. geometry, are kept) to `samples`.

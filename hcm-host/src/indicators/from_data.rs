@@ -53,31 +53,31 @@ pub enum IndicatorError {
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactHistory {
     /// Sample times (s).
-    pub time: Vec<f64>,
+    pub(crate) time: Vec<f64>,
     /// Indentation δ from the recorded motion and the scenario's geometry (m).
-    pub depth: Vec<f64>,
+    pub(crate) depth: Vec<f64>,
     /// Indentation rate δ̇ (m/s), > 0 approaching.
-    pub rate: Vec<f64>,
+    pub(crate) rate: Vec<f64>,
     /// Recorded normal force f_n on body 1 along the normal (N).
-    pub force: Vec<f64>,
+    pub(crate) force: Vec<f64>,
     /// Unit contact normal n at each sample, world frame, from body 2 towards body 1
     /// (–).
-    pub normal: Vec<Vector3<f64>>,
+    pub(crate) normal: Vec<Vector3<f64>>,
     /// The body (index in the model) whose recorded force `force` was read from: body
     /// 1, or body 2's reaction (sign flipped) when only body 2 was measured; None when
     /// neither track holds a force for every sample (`force` is then 0).
-    pub force_body: Option<usize>,
+    pub(crate) force_body: Option<usize>,
 }
 
 /// One completed contact event located in a [`ContactHistory`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct EventSpan {
     /// Indices of the samples inside the contact (δ > 0).
-    pub inside: std::ops::Range<usize>,
+    pub(crate) inside: std::ops::Range<usize>,
     /// Interpolated touch-down time (s), δ̇ there (m/s) and f_n there (N).
-    pub touch_down: (f64, f64, f64),
+    pub(crate) touch_down: (f64, f64, f64),
     /// Interpolated lift-off time (s), δ̇ there (m/s) and f_n there (N).
-    pub lift_off: (f64, f64, f64),
+    pub(crate) lift_off: (f64, f64, f64),
 }
 
 impl EventSpan {

@@ -19,9 +19,9 @@ pub struct WrenchIndicators {
     /// Touch-down to lift-off (s).
     pub duration: f64,
     /// ∫**F** dt, world frame (N·s).
-    pub linear_impulse_vector: [f64; 3],
+    pub(crate) linear_impulse_vector: [f64; 3],
     /// ∫**T** dt, world frame (N·m·s).
-    pub angular_impulse_vector: [f64; 3],
+    pub(crate) angular_impulse_vector: [f64; 3],
 }
 
 impl WrenchIndicators {

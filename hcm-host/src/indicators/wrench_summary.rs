@@ -22,7 +22,7 @@ pub struct Estimate {
     /// NaN (JSON `null`) for one run, whose spread is unknown.
     pub standard_error: f64,
     /// Sample standard deviation s over the runs; NaN for one run.
-    pub std: f64,
+    pub(crate) std: f64,
 }
 
 impl Estimate {
@@ -57,15 +57,15 @@ pub struct WrenchEventStatistics {
     /// Runs averaged.
     pub runs: usize,
     /// Maximum ‖F‖ (N).
-    pub max_force: Estimate,
+    pub(crate) max_force: Estimate,
     /// Maximum ‖T‖ about the moving body's centre of mass (N·m).
-    pub max_torque: Estimate,
+    pub(crate) max_torque: Estimate,
     /// ‖∫F dt‖ (N·s).
     pub linear_impulse: Estimate,
     /// ‖∫T dt‖ (N·m·s).
-    pub angular_impulse: Estimate,
+    pub(crate) angular_impulse: Estimate,
     /// Duration (s).
-    pub duration: Estimate,
+    pub(crate) duration: Estimate,
 }
 
 impl WrenchEventStatistics {

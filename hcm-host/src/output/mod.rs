@@ -41,9 +41,9 @@ pub struct OutputError {
     pub path: PathBuf,
     /// What was being done, phrased to follow "cannot" and precede the path, e.g.
     /// "create a temporary file next to".
-    pub action: &'static str,
+    pub(crate) action: &'static str,
     /// The operating system's error, or what is wrong with the destination.
-    pub error: io::Error,
+    pub(crate) error: io::Error,
 }
 
 /// Writes the file at `path` by calling `write` with a buffered writer to a new temporary

@@ -10,11 +10,11 @@ use std::path::Path;
 )]
 pub struct NoSpace {
     /// The destination.
-    pub path: std::path::PathBuf,
+    pub(crate) path: std::path::PathBuf,
     /// Bytes the output needs (an estimate).
-    pub needed: u64,
+    pub(crate) needed: u64,
     /// Bytes free to an unprivileged user on the destination's file system.
-    pub available: u64,
+    pub(crate) available: u64,
 }
 
 /// Bytes free to an unprivileged user on the file system that holds `path` (or its

@@ -16,9 +16,9 @@ pub(crate) const MODELS: [&str; 3] = ["PM2", "HCM", "HCM int8"];
 /// What stage 5 finds.
 pub struct Evaluation {
     /// The table of S2's first condition (the only one of the paper's examples).
-    pub table: ConditionTable,
+    pub(crate) table: ConditionTable,
     /// Fig 9/12 (`contact_force`) and Fig 10/13 (`force_error`).
-    pub figures: Vec<NamedFigure>,
+    pub(crate) figures: Vec<NamedFigure>,
 }
 
 /// Replays PM2 (`pm2`, the scenario with PM2 in place) and PM2 + each blob's residual

@@ -13,12 +13,12 @@ pub(crate) const PM2_LAW: &str = "lankarani_nikravesh";
 #[derive(Clone, Debug)]
 pub struct Pm2 {
     /// The identified law and how the fit went.
-    pub identification: Identification,
+    pub(crate) identification: Identification,
     /// The physics file's content (`pm2.toml`).
-    pub physics: Physics,
+    pub(crate) physics: Physics,
     /// The scenario with PM2 in place of its contact law: the model every later
     /// stage simulates.
-    pub model: Model,
+    pub(crate) model: Model,
 }
 
 /// Identifies [`PM2_LAW`] on the training set of `scenario` (read from `path`) by

@@ -101,19 +101,19 @@ impl From<cube::CubeError> for PipelineError {
 /// the results.
 pub struct Reproduction {
     /// The scenario as read, overrides applied.
-    pub scenario: Scenario,
+    pub(crate) scenario: Scenario,
     /// S1 and S2.
-    pub sets: Split,
+    pub(crate) sets: Split,
     /// PM2.
-    pub pm2: Pm2,
+    pub(crate) pm2: Pm2,
     /// The residual network and its int8 twin.
-    pub trained: Trained,
+    pub(crate) trained: Trained,
     /// Their blobs.
-    pub blobs: Blobs,
+    pub(crate) blobs: Blobs,
     /// Fig 9/12 and 10/13.
-    pub figures: Vec<NamedFigure>,
+    pub(crate) figures: Vec<NamedFigure>,
     /// Every table of the report.
-    pub results: ReproduceResults,
+    pub(crate) results: ReproduceResults,
 }
 
 /// The ball's and the flat shot's files: S1 and S2, PM2, the trained network, its

@@ -10,101 +10,101 @@ use serde::Serialize;
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ReproduceResults {
     /// Which example.
-    pub example: Example,
+    pub(crate) example: Example,
     /// Seed of the experiment, the split, the GA and the training.
-    pub seed: u64,
+    pub(crate) seed: u64,
     /// Runs per condition generated.
-    pub runs_per_condition: usize,
+    pub(crate) runs_per_condition: usize,
     /// The scenario file, as given.
-    pub scenario: String,
+    pub(crate) scenario: String,
     /// Overrides applied to it (`key=value`).
-    pub overrides: Vec<String>,
+    pub(crate) overrides: Vec<String>,
     /// PM2: the law and its identified parameters.
-    pub pm2: Pm2Summary,
+    pub(crate) pm2: Pm2Summary,
     /// The paper's table on S2: the S2 means, their standard errors, and the rows of
     /// PM2, HCM and HCM int8 (indicators and Eq 20 errors).
-    pub validation: ConditionTable,
+    pub(crate) validation: ConditionTable,
     /// The paper's own errors, Tables 5 and 10.
-    pub paper: PaperErrors,
+    pub(crate) paper: PaperErrors,
     /// How the residual network trained.
-    pub residual: ResidualSummary,
+    pub(crate) residual: ResidualSummary,
     /// The exported blobs, f32 then int8.
-    pub blobs: Vec<BlobSummary>,
+    pub(crate) blobs: Vec<BlobSummary>,
     /// Wall-clock time per stage, in order.
-    pub timings: Vec<StageTiming>,
+    pub(crate) timings: Vec<StageTiming>,
     /// The figure files, SVG and PNG.
-    pub figures: Vec<String>,
+    pub(crate) figures: Vec<String>,
     /// The experiment in words, for the report (not in results.json).
     #[serde(skip)]
-    pub setup: Setup,
+    pub(crate) setup: Setup,
 }
 
 /// PM2 as identified.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Pm2Summary {
     /// Catalogue name of the law (`lankarani_nikravesh`).
-    pub law: String,
+    pub(crate) law: String,
     /// How it was identified (`lsq`, `ga (curve) + LM`, … as the fit record says).
-    pub method: String,
+    pub(crate) method: String,
     /// Its parameters in the catalogue's order and units (SI: k in N/m^n, n –, ce –).
-    pub parameters: Vec<NamedValue>,
+    pub(crate) parameters: Vec<NamedValue>,
 }
 
 /// A named number.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct NamedValue {
     /// Its name.
-    pub name: String,
+    pub(crate) name: String,
     /// Its value (SI).
-    pub value: f64,
+    pub(crate) value: f64,
 }
 
 /// The paper's errors (–, fractions: 0.0158 = 1.58 %).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct PaperErrors {
     /// PM2's.
-    pub pm2: IndicatorErrors,
+    pub(crate) pm2: IndicatorErrors,
     /// The HCM's.
-    pub hcm: IndicatorErrors,
+    pub(crate) hcm: IndicatorErrors,
 }
 
 /// The residual network's training and its int8 twin's fine-tuning.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ResidualSummary {
     /// Training rows (S1's force samples inside the contact).
-    pub training_samples: usize,
+    pub(crate) training_samples: usize,
     /// Epochs run.
-    pub epochs: usize,
+    pub(crate) epochs: usize,
     /// Epoch (1-based) whose weights were kept.
-    pub best_epoch: usize,
+    pub(crate) best_epoch: usize,
     /// RMS error of the network on its validation rows (N).
-    pub validation_rms: f64,
+    pub(crate) validation_rms: f64,
     /// RMS of the plainly rounded int8 network against the f32 one (N).
-    pub int8_rounded_rms: f64,
+    pub(crate) int8_rounded_rms: f64,
     /// RMS of the fine-tuned int8 twin against the f32 network (N).
-    pub int8_tuned_rms: f64,
+    pub(crate) int8_tuned_rms: f64,
     /// Fine-tuning epochs of the twin.
-    pub int8_epochs: usize,
+    pub(crate) int8_epochs: usize,
 }
 
 /// One exported blob.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BlobSummary {
     /// Weight storage, `f32` or `int8`.
-    pub weights: String,
+    pub(crate) weights: String,
     /// Size of the blob (bytes).
-    pub bytes: usize,
+    pub(crate) bytes: usize,
     /// Worst relative |core − host| over the envelope grid (–).
-    pub round_trip_error: f64,
+    pub(crate) round_trip_error: f64,
 }
 
 /// The time one stage took.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StageTiming {
     /// Stage, e.g. `identify PM2`.
-    pub stage: String,
+    pub(crate) stage: String,
     /// Wall-clock time (s).
-    pub seconds: f64,
+    pub(crate) seconds: f64,
 }
 
 /// Wall-clock time per stage, in the order the stages ran.

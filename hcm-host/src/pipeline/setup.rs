@@ -13,21 +13,21 @@ use nalgebra::Vector3;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Setup {
     /// One sentence on the validation condition: what hits what, from where, how fast.
-    pub sentence: String,
+    pub(crate) sentence: String,
     /// PM1's law and parameters, e.g. "the variable-stiffness law (Eq 6–7): c = 2, …".
-    pub pm1: String,
+    pub(crate) pm1: String,
     /// PM1's run-to-run parameter scatter (Eq 18), e.g. "c ± 2 %, λ ± 2 %"; empty: none.
-    pub parameter_noise: String,
+    pub(crate) parameter_noise: String,
     /// σ of the noise on every force sample (N), Eq 19.
-    pub force_noise: f64,
+    pub(crate) force_noise: f64,
     /// The experimental conditions' names; empty: a single condition.
-    pub conditions: Vec<String>,
+    pub(crate) conditions: Vec<String>,
     /// Runs in S1.
-    pub training_runs: usize,
+    pub(crate) training_runs: usize,
     /// Runs in S2.
-    pub validation_runs: usize,
+    pub(crate) validation_runs: usize,
     /// How S2 was chosen, e.g. "a random 10 % of the runs".
-    pub holdout: String,
+    pub(crate) holdout: String,
 }
 
 impl Setup {

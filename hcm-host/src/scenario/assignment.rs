@@ -11,9 +11,9 @@ use std::fmt;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Assignment {
     /// The key path, e.g. `contact`, `0`, `parameters`, `stiffness`.
-    pub key: Vec<String>,
+    pub(crate) key: Vec<String>,
     /// The value put there.
-    pub value: toml::Value,
+    pub(crate) value: toml::Value,
 }
 
 impl Assignment {

@@ -34,18 +34,18 @@ pub struct Scenario {
     #[serde(default)]
     pub description: String,
     /// Gravitational acceleration **g** (m/s²), world frame.
-    pub gravity: [f64; 3],
+    pub(crate) gravity: [f64; 3],
     /// Named materials, referred to by bodies.
     #[serde(default, rename = "material")]
-    pub materials: BTreeMap<String, Material<f64>>,
+    pub(crate) materials: BTreeMap<String, Material<f64>>,
     /// The bodies, moving or fixed.
     #[serde(rename = "body")]
-    pub bodies: Vec<BodySpec>,
+    pub(crate) bodies: Vec<BodySpec>,
     /// The contact pairs and their laws.
     #[serde(rename = "contact")]
-    pub contacts: Vec<ContactSpec>,
+    pub(crate) contacts: Vec<ContactSpec>,
     /// Solver settings and when to stop.
-    pub simulation: SimulationSpec,
+    pub(crate) simulation: SimulationSpec,
     /// What the recorded trajectory holds.
     pub record: RecordSpec,
     /// How noise-added experiments (PM1) are generated from this scenario.
@@ -57,16 +57,16 @@ pub struct Scenario {
     /// The file and parsed document it came from, overrides applied, so that
     /// experimental conditions can be layered on top ([`Scenario::with`]).
     #[serde(skip)]
-    pub source: Source,
+    pub(crate) source: Source,
 }
 
 /// Where a scenario came from.
 #[derive(Clone, Debug, Default)]
 pub struct Source {
     /// The scenario file (names it in errors).
-    pub path: PathBuf,
+    pub(crate) path: PathBuf,
     /// The TOML document with every override applied so far.
-    pub document: toml::Table,
+    pub(crate) document: toml::Table,
 }
 
 /// One body.
@@ -74,36 +74,36 @@ pub struct Source {
 #[serde(deny_unknown_fields)]
 pub struct BodySpec {
     /// Unique name, as in the data files' `body` column.
-    pub name: String,
+    pub(crate) name: String,
     /// Mass m (kg); required for moving bodies, ignored for fixed ones.
-    pub mass: Option<f64>,
+    pub(crate) mass: Option<f64>,
     /// A fixed body never moves (the ground, a hole).
     #[serde(default)]
-    pub fixed: bool,
+    pub(crate) fixed: bool,
     /// Contact geometry.
-    pub shape: ShapeSpec,
+    pub(crate) shape: ShapeSpec,
     /// Name of an entry of `[material.*]`; needed where a law derives parameters
     /// from the materials (variable stiffness, Hertz without `stiffness`).
-    pub material: Option<String>,
+    pub(crate) material: Option<String>,
     /// Initial position of the body's reference point (its centre of mass) (m).
-    pub position: [f64; 3],
+    pub(crate) position: [f64; 3],
     /// Initial velocity (m/s).
     #[serde(default)]
-    pub velocity: [f64; 3],
+    pub(crate) velocity: [f64; 3],
     /// Initial orientation (body → world); default: the identity.
     #[serde(default)]
-    pub orientation: Option<OrientationSpec>,
+    pub(crate) orientation: Option<OrientationSpec>,
     /// Initial angular velocity ω (rad/s, **world frame**).
     #[serde(default)]
-    pub angular_velocity: [f64; 3],
+    pub(crate) angular_velocity: [f64; 3],
     /// Inertia tensor about the centre of mass in the body frame (kg·m²): principal
     /// moments `[Ixx, Iyy, Izz]` or a full symmetric 3×3 matrix. Default: the uniform
     /// solid of the shape (a sphere 2/5·m·r², a box m·(b² + c²)/3 with half extents).
     #[serde(default)]
-    pub inertia: Option<InertiaSpec>,
+    pub(crate) inertia: Option<InertiaSpec>,
     /// Quadratic air drag on the body, e.g. `air_drag = { coefficient = 1e-4 }` (kg/m).
     #[serde(default)]
-    pub air_drag: Option<AirDrag<f64>>,
+    pub(crate) air_drag: Option<AirDrag<f64>>,
 }
 
 /// Contact geometry of a body, relative to its reference point.
@@ -143,36 +143,36 @@ pub enum ShapeSpec {
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
     /// Body 1 (a sphere) and body 2; the normal points from body 2 to body 1.
-    pub bodies: [String; 2],
+    pub(crate) bodies: [String; 2],
     /// Normal law name (see `hcm laws`).
-    pub law: String,
+    pub(crate) law: String,
     /// Law parameters (SI). Missing geometric ones are derived where the law allows:
     /// `effective_modulus`, `radius` and `effective_mass` of `variable_stiffness`, and
     /// `stiffness` (Eq 3) and `exponent` (3/2) of `hertz`.
     #[serde(default)]
-    pub parameters: toml::Table,
+    pub(crate) parameters: toml::Table,
     /// Parameter noise of the noise-added experiment (Eq 18): for each named
     /// parameter, b in η = a + a·b·ζ, ζ ~ N(0, 1) drawn once per run (dimensionless).
     /// A name is a parameter of the law or, with `friction`, one of the friction's
     /// (`mu_static`, `mu_dynamic`, `v_static`, `v_dynamic`).
     #[serde(default)]
-    pub noise: BTreeMap<String, f64>,
+    pub(crate) noise: BTreeMap<String, f64>,
     /// Physical effects added to the law (`hcm_core::effect`), e.g.
     /// `effects = [{ viscous_damping = { coefficient = 40.0 } }]`; at most one of each
     /// kind, at most four.
     #[serde(default)]
-    pub effects: Vec<ContactEffect<f64>>,
+    pub(crate) effects: Vec<ContactEffect<f64>>,
     /// Velocity-based STEP friction (Eq 10–11) at every contact point, e.g.
     /// `friction = { mu_static = 0.3, mu_dynamic = 0.2, v_static = 1e-3, v_dynamic = 1e-2 }`
     /// (–, –, m/s, m/s). None: frictionless.
     #[serde(default)]
-    pub friction: Option<FrictionSpec>,
+    pub(crate) friction: Option<FrictionSpec>,
     /// Tangential effects beside the friction (`hcm_core::friction::TangentialEffects`),
     /// e.g. `tangential = { viscous_friction = { coefficient = 0.5 } }` (N·s/m per
     /// point), `torsional_resistance = { arm = 2e-3, spin_rate = 0.1 }` (m, rad/s),
     /// `rolling_resistance = { arm = 5e-4, roll_rate = 0.1 }` (m, rad/s). None: none.
     #[serde(default)]
-    pub tangential: TangentialEffects<f64>,
+    pub(crate) tangential: TangentialEffects<f64>,
 }
 
 /// Solver settings and the stop condition.
@@ -180,23 +180,23 @@ pub struct ContactSpec {
 #[serde(deny_unknown_fields)]
 pub struct SimulationSpec {
     /// Latest simulated time (s); the run starts at t = 0.
-    pub end_time: f64,
+    pub(crate) end_time: f64,
     /// Stop `record.contact_margin` after the lift-off of this many contact events
     /// (0: run to `end_time`).
     #[serde(default)]
-    pub stop_after_contacts: usize,
+    pub(crate) stop_after_contacts: usize,
     /// Relative tolerance of the adaptive Runge–Kutta solver.
     #[serde(default = "default_relative_tolerance")]
-    pub relative_tolerance: f64,
+    pub(crate) relative_tolerance: f64,
     /// Absolute tolerance (state units: m, m/s, N·s, J).
     #[serde(default = "default_absolute_tolerance")]
-    pub absolute_tolerance: f64,
+    pub(crate) absolute_tolerance: f64,
     /// Longest solver step (s).
     #[serde(default = "default_max_step")]
-    pub max_step: f64,
+    pub(crate) max_step: f64,
     /// Solver steps allowed before the run is abandoned as stiff or diverging.
     #[serde(default = "default_max_steps")]
-    pub max_steps: u64,
+    pub(crate) max_steps: u64,
 }
 
 /// What gets sampled into the trajectory.
@@ -206,12 +206,12 @@ pub struct RecordSpec {
     /// Sample period inside contacts and their margins (s).
     pub contact_sample_period: f64,
     /// Sample period elsewhere (s).
-    pub flight_sample_period: f64,
+    pub(crate) flight_sample_period: f64,
     /// Time recorded at the contact rate before touch-down and after lift-off (s).
     pub contact_margin: f64,
     /// Bodies to record (default: all). Leaving out a fixed body halves a file.
     #[serde(default)]
-    pub bodies: Vec<String>,
+    pub(crate) bodies: Vec<String>,
 }
 
 /// The noise-added experiment (paper Section 4, Eq 14, 18, 19).
@@ -226,30 +226,30 @@ pub struct ExperimentSpec {
     pub torque_noise: f64,
     /// σ of the noise on every sampled position component (m).
     #[serde(default)]
-    pub position_noise: f64,
+    pub(crate) position_noise: f64,
     /// σ of the noise on every sampled velocity component (m/s).
     #[serde(default)]
-    pub velocity_noise: f64,
+    pub(crate) velocity_noise: f64,
     /// Force-sensor bias added to every recorded force sample, in flight too (N, world
     /// components): a measurement effect, for testing `hcm diagnose`.
     #[serde(default)]
-    pub force_offset: [f64; 3],
+    pub(crate) force_offset: [f64; 3],
     /// Force-sensor lag τ (s, ≥ 0): the force recorded at time t is the true force at
     /// t − τ (linear interpolation between the simulation's samples; the first sample's
     /// value before it). A measurement effect, for testing `hcm diagnose`.
     #[serde(default)]
-    pub sensor_delay: f64,
+    pub(crate) sensor_delay: f64,
     /// Experimental conditions; `--runs` runs are made of each. None: one condition,
     /// the scenario as written.
     #[serde(default, rename = "condition")]
-    pub conditions: Vec<ConditionSpec>,
+    pub(crate) conditions: Vec<ConditionSpec>,
     /// Conditions whose runs form S2 (validation). Empty: S2 is a random
     /// `holdout_fraction` of all runs.
     #[serde(default)]
-    pub holdout_conditions: Vec<String>,
+    pub(crate) holdout_conditions: Vec<String>,
     /// Share of runs drawn at random into S2 when no holdout condition is named.
     #[serde(default = "default_holdout_fraction")]
-    pub holdout_fraction: f64,
+    pub(crate) holdout_fraction: f64,
 }
 
 impl Default for ExperimentSpec {
@@ -284,10 +284,10 @@ pub struct IdentifySpec {
 #[serde(deny_unknown_fields)]
 pub struct ConditionSpec {
     /// Name, used as the prefix of the condition's run ids (`name/007`).
-    pub name: String,
+    pub(crate) name: String,
     /// `key=value` overrides, as for `--set`.
     #[serde(default)]
-    pub set: Vec<String>,
+    pub(crate) set: Vec<String>,
 }
 
 fn default_relative_tolerance() -> f64 {

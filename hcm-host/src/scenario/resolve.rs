@@ -56,11 +56,11 @@ pub struct Body {
     /// Mass (kg); +∞ for a fixed body.
     pub mass: f64,
     /// Whether the body is fixed in the world.
-    pub fixed: bool,
+    pub(crate) fixed: bool,
     /// Contact geometry.
-    pub shape: Shape,
+    pub(crate) shape: Shape,
     /// Material, if the scenario names one.
-    pub material: Option<Material<f64>>,
+    pub(crate) material: Option<Material<f64>>,
     /// Initial position (m).
     pub position: Vector3<f64>,
     /// Initial velocity (m/s).
@@ -74,7 +74,7 @@ pub struct Body {
     /// scenario accepts (the simulator holds such a body from turning).
     pub inertia: Matrix3<f64>,
     /// Quadratic air drag in flight and in contact, if any.
-    pub air_drag: Option<AirDrag<f64>>,
+    pub(crate) air_drag: Option<AirDrag<f64>>,
 }
 
 /// A contact pair of the model: body 1 a sphere or a box, body 2 a sphere, plane, box
@@ -90,7 +90,7 @@ pub struct Contact {
     /// ships, evaluated by every host stage.
     pub model: HostContactModel,
     /// Effective mass m_e = m1·m2/(m1 + m2) (kg) of the pair.
-    pub effective_mass: f64,
+    pub(crate) effective_mass: f64,
     /// Parameter noise b per law or friction parameter (Eq 18), for generated
     /// experiments, sorted by name (the order of the draws).
     pub noise: Vec<(String, f64)>,
@@ -109,7 +109,7 @@ pub struct Model {
     /// The scenario it came from (settings are read from here).
     pub scenario: Scenario,
     /// Gravity (m/s²).
-    pub gravity: Vector3<f64>,
+    pub(crate) gravity: Vector3<f64>,
     /// Bodies, in file order.
     pub bodies: Vec<Body>,
     /// Contacts, in file order.

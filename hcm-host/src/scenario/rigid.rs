@@ -32,24 +32,24 @@ pub enum InertiaSpec {
 #[serde(deny_unknown_fields)]
 pub struct PartSpec {
     /// Half extents along the part's own axes (m).
-    pub half_extents: [f64; 3],
+    pub(crate) half_extents: [f64; 3],
     /// Centre of the part relative to the body's reference point, body frame (m).
     #[serde(default)]
-    pub position: [f64; 3],
+    pub(crate) position: [f64; 3],
     /// Orientation of the part relative to the body; default: aligned with it.
     #[serde(default)]
-    pub orientation: Option<OrientationSpec>,
+    pub(crate) orientation: Option<OrientationSpec>,
 }
 
 /// One box of a compound body, checked.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Part {
     /// Half extents (m), each > 0.
-    pub half_extents: Vector3<f64>,
+    pub(crate) half_extents: Vector3<f64>,
     /// Centre relative to the body's reference point, body frame (m).
-    pub position: Vector3<f64>,
+    pub(crate) position: Vector3<f64>,
     /// Orientation relative to the body (–).
-    pub orientation: UnitQuaternion<f64>,
+    pub(crate) orientation: UnitQuaternion<f64>,
 }
 
 /// Velocity-based STEP friction (Eq 10–11) as a scenario (or a physics file) writes it.

@@ -59,7 +59,7 @@ pub struct ContactEvent {
     /// Kinetic energy of the pair's moving bodies at lift-off (J); NaN while open.
     pub kinetic_energy_out: f64,
     /// Effective mass m_e of the pair (kg).
-    pub effective_mass: f64,
+    pub(crate) effective_mass: f64,
 }
 
 impl PartialEq for ContactEvent {
@@ -144,7 +144,7 @@ impl ContactEvent {
 #[derive(Clone, Debug, Default)]
 pub struct EventTracker {
     /// Every event, in order of touch-down.
-    pub events: Vec<ContactEvent>,
+    pub(crate) events: Vec<ContactEvent>,
     /// Per contact, the index of its open event.
     open: Vec<Option<usize>>,
     /// Per event, the impulse integrals (N·s, N·m·s) at its touch-down.
@@ -153,7 +153,7 @@ pub struct EventTracker {
     /// power there (W): the next step's first Boole point.
     end_power: Vec<(f64, f64)>,
     /// Lift-offs so far.
-    pub lift_offs: usize,
+    pub(crate) lift_offs: usize,
 }
 
 impl EventTracker {

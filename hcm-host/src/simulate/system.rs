@@ -19,11 +19,11 @@ use nalgebra::Vector3;
 /// A scenario's dynamics with the current point histories.
 pub struct RigidSystem<'a> {
     /// The model.
-    pub model: &'a Model,
+    pub(crate) model: &'a Model,
     /// State layout.
-    pub layout: &'a RigidLayout,
+    pub(crate) layout: &'a RigidLayout,
     /// Each contact's point histories.
-    pub memory: Vec<PointMemory>,
+    pub(crate) memory: Vec<PointMemory>,
     /// Each body's mass properties (fixed bodies: unused).
     bodies: Vec<RigidBody<f64>>,
     /// Force and torque on each body (N, N·m), reused per evaluation.
@@ -48,15 +48,15 @@ pub struct PairManifold {
 #[derive(Clone, Copy, Debug)]
 pub struct ContactLoad {
     /// The loads on both bodies (torques about their centres of mass).
-    pub load: PairLoad<f64>,
+    pub(crate) load: PairLoad<f64>,
     /// Contact points touching.
-    pub points: usize,
+    pub(crate) points: usize,
     /// The force (N) and torque (N·m, about its centre of mass) on the contact's
     /// moving body: body 1, or body 2 when body 1 is fixed.
-    pub on_mover: (Vector3<f64>, Vector3<f64>),
+    pub(crate) on_mover: (Vector3<f64>, Vector3<f64>),
     /// The power the contact takes from the two bodies (W): −(**F**1·**v**1 +
     /// **T**1·**ω**1 + **F**2·**v**2 + **T**2·**ω**2), f_n·δ̇ for one point without friction.
-    pub dissipation: f64,
+    pub(crate) dissipation: f64,
 }
 
 impl RigidSystem<'_> {

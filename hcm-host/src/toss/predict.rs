@@ -24,7 +24,7 @@ const CLOCK_TOLERANCE: f64 = 1e-3;
 #[derive(Clone, Debug)]
 pub struct TossPrediction {
     /// Run id.
-    pub run: String,
+    pub(crate) run: String,
     /// The window, as indices into the run's frames of the body.
     pub window: Window,
     /// The state the replay started from.
@@ -43,17 +43,17 @@ pub struct TossPrediction {
 #[derive(Clone, Debug)]
 pub struct PreparedToss<'a> {
     /// Run id.
-    pub run: &'a str,
+    pub(crate) run: &'a str,
     /// The recorded track of the tossed body.
-    pub track: &'a BodyTrack,
+    pub(crate) track: &'a BodyTrack,
     /// Its window.
-    pub window: Window,
+    pub(crate) window: Window,
     /// The state at the window start.
-    pub initial: InitialState,
+    pub(crate) initial: InitialState,
     /// Frame period (s).
-    pub frame_period: f64,
+    pub(crate) frame_period: f64,
     /// Each window frame's index on the grid of frame periods from the window start.
-    pub ticks: Vec<u64>,
+    pub(crate) ticks: Vec<u64>,
 }
 
 /// Checks `run` and finds its window, initial state and frame grid.

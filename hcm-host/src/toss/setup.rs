@@ -23,16 +23,16 @@ pub const TOSSES: Requirement = Requirement {
 #[derive(Clone, Debug, PartialEq)]
 pub struct TossSetup {
     /// Index of the moving body in the model.
-    pub body: usize,
+    pub(crate) body: usize,
     /// Its name (the data's `body` column).
     pub name: String,
     /// The plane body's reference point (m, world frame): the table as the data's frame
     /// has it. The contact's surface lies `offset` from it along the normal; the windows
     /// are measured from this point, not from the surface, so that fitting the table's
     /// height (the offset) leaves every toss's window, and the frames scored, as they are.
-    pub plane_point: Vector3<f64>,
+    pub(crate) plane_point: Vector3<f64>,
     /// The plane's unit outward normal (world frame).
-    pub plane_normal: Vector3<f64>,
+    pub(crate) plane_normal: Vector3<f64>,
     /// Circumscribed radius: the largest distance from the centre to a corner (m);
     /// 0.0524·√3 m for the ContactNets cube. Farther from the plane, nothing touches.
     pub radius: f64,
@@ -40,7 +40,7 @@ pub struct TossSetup {
     /// cube's side, 0.1048 m.
     pub width: f64,
     /// Gravity (m/s², world frame).
-    pub gravity: Vector3<f64>,
+    pub(crate) gravity: Vector3<f64>,
 }
 
 impl TossSetup {

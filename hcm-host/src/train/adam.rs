@@ -14,13 +14,13 @@
 #[derive(Clone, Debug)]
 pub struct Adam {
     /// Step size α (units of the parameters).
-    pub learning_rate: f64,
+    pub(crate) learning_rate: f64,
     /// Decay of the first-moment estimate β1.
-    pub beta1: f64,
+    pub(crate) beta1: f64,
     /// Decay of the second-moment estimate β2.
-    pub beta2: f64,
+    pub(crate) beta2: f64,
     /// ε, keeping the step finite where v̂ ≈ 0.
-    pub epsilon: f64,
+    pub(crate) epsilon: f64,
     first_moment: Vec<f64>,
     second_moment: Vec<f64>,
     // β1ᵗ and β2ᵗ, kept as running products rather than powers of a step count.

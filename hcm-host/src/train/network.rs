@@ -111,9 +111,9 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 #[derive(Clone, Debug)]
 pub struct Layout {
     /// Neurons per layer, input first: [inputs, width, …, width, outputs].
-    pub sizes: Vec<usize>,
+    pub(crate) sizes: Vec<usize>,
     /// Activation of the hidden layers.
-    pub activation: Activation,
+    pub(crate) activation: Activation,
     /// (offset of the weights in the flat vector, inputs, outputs) of each layer.
     shapes: Vec<(usize, usize, usize)>,
 }

@@ -25,15 +25,15 @@ pub(crate) const FILE_VERSION: u32 = 1;
 #[serde(deny_unknown_fields)]
 pub struct TrainedResidual {
     /// Always [`FORMAT`].
-    pub format: String,
+    pub(crate) format: String,
     /// [`FILE_VERSION`].
-    pub version: u32,
+    pub(crate) version: u32,
     /// Index of the scenario contact whose force error the network models.
-    pub contact: usize,
+    pub(crate) contact: usize,
     /// The trained network (f64; exported as f32).
-    pub network: Network,
+    pub(crate) network: Network,
     /// Its int8 twin (exported as int8).
-    pub int8_network: Network,
+    pub(crate) int8_network: Network,
 }
 
 /// Why a trained-residual file cannot be read.

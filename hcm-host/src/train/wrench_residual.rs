@@ -32,15 +32,15 @@ const WRENCH_UNITS: &str = "N, N·m";
 /// The trained wrench residual.
 pub struct WrenchTrained {
     /// The f32 network and its int8 twin.
-    pub residual: TrainedResidual,
+    pub(crate) residual: TrainedResidual,
     /// Training rows (contact samples of the first events).
-    pub rows: usize,
+    pub(crate) rows: usize,
     /// The f32 network's training.
     pub report: TrainReport,
     /// The int8 twin's fine-tuning.
-    pub int8: QuantiseReport,
+    pub(crate) int8: QuantiseReport,
     /// R² of each output on the training rows (force x y z, torque x y z).
-    pub explained: Vec<f64>,
+    pub(crate) explained: Vec<f64>,
     /// Outputs fixed at zero: R² below [`EXPLAINED_MIN`] (see [`super::explained`]).
     pub silenced: Vec<usize>,
 }

@@ -31,11 +31,11 @@ const POLISH_2D: usize = 40;
 #[derive(Clone, Copy, Debug)]
 pub struct Subject<'a> {
     /// The model the candidates change.
-    pub model: &'a Model,
+    pub(crate) model: &'a Model,
     /// Index of the body's contact with the plane.
-    pub contact: usize,
+    pub(crate) contact: usize,
     /// Index of the plane's body.
-    pub plane: usize,
+    pub(crate) plane: usize,
 }
 
 /// One part of the tosses (training or held out) as every candidate of a round reads
@@ -44,9 +44,9 @@ pub struct Subject<'a> {
 /// judged on the same frames from the same starts as the model it changes.
 pub struct Part<'a> {
     /// The tosses.
-    pub data: &'a Dataset,
+    pub(crate) data: &'a Dataset,
     /// Prepared from the round's model.
-    pub target: MotionTarget<'a>,
+    pub(crate) target: MotionTarget<'a>,
 }
 
 impl<'a> Part<'a> {
@@ -146,11 +146,11 @@ fn toss_score(
 #[derive(Clone, Debug, PartialEq)]
 pub struct Fitted {
     /// Its parameters (the bounds' units).
-    pub values: Vec<f64>,
+    pub(crate) values: Vec<f64>,
     /// Their training fitness (% + °).
-    pub fitness: f64,
+    pub(crate) fitness: f64,
     /// Fitness evaluations (each a replay of every training toss).
-    pub evaluations: usize,
+    pub(crate) evaluations: usize,
 }
 
 /// Fits `effect` to `training` in `bounds`, starting from `neutral`: one parameter by

@@ -56,19 +56,19 @@ pub struct CandidateResult {
     /// Catalogue name.
     pub name: &'static str,
     /// Its family (`friction`, `resistance`, `measurement`).
-    pub family: &'static str,
+    pub(crate) family: &'static str,
     /// Fitted parameters (name, value), units of the catalogue.
     pub parameters: Vec<(String, f64)>,
     /// Training fitness (% + °), the model's with this change.
-    pub training: f64,
+    pub(crate) training: f64,
     /// Mean held-out score (% + °).
-    pub held_out: f64,
+    pub(crate) held_out: f64,
     /// Held-out gain over the round's model: its score minus the candidate's.
     pub gain: Paired,
     /// Whether it helps (see the module's rule).
     pub helps: bool,
     /// Fitness evaluations its fit took.
-    pub evaluations: usize,
+    pub(crate) evaluations: usize,
 }
 
 /// One round: the candidates against the model as it stood.
@@ -80,9 +80,9 @@ pub struct Round {
     /// Every candidate, in catalogue order.
     pub candidates: Vec<CandidateResult>,
     /// The cause named in this round.
-    pub named: Option<&'static str>,
+    pub(crate) named: Option<&'static str>,
     /// Candidates that explain the held-out data equally well (none named).
-    pub ambiguous: Vec<&'static str>,
+    pub(crate) ambiguous: Vec<&'static str>,
 }
 
 /// What the diagnosis found.
@@ -98,7 +98,7 @@ pub struct MotionDiagnosis {
     /// When the search stopped at a tie: the candidates it could not tell apart.
     pub ambiguous: Vec<&'static str>,
     /// Held-out gain of the extended model (every named cause) over the user's.
-    pub total_gain: Option<Paired>,
+    pub(crate) total_gain: Option<Paired>,
     /// One sentence for people.
     pub answer: String,
     /// The user's model with every named cause.

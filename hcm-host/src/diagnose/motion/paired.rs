@@ -14,13 +14,13 @@ const T_975: [f64; 30] = [
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Paired {
     /// Tosses compared.
-    pub tosses: usize,
+    pub(crate) tosses: usize,
     /// Mean difference (the scores' unit, % + °).
     pub mean: f64,
     /// Its standard error (same unit); +∞ with fewer than two tosses.
     pub standard_error: f64,
     /// 95 % interval of the mean difference (Student's t).
-    pub interval: [f64; 2],
+    pub(crate) interval: [f64; 2],
 }
 
 impl Paired {

@@ -16,9 +16,9 @@ use rayon::prelude::*;
 #[derive(Clone, Debug)]
 pub struct MotionTarget<'a> {
     /// The tossed body and its plane as the scenario has them.
-    pub setup: TossSetup,
+    pub(crate) setup: TossSetup,
     /// The tosses.
-    pub tosses: Vec<PreparedToss<'a>>,
+    pub(crate) tosses: Vec<PreparedToss<'a>>,
 }
 
 impl<'a> MotionTarget<'a> {

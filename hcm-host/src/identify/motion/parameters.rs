@@ -47,9 +47,9 @@ pub struct MotionParameters {
     /// Index of the contact.
     pub contact: usize,
     /// Index of the plane's body.
-    pub plane: usize,
+    pub(crate) plane: usize,
     /// Index of the tossed body.
-    pub body: usize,
+    pub(crate) body: usize,
     /// The law's two genes.
     law: [(&'static str, f64, f64, bool); 2],
 }

@@ -55,7 +55,7 @@ pub struct RigidIdentification {
     /// Best fitness (mean squared relative error).
     pub fitness: f64,
     /// Generations run.
-    pub generations: usize,
+    pub(crate) generations: usize,
     /// Replays simulated.
     pub evaluations: usize,
     /// Wall-clock time (s).

@@ -20,7 +20,7 @@ use nalgebra::Vector4;
 #[derive(Clone, Debug, PartialEq)]
 pub struct EventTarget {
     /// Mean and standard error of each indicator over the matched runs.
-    pub statistics: WrenchEventStatistics,
+    pub(crate) statistics: WrenchEventStatistics,
     /// Mean time from the first event's touch-down to this one's (s); 0 for the first.
     pub delay: f64,
 }
@@ -29,7 +29,7 @@ pub struct EventTarget {
 #[derive(Clone, Debug)]
 pub struct WrenchTarget {
     /// Index of the contact in the model.
-    pub contact: usize,
+    pub(crate) contact: usize,
     /// The model started from the matched runs' mean pre-contact state, stopping
     /// after the last target event.
     pub model: Model,

@@ -55,17 +55,17 @@ pub struct LinearFit {
     /// The minimising x, one per column, in the target's unit over the column's unit.
     /// A coefficient of a column found dependent on the others (see
     /// [`LinearFit::rank`]) is exactly 0.
-    pub coefficients: Vec<f64>,
+    pub(crate) coefficients: Vec<f64>,
     /// ‖A·x − b‖² at the solution (the target's unit squared).
-    pub residual_sum_of_squares: f64,
+    pub(crate) residual_sum_of_squares: f64,
     /// Numerical rank of A; less than the number of columns when some columns are
     /// (nearly) zero or (nearly) linear combinations of others.
-    pub rank: usize,
+    pub(crate) rank: usize,
     /// The coefficients' covariance as asked ([`Covariance`]), row by row; `None` when
     /// not asked, when A is rank-deficient (some combination of coefficients is not
     /// determined at all), when [`Covariance::ResidualVariance`] has no degree of
     /// freedom left (n = p), or when an entry is not finite.
-    pub covariance: Option<Vec<Vec<f64>>>,
+    pub(crate) covariance: Option<Vec<Vec<f64>>>,
 }
 
 /// Why a linear least-squares problem could not be solved.

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Bound {
     /// Parameter name, used in error messages.
-    pub name: String,
+    pub(crate) name: String,
     /// Smallest value searched (the parameter's units).
     pub lower: f64,
     /// Largest value searched (the parameter's units).

@@ -85,15 +85,15 @@ impl Default for GeneticSettings {
 #[derive(Clone, Debug, PartialEq)]
 pub struct GeneticResult {
     /// Best parameter values found, in `bounds` order and units.
-    pub best: Vec<f64>,
+    pub(crate) best: Vec<f64>,
     /// Fitness of `best` (finite).
-    pub fitness: f64,
+    pub(crate) fitness: f64,
     /// Generations evaluated, the initial population included.
-    pub generations: usize,
+    pub(crate) generations: usize,
     /// Calls of the fitness function.
-    pub evaluations: usize,
+    pub(crate) evaluations: usize,
     /// Best fitness of each generation's population, one entry per generation.
-    pub history: Vec<f64>,
+    pub(crate) history: Vec<f64>,
 }
 
 /// Why [`minimize`] could not run.

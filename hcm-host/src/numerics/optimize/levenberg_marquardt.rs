@@ -49,19 +49,19 @@ const MAX_DAMPING: f64 = 1e32;
 #[derive(Clone, Debug, PartialEq)]
 pub struct LmSettings {
     /// Maximum number of iterations (Jacobian evaluations).
-    pub max_iterations: usize,
+    pub(crate) max_iterations: usize,
     /// Converged when, for every free parameter, the cosine of the angle between the
     /// residual vector and the Jacobian column is at most this (MINPACK's `gtol`; a
     /// scale-free gradient test).
-    pub gradient_tolerance: f64,
+    pub(crate) gradient_tolerance: f64,
     /// Converged when a step is shorter than this relative to the scaled parameter
     /// vector: ‖Δu‖ ≤ tol·(‖u‖ + tol), u_i = p_i/scale_i.
-    pub step_tolerance: f64,
+    pub(crate) step_tolerance: f64,
     /// Converged when both the actual and the predicted relative reduction of the cost
     /// of an accepted step are at most this.
-    pub cost_tolerance: f64,
+    pub(crate) cost_tolerance: f64,
     /// Initial λ (dimensionless: the damping is λ·diag(JᵀJ)).
-    pub initial_damping: f64,
+    pub(crate) initial_damping: f64,
 }
 
 impl Default for LmSettings {
@@ -129,24 +129,24 @@ impl std::fmt::Display for Termination {
 #[derive(Clone, Debug, PartialEq)]
 pub struct LmResult {
     /// The best parameters found, in the caller's units.
-    pub parameters: Vec<f64>,
+    pub(crate) parameters: Vec<f64>,
     /// ½‖r‖² at `parameters` (half the residuals' unit squared).
-    pub cost: f64,
+    pub(crate) cost: f64,
     /// Iterations (Jacobian evaluations) performed, not counting the one for the
     /// covariance.
-    pub iterations: usize,
+    pub(crate) iterations: usize,
     /// Calls of the residual function, Jacobian and covariance included.
-    pub evaluations: usize,
+    pub(crate) evaluations: usize,
     /// σ²·(JᵀJ)⁻¹ at `parameters` with σ² = 2·cost/(m − p), in the parameters' units
     /// squared: the asymptotic covariance of the estimates for independent residuals of
     /// equal variance (its diagonal's square roots are the standard errors). `None`
     /// when JᵀJ is numerically singular (a parameter without effect or two with the
     /// same effect), when m = p, or when the Jacobian there is not finite. Bounds are
     /// ignored: a parameter ending on its bound gets the unconstrained value.
-    pub covariance: Option<Vec<Vec<f64>>>,
+    pub(crate) covariance: Option<Vec<Vec<f64>>>,
     /// Why the iteration stopped: a tolerance met (see [`Termination::converged`]),
     /// the iteration limit or a damping overflow.
-    pub termination: Termination,
+    pub(crate) termination: Termination,
 }
 
 /// Minimises ½‖r(p)‖² for `residuals(p, out)` filling `m` residuals.

@@ -20,11 +20,11 @@ const FIRST_STEP: f64 = 0.05;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polished {
     /// Best values (the bounds' units).
-    pub best: Vec<f64>,
+    pub(crate) best: Vec<f64>,
     /// Their fitness.
-    pub fitness: f64,
+    pub(crate) fitness: f64,
     /// Fitness evaluations made.
-    pub evaluations: usize,
+    pub(crate) evaluations: usize,
 }
 
 /// Minimises `fitness` from `start` (inside `bounds`, fitness `start_fitness`) until

@@ -14,13 +14,13 @@ use serde::Serialize;
 #[derive(Clone, Debug)]
 pub struct FrameErrors {
     /// Time since the window start (s), per frame.
-    pub time: Vec<f64>,
+    pub(crate) time: Vec<f64>,
     /// |p_pred − p| in % of the body's width, per frame.
-    pub position: Vec<f64>,
+    pub(crate) position: Vec<f64>,
     /// Angle of R_predᵀ·R (°), per frame.
-    pub rotation: Vec<f64>,
+    pub(crate) rotation: Vec<f64>,
     /// The frame's phase (from the recorded poses).
-    pub phase: Vec<Phase>,
+    pub(crate) phase: Vec<Phase>,
 }
 
 /// The window's recorded frames of `evaluation`'s toss in `data`.
@@ -78,15 +78,15 @@ pub(crate) fn frame_errors(
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TimePoint {
     /// Frame index since the window start (–).
-    pub frame: usize,
+    pub(crate) frame: usize,
     /// Mean time since the window start over the tosses (s).
-    pub time: f64,
+    pub(crate) time: f64,
     /// Tosses whose window reaches this frame (–).
-    pub tosses: usize,
+    pub(crate) tosses: usize,
     /// Mean position error (% of the body's width).
-    pub position: f64,
+    pub(crate) position: f64,
     /// Mean rotation error (°).
-    pub rotation: f64,
+    pub(crate) rotation: f64,
 }
 
 /// The error over time: per frame index, the means over the tosses that reach it.
@@ -112,19 +112,19 @@ pub(crate) fn over_time(tosses: &[FrameErrors]) -> Vec<TimePoint> {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PhaseErrors {
     /// The phase.
-    pub phase: Phase,
+    pub(crate) phase: Phase,
     /// Tosses with at least one frame in it (–).
-    pub tosses: usize,
+    pub(crate) tosses: usize,
     /// Frames in it, over the tosses (–).
-    pub frames: usize,
+    pub(crate) frames: usize,
     /// Mean position error over those frames (% of the body's width).
-    pub position: f64,
+    pub(crate) position: f64,
     /// Mean rotation error over those frames (°).
-    pub rotation: f64,
+    pub(crate) rotation: f64,
     /// The phase's share of the summed position error over all frames (–).
-    pub position_share: f64,
+    pub(crate) position_share: f64,
     /// The phase's share of the summed rotation error over all frames (–).
-    pub rotation_share: f64,
+    pub(crate) rotation_share: f64,
 }
 
 /// Each phase's errors (in [`Phase::ALL`] order).

@@ -105,20 +105,20 @@ pub enum CubeError {
 /// Everything [`reproduce_cube`] made.
 pub struct CubeReproduction {
     /// The scenario as read (its label in the results).
-    pub scenario: Scenario,
+    pub(crate) scenario: Scenario,
     /// The training tosses (even toss numbers).
-    pub training: Dataset,
+    pub(crate) training: Dataset,
     /// The held-out tosses (odd toss numbers).
-    pub held_out: Dataset,
+    pub(crate) held_out: Dataset,
     /// The fit.
-    pub fit: MotionFit,
+    pub(crate) fit: MotionFit,
     /// The fitted table offset and inertia as the `--set`s that apply them beside the
     /// physics file.
-    pub sets: Vec<Assignment>,
+    pub(crate) sets: Vec<Assignment>,
     /// The index of the fitted contact.
-    pub contact: usize,
+    pub(crate) contact: usize,
     /// Both parts predicted with both models.
-    pub predicted: Predictions,
+    pub(crate) predicted: Predictions,
     /// The second fold: the fit on the held-out part, the training part predicted.
     pub second_fold: SecondFold,
     /// The diagnosis of the fitted model, unless the settings skip it.
@@ -126,7 +126,7 @@ pub struct CubeReproduction {
     /// Scores, errors over time and per phase, timings.
     pub results: CubeResults,
     /// The figures.
-    pub figures: Vec<NamedFigure>,
+    pub(crate) figures: Vec<NamedFigure>,
 }
 
 /// The cube's files: the fit as a physics file, the two parts of the split, the

@@ -14,11 +14,11 @@ use serde::Serialize;
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Published {
     /// The simulator.
-    pub simulator: &'static str,
+    pub(crate) simulator: &'static str,
     /// Position error, mean and standard deviation over tosses (% of the width).
-    pub position: [f64; 2],
+    pub(crate) position: [f64; 2],
     /// Rotation error, mean and standard deviation over tosses (°).
-    pub rotation: [f64; 2],
+    pub(crate) rotation: [f64; 2],
 }
 
 /// The published figures issue 17 quotes.
@@ -45,42 +45,42 @@ pub const PUBLISHED: [Published; 3] = [
 pub struct ModelScores {
     /// `held out`, `cross-validated` (every toss, each predicted by the fold that did
     /// not fit on it) or `training`.
-    pub part: &'static str,
+    pub(crate) part: &'static str,
     /// `fitted`, `scenario's parameters` or `frozen pose`.
-    pub model: &'static str,
+    pub(crate) model: &'static str,
     /// Position error over tosses (% of the width).
-    pub position: Summary,
+    pub(crate) position: Summary,
     /// Rotation error over tosses (°).
-    pub rotation: Summary,
+    pub(crate) rotation: Summary,
 }
 
 /// One held-out toss's scores under each model.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TossRow {
     /// Run id.
-    pub run: String,
+    pub(crate) run: String,
     /// Frames of its window (–).
-    pub frames: usize,
+    pub(crate) frames: usize,
     /// Fitted model: position (%) and rotation (°) errors.
-    pub fitted: [f64; 2],
+    pub(crate) fitted: [f64; 2],
     /// The scenario's parameters: the same.
-    pub scenario: [f64; 2],
+    pub(crate) scenario: [f64; 2],
     /// The frozen pose: the same.
-    pub frozen: [f64; 2],
+    pub(crate) frozen: [f64; 2],
 }
 
 /// The fit, without its wall-clock time (which is in the timings).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FitSummary {
     /// Fitted values (SI units).
-    pub parameters: Vec<(String, f64)>,
+    pub(crate) parameters: Vec<(String, f64)>,
     /// Training fitness (% + °): the scenario's parameters, after the GA, after the
     /// polish.
-    pub start_fitness: f64,
-    pub genetic_fitness: f64,
-    pub fitness: f64,
+    pub(crate) start_fitness: f64,
+    pub(crate) genetic_fitness: f64,
+    pub(crate) fitness: f64,
     /// Replays of the training set (–).
-    pub evaluations: usize,
+    pub(crate) evaluations: usize,
 }
 
 impl FitSummary {
@@ -100,44 +100,44 @@ impl FitSummary {
 #[derive(Clone, Debug, Serialize)]
 pub struct CubeResults {
     /// The scenario and the data as given.
-    pub scenario: String,
-    pub data: String,
+    pub(crate) scenario: String,
+    pub(crate) data: String,
     /// The settings.
-    pub first: Option<usize>,
-    pub seed: u64,
-    pub population: usize,
-    pub generations: usize,
-    pub polish: usize,
+    pub(crate) first: Option<usize>,
+    pub(crate) seed: u64,
+    pub(crate) population: usize,
+    pub(crate) generations: usize,
+    pub(crate) polish: usize,
     /// Tosses in each part (–).
-    pub training_tosses: usize,
-    pub held_out_tosses: usize,
+    pub(crate) training_tosses: usize,
+    pub(crate) held_out_tosses: usize,
     /// The fit.
-    pub fit: FitSummary,
+    pub(crate) fit: FitSummary,
     /// The second fold's fit (on the held-out part).
-    pub second_fit: FitSummary,
+    pub(crate) second_fit: FitSummary,
     /// The `--set`s the fitted table offset and inertia need beside physics.toml.
-    pub sets: Vec<String>,
+    pub(crate) sets: Vec<String>,
     /// The score table.
-    pub scores: Vec<ModelScores>,
+    pub(crate) scores: Vec<ModelScores>,
     /// The published figures, for comparison.
-    pub published: Vec<Published>,
+    pub(crate) published: Vec<Published>,
     /// Every held-out toss's scores.
-    pub held_out: Vec<TossRow>,
+    pub(crate) held_out: Vec<TossRow>,
     /// Held-out errors over time and per phase.
-    pub timeline: Timeline,
+    pub(crate) timeline: Timeline,
     /// The diagnosis of the fitted model (`null`: skipped).
-    pub diagnosis: Option<MotionDiagnosis>,
+    pub(crate) diagnosis: Option<MotionDiagnosis>,
     /// Wall clock per stage (s); the only part that differs between runs.
-    pub timings: Vec<StageTiming>,
+    pub(crate) timings: Vec<StageTiming>,
 }
 
 /// What the two folds made: the fit on the training part with its `--set`s, both parts
 /// predicted, and the second fold.
 pub struct Folds<'a> {
-    pub fit: &'a MotionFit,
-    pub sets: &'a [Assignment],
-    pub predicted: &'a Predictions,
-    pub second: &'a SecondFold,
+    pub(crate) fit: &'a MotionFit,
+    pub(crate) sets: &'a [Assignment],
+    pub(crate) predicted: &'a Predictions,
+    pub(crate) second: &'a SecondFold,
 }
 
 impl CubeResults {

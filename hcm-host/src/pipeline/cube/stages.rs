@@ -56,9 +56,9 @@ pub fn sets(model: &Model, parameters: &MotionParameters, fit: &MotionFit) -> Ve
 /// once by a fit that did not see it (two-fold cross-validation).
 pub struct SecondFold {
     /// The fit on the held-out part.
-    pub fit: MotionFit,
+    pub(crate) fit: MotionFit,
     /// The training tosses predicted with it, in the data's order.
-    pub predicted: Vec<TossEvaluation>,
+    pub(crate) predicted: Vec<TossEvaluation>,
 }
 
 /// The second fold: `settings`' fit on `odd`, its predictions of `even`.
@@ -84,13 +84,13 @@ pub(crate) fn second_fold(
 /// Both parts predicted with both models (each in the data's order).
 pub struct Predictions {
     /// Held-out tosses, the fitted model.
-    pub held_out_fitted: Vec<TossEvaluation>,
+    pub(crate) held_out_fitted: Vec<TossEvaluation>,
     /// Held-out tosses, the scenario's parameters.
-    pub held_out_scenario: Vec<TossEvaluation>,
+    pub(crate) held_out_scenario: Vec<TossEvaluation>,
     /// Training tosses, the fitted model.
-    pub training_fitted: Vec<TossEvaluation>,
+    pub(crate) training_fitted: Vec<TossEvaluation>,
     /// Training tosses, the scenario's parameters.
-    pub training_scenario: Vec<TossEvaluation>,
+    pub(crate) training_scenario: Vec<TossEvaluation>,
 }
 
 /// Every toss of both parts predicted and scored with `scenario`'s and `fitted`'s
@@ -122,18 +122,18 @@ pub fn predict(
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct ErrorProfile {
     /// Per frame index since the window start.
-    pub over_time: Vec<TimePoint>,
+    pub(crate) over_time: Vec<TimePoint>,
     /// Per phase.
-    pub phases: Vec<PhaseErrors>,
+    pub(crate) phases: Vec<PhaseErrors>,
 }
 
 /// The held-out profiles of the fitted model and of the scenario's parameters.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Timeline {
     /// The fitted model.
-    pub fitted: ErrorProfile,
+    pub(crate) fitted: ErrorProfile,
     /// The scenario's parameters.
-    pub scenario: ErrorProfile,
+    pub(crate) scenario: ErrorProfile,
 }
 
 /// The held-out tosses' error profiles.

@@ -13,15 +13,15 @@ use nalgebra::Vector3;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct WrenchCurve {
     /// τ (s), increasing.
-    pub time: Vec<f64>,
+    pub(crate) time: Vec<f64>,
     /// ‖F‖ on the peg (N).
-    pub force: Vec<f64>,
+    pub(crate) force: Vec<f64>,
     /// ‖T‖ on the peg about its centre of mass (N·m).
-    pub torque: Vec<f64>,
+    pub(crate) torque: Vec<f64>,
     /// Centre of mass, world x (m).
-    pub x: Vec<f64>,
+    pub(crate) x: Vec<f64>,
     /// Centre of mass, world z (m).
-    pub z: Vec<f64>,
+    pub(crate) z: Vec<f64>,
 }
 
 /// The mover's samples of a run, read at `time` (s) by linear interpolation (None

@@ -37,7 +37,7 @@ pub struct PegRow {
     /// Indicator key (`max_force`, …).
     pub indicator: &'static str,
     /// Its unit.
-    pub unit: &'static str,
+    pub(crate) unit: &'static str,
     /// S2 mean.
     pub mean: f64,
     /// Standard error of the S2 mean (same unit).
@@ -48,7 +48,7 @@ pub struct PegRow {
     /// Each model's Eq 20 error |mean − value| / mean.
     pub errors: Vec<Option<f64>>,
     /// The paper's (PM2, HCM) errors, where it gives them.
-    pub paper: Option<(f64, f64)>,
+    pub(crate) paper: Option<(f64, f64)>,
 }
 
 impl PegRow {
@@ -91,13 +91,13 @@ pub struct PegEvaluation {
     /// Model labels, in column order.
     pub models: Vec<String>,
     /// S2 runs, and those averaged (the usual event count).
-    pub runs: (usize, usize),
+    pub(crate) runs: (usize, usize),
     /// The rows: contacts 1, 2, … × [`INDICATORS`].
     pub rows: Vec<PegRow>,
     /// Each model's and S2's curves (S2 first).
     pub curves: Vec<(&'static str, WrenchCurve)>,
     /// The figures.
-    pub figures: Vec<NamedFigure>,
+    pub(crate) figures: Vec<NamedFigure>,
 }
 
 /// Replays `models` (label, model with its physics) from S2's mean pre-contact state

@@ -90,11 +90,11 @@ pub struct PegReproduction {
     /// The comparison on S2.
     pub evaluation: PegEvaluation,
     /// Wall clock per stage (s).
-    pub timings: Vec<StageTiming>,
+    pub(crate) timings: Vec<StageTiming>,
     /// The seed and the number of runs it was made with (for `results.json`).
-    pub seed: u64,
+    pub(crate) seed: u64,
     /// Runs generated.
-    pub runs: usize,
+    pub(crate) runs: usize,
 }
 
 /// The peg's files: S1 and S2, PM2 as a physics file, the trained network, its blobs

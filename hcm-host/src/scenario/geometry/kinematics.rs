@@ -11,13 +11,13 @@ use nalgebra::Vector3;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PairKinematics {
     /// Indentation δ (m), > 0 in contact.
-    pub depth: f64,
+    pub(crate) depth: f64,
     /// Indentation rate δ̇ = −(v1 − v2)·n (m/s), > 0 approaching.
-    pub rate: f64,
+    pub(crate) rate: f64,
     /// Unit normal from body 2 to body 1.
-    pub normal: Vector3<f64>,
+    pub(crate) normal: Vector3<f64>,
     /// Contact point (m).
-    pub point: Vector3<f64>,
+    pub(crate) point: Vector3<f64>,
 }
 
 impl PairKinematics {

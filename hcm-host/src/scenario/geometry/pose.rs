@@ -6,13 +6,13 @@ use nalgebra::{UnitQuaternion, Vector3};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pose {
     /// Centre of mass (m).
-    pub position: Vector3<f64>,
+    pub(crate) position: Vector3<f64>,
     /// Orientation, body → world (–).
-    pub orientation: UnitQuaternion<f64>,
+    pub(crate) orientation: UnitQuaternion<f64>,
     /// Velocity of the centre of mass (m/s).
-    pub velocity: Vector3<f64>,
+    pub(crate) velocity: Vector3<f64>,
     /// Angular velocity ω (rad/s, world frame).
-    pub angular_velocity: Vector3<f64>,
+    pub(crate) angular_velocity: Vector3<f64>,
 }
 
 impl Pose {
