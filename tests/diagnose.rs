@@ -3,7 +3,7 @@
 
 use hcm_host::diagnose::catalogue::Candidate;
 use hcm_host::diagnose::gain::{GainRow, GainTable};
-use hcm_host::diagnose::select::{refit, select};
+use hcm_host::diagnose::select::{refit, select, BaseFreedom};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
 use hcm_tests::hidden::{causes, hidden, model, selected};
@@ -151,7 +151,7 @@ fn two_hidden_effects_are_both_named_and_nothing_else() {
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
     let law = base.contacts[0].model.normal.clone();
-    let selection = select(&samples, &law, sigma);
+    let selection = select(&samples, &law, BaseFreedom::Given, sigma);
     let mut names: Vec<&str> = selection.chosen.iter().map(|(c, _)| c.name()).collect();
     names.sort();
     assert_eq!(
@@ -160,7 +160,12 @@ fn two_hidden_effects_are_both_named_and_nothing_else() {
         "{:#?}",
         selection.steps
     );
-    let fit = refit(&samples, &law, &selection.chosen, sigma);
+    let fit = refit(
+        &samples,
+        (&law, BaseFreedom::Given),
+        &selection.chosen,
+        sigma,
+    );
     for cause in &fit.causes {
         let value = cause.parameters[0].value;
         assert!((value - 40.0).abs() < 6.0, "{}: {value}", cause.effect);

@@ -13,6 +13,7 @@
 //! absorbs most of it (README, "Known limit"), which would measure the base, not the rule.
 
 use hcm_host::diagnose::naming::name_causes;
+use hcm_host::diagnose::select::BaseFreedom;
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_tests::hidden::hidden;
 use rayon::prelude::*;
@@ -73,7 +74,7 @@ fn named(hidden_effect: &str, seed: u64) -> Vec<&'static str> {
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
     let law = base.contacts[0].model.normal.clone();
-    let naming = name_causes(&samples, &law, sigma);
+    let naming = name_causes(&samples, &law, BaseFreedom::Given, sigma);
     naming.chosen.iter().map(|(c, _)| c.name()).collect()
 }
 

@@ -3,7 +3,7 @@
 
 use hcm_host::dataset::Dataset;
 use hcm_host::diagnose::naming::name_causes;
-use hcm_host::diagnose::select::{select, Refit, Selection};
+use hcm_host::diagnose::select::{select, BaseFreedom, Refit, Selection};
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
 use hcm_host::scenario::{Model, Scenario};
@@ -50,8 +50,8 @@ pub fn selected(effect: &str, runs: usize, seed: u64) -> (Selection, Refit) {
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
     let law = base.contacts[0].model.normal.clone();
-    let selection = select(&samples, &law, sigma);
-    let naming = name_causes(&samples, &law, sigma);
+    let selection = select(&samples, &law, BaseFreedom::Given, sigma);
+    let naming = name_causes(&samples, &law, BaseFreedom::Given, sigma);
     (selection, naming.fit)
 }
 

@@ -5,6 +5,7 @@ use super::progress_bar;
 use anyhow::Context;
 use hcm_host::dataset::{needs, Dataset};
 use hcm_host::diagnose::report::{answer, markdown};
+use hcm_host::diagnose::select::BaseFreedom;
 use hcm_host::diagnose::structure::structure_figures;
 use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
 use hcm_host::identify::physics::PhysicsBody;
@@ -88,6 +89,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         contact: args.contact,
         seed: args.seed,
         holdout_fraction: args.holdout,
+        base_freedom: if physics.fitted() {
+            BaseFreedom::Fitted
+        } else {
+            BaseFreedom::Given
+        },
         ..DiagnoseSettings::default()
     };
     let diagnosis = diagnose(&base, &data, &settings)?;
@@ -170,6 +176,7 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
         "base_structured": d.base_structured,
         "runs": d.runs,
         "base_parameters": d.base_parameters,
+        "base_freedom": d.base_freedom,
         "selection": d.selection,
         "naming": d.naming,
         "data_quality": d.data_quality,

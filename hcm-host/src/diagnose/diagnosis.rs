@@ -6,7 +6,7 @@ use super::naming::{name_causes, unnamed, Naming, NotAccepted, Trial};
 use super::noise::{noise_floor, NoiseFloor};
 use super::quality::{assess, reconstruction_gap, DataQuality, MAX_GAP_SIGMAS};
 use super::samples::contact_samples_of;
-use super::select::{select, Cause, Fitted, Step};
+use super::select::{select, BaseFreedom, Cause, Fitted, Step};
 use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
 use super::ContactSamples;
@@ -34,6 +34,8 @@ pub struct DiagnoseSettings {
     pub holdout_fraction: f64,
     /// Epochs of the HCM residual network (the comparison model).
     pub hcm_epochs: usize,
+    /// What of the base law the user's fit had free (see [`BaseFreedom`]).
+    pub base_freedom: BaseFreedom,
 }
 
 impl Default for DiagnoseSettings {
@@ -43,6 +45,7 @@ impl Default for DiagnoseSettings {
             seed: 1,
             holdout_fraction: 0.25,
             hcm_epochs: 60,
+            base_freedom: BaseFreedom::Given,
         }
     }
 }
@@ -83,6 +86,9 @@ pub struct Diagnosis {
     pub base_structured: bool,
     /// Base law parameters after the joint re-fit.
     pub base_parameters: Vec<Fitted>,
+    /// What of the base law was re-tuned with the effects: what the user's fit had
+    /// free.
+    pub base_freedom: BaseFreedom,
     /// The extended law (base + physical effects), f64.
     #[serde(skip)]
     pub extended: ExtendedLaw<f64>,
@@ -159,9 +165,9 @@ fn reconstruct<'a>(base: &Model, data: &'a Dataset) -> Result<Completed<'a>, Ide
 /// noise, data quality, the base law's residual, and the causes named.
 fn examine(
     base: &Model,
-    completed: &Completed<'_>,
-    fitted: &Completed<'_>,
+    (completed, fitted): (&Completed<'_>, &Completed<'_>),
     c: usize,
+    freedom: BaseFreedom,
 ) -> Result<Findings, IdentifyError> {
     let samples: ContactSamples = contact_samples_of(base, fitted, c)?;
     let noise = noise_floor(&samples);
@@ -170,16 +176,16 @@ fn examine(
     let before = residual_structure(&samples, &samples.model_force(&law), sigma);
     // The linear stepwise selection, for the report: what the residual's shape
     // suggests at first order. The decision is taken on full re-fits (`naming`).
-    let selection = select(&samples, &law, sigma);
+    let selection = select(&samples, &law, freedom, sigma);
     // Data that cannot show a shape get no cause, only the reasons why.
     let mut quality = assess(&samples, sigma);
     quality.check_reconstruction(completed);
     // What the contact's reconstruction (camera-rate motion) adds to the noise.
     let judged_sigma = super::noise::effective_sigma(&samples, &law, sigma);
     let naming = if quality.sufficient {
-        name_causes(&samples, &law, judged_sigma)
+        name_causes(&samples, &law, freedom, judged_sigma)
     } else {
-        unnamed(&samples, &law, judged_sigma)
+        unnamed(&samples, &law, freedom, judged_sigma)
     };
     Ok(Findings {
         samples,
@@ -308,7 +314,7 @@ pub fn diagnose(
     // The training runs with their reconstructions, so that each sample carries its
     // reconstruction's uncertainty (0 where motion and force share every row).
     let fitted = completed.subset(&split.training);
-    let findings = examine(base, &completed, &fitted, c)?;
+    let findings = examine(base, (&completed, &fitted), c, settings.base_freedom)?;
     let (naming, sigma) = (findings.naming, findings.noise.sigma);
     let fit = naming.fit.clone();
     // Named: the chosen causes (entered first); a provisional term is in the extended
@@ -355,6 +361,7 @@ pub fn diagnose(
         drag_body: body.name.clone(),
         unexplained_share,
         base_parameters: fit.base_parameters,
+        base_freedom: settings.base_freedom,
         extended: fit.law,
         gain,
         in_sample,

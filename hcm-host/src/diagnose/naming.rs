@@ -40,8 +40,8 @@
 //!
 //! [`structure`]: super::structure::residual_structure
 
-use super::catalogue::{Candidate, CATALOGUE};
-use super::select::{parameters, refit, Fitted, Refit};
+use super::catalogue::Candidate;
+use super::select::{candidates, parameters, refit, BaseFreedom, Fitted, Refit};
 use super::structure::{residual_structure, Structure};
 use super::ContactSamples;
 use hcm_core::effect::ExtendedLaw;
@@ -120,9 +120,9 @@ fn same_family(a: Candidate, b: Candidate) -> bool {
     a == b || (damping(a) && damping(b))
 }
 
-/// Every (effect, start shape) the catalogue offers for one trial.
-fn options(chosen: &[(Candidate, f64)]) -> Vec<(Candidate, f64)> {
-    CATALOGUE
+/// Every (effect, start shape) `candidates` offer for one trial.
+fn options(candidates: &[Candidate], chosen: &[(Candidate, f64)]) -> Vec<(Candidate, f64)> {
+    candidates
         .iter()
         .filter(|c| !chosen.iter().any(|(d, _)| d == *c))
         .flat_map(|&c| match c {
@@ -154,6 +154,10 @@ struct Problem<'a> {
     samples: &'a ContactSamples,
     /// The base law the causes extend.
     base: &'a ExtendedLaw<f64>,
+    /// What of it the user's fit had free.
+    freedom: BaseFreedom,
+    /// The catalogue's effects that may be named here ([`candidates`]).
+    candidates: Vec<Candidate>,
     /// The measured noise σ (N).
     sigma: f64,
     /// ln(n): the criterion's price of one parameter (–).
@@ -241,7 +245,7 @@ impl Ranked {
 impl Problem<'_> {
     /// The base law re-fitted with `causes`.
     fn refit(&self, causes: &[(Candidate, f64)]) -> Refit {
-        refit(self.samples, self.base, causes, self.sigma)
+        refit(self.samples, (self.base, self.freedom), causes, self.sigma)
     }
 
     /// The residual structure `fit` leaves.
@@ -252,7 +256,7 @@ impl Problem<'_> {
     /// Every option not yet chosen re-fitted with the chosen ones (in parallel), ranked
     /// by information criterion against the model whose RSS is `reference_rss` (N²).
     fn rank(&self, chosen: &[(Candidate, f64)], reference_rss: f64) -> Ranked {
-        let trials: Vec<((Candidate, f64), Refit)> = options(chosen)
+        let trials: Vec<((Candidate, f64), Refit)> = options(&self.candidates, chosen)
             .into_par_iter()
             .map(|option| {
                 let mut with = chosen.to_vec();
@@ -415,10 +419,17 @@ impl Naming {
 /// Names the causes of `measured − base` on `samples` (noise σ in N); see the module
 /// documentation. Deterministic: trials are re-fitted in parallel but compared in
 /// catalogue order.
-pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Naming {
+pub fn name_causes(
+    samples: &ContactSamples,
+    base: &ExtendedLaw<f64>,
+    freedom: BaseFreedom,
+    sigma: f64,
+) -> Naming {
     let problem = Problem {
         samples,
         base,
+        freedom,
+        candidates: candidates(freedom),
         sigma,
         threshold: (samples.len().max(2) as f64).ln(),
     };
@@ -438,8 +449,13 @@ pub fn name_causes(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64
 
 /// No decision at all: the base law re-fitted alone, nothing named, nothing tried (for
 /// data that cannot support a diagnosis, `super::quality`).
-pub fn unnamed(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Naming {
-    let fit = refit(samples, base, &[], sigma);
+pub fn unnamed(
+    samples: &ContactSamples,
+    base: &ExtendedLaw<f64>,
+    freedom: BaseFreedom,
+    sigma: f64,
+) -> Naming {
+    let fit = refit(samples, (base, freedom), &[], sigma);
     let after = structure_of(samples, &fit, sigma);
     Naming::base(fit, after)
 }

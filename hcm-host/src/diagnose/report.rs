@@ -5,6 +5,7 @@
 use super::catalogue::Kind;
 use super::gain::{self, GainTable};
 use super::quality::DataQuality;
+use super::select::BaseFreedom;
 use super::structure::Structure;
 use super::Diagnosis;
 use crate::dataset::newton::MAX_MISFIT;
@@ -260,10 +261,19 @@ fn decision(md: &mut String, d: &Diagnosis) {
 /// Sections 3 and 4: the extended model's re-fitted base parameters and the gain
 /// tables on the held-out runs.
 fn extended_and_gain(md: &mut String, d: &Diagnosis) {
-    let _ = writeln!(md, "\n## 3. The extended model\n\n`extended.toml`: base law with re-fitted parameters ({}) plus the physical effects; `simulate`, `evaluate` and the core read it.\n",
-        d.base_parameters.iter().map(|p| format!("{} = {:.5e}", p.name, p.value)).collect::<Vec<_>>().join(", "));
+    let _ = writeln!(md, "\n## 3. The extended model\n\n`extended.toml`: base law with re-fitted parameters ({}) plus the physical effects; `simulate`, `evaluate` and the core read it. {}\n",
+        d.base_parameters.iter().map(|p| format!("{} = {:.5e}", p.name, p.value)).collect::<Vec<_>>().join(", "),
+        freedom_rule(d.base_freedom));
     let _ = writeln!(md, "## 4. The gain (held-out runs)\n");
     md.push_str(&gain::markdown(&d.gain));
+}
+
+/// The rule [`BaseFreedom`] applies, as a sentence.
+fn freedom_rule(freedom: BaseFreedom) -> &'static str {
+    match freedom {
+        BaseFreedom::Fitted => "The base law was fitted (its physics file records the fit), so every parameter that fit had free is re-tuned with the effects, the exponent among them: a change of the exponent is the base's own freedom, not an effect, and `stiffness_exponent` is not a candidate.",
+        BaseFreedom::Given => "The base law was given, not fitted: its exponent is held (re-tuned only where the motion was reconstructed), and a change of it is the effect `stiffness_exponent`.",
+    }
 }
 
 /// The report of `d` (report.md) in Markdown; `figures` names the residual figures

@@ -81,29 +81,69 @@ pub struct Selection {
     pub(crate) final_rss: f64,
 }
 
+/// What of the base law the user's own fit had free: what a diagnosis may re-tune
+/// before it judges an effect, so that a change the user's fit could have made is
+/// never named as an effect.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BaseFreedom {
+    /// The base was given, not fitted (a scenario's law, a hand-written physics
+    /// file): its exponent is held, and a change of it is an effect
+    /// (`stiffness_exponent`).
+    #[default]
+    Given,
+    /// The base was fitted with every parameter `hcm identify` fits free, its exponent
+    /// among them: a diagnosis re-tunes them all, and `stiffness_exponent` — a change
+    /// the re-tuned exponent absorbs exactly — is not a candidate. Held fixed instead,
+    /// the exponent's share of the missing effect (1.5316 for 1.5 with a hidden
+    /// plasticity) came back as an "effect" that only undid the fit's bias.
+    Fitted,
+}
+
 /// The base law's parameters a diagnosis re-tunes on `samples`: those `identify` fits,
-/// but the exponent where the motion was recorded with the force.
+/// but the exponent only where the user's fit had it free ([`BaseFreedom::Fitted`]) or
+/// the motion was reconstructed.
 ///
 /// A change of the exponent is the catalogue's `stiffness_exponent`: left free in the
-/// base it absorbs that effect whole (k·δ^n·(δ/δ_ref)^Δ is k'·δ^(n+Δ)), and a model
-/// holding the wrong exponent would be answered "none" (Δ = 0.02 on the rig of
+/// base it absorbs that effect whole (k·δ^n·(δ/δ_ref)^Δ is k'·δ^(n+Δ)), and a given
+/// model holding the wrong exponent would be answered "none" (Δ = 0.02 on the rig of
 /// tests/diagnose_rig.rs). Motion reconstructed from camera frames is another matter:
 /// each contact's δ carries the flight fit's offset, and a law fitted through δ with
 /// errors has its exponent biased low (errors in variables: −0.03 on the rig's filmed
-/// ball with no effect, 83 σ² of RSS). There the exponent is re-tuned with the base,
-/// and an exponent change is named only beyond what that re-tuning absorbs.
-pub fn free_parameters(samples: &ContactSamples, law: &AnyNormalLaw<f64>) -> Vec<String> {
-    let reconstructed =
-        (0..samples.len()).any(|i| samples.in_contact[i] && samples.reconstructed(i));
+/// ball with no effect, 83 σ² of RSS). There the exponent is re-tuned with the base.
+pub fn free_parameters(
+    samples: &ContactSamples,
+    law: &AnyNormalLaw<f64>,
+    freedom: BaseFreedom,
+) -> Vec<String> {
+    let exponent_free = exponent_free(samples, freedom);
     Bounds::for_law(law.name(), None)
         .map(|b| {
             b.free()
                 .iter()
-                .filter(|s| reconstructed || **s != "exponent")
+                .filter(|s| exponent_free || **s != "exponent")
                 .map(|s| s.to_string())
                 .collect()
         })
         .unwrap_or_default()
+}
+
+/// Whether the base's exponent is re-tuned on `samples` (see [`free_parameters`]).
+fn exponent_free(samples: &ContactSamples, freedom: BaseFreedom) -> bool {
+    freedom == BaseFreedom::Fitted
+        || (0..samples.len()).any(|i| samples.in_contact[i] && samples.reconstructed(i))
+}
+
+/// The catalogue's candidates an effect may be named from: all but
+/// `stiffness_exponent` where the user's fit had the exponent free (the re-tuned
+/// exponent absorbs that change, so it is the base's freedom, not an effect). Where
+/// only the reconstruction frees the exponent, a change is still named beyond what
+/// the re-tuning absorbs (the damping's δ^n keeps the two apart).
+pub fn candidates(freedom: BaseFreedom) -> Vec<Candidate> {
+    CATALOGUE
+        .into_iter()
+        .filter(|c| !(freedom == BaseFreedom::Fitted && *c == Candidate::StiffnessExponent))
+        .collect()
 }
 
 /// ∂f/∂θ of the base law along the samples for each free parameter (relative step
@@ -308,16 +348,17 @@ impl Design {
     /// sensitivities and every catalogued (candidate, shape), each scaled to unit RMS.
     fn new(
         samples: &ContactSamples,
-        base: &ExtendedLaw<f64>,
+        (base, freedom): (&ExtendedLaw<f64>, BaseFreedom),
         base_force: &[f64],
         n: usize,
     ) -> Self {
         let delta_ref = reference_depth(samples);
         // Columns: base sensitivities first, then every (candidate, shape); scaled to unit RMS.
-        let mut columns = sensitivities(samples, base, &free_parameters(samples, &base.base));
+        let free = free_parameters(samples, &base.base, freedom);
+        let mut columns = sensitivities(samples, base, &free);
         let always = columns.len();
         let mut groups: Vec<(Candidate, f64, usize)> = Vec::new();
-        for candidate in CATALOGUE {
+        for candidate in candidates(freedom) {
             for &shape in candidate.shapes() {
                 groups.push((candidate, shape, columns.len()));
                 columns.push(candidate.column(samples, base, base_force, shape, delta_ref));
@@ -455,7 +496,12 @@ impl Stepwise<'_> {
 
 /// Forward selection of catalogued effects explaining `measured − base` on `samples`
 /// (noise σ in N).
-pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> Selection {
+pub fn select(
+    samples: &ContactSamples,
+    base: &ExtendedLaw<f64>,
+    freedom: BaseFreedom,
+    sigma: f64,
+) -> Selection {
     let base_force = samples.model_force(base);
     let y: Vec<f64> = samples
         .measured
@@ -466,7 +512,7 @@ pub fn select(samples: &ContactSamples, base: &ExtendedLaw<f64>, sigma: f64) -> 
     let n = y.len();
     let fold: Vec<usize> = samples.run.iter().map(|r| r % FOLDS).collect();
     let folds = fold.iter().copied().max().map_or(1, |m| m + 1);
-    let design = Design::new(samples, base, &base_force, n);
+    let design = Design::new(samples, (base, freedom), &base_force, n);
     let reduced = FoldReductions::new(&design.columns, &y, &fold, folds);
     let subset: Vec<usize> = (0..design.always).collect();
     let (base_rss, cv) = reduced.score(&subset);
@@ -547,11 +593,11 @@ pub struct Refit {
 /// Σ ΔRSS_i + L, so the causes' shares and the unexplained share add up to 1.
 pub fn refit(
     samples: &ContactSamples,
-    base: &ExtendedLaw<f64>,
+    (base, freedom): (&ExtendedLaw<f64>, BaseFreedom),
     chosen: &[(Candidate, f64)],
     sigma: f64,
 ) -> Refit {
-    let free = free_parameters(samples, &base.base);
+    let free = free_parameters(samples, &base.base, freedom);
     let delta_ref = reference_depth(samples);
     let base_values: Vec<f64> = free
         .iter()
@@ -814,11 +860,11 @@ mod tests {
         ];
         let law = build("lankarani_nikravesh", &values).unwrap();
         assert_eq!(
-            free_parameters(&samples(0.0), &law),
+            free_parameters(&samples(0.0), &law, BaseFreedom::Given),
             ["stiffness", "restitution"]
         );
         assert_eq!(
-            free_parameters(&samples(1e-7), &law),
+            free_parameters(&samples(1e-7), &law, BaseFreedom::Given),
             ["stiffness", "exponent", "restitution"]
         );
     }

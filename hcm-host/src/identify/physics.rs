@@ -115,6 +115,12 @@ pub enum PhysicsError {
 }
 
 impl Physics {
+    /// Whether a fit wrote it (`hcm identify` records its method), rather than a
+    /// person: what a diagnosis may re-tune of its law depends on it.
+    pub fn fitted(&self) -> bool {
+        !self.fit.method.is_empty()
+    }
+
     /// The physics of `law` identified for contact `c` of `model`.
     pub fn for_contact(
         model: &Model,
