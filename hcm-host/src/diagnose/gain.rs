@@ -144,6 +144,49 @@ pub struct GainTable {
     pub flight_noise: f64,
     /// One row per model, in the order given.
     pub rows: Vec<GainRow>,
+    /// The measured indicators (N, N·s, N·m, s), run-weighted means over the group's
+    /// conditions, as recorded.
+    pub(crate) measured: Option<Indicators>,
+    /// Per indicator, whether the measured mean is indistinguishable from zero in
+    /// some condition (within [`ZERO_SE`] standard errors of it, e.g. an elastic
+    /// contact's energy loss): no error relative to it means anything, so the report
+    /// gives |model − measured| in the indicator's unit there instead of a percentage.
+    pub near_zero: [bool; 4],
+}
+
+/// Standard errors of a measured mean within which it counts as zero (–): a mean
+/// closer to 0 than twice its standard error is not told from 0 at 95 %.
+pub const ZERO_SE: f64 = 2.0;
+
+/// Per indicator, whether any of `means` is within [`ZERO_SE`] standard errors of 0
+/// (never where the standard error is unknown, a single run).
+fn near_zero(means: &[Target]) -> [bool; 4] {
+    std::array::from_fn(|k| {
+        means.iter().any(|t| {
+            t.standard_error
+                .is_some_and(|se| t.indicators.values()[k].abs() <= ZERO_SE * se.values()[k])
+        })
+    })
+}
+
+/// The run-weighted mean of `means`' measured indicators.
+fn measured_mean(means: &[Target]) -> Option<Indicators> {
+    let total = means.iter().map(|t| t.runs).sum::<usize>() as f64;
+    (total > 0.0).then(|| {
+        let mut values = [0.0; 4];
+        for t in means {
+            for (v, m) in values.iter_mut().zip(t.indicators.values()) {
+                *v += t.runs as f64 / total * m;
+            }
+        }
+        let [max_force, impulse, energy_loss, duration] = values;
+        Indicators {
+            max_force,
+            impulse,
+            energy_loss,
+            duration,
+        }
+    })
 }
 
 /// Scores the `judged` models on the held-out `runs` of `data` (contact `c` of
@@ -308,6 +351,8 @@ pub fn group_table(
         runs: runs.len(),
         flight_noise,
         rows,
+        measured: measured_mean(&recorded_means),
+        near_zero: near_zero(&recorded_means),
     })
 }
 
@@ -454,6 +499,20 @@ fn indicator_errors(
     Some((indicators, IndicatorErrors::from_values(errors)))
 }
 
+/// Indicator `k`'s error cell of `row` in `table`: the Eq 20 error in per cent, or
+/// where the measured mean is not told from zero, |model − measured| in its unit.
+fn error_cell(table: &GainTable, row: &GainRow, k: usize, relative: f64) -> String {
+    let absolute = table.measured.zip(row.judged.indicators);
+    match absolute {
+        Some((measured, model)) if table.near_zero[k] => format!(
+            "Δ {:.3e} {}",
+            (model.values()[k] - measured.values()[k]).abs(),
+            Indicators::NAMES[k].1
+        ),
+        _ => format!("{:.3}", 100.0 * relative),
+    }
+}
+
 /// The tables as markdown: one per group, a row per model; the flight columns only
 /// where the runs record a flight before their contact.
 pub fn markdown(tables: &[GainTable]) -> String {
@@ -485,8 +544,8 @@ pub fn markdown(tables: &[GainTable]) -> String {
             );
             // A failed replay prints NaN, as its force RMSE does.
             let errors = row.judged.errors.map_or([f64::NAN; 4], |e| e.values());
-            for e in errors {
-                let _ = write!(out, " {:.3} |", 100.0 * e);
+            for (k, e) in errors.into_iter().enumerate() {
+                let _ = write!(out, " {} |", error_cell(table, row, k, e));
             }
             if flight {
                 let _ = write!(
@@ -497,6 +556,19 @@ pub fn markdown(tables: &[GainTable]) -> String {
                 );
             }
             out.push('\n');
+        }
+        if table.near_zero.iter().any(|z| *z) {
+            let names: Vec<&str> = (0..4)
+                .filter(|&k| table.near_zero[k])
+                .map(|k| Indicators::NAMES[k].0)
+                .collect();
+            let _ = writeln!(
+                out,
+                "\nThe measured {} is within {ZERO_SE} standard errors of zero: an error \
+                 relative to it means nothing, so its cells give Δ = |model − measured| \
+                 in its unit.",
+                names.join(" and ")
+            );
         }
         if flight {
             let _ = writeln!(
@@ -516,6 +588,47 @@ mod tests {
     use crate::scenario::Scenario;
     use std::path::Path;
     use std::sync::OnceLock;
+
+    /// A table of one base row against `measured`, with `near_zero` flags.
+    fn table_of(measured: [f64; 4], model: [f64; 4], near_zero: [bool; 4]) -> GainTable {
+        let of = |[max_force, impulse, energy_loss, duration]: [f64; 4]| Indicators {
+            max_force,
+            impulse,
+            energy_loss,
+            duration,
+        };
+        GainTable {
+            group: "held-out runs".into(),
+            runs: 4,
+            flight_noise: f64::NAN,
+            rows: vec![GainRow {
+                judged: ModelRow::judged("base", Some(of(model)), &of(measured)),
+                force_rmse: 1.0,
+                excess_rmse: 0.5,
+                flight_rmse: f64::NAN,
+                flight_excess: f64::NAN,
+            }],
+            measured: Some(of(measured)),
+            near_zero,
+        }
+    }
+
+    #[test]
+    fn an_indicator_not_told_from_zero_gets_an_absolute_error_not_a_percentage() {
+        // An elastic contact: the energy lost is noise about 0 (1e-9 J measured).
+        let (measured, model) = ([2900.0, 0.18, 1e-9, 1.1e-4], [2910.0, 0.18, 6.9e-3, 1.1e-4]);
+        let plain = markdown(&[table_of(measured, model, [false; 4])]);
+        assert!(plain.contains("689999900.000"), "{plain}");
+        let judged = markdown(&[table_of(measured, model, [false, false, true, false])]);
+        assert!(!judged.contains("689999900"), "{judged}");
+        assert!(judged.contains("Δ 6.900e-3 N·m"), "{judged}");
+        assert!(
+            judged.contains("energy_loss is within 2 standard errors of zero"),
+            "{judged}"
+        );
+        // The other cells stay relative: 10 N of 2900 N.
+        assert!(judged.contains("| 0.345 |"), "{judged}");
+    }
 
     const SIGMA: f64 = 15.0; // N, the scenario's force_noise
 

@@ -20,7 +20,8 @@ the *noise floor* σ is the data's own force noise, read from the force's second
 *excess over noise* is √(RMS² − σ²), what a model leaves beyond the noise. *Held-out* runs (and a \
 held-out condition) were never fitted. The four *indicators* of a contact are its maximum force, \
 impulse, energy loss and duration; their *error* is |measured mean − model| / measured mean (the \
-paper's Eq 20), in per cent. *RMSE*: root-mean-square error; *RSS*: residual sum of squares; *CV*: \
+paper's Eq 20), in per cent — or, for an indicator whose measured mean is within two standard errors \
+of zero (an elastic contact's energy loss), Δ = |model − measured| in its unit. *RMSE*: root-mean-square error; *RSS*: residual sum of squares; *CV*: \
 5-fold cross-validation over whole runs; *BIC*: the Bayesian information criterion's threshold.\n\n";
 
 /// One line from the last gain table (the held-out condition when there is one): the
@@ -35,7 +36,12 @@ fn gain_takeaway(gain: &[GainTable]) -> Option<String> {
             .map(|e| e.values())
     };
     let (base, extended) = (errors("base")?, errors("extended")?);
-    let worst = (0..4).fold(0, |w, i| if base[i] > base[w] { i } else { w });
+    // Among the indicators whose measured mean is told from zero (a relative error of
+    // one that is not means nothing).
+    let worst =
+        (0..4)
+            .filter(|&i| !table.near_zero[i])
+            .reduce(|w, i| if base[i] > base[w] { i } else { w })?;
     let names = ["maximum force", "impulse", "energy loss", "duration"];
     let hcm = errors("HCM").map_or(String::new(), |h| {
         format!(" (HCM {:.2} %)", 100.0 * h[worst])
