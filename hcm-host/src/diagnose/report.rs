@@ -177,7 +177,9 @@ fn what_is_wrong(md: &mut String, d: &Diagnosis, figures: &[&str]) {
 fn the_cause(md: &mut String, d: &Diagnosis) {
     let _ = writeln!(md, "## 2. The cause\n");
     if d.causes.is_empty() {
-        let _ = writeln!(md, "No catalogued effect passed the selection (cross-validation across runs, BIC, share ≥ 2 %).\n");
+        // The rule as `naming` applies it (the linear ranking's share ≥ 2 % only orders
+        // the report's selection steps; it decides nothing).
+        let _ = writeln!(md, "No cause is named. Every catalogued effect was re-fitted with the base law; one is named when its RSS drop exceeds ln(n)·σ² per parameter (BIC), its 95 % intervals are finite, no effect of another family comes within {} of it in the criterion, and the residual it leaves is noise. The effects tried and why none was accepted are listed under the decision below.\n", super::naming::EVIDENCE);
     } else {
         let _ = writeln!(md, "| effect | kind | parameter | value | 95 % interval | share |\n|---|---|---|---|---|---|");
         for c in &d.causes {
