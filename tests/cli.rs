@@ -325,6 +325,19 @@ fn diagnose_names_the_variable_stiffness_damping_missing_from_lankarani_nikraves
         &["experiment.holdout_conditions=[\"v1.0\"]"],
     );
     assert_eq!(beyond["answer"], "hysteresis_damping");
+    // The report's answer line: the cause with its values and intervals, and the shares.
+    let report = std::fs::read_to_string(hcm.path("beyond").join("report.md")).unwrap();
+    let line = report
+        .lines()
+        .find(|l| l.starts_with("**Answer: "))
+        .unwrap();
+    for part in [
+        "hysteresis_damping (coefficient = ",
+        "exponent = ",
+        "% left unexplained",
+    ] {
+        assert!(line.contains(part), "no `{part}` in {line}");
+    }
     for (json, speed) in [(&json, "v0.95"), (&beyond, "v1.0")] {
         let table = group(json, &format!("condition {speed}"));
         let energy = |model: &str| row(table, model, "errors")["energy_loss"].as_f64().unwrap();

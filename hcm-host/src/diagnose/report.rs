@@ -77,6 +77,57 @@ pub fn answer(d: &Diagnosis) -> String {
     }
 }
 
+/// The report's answer in one line a newcomer reads: each named cause with its
+/// values and 95 % intervals and the share of the base model's structured residual
+/// the causes explain and leave; or one verdict — insufficient data, ambiguous between
+/// two effects, unexplained, or none. (`diagnosis.json`'s `answer` keeps the short
+/// form of [`answer`].)
+pub fn answer_line(d: &Diagnosis) -> String {
+    if !d.data_quality.sufficient {
+        return format!("insufficient data ({})", d.data_quality.reasons.join("; "));
+    }
+    if d.causes.is_empty() {
+        return if !d.ambiguous.is_empty() {
+            format!(
+                "ambiguous between {}: either explains the residual and the data cannot tell which, so neither is named",
+                d.ambiguous.join(" and ")
+            )
+        } else if d.unexplained_share > 0.0 {
+            "unexplained: the base model leaves a structured residual that no catalogued effect explains".into()
+        } else {
+            "none: the base model leaves nothing but noise".into()
+        };
+    }
+    let causes: Vec<String> = (d.causes.iter())
+        .map(|c| {
+            let values: Vec<String> = (c.parameters.iter())
+                .map(|p| {
+                    format!(
+                        "{} = {:.3e} [{:.3e}, {:.3e}]",
+                        p.name, p.value, p.ci.0, p.ci.1
+                    )
+                })
+                .collect();
+            format!("{} ({})", c.effect, values.join(", "))
+        })
+        .collect();
+    let left = d.unexplained_share.clamp(0.0, 1.0);
+    let beyond = if d.ambiguous.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; beyond them, ambiguous between {} (neither named)",
+            d.ambiguous.join(" and ")
+        )
+    };
+    format!(
+        "{}; {:.0} % of the base model's structured residual explained, {:.0} % left unexplained{beyond}",
+        causes.join(" + "),
+        100.0 * (1.0 - left),
+        100.0 * left
+    )
+}
+
 /// How the motion the residual is read along was obtained, where it was not simply
 /// recorded at the force rows.
 fn motion_note(q: &DataQuality) -> Option<String> {
@@ -111,7 +162,7 @@ fn motion_note(q: &DataQuality) -> Option<String> {
 /// floor σ (N), and how the motion was obtained.
 fn head(md: &mut String, d: &Diagnosis) {
     md.push_str("# hcm diagnose\n\n");
-    let _ = writeln!(md, "**Answer: {}.**\n", answer(d));
+    let _ = writeln!(md, "**Answer: {}.**\n", answer_line(d));
     if let Some(line) = gain_takeaway(&d.gain) {
         let _ = writeln!(md, "**Gain.** {line}\n");
     }
