@@ -97,11 +97,11 @@ pub struct Naming {
     /// The residual of `fit`.
     pub(crate) after: Structure,
     /// Whether structure is left that no named cause explains.
-    pub(crate) unexplained: bool,
+    pub unexplained: bool,
     /// Two causes the data cannot tell apart (empty otherwise): neither is named; the
     /// better one stays in `fit` as a provisional term, so that the extended model still
     /// predicts what both would, without claiming which it is.
-    pub(crate) ambiguous: Vec<&'static str>,
+    pub ambiguous: Vec<&'static str>,
     /// That provisional term.
     pub(crate) provisional: Option<(Candidate, f64)>,
 }

@@ -51,9 +51,11 @@ impl ContactSamples {
     }
 
     /// Whether sample `i`'s motion was reconstructed (`dataset::reconstruct`,
-    /// `dataset::newton`) rather than recorded there: it carries a standard deviation.
+    /// `dataset::newton`) rather than recorded there: it carries a standard deviation
+    /// (samples built without standard deviations, or `i` out of range: no).
     pub fn reconstructed(&self, i: usize) -> bool {
-        self.depth_sd[i] != 0.0 || self.rate_sd[i] != 0.0
+        let nonzero = |sd: &[f64]| sd.get(i).is_some_and(|s| *s != 0.0);
+        nonzero(&self.depth_sd) || nonzero(&self.rate_sd)
     }
 
     /// The contact state of sample `i` as a law reads it.

@@ -14,7 +14,10 @@
 //! standard deviation √(2B). The residual is called structured when χ² exceeds
 //! B + 5·√(2B), about five standard deviations above what noise gives — a threshold
 //! that pure noise crosses by chance far less often than once in a thousand records,
-//! and that leaves room for σ being an estimate.
+//! and that leaves room for σ being an estimate. Where the runs scatter beyond the
+//! sample noise (the contact differs a little from run to run), a bin mean's variance
+//! is the runs' own spread instead of σ²/n_b (`bin_null_variances`): run-to-run
+//! scatter is the data's variability, not structure.
 
 use super::ContactSamples;
 use crate::figure::{Band, Colour, Figure, Series};
@@ -129,12 +132,12 @@ pub fn residual_structure(samples: &ContactSamples, model_force: &[f64], sigma: 
     let rate_range = finite_range(rate_points.iter().map(|p| p.0)).unwrap_or((-1.0, 1.0));
     let by_phase = bin_means(in_contact_points(&phase), (0.0, 1.0), PHASE_BINS);
 
-    let filled = || by_phase.iter().filter(|b| b.count > 0);
-    let dof = filled().count();
-    let chi_squared = filled()
-        .map(|b| b.count as f64 * b.mean * b.mean)
-        .sum::<f64>()
-        / (sigma * sigma);
+    let dof = by_phase.iter().filter(|b| b.count > 0).count();
+    let null = bin_null_variances(samples, &residual, &phase, sigma);
+    let chi_squared = (by_phase.iter().zip(&null))
+        .filter(|(b, _)| b.count > 0)
+        .map(|(b, v)| b.mean * b.mean / v)
+        .sum::<f64>();
     let threshold = dof as f64 + STRUCTURE_SIGMAS * (2.0 * dof as f64).sqrt();
     let contact_rms = in_contact.rms();
     Structure {
@@ -256,6 +259,83 @@ fn bin_means(
             centre: lo + (b as f64 + 0.5) * width,
             mean: m.mean(),
             count: m.count,
+        })
+        .collect()
+}
+
+/// Runs below which the run-to-run spread of a bin is not estimated (–).
+const MIN_RUNS_FOR_SCATTER: usize = 5;
+
+/// The variance (N²) a phase bin's mean residual has when the model lacks nothing:
+/// the sample noise's σ²/n_b, or — when the runs scatter beyond it — the spread of the
+/// runs' own bin means (runs as the independent units: Σ_r (s_rb − n_rb·m_b)² / n_b²
+/// · R/(R − 1), s_rb and n_rb run r's sum and count in bin b, m_b the pooled mean),
+/// wherever that is larger. The contact of each run differs a little (`hcm
+/// generate`'s parameter scatter, a real rig's run-to-run variation), and with a quiet
+/// sensor that difference alone made every residual "structured" and refused every
+/// cause. Scatter counts as present only when the runs' spread, summed over the bins,
+/// exceeds the noise's by [`STRUCTURE_SIGMAS`] of its own sampling spread
+/// (√(2/((R − 1)·B)) relative): without scatter the test is the sample-noise one,
+/// unchanged. Nor where the motion was reconstructed: there the runs' spread is the
+/// reconstruction's error, already in σ.
+fn bin_null_variances(
+    samples: &ContactSamples,
+    residual: &[f64],
+    phase: &[f64],
+    sigma: f64,
+) -> Vec<f64> {
+    let noise = sigma * sigma;
+    // Per bin: (count, sum) per run, in the order runs appear.
+    let mut per_run: Vec<Vec<(usize, usize, f64)>> = vec![Vec::new(); PHASE_BINS];
+    for i in (0..samples.len()).filter(|&i| samples.in_contact[i] && phase[i].is_finite()) {
+        // The bin `bin_means` puts it in (the same arithmetic).
+        let width = 1.0 / PHASE_BINS as f64;
+        let b = ((phase[i] / width).floor().max(0.0) as usize).min(PHASE_BINS - 1);
+        let run = samples.run[i];
+        match per_run[b].iter_mut().find(|(r, _, _)| *r == run) {
+            Some(slot) => (slot.1, slot.2) = (slot.1 + 1, slot.2 + residual[i]),
+            None => per_run[b].push((run, 1, residual[i])),
+        }
+    }
+    let spread: Vec<Option<(f64, f64)>> = (per_run.iter())
+        .map(|runs| {
+            let r = runs.len();
+            let n: usize = runs.iter().map(|x| x.1).sum();
+            if r < MIN_RUNS_FOR_SCATTER || n == 0 {
+                return None;
+            }
+            let mean = runs.iter().map(|x| x.2).sum::<f64>() / n as f64;
+            let squares: f64 = runs.iter().map(|x| (x.2 - x.1 as f64 * mean).powi(2)).sum();
+            let between = squares / (n * n) as f64 * r as f64 / (r - 1) as f64;
+            Some((between, noise / n as f64))
+        })
+        .collect();
+    // Motion reconstructed from camera frames carries its own per-contact error
+    // (`depth_sd`, `rate_sd`, in the σ the caller passes): its runs' spread is that
+    // error, not the contact's scatter, and is not counted twice.
+    let reconstructed =
+        (0..samples.len()).any(|i| samples.in_contact[i] && samples.reconstructed(i));
+    let judged: Vec<(f64, f64)> = if reconstructed {
+        Vec::new()
+    } else {
+        spread.iter().flatten().copied().collect()
+    };
+    let runs = samples
+        .run
+        .iter()
+        .collect::<std::collections::BTreeSet<_>>()
+        .len();
+    let ratio = judged.iter().map(|(b, n)| b / n).sum::<f64>() / judged.len().max(1) as f64;
+    let sampling = (2.0 / ((runs.max(2) - 1) as f64 * judged.len().max(1) as f64)).sqrt();
+    let scattered = !judged.is_empty() && ratio > 1.0 + STRUCTURE_SIGMAS * sampling;
+    (per_run.iter().zip(&spread))
+        .map(|(runs, s)| {
+            let n: usize = runs.iter().map(|x| x.1).sum();
+            let plain = noise / n.max(1) as f64;
+            match s {
+                Some((between, _)) if scattered => between.max(plain),
+                _ => plain,
+            }
         })
         .collect()
 }
