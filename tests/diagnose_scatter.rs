@@ -3,12 +3,10 @@
 //! and damping, Eq 18) and a quiet sensor, nothing hidden must name nothing, and a
 //! hidden effect must still be named.
 
-use hcm_host::dataset::Dataset;
 use hcm_host::diagnose::naming::name_causes;
 use hcm_host::diagnose::select::BaseFreedom;
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
-use hcm_host::experiment::generate;
-use hcm_tests::hidden::model;
+use hcm_tests::hidden::{measured, model};
 
 /// The names a diagnosis gives on `runs` runs of the ball with the scenario's own 2 %
 /// scatter, force noise `sigma` (N) and `effect` hidden, against the scenario's law.
@@ -23,12 +21,7 @@ fn named_with_scatter(
     if !effect.is_empty() {
         overrides.push(format!("contact.0.effects=[{effect}]"));
     }
-    let truth = model("bouncing_ball.toml", &overrides);
-    let data = generate(&truth.scenario, runs, seed, &hcm_host::progress::Silent).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("measured.csv");
-    data.write(&path).unwrap();
-    let data = Dataset::read(&path).unwrap();
+    let data = measured(&model("bouncing_ball.toml", &overrides), runs, seed);
     let base = model("bouncing_ball.toml", &[]);
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;

@@ -30,15 +30,20 @@ pub fn hidden(effect: &str, runs: usize, seed: u64) -> (Model, Dataset) {
         overrides.push(format!("contact.0.effects=[{effect}]"));
     }
     let truth = model("bouncing_ball.toml", &overrides);
+    (
+        model("bouncing_ball.toml", &["contact.0.noise={}".to_owned()]),
+        measured(&truth, runs, seed),
+    )
+}
+
+/// `runs` runs of `truth` as `hcm generate` makes them (seed `seed`), written to CSV and
+/// read back, as a user's measured data would be.
+pub fn measured(truth: &Model, runs: usize, seed: u64) -> Dataset {
     let data = generate(&truth.scenario, runs, seed, &hcm_host::progress::Silent).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("measured.csv");
     data.write(&path).unwrap();
-    let measured = Dataset::read(&path).unwrap();
-    (
-        model("bouncing_ball.toml", &["contact.0.noise={}".to_owned()]),
-        measured,
-    )
+    Dataset::read(&path).unwrap()
 }
 
 /// What `hcm diagnose` makes of `runs` runs with `effect` hidden (see [`hidden`]): the
