@@ -117,6 +117,11 @@ pub struct GainRow {
     /// in the JSON row.
     #[serde(flatten)]
     pub judged: ModelRow,
+    /// |model − measured mean| of each indicator (N, N·s, N·m, s), run-weighted over
+    /// the group's conditions like the errors and against the same means (a model
+    /// with a sensor correction: the corrected runs'); None where a replay failed. The
+    /// report gives it where the measured mean is not told from zero.
+    pub absolute_errors: Option<[f64; 4]>,
     /// RMSE of the simulated against the recorded normal force over the contact
     /// samples of every run of the group (N), the recording corrected by the model's
     /// sensor (see [`Sensor::retime`]).
@@ -144,9 +149,6 @@ pub struct GainTable {
     pub flight_noise: f64,
     /// One row per model, in the order given.
     pub rows: Vec<GainRow>,
-    /// The measured indicators (N, N·s, N·m, s), run-weighted means over the group's
-    /// conditions, as recorded.
-    pub(crate) measured: Option<Indicators>,
     /// Per indicator, whether the measured mean is indistinguishable from zero in
     /// some condition (within [`ZERO_SE`] standard errors of it, e.g. an elastic
     /// contact's energy loss): no error relative to it means anything, so the report
@@ -166,26 +168,6 @@ fn near_zero(means: &[Target]) -> [bool; 4] {
             t.standard_error
                 .is_some_and(|se| t.indicators.values()[k].abs() <= ZERO_SE * se.values()[k])
         })
-    })
-}
-
-/// The run-weighted mean of `means`' measured indicators.
-fn measured_mean(means: &[Target]) -> Option<Indicators> {
-    let total = means.iter().map(|t| t.runs).sum::<usize>() as f64;
-    (total > 0.0).then(|| {
-        let mut values = [0.0; 4];
-        for t in means {
-            for (v, m) in values.iter_mut().zip(t.indicators.values()) {
-                *v += t.runs as f64 / total * m;
-            }
-        }
-        let [max_force, impulse, energy_loss, duration] = values;
-        Indicators {
-            max_force,
-            impulse,
-            energy_loss,
-            duration,
-        }
     })
 }
 
@@ -331,15 +313,16 @@ pub fn group_table(
             &corrected_means
         };
         let force_rmse = force_rmse(&records, c, j);
-        let (indicators, errors) = indicator_errors(means, c, j.physics).unzip();
+        let scored = indicator_errors(means, c, j.physics);
         let flight_rmse = flight_rmse(model, data, runs, &records, c, j.physics);
         let excess = |rmse: f64, noise: f64| (rmse.powi(2) - noise.powi(2)).max(0.0).sqrt();
         rows.push(GainRow {
             judged: ModelRow {
                 model: j.label.to_owned(),
-                indicators,
-                errors,
+                indicators: scored.map(|s| s.0),
+                errors: scored.map(|s| s.1),
             },
+            absolute_errors: scored.map(|s| s.2),
             force_rmse,
             excess_rmse: excess(force_rmse, sigma),
             flight_rmse,
@@ -351,7 +334,6 @@ pub fn group_table(
         runs: runs.len(),
         flight_noise,
         rows,
-        measured: measured_mean(&recorded_means),
         near_zero: near_zero(&recorded_means),
     })
 }
@@ -468,25 +450,28 @@ fn interpolate(times: &[f64], values: &[f64], t: f64) -> f64 {
 }
 
 /// The run-weighted mean indicators of `physics` replayed on each condition's mean
-/// target, and the run-weighted mean of their Eq 20 errors; None without conditions or
-/// if any replay fails.
+/// target, and the run-weighted means of their Eq 20 errors and of their absolute
+/// errors |simulated − measured| (units of each indicator); None without conditions
+/// or if any replay fails.
 fn indicator_errors(
     means: &[Target],
     c: usize,
     physics: &Model,
-) -> Option<(Indicators, IndicatorErrors)> {
+) -> Option<(Indicators, IndicatorErrors, [f64; 4])> {
     if means.is_empty() {
         return None;
     }
     let total = means.iter().map(|t| t.runs).sum::<usize>() as f64;
-    let (mut values, mut errors) = ([0.0; 4], [0.0; 4]);
+    let (mut values, mut errors, mut absolute) = ([0.0; 4], [0.0; 4], [0.0; 4]);
     for target in means {
         let (_, simulated) = simulate_target_as(target, c, physics)?;
         let weight = target.runs as f64 / total;
         let error = simulated.relative_error(&target.indicators);
+        let (got, wanted) = (simulated.values(), target.indicators.values());
         for k in 0..4 {
-            values[k] += weight * simulated.values()[k];
+            values[k] += weight * got[k];
             errors[k] += weight * error[k];
+            absolute[k] += weight * (got[k] - wanted[k]).abs();
         }
     }
     let [max_force, impulse, energy_loss, duration] = values;
@@ -496,19 +481,16 @@ fn indicator_errors(
         energy_loss,
         duration,
     };
-    Some((indicators, IndicatorErrors::from_values(errors)))
+    Some((indicators, IndicatorErrors::from_values(errors), absolute))
 }
 
 /// Indicator `k`'s error cell of `row` in `table`: the Eq 20 error in per cent, or
 /// where the measured mean is not told from zero, |model − measured| in its unit.
 fn error_cell(table: &GainTable, row: &GainRow, k: usize, relative: f64) -> String {
-    let absolute = table.measured.zip(row.judged.indicators);
-    match absolute {
-        Some((measured, model)) if table.near_zero[k] => format!(
-            "Δ {:.3e} {}",
-            (model.values()[k] - measured.values()[k]).abs(),
-            Indicators::NAMES[k].1
-        ),
+    match row.absolute_errors {
+        Some(absolute) if table.near_zero[k] => {
+            format!("Δ {:.3e} {}", absolute[k], Indicators::NAMES[k].1)
+        }
         _ => format!("{:.3}", 100.0 * relative),
     }
 }
@@ -603,12 +585,12 @@ mod tests {
             flight_noise: f64::NAN,
             rows: vec![GainRow {
                 judged: ModelRow::judged("base", Some(of(model)), &of(measured)),
+                absolute_errors: Some(std::array::from_fn(|k| (model[k] - measured[k]).abs())),
                 force_rmse: 1.0,
                 excess_rmse: 0.5,
                 flight_rmse: f64::NAN,
                 flight_excess: f64::NAN,
             }],
-            measured: Some(of(measured)),
             near_zero,
         }
     }
