@@ -238,15 +238,10 @@ fn bin_means(
     range: (f64, f64),
     bins: usize,
 ) -> Vec<Bin> {
-    let (lo, hi) = range;
-    let width = if hi > lo {
-        (hi - lo) / bins as f64
-    } else {
-        1.0
-    };
+    let (lo, width) = bin_width(range, bins);
     let mut sums = vec![Moments::default(); bins];
     for (x, r) in points.into_iter().filter(|(x, _)| x.is_finite()) {
-        let b = (((x - lo) / width).floor().max(0.0) as usize).min(bins - 1);
+        let b = bin_of(x, range, bins);
         sums[b] = Moments {
             count: sums[b].count + 1,
             sum: sums[b].sum + r,
@@ -261,6 +256,24 @@ fn bin_means(
             count: m.count,
         })
         .collect()
+}
+
+/// The start and width of `bins` equal bins over `range` (width 1 for an empty range).
+fn bin_width((lo, hi): (f64, f64), bins: usize) -> (f64, f64) {
+    (
+        lo,
+        if hi > lo {
+            (hi - lo) / bins as f64
+        } else {
+            1.0
+        },
+    )
+}
+
+/// The bin of the finite abscissa `x` (values beyond either end in the end bins).
+fn bin_of(x: f64, range: (f64, f64), bins: usize) -> usize {
+    let (lo, width) = bin_width(range, bins);
+    (((x - lo) / width).floor().max(0.0) as usize).min(bins - 1)
 }
 
 /// Runs below which the run-to-run spread of a bin is not estimated (–).
@@ -288,9 +301,7 @@ fn bin_null_variances(
     // Per bin: (count, sum) per run, in the order runs appear.
     let mut per_run: Vec<Vec<(usize, usize, f64)>> = vec![Vec::new(); PHASE_BINS];
     for i in (0..samples.len()).filter(|&i| samples.in_contact[i] && phase[i].is_finite()) {
-        // The bin `bin_means` puts it in (the same arithmetic).
-        let width = 1.0 / PHASE_BINS as f64;
-        let b = ((phase[i] / width).floor().max(0.0) as usize).min(PHASE_BINS - 1);
+        let b = bin_of(phase[i], (0.0, 1.0), PHASE_BINS);
         let run = samples.run[i];
         match per_run[b].iter_mut().find(|(r, _, _)| *r == run) {
             Some(slot) => (slot.1, slot.2) = (slot.1 + 1, slot.2 + residual[i]),
