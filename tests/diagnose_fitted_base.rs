@@ -17,6 +17,20 @@ use hcm_tests::hidden::hidden;
 /// `law` fitted by least squares on the same runs (its exponent free), judged with
 /// `freedom`.
 fn named_against_fitted(effect: &str, law: &str, freedom: BaseFreedom) -> Vec<&'static str> {
+    let (names, _) = diagnosed_against_fitted(effect, law, freedom);
+    names
+}
+
+/// A re-fit's cause: its name, its first parameter's value and 95 % interval.
+type Named = (&'static str, f64, (f64, f64));
+
+/// [`named_against_fitted`], with the re-fit's causes as (name, value, 95 % interval)
+/// of their first parameter.
+fn diagnosed_against_fitted(
+    effect: &str,
+    law: &str,
+    freedom: BaseFreedom,
+) -> (Vec<&'static str>, Vec<Named>) {
     let (model, data) = hidden(effect, 12, 5);
     let fit = identify(&model.scenario, &model, &data, 0, law, Method::Lsq, &Silent).unwrap();
     let mut base = model.clone();
@@ -29,7 +43,13 @@ fn named_against_fitted(effect: &str, law: &str, freedom: BaseFreedom) -> Vec<&'
         "{law}, {effect:?}, {freedom:?}: fitted {:?} → {names:?}",
         fit.law
     );
-    names
+    let values = naming
+        .fit
+        .causes
+        .iter()
+        .map(|c| (c.effect, c.parameters[0].value, c.parameters[0].ci))
+        .collect();
+    (names, values)
 }
 
 /// Measured with this test (seed 5, 12 runs, σ = 15 N): with the fitted exponent held
@@ -69,4 +89,34 @@ fn a_fitted_base_never_has_its_exponent_named() {
     // The failure this guards against is real on these cases.
     assert!(!held.is_empty(), "the held exponent named nothing wrong");
     println!("named stiffness_exponent with the fitted exponent held: {held:?}");
+}
+
+/// A sensor delay the user's base fit absorbed (issue 27, class 5): least squares on
+/// delayed data bends the base's damping — onto its bound 0 for the variable-stiffness
+/// law — and the re-fit, starting there, used to stop near 0.9 µs of a 2.5 µs delay
+/// with a singular covariance (the damping, started at 0, had a step scale of ~0 and
+/// could not move). Now the damping moves off its bound and the delay starts from the
+/// best of a grid over its plausible range: named alone on every base. On the data's
+/// own law (variable stiffness) within 10 %, its interval holding it; on the
+/// Lankarani–Nikravesh and Hunt–Crossley bases, whose damping has another shape than
+/// the data's, the delay takes up part of that mismatch — measured 2.15 µs of 2.5 µs
+/// and 7.66 µs of 8 µs, intervals ±0.04 µs that miss the truth: the covariance knows
+/// the noise, not the wrong law — so only within 20 %.
+#[test]
+fn a_delay_a_fitted_base_absorbed_is_named_with_its_value() {
+    for law in ["variable_stiffness", "lankarani_nikravesh", "hunt_crossley"] {
+        for delay in [2.5e-6, 8e-6] {
+            let effect = format!("experiment.sensor_delay={delay}");
+            let (names, causes) = diagnosed_against_fitted(&effect, law, BaseFreedom::Fitted);
+            println!("{law}, {delay:e} s: {causes:?}");
+            assert_eq!(names, ["sensor_delay"], "{law}, {delay:e} s");
+            let (_, value, (lo, hi)) = causes[0];
+            if law == "variable_stiffness" {
+                assert!((value - delay).abs() < 0.1 * delay, "{law}: {value:e} s");
+                assert!(lo <= delay && delay <= hi, "{law}: [{lo:e}, {hi:e}] s");
+            } else {
+                assert!((value - delay).abs() < 0.2 * delay, "{law}: {value:e} s");
+            }
+        }
+    }
 }

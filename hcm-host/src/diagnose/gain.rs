@@ -315,7 +315,15 @@ pub fn group_table(
         let force_rmse = force_rmse(&records, c, j);
         let scored = indicator_errors(means, c, j.physics);
         let flight_rmse = flight_rmse(model, data, runs, &records, c, j.physics);
-        let excess = |rmse: f64, noise: f64| (rmse.powi(2) - noise.powi(2)).max(0.0).sqrt();
+        // NaN (a failed replay) stays NaN: `f64::max` would turn it into 0, a perfect score.
+        let excess = |rmse: f64, noise: f64| {
+            let d = rmse.powi(2) - noise.powi(2);
+            if d.is_nan() {
+                f64::NAN
+            } else {
+                d.max(0.0).sqrt()
+            }
+        };
         rows.push(GainRow {
             judged: ModelRow {
                 model: j.label.to_owned(),
@@ -495,6 +503,15 @@ fn error_cell(table: &GainTable, row: &GainRow, k: usize, relative: f64) -> Stri
     }
 }
 
+/// `value`·`unit` with `decimals` decimals, or `failed` where a replay gave NaN.
+fn cell(value: f64, unit: f64, decimals: usize) -> String {
+    if value.is_nan() {
+        "failed".to_owned()
+    } else {
+        format!("{:.*}", decimals, unit * value)
+    }
+}
+
 /// The tables as markdown: one per group, a row per model; the flight columns only
 /// where the runs record a flight before their contact.
 pub fn markdown(tables: &[GainTable]) -> String {
@@ -518,26 +535,43 @@ pub fn markdown(tables: &[GainTable]) -> String {
             out.push_str("---|---|");
         }
         out.push('\n');
+        let mut failed = Vec::new();
         for row in &table.rows {
+            if row.force_rmse.is_nan() || row.judged.errors.is_none() {
+                failed.push(row.judged.model.as_str());
+            }
             let _ = write!(
                 out,
-                "| {} | {:.3} | {:.3} |",
-                row.judged.model, row.force_rmse, row.excess_rmse
+                "| {} | {} | {} |",
+                row.judged.model,
+                cell(row.force_rmse, 1.0, 3),
+                cell(row.excess_rmse, 1.0, 3)
             );
-            // A failed replay prints NaN, as its force RMSE does.
-            let errors = row.judged.errors.map_or([f64::NAN; 4], |e| e.values());
-            for (k, e) in errors.into_iter().enumerate() {
-                let _ = write!(out, " {} |", error_cell(table, row, k, e));
+            match row.judged.errors {
+                Some(errors) => {
+                    for (k, e) in errors.values().into_iter().enumerate() {
+                        let _ = write!(out, " {} |", error_cell(table, row, k, e));
+                    }
+                }
+                None => out.push_str(" failed | failed | failed | failed |"),
             }
             if flight {
                 let _ = write!(
                     out,
-                    " {:.4} | {:.4} |",
-                    1e3 * row.flight_rmse,
-                    1e3 * row.flight_excess
+                    " {} | {} |",
+                    cell(row.flight_rmse, 1e3, 4),
+                    cell(row.flight_excess, 1e3, 4)
                 );
             }
             out.push('\n');
+        }
+        if !failed.is_empty() {
+            let _ = writeln!(
+                out,
+                "\n`failed`: the replay of {} stopped on some held-out run (a contact that \
+                 chatters or never ends under that model), so it has no score there.",
+                failed.join(" and ")
+            );
         }
         if table.near_zero.iter().any(|z| *z) {
             let names: Vec<&str> = (0..4)
@@ -610,6 +644,26 @@ mod tests {
         );
         // The other cells stay relative: 10 N of 2900 N.
         assert!(judged.contains("| 0.345 |"), "{judged}");
+    }
+
+    #[test]
+    fn a_failed_replay_is_marked_failed_not_scored() {
+        let mut table = table_of([1.0; 4], [1.0; 4], [false; 4]);
+        let row = &mut table.rows[0];
+        (
+            row.judged.indicators,
+            row.judged.errors,
+            row.absolute_errors,
+        ) = (None, None, None);
+        row.force_rmse = f64::NAN;
+        row.excess_rmse = f64::NAN;
+        let text = markdown(&[table]);
+        assert!(
+            text.contains("| base | failed | failed | failed | failed | failed | failed |"),
+            "{text}"
+        );
+        assert!(text.contains("the replay of base stopped"), "{text}");
+        assert!(!text.contains("NaN") && !text.contains("0.000"), "{text}");
     }
 
     const SIGMA: f64 = 15.0; // N, the scenario's force_noise
@@ -830,7 +884,7 @@ mod tests {
             assert!(table.rows[1].force_rmse.is_nan() && table.rows[1].judged.errors.is_none());
         }
         let text = markdown(&tables);
-        assert!(text.contains("**condition c** (2 runs)") && text.contains("| broken | NaN |"));
+        assert!(text.contains("**condition c** (2 runs)") && text.contains("| broken | failed |"));
         assert_eq!(text.matches("| model | force RMSE (N) |").count(), 2);
         assert!(gain(model, &data, &[6], 0, SIGMA, &models).is_err());
     }

@@ -659,19 +659,26 @@ impl Unknowns {
         chosen: &[(Candidate, f64)],
     ) -> Unknowns {
         let domain = Bounds::for_law(base.base.name(), None).ok();
+        let ranges: Vec<(f64, f64)> = free
+            .iter()
+            .map(|name| {
+                domain
+                    .as_ref()
+                    .map_or((f64::NEG_INFINITY, f64::INFINITY), |d| d.range(name))
+            })
+            .collect();
         let bounds = free
             .iter()
-            .zip(base_values)
-            .map(|(name, &v)| {
-                let (lo, hi) = domain
-                    .as_ref()
-                    .map_or((f64::NEG_INFINITY, f64::INFINITY), |d| d.range(name));
-                Bound::linear(name, lo.min(v), hi.max(v))
-            })
+            .zip(base_values.iter().zip(&ranges))
+            .map(|(name, (&v, &(lo, hi)))| Bound::linear(name, lo.min(v), hi.max(v)))
             .collect();
         let mut unknowns = Unknowns {
             initial: base_values.to_vec(),
-            scales: base_values.iter().map(|v| v.abs().max(1e-12)).collect(),
+            scales: base_values
+                .iter()
+                .zip(&ranges)
+                .map(|(&v, &range)| parameter_scale(v, range))
+                .collect(),
             bounds,
             slots: Vec::new(),
         };
@@ -706,6 +713,23 @@ impl Unknowns {
                 4.0,
             ));
         }
+    }
+}
+
+/// The step scale of a base parameter starting at `value` in its search `range`: its
+/// own magnitude, or — for a parameter at 0, typically a damping a biased base fit
+/// pushed onto its bound — a hundredth of the range's width (1 if the range is
+/// unbounded), so that the re-fit can move it off the bound. A scale of ~0 would
+/// freeze it and leave its column of the covariance singular.
+fn parameter_scale(value: f64, (lo, hi): (f64, f64)) -> f64 {
+    if value != 0.0 && value.is_finite() {
+        return value.abs();
+    }
+    let width = hi - lo;
+    if width.is_finite() && width > 0.0 {
+        0.01 * width
+    } else {
+        1.0
     }
 }
 
@@ -777,10 +801,11 @@ impl RefitModel<'_> {
             max_iterations: 60,
             ..LmSettings::default()
         };
+        let initial = self.delay_start(unknowns);
         let result = levenberg_marquardt(
             residuals,
             self.samples.len(),
-            &unknowns.initial,
+            &initial,
             &unknowns.scales,
             Some(&unknowns.bounds),
             &settings,
@@ -789,6 +814,39 @@ impl RefitModel<'_> {
             Ok(r) => (r.parameters, r.covariance),
             Err(_) => (unknowns.initial.clone(), None),
         }
+    }
+
+    /// The start of the re-fit: `unknowns.initial`, with a chosen sensor delay started
+    /// at the best of a grid over its plausible range instead of 0 — the delay's RSS
+    /// has a single valley about the true τ, but a linearisation at τ = 0 reaches only
+    /// delays a fraction of a sample long. The grid spans ±¼ of the longest contact
+    /// event in [`DELAY_GRID`] steps (a delay that long would leave no contact shape
+    /// to fit), the other unknowns held at their starts.
+    fn delay_start(&self, unknowns: &Unknowns) -> Vec<f64> {
+        let mut start = unknowns.initial.clone();
+        let Some(slot) = self
+            .chosen
+            .iter()
+            .zip(&self.slots)
+            .find(|((c, _), _)| *c == Candidate::SensorDelay)
+            .map(|(_, &slot)| slot)
+        else {
+            return start;
+        };
+        let reach = 0.25 * longest_contact(self.samples);
+        if !(reach.is_finite() && reach > 0.0) {
+            return start;
+        }
+        let mut best = (self.rss(&start), start[slot]);
+        for k in 0..=DELAY_GRID {
+            start[slot] = reach * (2.0 * k as f64 / DELAY_GRID as f64 - 1.0);
+            let rss = self.rss(&start);
+            if rss < best.0 {
+                best = (rss, start[slot]);
+            }
+        }
+        start[slot] = best.1;
+        start
     }
 
     /// Each chosen cause with its fitted parameters and its RSS increase when its
@@ -818,6 +876,26 @@ impl RefitModel<'_> {
         }
         causes
     }
+}
+
+/// Intervals of the sensor delay's start grid over its plausible range (see
+/// [`RefitModel::delay_start`]).
+const DELAY_GRID: usize = 40;
+
+/// Duration of the longest contact event of `samples` (s): the longest stretch of one
+/// run's in-contact samples; 0 without contact.
+fn longest_contact(samples: &ContactSamples) -> f64 {
+    let mut longest = 0.0_f64;
+    let mut begun: Option<(usize, f64)> = None;
+    for i in 0..samples.len() {
+        let (run, t) = (samples.run[i], samples.time[i]);
+        match begun {
+            Some((r, t0)) if r == run && samples.in_contact[i] => longest = longest.max(t - t0),
+            _ if samples.in_contact[i] => begun = Some((run, t)),
+            _ => begun = None,
+        }
+    }
+    longest
 }
 
 /// Unknown k of `p` named `name` with its 95 % interval from `covariance` (NaN without).
