@@ -8,7 +8,7 @@
 
 use hcm_host::diagnose::naming::name_causes;
 use hcm_host::diagnose::select::BaseFreedom;
-use hcm_host::diagnose::{contact_samples, noise::noise_floor};
+use hcm_host::diagnose::{contact_samples, diagnose, noise::noise_floor, DiagnoseSettings};
 use hcm_host::identify::{identify, Method};
 use hcm_host::progress::Silent;
 use hcm_tests::hidden::hidden;
@@ -117,6 +117,46 @@ fn a_delay_a_fitted_base_absorbed_is_named_with_its_value() {
             } else {
                 assert!((value - delay).abs() < 0.2 * delay, "{law}: {value:e} s");
             }
+        }
+    }
+}
+
+/// A sensor reading 3 % high (issue 27, class 2), on 16 runs, against a base fitted
+/// by least squares to the same readings: the fit took the gain into its stiffness
+/// (and bent the rest of the law to it), and the diagnosis named `stiffness_exponent`.
+/// The momentum balance gives the gain first, within 0.3 %; the physics is judged on
+/// the corrected readings with the base's freedom re-tuned, and on the data's own law
+/// (variable stiffness) nothing else is named. Lankarani–Nikravesh and Hertz bases
+/// lack part of the data's damping whatever the sensor: on these runs without the gain
+/// the Lankarani–Nikravesh base leaves `hysteresis_damping` and a −0.3 µs
+/// `sensor_delay` as rivals (information criteria 9.0 apart, ambiguous) and the Hertz
+/// base names `hysteresis_damping`; so beside the gain only that damping may be named.
+#[test]
+fn a_gain_a_fitted_base_absorbed_is_named_as_the_sensors() {
+    let (model, data) = hidden("experiment.force_gain=1.03", 16, 6);
+    for law in ["variable_stiffness", "lankarani_nikravesh", "hertz"] {
+        let fit = identify(&model.scenario, &model, &data, 0, law, Method::Lsq, &Silent).unwrap();
+        let mut base = model.clone();
+        base.contacts[0].model.normal.base = fit.law;
+        let settings = DiagnoseSettings {
+            hcm_epochs: 2,
+            base_freedom: BaseFreedom::Fitted,
+            ..DiagnoseSettings::default()
+        };
+        let d = diagnose(&base, &data, &settings).unwrap();
+        let names: Vec<&str> = d.causes.iter().map(|c| c.effect).collect();
+        println!("{law}: {names:?} {:?}", d.sensor_gain);
+        assert_eq!(names.first(), Some(&"sensor_gain"), "{law}: {names:?}");
+        let gain = &d.causes[0].parameters[0];
+        assert!((gain.value - 1.03).abs() < 0.003, "{law}: {gain:?}");
+        assert!(gain.ci.0 <= 1.03 && 1.03 <= gain.ci.1, "{law}: {gain:?}");
+        if law == "variable_stiffness" {
+            assert_eq!(names, ["sensor_gain"]);
+        } else {
+            assert!(
+                names[1..].iter().all(|n| *n == "hysteresis_damping"),
+                "{law}: {names:?}"
+            );
         }
     }
 }

@@ -61,6 +61,8 @@ pub struct Sensor {
     pub delay: f64,
     /// Offset b (N), in flight too.
     pub offset: f64,
+    /// Gain g (–): it reads g·f(t − τ) + b.
+    pub gain: f64,
     /// Ringing of the mount, if any.
     pub resonance: Option<Resonance>,
 }
@@ -171,6 +173,7 @@ impl Rig {
                 noise: 15.0,
                 delay: 0.0,
                 offset: 0.0,
+                gain: 1.0,
                 resonance: None,
             },
             motion: Motion::AtForceRows(0.0, 0.0),
@@ -310,10 +313,10 @@ impl Rig {
         Recording { csv, runs: truths }
     }
 
-    /// What the sensor records at `t` (s): f(t − τ) + b + ringing + noise (N).
+    /// What the sensor records at `t` (s): g·f(t − τ) + b + ringing + noise (N).
     fn read_force(&self, fly: &Flight, t: f64, rng: &mut ChaCha8Rng) -> f64 {
         let s = &self.sensor;
-        let mut f = fly.force(t - s.delay) + s.offset + s.noise * gaussian(rng);
+        let mut f = s.gain * fly.force(t - s.delay) + s.offset + s.noise * gaussian(rng);
         if let Some(ring) = s.resonance.filter(|_| t >= fly.touch_down) {
             let since = t - fly.touch_down;
             f += ring.amplitude

@@ -2,6 +2,7 @@
 //! model and its gain — the data behind `DIR/report.md` and `DIR/diagnosis.json`.
 
 use super::gain::{gain, group_table, holdout, GainTable, Judged};
+use super::momentum::{sensor_gain, with_gain, SensorGain};
 use super::naming::{name_causes, unnamed, Naming, NotAccepted, Trial};
 use super::noise::{noise_floor, NoiseFloor};
 use super::quality::{assess, reconstruction_gap, DataQuality, MAX_GAP_SIGMAS};
@@ -71,6 +72,9 @@ pub struct Diagnosis {
     pub not_accepted: Vec<NotAccepted>,
     /// Two causes the data cannot tell apart (neither named; see `naming`).
     pub ambiguous: Vec<&'static str>,
+    /// The force sensor's gain from the momentum balance (named among the causes when
+    /// it differs from 1), None where the motion cannot give it.
+    pub sensor_gain: Option<SensorGain>,
     /// Named causes with parameters, 95 % intervals and shares.
     pub causes: Vec<Cause>,
     /// Air drag fitted from the flight motion of body 1 (its `share` is of the flight
@@ -113,7 +117,8 @@ pub struct RunSplit {
 /// What the training runs show before anything is extended: their samples, noise floor
 /// and data quality, the base law's residual, the linear selection and the decision.
 struct Findings {
-    /// The training runs' samples of the contact.
+    /// The training runs' samples of the contact, their readings divided by the
+    /// sensor's gain where one is named.
     samples: ContactSamples,
     /// Noise floor of the force signal.
     noise: NoiseFloor,
@@ -161,19 +166,60 @@ fn reconstruct<'a>(base: &Model, data: &'a Dataset) -> Result<Completed<'a>, Ide
     Ok(completed)
 }
 
-/// Examines contact `c` on the training runs `fitted` (reconstructed from `completed`):
-/// noise, data quality, the base law's residual, and the causes named.
+/// The force sensor's gain from the momentum balance of `runs` of `data` (contact `c`),
+/// on the motion as recorded: none replaced, a camera's frames (reconstructed motion)
+/// giving none. Data that cannot be completed give none either; the diagnosis then
+/// says why.
+fn recorded_gain(
+    base: &Model,
+    data: &Dataset,
+    runs: &[usize],
+    c: usize,
+) -> Result<Option<SensorGain>, IdentifyError> {
+    let training = Dataset {
+        runs: runs.iter().map(|&r| data.runs[r].clone()).collect(),
+    };
+    let Ok(completed) = complete_with(base, &training, Checks::default()) else {
+        return Ok(None);
+    };
+    let samples = contact_samples_of(base, &completed, c)?;
+    Ok(sensor_gain(&samples, base.contacts[c].effective_mass))
+}
+
+/// `data` with the force contact `c` reads multiplied by `factor`.
+fn rescaled(base: &Model, data: &Dataset, c: usize, factor: f64) -> Result<Dataset, IdentifyError> {
+    let sensor = Sensor {
+        gain: 1.0 / factor,
+        ..Sensor::default()
+    };
+    let runs = data
+        .runs
+        .iter()
+        .map(|run| sensor.correct(base, run, c))
+        .collect::<Result<_, _>>()?;
+    Ok(Dataset { runs })
+}
+
+/// Examines contact `c` on the training runs `fitted` (reconstructed from `completed`,
+/// their readings divided by the sensor's `gain`): noise, data quality, the base law's
+/// residual, and the causes named.
 fn examine(
     base: &Model,
     (completed, fitted): (&Completed<'_>, &Completed<'_>),
-    c: usize,
+    (c, gain): (usize, f64),
     freedom: BaseFreedom,
 ) -> Result<Findings, IdentifyError> {
     let samples: ContactSamples = contact_samples_of(base, fitted, c)?;
     let noise = noise_floor(&samples);
     let sigma = noise.sigma;
     let law = base.contacts[c].model.normal.clone();
-    let before = residual_structure(&samples, &samples.model_force(&law), sigma);
+    // What is wrong with the base model as the sensor read it: the readings times the
+    // `gain` they were divided by.
+    let before = {
+        let mut read = samples.clone();
+        read.measured.iter_mut().for_each(|y| *y *= gain);
+        residual_structure(&read, &read.model_force(&law), gain * sigma)
+    };
     // The linear stepwise selection, for the report: what the residual's shape
     // suggests at first order. The decision is taken on full re-fits (`naming`).
     let selection = select(&samples, &law, freedom, sigma);
@@ -308,18 +354,55 @@ pub fn diagnose(
     settings: &DiagnoseSettings,
 ) -> Result<Diagnosis, IdentifyError> {
     let c = settings.contact;
-    let completed = reconstruct(base, data)?;
-    let data: &Dataset = &completed.data;
     let split = holdout(base, data, settings.seed, settings.holdout_fraction);
+    // Measurement before physics: the sensor's gain, from the training runs' momentum
+    // balance, comes off the force readings before anything else reads them (a gain
+    // would otherwise show as motion that disobeys Newton's law, and as physics).
+    let momentum_gain = recorded_gain(base, data, &split.training, c)?;
+    let named_gain = momentum_gain.filter(|g| g.named);
+    let corrected;
+    let read = match named_gain {
+        Some(g) => {
+            corrected = rescaled(base, data, c, 1.0 / g.value)?;
+            &corrected
+        }
+        None => data,
+    };
+    let completed = reconstruct(base, read)?;
+    // The gain is judged on the data as recorded (re-scaled back where corrected).
+    let restored;
+    let data: &Dataset = match named_gain {
+        Some(g) => {
+            restored = rescaled(base, &completed.data, c, g.value)?;
+            &restored
+        }
+        None => &completed.data,
+    };
     // The training runs with their reconstructions, so that each sample carries its
     // reconstruction's uncertainty (0 where motion and force share every row).
     let fitted = completed.subset(&split.training);
-    let findings = examine(base, (&completed, &fitted), c, settings.base_freedom)?;
+    let gain_value = named_gain.map_or(1.0, |g| g.value);
+    let findings = examine(
+        base,
+        (&completed, &fitted),
+        (c, gain_value),
+        settings.base_freedom,
+    )?;
     let (naming, sigma) = (findings.naming, findings.noise.sigma);
-    let fit = naming.fit.clone();
-    // Named: the chosen causes (entered first); a provisional term is in the extended
-    // law and the sensor, not among the causes.
-    let chosen = fit.causes.into_iter().take(naming.chosen.len()).collect();
+    let mut fit = naming.fit.clone();
+    let gain_cause = named_gain.map(|g| with_gain(&mut fit, &findings.samples, &g));
+    // Named: the gain, then the chosen causes (entered first); a provisional term is in
+    // the extended law and the sensor, not among the causes.
+    let mut chosen: Vec<Cause> = gain_cause
+        .into_iter()
+        .chain(fit.causes.into_iter().take(naming.chosen.len()))
+        .collect();
+    // Where what is left is judged noise and scatter, nothing is unexplained: the
+    // causes' shares are of what they explain together.
+    let explained: f64 = chosen.iter().map(|c| c.share).sum();
+    if !naming.unexplained && explained > 0.0 {
+        chosen.iter_mut().for_each(|c| c.share /= explained);
+    }
     let body = &base.bodies[base.contacts[c].body_1];
     let drag = super::drag::fit_drag(&findings.samples, body.mass);
     let causes = named_causes(chosen, completed.delay, drag.as_ref());
@@ -356,6 +439,7 @@ pub fn diagnose(
         naming: naming.steps,
         not_accepted: naming.not_accepted,
         ambiguous: naming.ambiguous,
+        sensor_gain: momentum_gain,
         causes,
         drag,
         drag_body: body.name.clone(),

@@ -353,8 +353,10 @@ fn force_rmse(records: &[Recorded], c: usize, judged: &Judged) -> f64 {
         let Some((curve, _)) = simulate_target_as(&record.target, c, judged.physics) else {
             return f64::NAN;
         };
+        // In the reading's units (times g), so that a perfect model scores σ.
+        let gain = judged.sensor.gain;
         for (tau, measured) in record.force_samples(&judged.sensor) {
-            squares += (at(&curve, record.target.period, tau) - measured).powi(2);
+            squares += (gain * (at(&curve, record.target.period, tau) - measured)).powi(2);
             count += 1;
         }
     }
@@ -818,11 +820,14 @@ mod tests {
         let (truth, data) = generated_with(&[
             "experiment.force_offset=[0.0, 0.0, 40.0]",
             "experiment.sensor_delay=1e-6",
+            "experiment.force_gain=1.03",
         ]);
+        // The generator adds its offset after the gain, the sensor model before it.
         let corrected = Judged {
             sensor: Sensor {
-                offset: 40.0,
+                offset: 40.0 / 1.03,
                 delay: 1e-6,
+                gain: 1.03,
             },
             ..judged("sensor corrected", &truth)
         };

@@ -20,4 +20,5 @@ pub mod sensor;
 pub mod structure;
 pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};
 pub mod drag;
+pub mod momentum;
 pub mod motion;

@@ -101,14 +101,14 @@ pub fn answer_line(d: &Diagnosis) -> String {
     let causes: Vec<String> = (d.causes.iter())
         .map(|c| {
             let values: Vec<String> = (c.parameters.iter())
-                .map(|p| {
-                    format!(
-                        "{} = {:.3e} [{:.3e}, {:.3e}]",
-                        p.name, p.value, p.ci.0, p.ci.1
-                    )
-                })
+                .map(|p| format!("{} = {}", p.name, with_interval(p.value, p.ci)))
                 .collect();
-            format!("{} ({})", c.effect, values.join(", "))
+            let or = if c.effect == "sensor_gain" {
+                "; or the bodies' effective mass is g times the scenario's: the momentum balance cannot tell which"
+            } else {
+                ""
+            };
+            format!("{} ({}{or})", c.effect, values.join(", "))
         })
         .collect();
     let left = d.unexplained_share.clamp(0.0, 1.0);
@@ -126,6 +126,19 @@ pub fn answer_line(d: &Diagnosis) -> String {
         100.0 * (1.0 - left),
         100.0 * left
     )
+}
+
+/// `value [lo, hi]` in scientific notation with enough significant digits (3 to 8)
+/// that the interval's ends differ from the value where they do.
+fn with_interval(value: f64, (lo, hi): (f64, f64)) -> String {
+    let half = 0.5 * (hi - lo);
+    let digits = if half > 0.0 && half.is_finite() && value != 0.0 && value.is_finite() {
+        ((value.abs() / half).log10().ceil() as i64 + 1).clamp(3, 8) as usize
+    } else {
+        3
+    };
+    let p = digits - 1;
+    format!("{value:.p$e} [{lo:.p$e}, {hi:.p$e}]")
 }
 
 /// How the motion the residual is read along was obtained, where it was not simply

@@ -583,6 +583,9 @@ pub struct Refit {
     /// What the re-fitted model leaves above the noise, max(RSS − n·σ², 0), as a share
     /// of everything structured (the causes' RSS increases plus it).
     pub(crate) left_share: f64,
+    /// Everything structured, the shares' denominator: the causes' RSS increases plus
+    /// what is left above the noise (N²).
+    pub(crate) structured: f64,
 }
 
 /// Jointly re-fits the base law's free parameters and the chosen effects on
@@ -632,9 +635,14 @@ pub fn refit(
             .enumerate()
             .map(|(k, n)| fitted(n, k))
             .collect(),
-        sensor: Sensor { offset, delay },
+        sensor: Sensor {
+            offset,
+            delay,
+            gain: 1.0,
+        },
         rss,
         left_share: if total > 0.0 { left / total } else { 0.0 },
+        structured: total,
     }
 }
 
@@ -773,7 +781,12 @@ impl RefitModel<'_> {
     /// The force the sensor reads at unknowns `p` (N), per sample.
     fn predict(&self, p: &[f64]) -> Vec<f64> {
         let (law, offset, delay) = self.build(p);
-        Sensor { offset, delay }.reads(self.samples, &law)
+        Sensor {
+            offset,
+            delay,
+            gain: 1.0,
+        }
+        .reads(self.samples, &law)
     }
 
     /// Σ (predicted − measured)² at unknowns `p` (N²).

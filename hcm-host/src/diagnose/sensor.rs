@@ -1,12 +1,13 @@
-//! The force sensor as the diagnosis models it: it reads the contact force τ late and
-//! shifted by a constant b along the contact normal,
+//! The force sensor as the diagnosis models it: it reads the contact force τ late,
+//! shifted by a constant b along the contact normal and scaled by a gain g,
 //!
-//! f_read(t) = f(t − τ) + b  (N).
+//! f_read(t) = g·(f(t − τ) + b)  (N).
 //!
-//! Offset and delay are measurement effects, not physics: the re-fit finds them as
-//! corrections of the prediction ([`Sensor::reads`]), and before a model is judged on
-//! data the data are corrected ([`Sensor::correct`], [`Sensor::retime`]), so that the
-//! extended model stays a contact law a controller can run.
+//! Gain, offset and delay are measurement effects, not physics: the gain is measured
+//! from the momentum balance ([`super::momentum`]), offset and delay are found by the
+//! re-fit as corrections of the prediction ([`Sensor::reads`]), and before a model is
+//! judged on data the data are corrected ([`Sensor::correct`], [`Sensor::retime`]), so
+//! that the extended model stays a contact law a controller can run.
 
 use super::ContactSamples;
 use crate::dataset::Run;
@@ -16,32 +17,46 @@ use hcm_core::effect::ExtendedLaw;
 use nalgebra::Vector3;
 use serde::Serialize;
 
-/// A force sensor with an offset and a delay; the default is an ideal sensor.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+/// A force sensor with a gain, an offset and a delay; the default is an ideal sensor.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Sensor {
-    /// Offset b of the normal force on body 1 (N): what the sensor reads with no
-    /// contact.
+    /// Offset b of the normal force on body 1 (N), before the gain: what the sensor
+    /// reads with no contact, over g.
     pub(crate) offset: f64,
     /// Delay τ of the force signal behind the recorded motion (s).
     pub(crate) delay: f64,
+    /// Gain g (–): the reading per newton of force.
+    pub(crate) gain: f64,
+}
+
+impl Default for Sensor {
+    fn default() -> Self {
+        Sensor {
+            offset: 0.0,
+            delay: 0.0,
+            gain: 1.0,
+        }
+    }
 }
 
 impl Sensor {
-    /// Whether it reads the force as it is (b = 0 and τ = 0).
+    /// Whether it reads the force as it is (b = 0, τ = 0 and g = 1).
     pub fn is_ideal(&self) -> bool {
-        self.offset == 0.0 && self.delay == 0.0
+        self.offset == 0.0 && self.delay == 0.0 && self.gain == 1.0
     }
 
     /// What it reads along `samples` when the contact follows `law` (N): the law's
-    /// force along the recorded motion (0 outside contact) taken τ earlier, plus b.
+    /// force along the recorded motion (0 outside contact) taken τ earlier, plus b,
+    /// times g.
     /// The force between samples is a cubic Hermite curve through the samples of the
     /// same run with central-difference slopes, so the reading is smooth in τ (a fit
     /// can move τ by less than a sample) and off by O(h³·f⃛) only; before a run's first
     /// sample and after its last the end value is held.
     pub fn reads(&self, samples: &ContactSamples, law: &ExtendedLaw<f64>) -> Vec<f64> {
         let f = samples.model_force(law);
+        let g = self.gain;
         if self.delay == 0.0 {
-            return f.iter().map(|f| f + self.offset).collect();
+            return f.iter().map(|f| g * (f + self.offset)).collect();
         }
         let mut out = Vec::with_capacity(f.len());
         let mut start = 0;
@@ -53,7 +68,7 @@ impl Sensor {
             let (t, v) = (&samples.time[start..end], &f[start..end]);
             out.extend(
                 t.iter()
-                    .map(|&ti| hermite(t, v, ti - self.delay) + self.offset),
+                    .map(|&ti| g * (hermite(t, v, ti - self.delay) + self.offset)),
             );
             start = end;
         }
@@ -61,17 +76,20 @@ impl Sensor {
     }
 
     /// The recorded normal-force samples of `history` as the contact produced them:
-    /// the reading at t is the force at t − τ less b, so each sample moves to
-    /// (t − τ, f − b) (s, N). No value is interpolated, so the noise stays σ: what
-    /// a force RMSE against these samples is compared with.
+    /// the reading at t over g is the force at t − τ plus b, so each sample moves to
+    /// (t − τ, f/g − b) (s, N). No value is interpolated, so the noise stays σ/g: what
+    /// a force RMSE against these samples is compared with, times g.
     pub fn retime(&self, history: &ContactHistory, i: usize) -> (f64, f64) {
-        (history.time[i] - self.delay, history.force[i] - self.offset)
+        (
+            history.time[i] - self.delay,
+            history.force[i] / self.gain - self.offset,
+        )
     }
 
     /// `run` with the sensor removed from the force track contact `c` reads: each
     /// force vector replaced by the one recorded τ later (linearly interpolated, the
-    /// last held), then b taken off along that sample's contact normal (added back
-    /// for body 2's reaction). Motion, torques and the other bodies stay as recorded.
+    /// last held) over g, then b taken off along that sample's contact normal (added
+    /// back for body 2's reaction). Motion, torques and the other bodies stay as recorded.
     /// Interpolating two noisy samples averages their noise (down to σ/√2 half-way),
     /// so use it for means such as indicators, and [`Sensor::retime`] for force RMSE.
     pub fn correct(&self, model: &Model, run: &Run, c: usize) -> Result<Run, IndicatorError> {
@@ -116,7 +134,7 @@ impl Sensor {
                 .get(i)
                 .copied()
                 .unwrap_or_else(Vector3::zeros);
-            sample.force = (advanced - normal * (sign * self.offset)).into();
+            sample.force = (advanced / self.gain - normal * (sign * self.offset)).into();
         }
         Ok(corrected)
     }
@@ -200,6 +218,7 @@ mod tests {
         let sensor = Sensor {
             offset: 40.0,
             delay: 2.5e-6,
+            gain: 1.0,
         };
         let corrected = sensor.correct(&clean, &read.runs[0], 0).unwrap();
         let (a, b, raw) = (

@@ -36,8 +36,8 @@ pub fn noisy_model(model: &Model, rng: &mut ChaCha8Rng) -> Result<Model, Simulat
     Ok(model)
 }
 
-/// Eq 19 and the sensor effects on a simulated run: a lagging force sensor, its
-/// offset, then σ·ζ on every force, torque, position and velocity component whose σ
+/// Eq 19 and the sensor effects on a simulated run: a lagging force sensor, its gain
+/// and offset, then σ·ζ on every force, torque, position and velocity component whose σ
 /// is set, sample by sample in time order.
 fn add_output_noise(e: &ExperimentSpec, run: &mut Run, rng: &mut ChaCha8Rng) {
     for track in &mut run.bodies {
@@ -46,8 +46,9 @@ fn add_output_noise(e: &ExperimentSpec, run: &mut Run, rng: &mut ChaCha8Rng) {
         }
         for sample in &mut track.samples {
             for (f, b) in sample.force.iter_mut().zip(e.force_offset) {
-                *f += b;
+                *f = e.force_gain * *f + b;
             }
+            sample.torque.iter_mut().for_each(|t| *t *= e.force_gain);
             for (values, sigma) in [
                 (&mut sample.force[..], e.force_noise),
                 (&mut sample.torque[..], e.torque_noise),

@@ -239,6 +239,11 @@ pub struct ExperimentSpec {
     /// value before it). A measurement effect, for testing `hcm diagnose`.
     #[serde(default)]
     pub(crate) sensor_delay: f64,
+    /// Force-sensor gain g (–, > 0): every recorded force component is g times the
+    /// true one (after the lag, before the offset), torques too. A measurement effect,
+    /// for testing `hcm diagnose`.
+    #[serde(default = "unit_gain")]
+    pub(crate) force_gain: f64,
     /// Experimental conditions; `--runs` runs are made of each. None: one condition,
     /// the scenario as written.
     #[serde(default, rename = "condition")]
@@ -261,11 +266,17 @@ impl Default for ExperimentSpec {
             velocity_noise: 0.0,
             force_offset: [0.0; 3],
             sensor_delay: 0.0,
+            force_gain: unit_gain(),
             conditions: Vec::new(),
             holdout_conditions: Vec::new(),
             holdout_fraction: default_holdout_fraction(),
         }
     }
+}
+
+/// An ideal sensor's gain, 1.
+fn unit_gain() -> f64 {
+    1.0
 }
 
 /// Identification settings.

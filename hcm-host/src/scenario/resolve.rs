@@ -353,6 +353,12 @@ impl Scenario {
                 ));
             }
         }
+        if !(e.force_gain > 0.0 && e.force_gain.is_finite()) {
+            return Err((
+                "experiment.force_gain".into(),
+                format!("must be a positive finite factor, found {}", e.force_gain),
+            ));
+        }
         if !(e.holdout_fraction > 0.0 && e.holdout_fraction < 1.0) {
             return Err((
                 "experiment.holdout_fraction".into(),
