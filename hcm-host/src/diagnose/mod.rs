@@ -11,6 +11,7 @@ pub use samples::{contact_samples, ContactSamples};
 pub mod catalogue;
 pub mod diagnosis;
 pub mod gain;
+pub mod held_out;
 pub mod naming;
 pub mod noise;
 pub mod quality;

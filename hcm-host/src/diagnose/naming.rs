@@ -27,6 +27,15 @@
 //! frames blurs each run's touch-down by a µm or so, which a small p mimics (the filmed
 //! rig of tests/diagnose_rig.rs: p = 0.086 by 6.5 in the criterion).
 //!
+//! Where the runs scatter beyond the sample noise ([`Structure::scattered`]), a run's
+//! residuals move together and the criterion over all samples overstates the evidence;
+//! there a cause must also win on held-out runs, run by run ([`super::held_out`]): its
+//! gain over the causes already named, and its lead over the best cause of another
+//! family, each at [`HELD_OUT_T`] standard errors of the runs' paired differences (else
+//! not named, or "ambiguous"); viscous damping is named only where hysteresis damping
+//! does not predict the held-out runs better by [`FAMILY_T`] standard error. The named
+//! causes' intervals are then widened to the folds' grouped jackknife where wider.
+//!
 //! A backward pass then drops any effect the later ones made redundant (its removal
 //! costs less than the criterion). Steps stop when the residual left is
 //! indistinguishable from noise ([`structure`]'s
@@ -41,6 +50,7 @@
 //! [`structure`]: super::structure::residual_structure
 
 use super::catalogue::Candidate;
+use super::held_out::{held_out_rss, paired, HELD_OUT_T};
 use super::select::{candidates, parameters, refit, BaseFreedom, Fitted, Refit};
 use super::structure::{residual_structure, Structure};
 use super::ContactSamples;
@@ -162,6 +172,9 @@ struct Problem<'a> {
     sigma: f64,
     /// ln(n): the criterion's price of one parameter (–).
     threshold: f64,
+    /// Whether the runs scatter beyond the sample noise about the re-tuned base
+    /// ([`Structure::scattered`]): then causes are also judged on held-out runs.
+    scattered: bool,
 }
 
 /// One forward step: every option re-fitted with the causes chosen so far, ranked by
@@ -235,12 +248,27 @@ impl Ranked {
     /// The best determined trial of another family than `k`'s, if it scores within
     /// [`EVIDENCE`] of `k`: a rival the data cannot tell from it.
     fn rival(&self, k: usize) -> Option<usize> {
-        let rival = self.order.iter().copied().find(|&m| {
-            !same_family(self.trials[m].0 .0, self.trials[k].0 .0) && self.judge(m).determined
-        });
-        rival.filter(|&m| self.criterion(m) - self.criterion(k) < EVIDENCE)
+        self.best_other(k, false)
+            .filter(|&m| self.criterion(m) - self.criterion(k) < EVIDENCE)
+    }
+
+    /// The best determined trial of `k`'s family (`family`) or of another (else), other
+    /// than `k`'s own effect.
+    fn best_other(&self, k: usize, family: bool) -> Option<usize> {
+        let own = self.trials[k].0 .0;
+        self.order.iter().copied().find(|&m| {
+            let other = self.trials[m].0 .0;
+            other != own && same_family(other, own) == family && self.judge(m).determined
+        })
     }
 }
+
+/// How much better the richer member of a family (hysteresis damping) may predict
+/// held-out runs than the simpler one (viscous damping, its p = 0) for the simpler to
+/// be named (paired t, –): naming viscous damping claims p = 0, so the richer one must
+/// not do better by even one standard error; between that and [`HELD_OUT_T`] the data
+/// lean to p > 0 without telling, and neither is named.
+pub const FAMILY_T: f64 = 1.0;
 
 impl Problem<'_> {
     /// The base law re-fitted with `causes`.
@@ -280,9 +308,79 @@ impl Problem<'_> {
         ranked
     }
 
+    /// Per-run held-out RSS of the base re-fitted with `causes` (N²).
+    fn held_out(&self, causes: &[(Candidate, f64)]) -> Vec<f64> {
+        held_out_rss(self.samples, (self.base, self.freedom), causes, self.sigma).rss
+    }
+
+    /// The held-out test of trial `k` of `ranked`, entering after `naming.chosen`
+    /// whose per-run held-out RSS is `before`: None if it passes — its held-out gain is
+    /// significant, no cause of another family predicts the held-out runs as well, and
+    /// within its family the other member does not tell against it — else why not, and
+    /// the rival the data cannot tell it from (if any). Its per-run RSS is returned too.
+    fn held_out_test(
+        &self,
+        naming: &Naming,
+        ranked: &Ranked,
+        k: usize,
+        before: &[f64],
+    ) -> (Vec<f64>, Option<(String, Option<usize>)>) {
+        let with = |m: usize| {
+            let mut causes = naming.chosen.clone();
+            causes.push(ranked.trials[m].0);
+            self.held_out(&causes)
+        };
+        let own = with(k);
+        let name = |m: usize| ranked.trials[m].0 .0.name();
+        let gain = paired(before, &own);
+        if gain.t < HELD_OUT_T {
+            let why = format!(
+                "its gain on held-out runs, {:.3e} ± {:.3e} N² per run, is {:.1} standard \
+                 errors, less than {HELD_OUT_T}",
+                gain.mean, gain.standard_error, gain.t
+            );
+            return (own, Some((why, None)));
+        }
+        if let Some(m) = ranked.best_other(k, false) {
+            let lead = paired(&with(m), &own);
+            if lead.t < HELD_OUT_T {
+                let why = format!(
+                    "on held-out runs `{}` predicts better than `{}` by only {:.1} standard \
+                     errors (less than {HELD_OUT_T}): the data cannot tell them apart",
+                    name(k),
+                    name(m),
+                    lead.t
+                );
+                return (own, Some((why, Some(m))));
+            }
+        }
+        if let Some(j) = ranked.best_other(k, true) {
+            let richer = parameters(ranked.trials[k].0 .1) > parameters(ranked.trials[j].0 .1);
+            let other = with(j);
+            let (lead, bar) = if richer {
+                (paired(&other, &own).t, HELD_OUT_T)
+            } else {
+                (-paired(&own, &other).t, -FAMILY_T)
+            };
+            if lead < bar {
+                let why = format!(
+                    "on held-out runs `{}` and `{}` (one family) are {:.1} standard errors \
+                     apart: the data cannot tell its shape",
+                    name(k),
+                    name(j),
+                    lead.abs()
+                );
+                return (own, Some((why, Some(j))));
+            }
+        }
+        (own, None)
+    }
+
     /// Forward selection: add the best passing cause per step until the residual is
     /// noise, [`MAX_CAUSES`] are in, nothing passes, or two causes are indistinguishable.
     fn forward(&self, naming: &mut Naming) {
+        // The chosen causes' per-run held-out RSS, computed when first needed.
+        let mut before: Option<Vec<f64>> = None;
         while naming.after.structured && naming.chosen.len() < MAX_CAUSES {
             let ranked = self.rank(&naming.chosen, naming.fit.rss);
             // The best trial that passes both tests; else the best one, rejected.
@@ -300,8 +398,41 @@ impl Problem<'_> {
             // another family must score worse by the margin, else the answer would be a
             // coin toss between two names.
             if let Some(m) = ranked.rival(k) {
-                self.keep_provisional(naming, &ranked, k, m);
+                let gap = ranked.criterion(m) - ranked.criterion(k);
+                let why =
+                    format!("their information criteria differ by {gap:.1}, less than {EVIDENCE}");
+                self.keep_provisional(naming, &ranked, (k, m), &why);
                 break;
+            }
+            // Where the runs scatter, then on held-out runs, run by run (`held_out`): their
+            // residuals move together, and the criterion's evidence over all samples is
+            // not the data's. Without scatter the samples are independent and it is.
+            let reference = match (self.scattered, &before) {
+                (false, _) => None,
+                (true, Some(_)) => before.as_deref(),
+                (true, None) => {
+                    before = Some(self.held_out(&naming.chosen));
+                    before.as_deref()
+                }
+            };
+            if let Some(reference) = reference.filter(|r| r.len() >= 2) {
+                let (own, failed) = self.held_out_test(naming, &ranked, k, reference);
+                match failed {
+                    Some((why, Some(m))) => {
+                        self.keep_provisional(naming, &ranked, (k, m), &why);
+                        break;
+                    }
+                    Some((why, None)) => {
+                        let t = ranked.judge(k);
+                        naming.not_accepted.push(NotAccepted {
+                            reason: why,
+                            ..rejected(&ranked.trials[k].1, &t)
+                        });
+                        naming.steps.push(t);
+                        break;
+                    }
+                    None => before = Some(own),
+                }
             }
             let mut t = ranked.judge(k);
             t.accepted = true;
@@ -312,17 +443,18 @@ impl Problem<'_> {
         }
     }
 
-    /// Two causes `k` and `m` the data cannot tell apart: name neither, report both as
-    /// not accepted, and keep the better, `k`, in the fit as a provisional term.
-    fn keep_provisional(&self, naming: &mut Naming, ranked: &Ranked, k: usize, m: usize) {
+    /// Two causes `k` and `m` the data cannot tell apart (`because`): name neither,
+    /// report both as not accepted, and keep the better, `k`, in the fit as a
+    /// provisional term.
+    fn keep_provisional(
+        &self,
+        naming: &mut Naming,
+        ranked: &Ranked,
+        (k, m): (usize, usize),
+        because: &str,
+    ) {
         let (best, other) = (ranked.judge(k), ranked.judge(m));
-        let gap = ranked.criterion(m) - ranked.criterion(k);
-        let why = |a: &str, b: &str| {
-            format!(
-                "the data cannot tell `{a}` from `{b}`: their information criteria differ \
-                 by {gap:.1}, less than {EVIDENCE}"
-            )
-        };
+        let why = |a: &str, b: &str| format!("the data cannot tell `{a}` from `{b}`: {because}");
         naming.not_accepted.push(NotAccepted {
             reason: why(best.effect, other.effect),
             ..rejected(&ranked.trials[k].1, &best)
@@ -432,17 +564,28 @@ pub fn name_causes(
         candidates: candidates(freedom),
         sigma,
         threshold: (samples.len().max(2) as f64).ln(),
+        scattered: false,
     };
     // The base re-tuned alone: the first step's reference, and the answer when nothing
     // is named.
     let base_fit = problem.refit(&[]);
     let base_after = problem.structure_of(&base_fit);
+    let problem = Problem {
+        scattered: base_after.scattered,
+        ..problem
+    };
     let mut naming = Naming::base(base_fit.clone(), base_after.clone());
     problem.forward(&mut naming);
     problem.backward(&mut naming);
     naming.unexplained = naming.after.structured;
     if naming.unexplained && !(naming.chosen.is_empty() && naming.provisional.is_none()) {
         naming.withdraw(base_fit, base_after);
+    }
+    // Where the runs scatter, the named causes' intervals know it (`HeldOut::widen`).
+    if problem.scattered && !naming.chosen.is_empty() {
+        let mut causes = naming.chosen.clone();
+        causes.extend(naming.provisional);
+        held_out_rss(samples, (base, freedom), &causes, sigma).widen(&mut naming.fit);
     }
     naming
 }

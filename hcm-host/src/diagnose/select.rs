@@ -575,11 +575,11 @@ pub struct Refit {
     /// Every named cause.
     pub causes: Vec<Cause>,
     /// Base parameters after the re-fit.
-    pub(crate) base_parameters: Vec<Fitted>,
+    pub base_parameters: Vec<Fitted>,
     /// The sensor's offset and delay as found (0 where not named).
     pub(crate) sensor: Sensor,
     /// RSS of the re-fitted model (N²).
-    pub(crate) rss: f64,
+    pub rss: f64,
     /// What the re-fitted model leaves above the noise, max(RSS − n·σ², 0), as a share
     /// of everything structured (the causes' RSS increases plus it).
     pub(crate) left_share: f64,

@@ -81,6 +81,10 @@ pub struct Structure {
     pub(crate) threshold: f64,
     /// Whether χ² exceeds `threshold`: the residual holds more than noise.
     pub(crate) structured: bool,
+    /// Whether the runs scatter beyond the sample noise (their own spread is the null of
+    /// the χ² test, see `bin_null_variances`): their residuals then move together, and
+    /// only the runs, not the samples, are independent evidence.
+    pub scattered: bool,
 }
 
 /// The residual `samples.measured − model_force` (N) summarised against the noise floor
@@ -133,7 +137,7 @@ pub fn residual_structure(samples: &ContactSamples, model_force: &[f64], sigma: 
     let by_phase = bin_means(in_contact_points(&phase), (0.0, 1.0), PHASE_BINS);
 
     let dof = by_phase.iter().filter(|b| b.count > 0).count();
-    let null = bin_null_variances(samples, &residual, &phase, sigma);
+    let (null, scattered) = bin_null_variances(samples, &residual, &phase, sigma);
     let chi_squared = (by_phase.iter().zip(&null))
         .filter(|(b, _)| b.count > 0)
         .map(|(b, v)| b.mean * b.mean / v)
@@ -158,6 +162,7 @@ pub fn residual_structure(samples: &ContactSamples, model_force: &[f64], sigma: 
         dof,
         threshold,
         structured: dof > 0 && chi_squared > threshold,
+        scattered,
     }
 }
 
@@ -290,13 +295,13 @@ const MIN_RUNS_FOR_SCATTER: usize = 5;
 /// exceeds the noise's by [`STRUCTURE_SIGMAS`] of its own sampling spread
 /// (√(2/((R − 1)·B)) relative): without scatter the test is the sample-noise one,
 /// unchanged. Nor where the motion was reconstructed: there the runs' spread is the
-/// reconstruction's error, already in σ.
+/// reconstruction's error, already in σ. Also returns whether the runs scatter.
 fn bin_null_variances(
     samples: &ContactSamples,
     residual: &[f64],
     phase: &[f64],
     sigma: f64,
-) -> Vec<f64> {
+) -> (Vec<f64>, bool) {
     let noise = sigma * sigma;
     // Per bin: (count, sum) per run, in the order runs appear.
     let mut per_run: Vec<Vec<(usize, usize, f64)>> = vec![Vec::new(); PHASE_BINS];
@@ -339,7 +344,7 @@ fn bin_null_variances(
     let ratio = judged.iter().map(|(b, n)| b / n).sum::<f64>() / judged.len().max(1) as f64;
     let sampling = (2.0 / ((runs.max(2) - 1) as f64 * judged.len().max(1) as f64)).sqrt();
     let scattered = !judged.is_empty() && ratio > 1.0 + STRUCTURE_SIGMAS * sampling;
-    (per_run.iter().zip(&spread))
+    let null = (per_run.iter().zip(&spread))
         .map(|(runs, s)| {
             let n: usize = runs.iter().map(|x| x.1).sum();
             let plain = noise / n.max(1) as f64;
@@ -348,7 +353,8 @@ fn bin_null_variances(
                 _ => plain,
             }
         })
-        .collect()
+        .collect();
+    (null, scattered)
 }
 
 /// Colour of the "before" model's curves.
