@@ -7,7 +7,7 @@ use super::naming::{name_causes, unnamed, Naming, NotAccepted, Trial};
 use super::noise::{noise_floor, NoiseFloor};
 use super::quality::{assess, reconstruction_gap, DataQuality, MAX_GAP_SIGMAS};
 use super::samples::contact_samples_of;
-use super::select::{select, BaseFreedom, Cause, Fitted, Step};
+use super::select::{select, BaseFreedom, Cause, Fitted, Refit, Step};
 use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
 use super::ContactSamples;
@@ -186,6 +186,20 @@ fn recorded_gain(
     Ok(sensor_gain(&samples, base.contacts[c].effective_mass))
 }
 
+/// `completed` as the sensor read it: its force re-scaled by the named `gain` it was
+/// divided by, or as it is.
+fn as_recorded<'a>(
+    base: &Model,
+    completed: &'a Dataset,
+    c: usize,
+    gain: Option<SensorGain>,
+) -> Result<std::borrow::Cow<'a, Dataset>, IdentifyError> {
+    Ok(match gain {
+        Some(g) => std::borrow::Cow::Owned(rescaled(base, completed, c, g.value)?),
+        None => std::borrow::Cow::Borrowed(completed),
+    })
+}
+
 /// `data` with the force contact `c` reads multiplied by `factor`.
 fn rescaled(base: &Model, data: &Dataset, c: usize, factor: f64) -> Result<Dataset, IdentifyError> {
     let sensor = Sensor {
@@ -346,6 +360,29 @@ impl Models {
     }
 }
 
+/// The causes `naming` chose, re-fitted in `fit` on `samples`: the sensor's gain first
+/// where named (`fit` then reads with it, its shares rescaled), then the chosen causes
+/// in order of entry (a provisional term is in the extended law and the sensor, not
+/// among them). Where what is left is judged noise and scatter, nothing is
+/// unexplained: the shares are of what the causes explain together.
+fn chosen_causes(
+    naming: &Naming,
+    fit: &mut Refit,
+    samples: &ContactSamples,
+    named_gain: Option<SensorGain>,
+) -> Vec<Cause> {
+    let gain_cause = named_gain.map(|g| with_gain(fit, samples, &g));
+    let mut chosen: Vec<Cause> = gain_cause
+        .into_iter()
+        .chain(fit.causes.iter().take(naming.chosen.len()).cloned())
+        .collect();
+    let explained: f64 = chosen.iter().map(|c| c.share).sum();
+    if !naming.unexplained && explained > 0.0 {
+        chosen.iter_mut().for_each(|c| c.share /= explained);
+    }
+    chosen
+}
+
 /// Diagnoses contact `settings.contact` of `base` (the scenario with the base physics
 /// applied) against `data`.
 pub fn diagnose(
@@ -370,14 +407,8 @@ pub fn diagnose(
     };
     let completed = reconstruct(base, read)?;
     // The gain is judged on the data as recorded (re-scaled back where corrected).
-    let restored;
-    let data: &Dataset = match named_gain {
-        Some(g) => {
-            restored = rescaled(base, &completed.data, c, g.value)?;
-            &restored
-        }
-        None => &completed.data,
-    };
+    let recorded = as_recorded(base, &completed.data, c, named_gain)?;
+    let data: &Dataset = &recorded;
     // The training runs with their reconstructions, so that each sample carries its
     // reconstruction's uncertainty (0 where motion and force share every row).
     let fitted = completed.subset(&split.training);
@@ -390,19 +421,7 @@ pub fn diagnose(
     )?;
     let (naming, sigma) = (findings.naming, findings.noise.sigma);
     let mut fit = naming.fit.clone();
-    let gain_cause = named_gain.map(|g| with_gain(&mut fit, &findings.samples, &g));
-    // Named: the gain, then the chosen causes (entered first); a provisional term is in
-    // the extended law and the sensor, not among the causes.
-    let mut chosen: Vec<Cause> = gain_cause
-        .into_iter()
-        .chain(fit.causes.into_iter().take(naming.chosen.len()))
-        .collect();
-    // Where what is left is judged noise and scatter, nothing is unexplained: the
-    // causes' shares are of what they explain together.
-    let explained: f64 = chosen.iter().map(|c| c.share).sum();
-    if !naming.unexplained && explained > 0.0 {
-        chosen.iter_mut().for_each(|c| c.share /= explained);
-    }
+    let chosen = chosen_causes(&naming, &mut fit, &findings.samples, named_gain);
     let body = &base.bodies[base.contacts[c].body_1];
     let drag = super::drag::fit_drag(&findings.samples, body.mass);
     let causes = named_causes(chosen, completed.delay, drag.as_ref());

@@ -514,6 +514,35 @@ fn cell(value: f64, unit: f64, decimals: usize) -> String {
     }
 }
 
+/// What a table's cells need said under it: the models whose replay `failed`, and the
+/// indicators given as absolute errors.
+fn notes(table: &GainTable, failed: &[&str]) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    if !failed.is_empty() {
+        let _ = writeln!(
+            out,
+            "\n`failed`: the replay of {} stopped on some held-out run (a contact that \
+             chatters or never ends under that model), so it has no score there.",
+            failed.join(" and ")
+        );
+    }
+    if table.near_zero.iter().any(|z| *z) {
+        let names: Vec<&str> = (0..4)
+            .filter(|&k| table.near_zero[k])
+            .map(|k| Indicators::NAMES[k].0)
+            .collect();
+        let _ = writeln!(
+            out,
+            "\nThe measured {} is within {ZERO_SE} standard errors of zero: an error \
+             relative to it means nothing, so its cells give Δ = |model − measured| in its \
+             unit.",
+            names.join(" and ")
+        );
+    }
+    out
+}
+
 /// The tables as markdown: one per group, a row per model; the flight columns only
 /// where the runs record a flight before their contact.
 pub fn markdown(tables: &[GainTable]) -> String {
@@ -567,27 +596,7 @@ pub fn markdown(tables: &[GainTable]) -> String {
             }
             out.push('\n');
         }
-        if !failed.is_empty() {
-            let _ = writeln!(
-                out,
-                "\n`failed`: the replay of {} stopped on some held-out run (a contact that \
-                 chatters or never ends under that model), so it has no score there.",
-                failed.join(" and ")
-            );
-        }
-        if table.near_zero.iter().any(|z| *z) {
-            let names: Vec<&str> = (0..4)
-                .filter(|&k| table.near_zero[k])
-                .map(|k| Indicators::NAMES[k].0)
-                .collect();
-            let _ = writeln!(
-                out,
-                "\nThe measured {} is within {ZERO_SE} standard errors of zero: an error \
-                 relative to it means nothing, so its cells give Δ = |model − measured| \
-                 in its unit.",
-                names.join(" and ")
-            );
-        }
+        out.push_str(&notes(table, &failed));
         if flight {
             let _ = writeln!(
                 out,

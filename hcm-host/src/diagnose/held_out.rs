@@ -102,14 +102,7 @@ pub fn held_out_rss(
             let test = samples.select(|r| fold_of(r) == f);
             let fit = refit(&train, (base, freedom), causes, sigma);
             let predicted = fit.sensor.reads(&test, &fit.law);
-            let mut rss: Vec<(usize, f64)> = Vec::new();
-            for (i, p) in predicted.iter().enumerate() {
-                let e = (p - test.measured[i]).powi(2);
-                match rss.last_mut() {
-                    Some((r, sum)) if *r == test.run[i] => *sum += e,
-                    _ => rss.push((test.run[i], e)),
-                }
-            }
+            let rss = per_run_rss(&test, &predicted);
             (rss, fit)
         })
         .collect();
@@ -128,6 +121,48 @@ pub fn held_out_rss(
         rss,
         fits: per_fold.into_iter().map(|(_, fit)| fit).collect(),
     }
+}
+
+/// Each run's RSS of `predicted` against `test` (N²), in run order, the prediction in
+/// contact first scaled by the run's own least-squares factor Σp·y/Σp² over its
+/// in-contact samples: each run's contact is its own (its stiffness scatters), and a
+/// cause must predict the run's shape, not its scale — else an effect that grows
+/// with the deepest indentation (a plasticity's set) wins by following the runs'
+/// stiffness, which sets their depth.
+fn per_run_rss(test: &ContactSamples, predicted: &[f64]) -> Vec<(usize, f64)> {
+    let mut rss: Vec<(usize, f64)> = Vec::new();
+    let mut start = 0;
+    while start < test.len() {
+        let run = test.run[start];
+        let end = (start..test.len())
+            .find(|&i| test.run[i] != run)
+            .unwrap_or(test.len());
+        let inside = (start..end).filter(|&i| test.in_contact[i]);
+        let (py, pp) = inside.fold((0.0, 0.0), |(a, b), i| {
+            (
+                a + predicted[i] * test.measured[i],
+                b + predicted[i] * predicted[i],
+            )
+        });
+        let scale = if pp > 0.0 && (py / pp).is_finite() {
+            py / pp
+        } else {
+            1.0
+        };
+        let sum = (start..end)
+            .map(|i| {
+                let p = if test.in_contact[i] {
+                    scale * predicted[i]
+                } else {
+                    predicted[i]
+                };
+                (p - test.measured[i]).powi(2)
+            })
+            .sum();
+        rss.push((run, sum));
+        start = end;
+    }
+    rss
 }
 
 /// A paired comparison of two per-run vectors a and b: the mean of a_r − b_r (N²), its

@@ -561,7 +561,7 @@ pub fn name_causes(
         samples,
         base,
         freedom,
-        candidates: candidates(freedom),
+        candidates: candidates(freedom, &base.base),
         sigma,
         threshold: (samples.len().max(2) as f64).ln(),
         scattered: false,

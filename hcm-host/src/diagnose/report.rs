@@ -343,7 +343,7 @@ fn extended_and_gain(md: &mut String, d: &Diagnosis) {
 /// The rule [`BaseFreedom`] applies, as a sentence.
 fn freedom_rule(freedom: BaseFreedom) -> &'static str {
     match freedom {
-        BaseFreedom::Fitted => "The base law was fitted (its physics file records the fit), so every parameter that fit had free is re-tuned with the effects, the exponent among them: a change of the exponent is the base's own freedom, not an effect, and `stiffness_exponent` is not a candidate.",
+        BaseFreedom::Fitted => "The base law was fitted (its physics file records the fit), so every parameter that fit had free is re-tuned with the effects, the exponent among them where the law has one: a change of the exponent is then the base's own freedom, not an effect, and `stiffness_exponent` is not a candidate (a law without a free exponent keeps it).",
         BaseFreedom::Given => "The base law was given, not fitted: its exponent is held (re-tuned only where the motion was reconstructed), and a change of it is the effect `stiffness_exponent`.",
     }
 }

@@ -134,15 +134,19 @@ fn exponent_free(samples: &ContactSamples, freedom: BaseFreedom) -> bool {
         || (0..samples.len()).any(|i| samples.in_contact[i] && samples.reconstructed(i))
 }
 
-/// The catalogue's candidates an effect may be named from: all but
-/// `stiffness_exponent` where the user's fit had the exponent free (the re-tuned
-/// exponent absorbs that change, so it is the base's freedom, not an effect). Where
-/// only the reconstruction frees the exponent, a change is still named beyond what
-/// the re-tuning absorbs (the damping's δ^n keeps the two apart).
-pub fn candidates(freedom: BaseFreedom) -> Vec<Candidate> {
+/// The catalogue's candidates an effect may be named from with base `law`: all but
+/// `stiffness_exponent` where the user's fit had the law's exponent free (the re-tuned
+/// exponent absorbs that change, so it is the base's freedom, not an effect). A law
+/// without an exponent among its free parameters (variable stiffness) cannot absorb
+/// it, and keeps the candidate. Where only the reconstruction frees the exponent, a
+/// change is still named beyond what the re-tuning absorbs (the damping's δ^n keeps
+/// the two apart).
+pub fn candidates(freedom: BaseFreedom, law: &AnyNormalLaw<f64>) -> Vec<Candidate> {
+    let absorbed = freedom == BaseFreedom::Fitted
+        && Bounds::for_law(law.name(), None).is_ok_and(|b| b.free().contains(&"exponent"));
     CATALOGUE
         .into_iter()
-        .filter(|c| !(freedom == BaseFreedom::Fitted && *c == Candidate::StiffnessExponent))
+        .filter(|c| !(absorbed && *c == Candidate::StiffnessExponent))
         .collect()
 }
 
@@ -358,7 +362,7 @@ impl Design {
         let mut columns = sensitivities(samples, base, &free);
         let always = columns.len();
         let mut groups: Vec<(Candidate, f64, usize)> = Vec::new();
-        for candidate in candidates(freedom) {
+        for candidate in candidates(freedom, &base.base) {
             for &shape in candidate.shapes() {
                 groups.push((candidate, shape, columns.len()));
                 columns.push(candidate.column(samples, base, base_force, shape, delta_ref));
