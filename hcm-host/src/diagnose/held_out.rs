@@ -11,9 +11,11 @@
 //!
 //! The runs are dealt into [`FOLDS`] folds by their order; each fold's runs are predicted
 //! by the model re-fitted on the other folds' runs, and each run's RSS is summed over
-//! its samples. Two such per-run vectors are compared by a paired t over the runs.
+//! its samples. Two such per-run vectors are compared by a paired t over the runs
+//! ([`super::paired::Paired`], the motion diagnosis's yardstick too).
 
 use super::catalogue::Candidate;
+use super::paired::t_975;
 use super::select::{refit, BaseFreedom, Refit};
 use super::ContactSamples;
 use hcm_core::effect::ExtendedLaw;
@@ -36,9 +38,6 @@ pub struct HeldOut {
     pub fits: Vec<Refit>,
 }
 
-/// Student's t quantile at 97.5 % for 1 to [`FOLDS`] − 1 degrees of freedom (–).
-const T_975: [f64; 3] = [12.706, 4.303, 3.182];
-
 impl HeldOut {
     /// `fit`'s causes with each parameter's 95 % interval widened, where the folds'
     /// fits scatter more than it says, to the grouped jackknife's: the folds' estimates
@@ -47,7 +46,7 @@ impl HeldOut {
     /// noise; the folds also know how the runs scatter.
     pub fn widen(&self, fit: &mut Refit) {
         let k = self.fits.len();
-        if k < 2 || k > T_975.len() + 1 {
+        if k < 2 {
             return;
         }
         for (c, cause) in fit.causes.iter_mut().enumerate() {
@@ -65,7 +64,7 @@ impl HeldOut {
                 let mean = values.iter().sum::<f64>() / n;
                 let variance =
                     (n - 1.0) / n * values.iter().map(|v| (v - mean).powi(2)).sum::<f64>();
-                let half = T_975[k - 2] * variance.sqrt();
+                let half = t_975(k - 1) * variance.sqrt();
                 let (lo, hi) = (p.value - half, p.value + half);
                 p.ci = (p.ci.0.min(lo), p.ci.1.max(hi));
             }
@@ -163,60 +162,4 @@ fn per_run_rss(test: &ContactSamples, predicted: &[f64]) -> Vec<(usize, f64)> {
         start = end;
     }
     rss
-}
-
-/// A paired comparison of two per-run vectors a and b: the mean of a_r − b_r (N²), its
-/// standard error over the runs (N²) and their ratio t (–); t is 0 where it cannot be
-/// told (fewer than two runs, or no spread with no difference).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Paired {
-    pub mean: f64,
-    pub standard_error: f64,
-    pub t: f64,
-}
-
-/// a − b run by run (see [`Paired`]).
-pub fn paired(a: &[f64], b: &[f64]) -> Paired {
-    let d: Vec<f64> = a.iter().zip(b).map(|(x, y)| x - y).collect();
-    let n = d.len() as f64;
-    if d.len() < 2 {
-        return Paired {
-            mean: f64::NAN,
-            standard_error: f64::NAN,
-            t: 0.0,
-        };
-    }
-    let mean = d.iter().sum::<f64>() / n;
-    let variance = d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    let standard_error = (variance / n).sqrt();
-    let t = if standard_error > 0.0 {
-        mean / standard_error
-    } else if mean > 0.0 {
-        f64::INFINITY
-    } else if mean < 0.0 {
-        f64::NEG_INFINITY
-    } else {
-        0.0
-    };
-    Paired {
-        mean,
-        standard_error,
-        t,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_consistent_gain_has_a_large_t_and_a_scattered_one_a_small_t() {
-        let base = [10.0, 12.0, 9.0, 11.0, 10.5];
-        let better: Vec<f64> = base.iter().map(|x| x - 1.0).collect();
-        assert!(paired(&base, &better).t.is_infinite());
-        let mixed = [9.0, 13.0, 8.0, 12.0, 9.5];
-        let p = paired(&base, &mixed);
-        assert!((p.mean - 0.2).abs() < 1e-12 && p.t.abs() < 1.0, "{p:?}");
-        assert_eq!(paired(&[1.0], &[0.0]).t, 0.0);
-    }
 }

@@ -50,7 +50,8 @@
 //! [`structure`]: super::structure::residual_structure
 
 use super::catalogue::Candidate;
-use super::held_out::{held_out_rss, paired, HELD_OUT_T};
+use super::held_out::{held_out_rss, HELD_OUT_T};
+use super::paired::Paired;
 use super::select::{candidates, parameters, refit, BaseFreedom, Fitted, Refit};
 use super::structure::{residual_structure, Structure};
 use super::ContactSamples;
@@ -332,24 +333,26 @@ impl Problem<'_> {
         };
         let own = with(k);
         let name = |m: usize| ranked.trials[m].0 .0.name();
-        let gain = paired(before, &own);
-        if gain.t < HELD_OUT_T {
+        let gain = Paired::of(before, &own);
+        if gain.t() < HELD_OUT_T {
             let why = format!(
                 "its gain on held-out runs, {:.3e} ± {:.3e} N² per run, is {:.1} standard \
                  errors, less than {HELD_OUT_T}",
-                gain.mean, gain.standard_error, gain.t
+                gain.mean,
+                gain.standard_error,
+                gain.t()
             );
             return (own, Some((why, None)));
         }
         if let Some(m) = ranked.best_other(k, false) {
-            let lead = paired(&with(m), &own);
-            if lead.t < HELD_OUT_T {
+            let lead = Paired::of(&with(m), &own);
+            if lead.t() < HELD_OUT_T {
                 let why = format!(
                     "on held-out runs `{}` predicts better than `{}` by only {:.1} standard \
                      errors (less than {HELD_OUT_T}): the data cannot tell them apart",
                     name(k),
                     name(m),
-                    lead.t
+                    lead.t()
                 );
                 return (own, Some((why, Some(m))));
             }
@@ -358,9 +361,9 @@ impl Problem<'_> {
             let richer = parameters(ranked.trials[k].0 .1) > parameters(ranked.trials[j].0 .1);
             let other = with(j);
             let (lead, bar) = if richer {
-                (paired(&other, &own).t, HELD_OUT_T)
+                (Paired::of(&other, &own).t(), HELD_OUT_T)
             } else {
-                (-paired(&own, &other).t, -FAMILY_T)
+                (-Paired::of(&own, &other).t(), -FAMILY_T)
             };
             if lead < bar {
                 let why = format!(

@@ -7,7 +7,7 @@
 //! (Coulomb), viscous friction, torsional and rolling resistance, the table's height
 //! and tilt, the tracker's length scale, the body's inertia — is fitted on the training tosses with the
 //! user's model otherwise fixed ([`fit`]), and judged on the held-out tosses by its
-//! paired gain over the user's model, toss by toss ([`paired`]). A toss's score is its
+//! paired gain over the user's model, toss by toss ([`Paired`]). A toss's score is its
 //! mean position error (%) plus mean rotation error (°), plus, where the data hold a
 //! force channel, its mean force error (% of the body's weight). A candidate *helps*
 //! when that gain is at least [`HELPS_T`] standard errors above zero and at least
@@ -22,10 +22,9 @@
 
 pub mod catalogue;
 pub mod fit;
-pub mod paired;
 
+pub use super::paired::Paired;
 pub use catalogue::{Family, MotionEffect};
-pub use paired::Paired;
 
 use crate::dataset::Dataset;
 use crate::identify::motion::{split_tosses, MotionParameters};

@@ -1,5 +1,7 @@
-//! Paired comparisons of two models' scores on the same held-out tosses: the mean
-//! difference, its standard error over the tosses, and Student's t interval.
+//! Paired comparisons of two models' scores on the same held-out units — the runs of a
+//! force diagnosis ([`super::held_out`]), the tosses of a motion diagnosis
+//! ([`super::motion`]): the mean difference, its standard error over the units, its t
+//! and Student's t interval. The one yardstick both diagnoses judge a cause by.
 
 use serde::Serialize;
 
@@ -10,21 +12,31 @@ const T_975: [f64; 30] = [
     2.052, 2.048, 2.045, 2.042,
 ];
 
-/// Mean of `a − b` over paired tosses, with its uncertainty.
+/// Student's t 97.5 % quantile for `dof` degrees of freedom (–; 1.96 beyond 30, and
+/// for 0, where no interval is finite anyway).
+pub(crate) fn t_975(dof: usize) -> f64 {
+    dof.checked_sub(1)
+        .and_then(|k| T_975.get(k))
+        .copied()
+        .unwrap_or(1.96)
+}
+
+/// Mean of `a − b` over paired units (runs or tosses), with its uncertainty.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Paired {
-    /// Tosses compared.
-    pub(crate) tosses: usize,
-    /// Mean difference (the scores' unit, % + °).
+    /// Units compared (tosses, runs).
+    #[serde(rename = "tosses")]
+    pub(crate) units: usize,
+    /// Mean difference (the scores' unit: % + ° for tosses, N² for runs' RSS).
     pub mean: f64,
-    /// Its standard error (same unit); +∞ with fewer than two tosses.
+    /// Its standard error (same unit); +∞ with fewer than two units.
     pub standard_error: f64,
     /// 95 % interval of the mean difference (Student's t).
     pub(crate) interval: [f64; 2],
 }
 
 impl Paired {
-    /// `a[i] − b[i]` over the tosses both hold (the shorter length).
+    /// `a[i] − b[i]` over the units both hold (the shorter length).
     pub fn of(a: &[f64], b: &[f64]) -> Paired {
         let d: Vec<f64> = a.iter().zip(b).map(|(a, b)| a - b).collect();
         let n = d.len();
@@ -35,10 +47,9 @@ impl Paired {
             let variance = d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
             (variance / n as f64).sqrt()
         };
-        let t = T_975.get(n.saturating_sub(2)).copied().unwrap_or(1.96);
-        let half = t * standard_error;
+        let half = t_975(n.saturating_sub(1)) * standard_error;
         Paired {
-            tosses: n,
+            units: n,
             mean,
             standard_error,
             interval: [mean - half, mean + half],
