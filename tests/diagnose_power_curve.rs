@@ -15,7 +15,7 @@
 use hcm_host::diagnose::naming::name_causes;
 use hcm_host::diagnose::select::BaseFreedom;
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
-use hcm_tests::hidden::hidden;
+use hcm_tests::hidden::{hidden, EFFECTS};
 use rayon::prelude::*;
 
 /// Runs per data set, as in tests/diagnose.rs.
@@ -77,16 +77,6 @@ fn named(hidden_effect: &str, seed: u64) -> Vec<&'static str> {
     let naming = name_causes(&samples, &law, BaseFreedom::Given, sigma);
     naming.chosen.iter().map(|(c, _)| c.name()).collect()
 }
-
-const EFFECTS: [&str; 7] = [
-    "viscous_damping",
-    "hysteresis_damping",
-    "stiffness_exponent",
-    "adhesion",
-    "plasticity",
-    "force_offset",
-    "sensor_delay",
-];
 
 #[test]
 fn every_effect_at_5_percent_is_named_in_8_of_10_seeds_never_wrongly_and_nothing_without_one() {

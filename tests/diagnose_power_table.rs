@@ -16,7 +16,7 @@ use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::identify::{identify, Method};
 use hcm_host::progress::Silent;
 use hcm_host::scenario::Model;
-use hcm_tests::hidden::{measured, model};
+use hcm_tests::hidden::{measured, model, EFFECTS};
 use rayon::prelude::*;
 
 /// Runs per data set.
@@ -49,16 +49,6 @@ const LAWS: [(&str, &str, &str); 4] = [
         "{ stiffness = 3.6e9, exponent = 1.5, max_damping = 300.0, full_damping_depth = 1e-5 }",
         "{ stiffness = 0.02, max_damping = 0.02 }",
     ),
-];
-
-const EFFECTS: [&str; 7] = [
-    "viscous_damping",
-    "hysteresis_damping",
-    "stiffness_exponent",
-    "adhesion",
-    "plasticity",
-    "force_offset",
-    "sensor_delay",
 ];
 
 /// How the data are recorded and what the base is.

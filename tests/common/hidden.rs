@@ -8,6 +8,17 @@ use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
 use hcm_host::scenario::{Model, Scenario};
 
+/// The catalogue's force effects by name, in report order (the power tests' rows).
+pub const EFFECTS: [&str; 7] = [
+    "viscous_damping",
+    "hysteresis_damping",
+    "stiffness_exponent",
+    "adhesion",
+    "plasticity",
+    "force_offset",
+    "sensor_delay",
+];
+
 /// The scenario `name` with `overrides`, resolved to a model.
 pub fn model(name: &str, overrides: &[String]) -> Model {
     let path = crate::scenario(name);

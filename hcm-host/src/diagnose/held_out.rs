@@ -130,13 +130,8 @@ pub fn held_out_rss(
 /// stiffness, which sets their depth.
 fn per_run_rss(test: &ContactSamples, predicted: &[f64]) -> Vec<(usize, f64)> {
     let mut rss: Vec<(usize, f64)> = Vec::new();
-    let mut start = 0;
-    while start < test.len() {
-        let run = test.run[start];
-        let end = (start..test.len())
-            .find(|&i| test.run[i] != run)
-            .unwrap_or(test.len());
-        let inside = (start..end).filter(|&i| test.in_contact[i]);
+    for range in test.run_ranges() {
+        let inside = range.clone().filter(|&i| test.in_contact[i]);
         let (py, pp) = inside.fold((0.0, 0.0), |(a, b), i| {
             (
                 a + predicted[i] * test.measured[i],
@@ -148,7 +143,8 @@ fn per_run_rss(test: &ContactSamples, predicted: &[f64]) -> Vec<(usize, f64)> {
         } else {
             1.0
         };
-        let sum = (start..end)
+        let run = test.run[range.start];
+        let sum = range
             .map(|i| {
                 let p = if test.in_contact[i] {
                     scale * predicted[i]
@@ -159,7 +155,6 @@ fn per_run_rss(test: &ContactSamples, predicted: &[f64]) -> Vec<(usize, f64)> {
             })
             .sum();
         rss.push((run, sum));
-        start = end;
     }
     rss
 }

@@ -58,6 +58,22 @@ impl ContactSamples {
         nonzero(&self.depth_sd) || nonzero(&self.rate_sd)
     }
 
+    /// The index ranges of the runs' samples, in order: each a run's consecutive
+    /// samples (a run's samples are contiguous and in time order).
+    pub fn run_ranges(&self) -> Vec<std::ops::Range<usize>> {
+        let mut ranges = Vec::new();
+        let mut start = 0;
+        while start < self.len() {
+            let run = self.run[start];
+            let end = (start..self.len())
+                .find(|&i| self.run[i] != run)
+                .unwrap_or(self.len());
+            ranges.push(start..end);
+            start = end;
+        }
+        ranges
+    }
+
     /// The contact state of sample `i` as a law reads it.
     pub fn state(&self, i: usize) -> (Indentation<f64>, ContactMemory<f64>) {
         (

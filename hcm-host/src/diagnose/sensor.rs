@@ -59,18 +59,12 @@ impl Sensor {
             return f.iter().map(|f| g * (f + self.offset)).collect();
         }
         let mut out = Vec::with_capacity(f.len());
-        let mut start = 0;
-        while start < f.len() {
-            let run = samples.run[start];
-            let end = (start..f.len())
-                .find(|&i| samples.run[i] != run)
-                .unwrap_or(f.len());
-            let (t, v) = (&samples.time[start..end], &f[start..end]);
+        for range in samples.run_ranges() {
+            let (t, v) = (&samples.time[range.clone()], &f[range]);
             out.extend(
                 t.iter()
                     .map(|&ti| g * (hermite(t, v, ti - self.delay) + self.offset)),
             );
-            start = end;
         }
         out
     }
