@@ -407,6 +407,13 @@ fn a_ringing_sensor_mount_is_unexplained_and_nothing_is_named() {
         "unexplained {}",
         d.unexplained_share
     );
+    // One verdict (issue 27, class 6): not "ambiguous (a or b) + unexplained".
+    let answer = hcm_host::diagnose::report::answer(&d);
+    assert!(
+        answer.starts_with("unexplained (") && !answer.contains('+'),
+        "{answer}"
+    );
+    assert!(d.ambiguous.is_empty(), "{:?}", d.ambiguous);
 }
 
 // ---------------------------------------------------------------------------------

@@ -531,7 +531,8 @@ impl Naming {
     }
 
     /// Structure is left: report every cause that entered as not accepted, with the
-    /// residual's χ², and fall back to the base re-fit `base_fit` and its residual.
+    /// residual's χ², and fall back to the base re-fit `base_fit` and its residual; the
+    /// answer is then "unexplained" alone, not also "ambiguous".
     fn withdraw(&mut self, base_fit: Refit, base_after: Structure) {
         for cause in self.fit.causes.iter().take(self.chosen.len()) {
             self.not_accepted.push(NotAccepted {
@@ -545,6 +546,9 @@ impl Naming {
             });
         }
         self.chosen.clear();
+        // One verdict: the rivals the data could not tell apart did not explain the
+        // residual either (their `not_accepted` entries say both).
+        self.ambiguous.clear();
         self.provisional = None;
         self.fit = base_fit;
         self.after = base_after;
