@@ -182,6 +182,7 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
         "data_quality": d.data_quality,
         "not_accepted": d.not_accepted,
         "ambiguous": d.ambiguous,
+        "sensor_gain": d.sensor_gain,
         "before": d.before,
         "after": d.after,
         "gain": d.gain,
