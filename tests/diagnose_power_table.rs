@@ -28,7 +28,12 @@ const LEVELS: [f64; 3] = [0.005, 0.01, 0.03];
 
 /// Base laws: (law, parameters, the parameters scattered 2 % run to run). Stiffness
 /// 3.6·10⁹ N/m^1.5 is Hertz's 4/3·E*·√R of the paper's steel ball on concrete.
-const LAWS: [(&str, &str, &str); 4] = [
+const LAWS: [(&str, &str, &str); 5] = [
+    (
+        "hertz",
+        "{ stiffness = 3.6e9, exponent = 1.5 }",
+        "{ stiffness = 0.02 }",
+    ),
     (
         "variable_stiffness",
         "{ surface_loading = 2.0, damping = 987.9 }",
