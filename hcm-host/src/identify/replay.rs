@@ -234,14 +234,24 @@ pub fn with_physics(model: &Model, physics: &Model) -> Model {
     out
 }
 
-/// Simulates `target` under the physics of `physics` (see [`with_physics`]): its
-/// force curve on contact `c` and indicators, or None as [`simulate_target`].
+/// Step attempts a judged replay of one contact event may take at most (–): the
+/// paper's ball and flat shot take about 140 (`simulate`'s `steps`); a model whose
+/// contact chatters (a residual network pulling at δ → 0) would otherwise spend the
+/// scenario's whole budget, 10⁶ by default and seconds per replay, before it is
+/// called failed.
+const REPLAY_MAX_STEPS: u64 = 100_000;
+
+/// Simulates `target` under the physics of `physics` (see [`with_physics`]), within
+/// [`REPLAY_MAX_STEPS`]: its force curve on contact `c` and indicators, or None as
+/// [`simulate_target`].
 pub(crate) fn simulate_target_as(
     target: &Target,
     c: usize,
     physics: &Model,
 ) -> Option<(Vec<f64>, Indicators)> {
-    let model = with_physics(&target.model, physics);
+    let mut model = with_physics(&target.model, physics);
+    let budget = &mut model.scenario.simulation.max_steps;
+    *budget = (*budget).min(REPLAY_MAX_STEPS);
     let run = simulate(&model).ok()?.run;
     curve(&model, &run, c, target.period, target.curve.len())
         .ok()
