@@ -377,6 +377,24 @@ fn a_force_sensor_reading_3_percent_high_is_named_as_its_gain() {
     assert!(p.ci.0 <= 1.03 && 1.03 <= p.ci.1, "{:?}", p.ci);
 }
 
+/// The momentum balance's blind spot, said rather than hidden: an ideal sensor and a
+/// scenario whose ball is 3 % heavier than the rig's read exactly as a sensor 3 % low
+/// (the read impulse over m_scenario·Δv is m_true/m_scenario). The answer names the gain
+/// with that ratio and says it may be the mass.
+#[test]
+fn a_wrong_mass_with_motion_at_the_force_rows_is_answered_as_gain_or_mass() {
+    let rig = ball();
+    let data = read(&rig.record(RUNS, 16));
+    let heavier = base_model_with(&rig, &[format!("body.ball.mass={:e}", 1.03 * rig.mass)]);
+    let d = answer(&heavier, &data);
+    named_alone(&d, "sensor_gain", 0, 1.0 / 1.03, 0.003);
+    let line = hcm_host::diagnose::report::answer_line(&d);
+    assert!(
+        line.contains("effective mass is g times the scenario's"),
+        "{line}"
+    );
+}
+
 #[test]
 fn a_force_sensor_reading_half_a_percent_low_is_named_as_its_gain() {
     let d = diagnosed("gain 0.995", &scaled(0.995), 15);
