@@ -48,3 +48,32 @@ fn scatter_alone_names_nothing_and_an_effect_is_still_named() {
         assert_eq!(names, ["adhesion"], "seed {seed}");
     }
 }
+
+/// The report states the rule the decision applied (issue 27, class 6): with scattered
+/// runs, the held-out test and its thresholds; without scatter, not.
+#[test]
+fn the_report_states_the_held_out_rule_where_the_runs_scatter() {
+    use hcm_host::diagnose::{diagnose, report::markdown, DiagnoseSettings};
+    let settings = DiagnoseSettings {
+        hcm_epochs: 2,
+        ..DiagnoseSettings::default()
+    };
+    let adhesion = "contact.0.effects=[{ adhesion = { pull_off_force = 40.0 } }]".to_owned();
+    let base = model("bouncing_ball.toml", &[]);
+    for (scatter, says) in [(true, true), (false, false)] {
+        let mut overrides = vec![adhesion.clone()];
+        if !scatter {
+            overrides.push("contact.0.noise={}".into());
+        }
+        let data = measured(&model("bouncing_ball.toml", &overrides), 16, 3);
+        let d = diagnose(&base, &data, &settings).unwrap();
+        assert_eq!(d.before.scattered, scatter);
+        let text = markdown(&d, &[]);
+        assert_eq!(
+            text.contains("it must also win on held-out runs, run by run"),
+            says,
+            "scatter {scatter}"
+        );
+        assert!(text.contains("scores worse by at least 10"));
+    }
+}

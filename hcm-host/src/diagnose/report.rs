@@ -4,6 +4,8 @@
 
 use super::catalogue::Kind;
 use super::gain::{self, GainTable};
+use super::held_out::HELD_OUT_T;
+use super::naming::{EVIDENCE, FAMILY_T};
 use super::quality::DataQuality;
 use super::select::BaseFreedom;
 use super::structure::Structure;
@@ -307,7 +309,18 @@ fn selection_steps(md: &mut String, d: &Diagnosis) {
 /// Section 2's decision on full re-fits: each step's best trial, RSS (N²) against the
 /// information criterion, and every cause not accepted with why.
 fn decision(md: &mut String, d: &Diagnosis) {
-    let _ = writeln!(md, "\nThe decision, on full re-fits (each step adds every effect not yet named to the model, re-fits base and effects together — the base's exponent only where the motion was reconstructed, elsewhere a change of it is `stiffness_exponent` — and takes the best if it passes the information criterion with determined parameters; a cause is named only if the residual then holds nothing but noise):\n\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|");
+    let freedom = match d.base_freedom {
+        BaseFreedom::Given => "the base's exponent only where the motion was reconstructed, elsewhere a change of it is `stiffness_exponent`",
+        BaseFreedom::Fitted => "every parameter the user's fit had free, the exponent among them where the law has one",
+    };
+    let scattered = if d.before.scattered {
+        format!(
+            "; the runs scatter beyond the sample noise, so it must also win on held-out runs, run by run: its gain and its lead over the best effect of another family each at {HELD_OUT_T} standard errors of the runs' paired differences (viscous damping only where hysteresis damping is not better by {FAMILY_T})"
+        )
+    } else {
+        String::new()
+    };
+    let _ = writeln!(md, "\nThe decision, on full re-fits: each step adds every effect not yet named to the model and re-fits base and effects together ({freedom}); the best by information criterion enters if its RSS drop passes the criterion, its parameters are determined and the best effect of another family scores worse by at least {EVIDENCE} (else `ambiguous`, neither named){scattered}; a cause is named only if the residual then holds nothing but noise.\n\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|");
     for t in &d.naming {
         let _ = writeln!(
             md,
