@@ -80,12 +80,13 @@ pub fn held_out_rss(
     causes: &[(Candidate, f64)],
     sigma: f64,
 ) -> HeldOut {
-    let mut runs: Vec<usize> = Vec::new();
-    for &r in &samples.run {
-        if !runs.contains(&r) {
-            runs.push(r);
-        }
-    }
+    // Runs in order, each with its fold; run indices are the data set's, so a table by
+    // index maps a run to its place here.
+    let runs: Vec<usize> = samples
+        .run_ranges()
+        .iter()
+        .map(|r| samples.run[r.start])
+        .collect();
     if runs.len() < 2 {
         return HeldOut {
             rss: Vec::new(),
@@ -93,7 +94,11 @@ pub fn held_out_rss(
         };
     }
     let folds = FOLDS.min(runs.len());
-    let fold_of = |r: usize| runs.iter().position(|&x| x == r).map_or(0, |k| k % folds);
+    let mut place = vec![0; runs.iter().max().map_or(0, |m| m + 1)];
+    for (k, &r) in runs.iter().enumerate() {
+        place[r] = k;
+    }
+    let fold_of = |r: usize| place[r] % folds;
     let per_fold: Vec<(Vec<(usize, f64)>, Refit)> = (0..folds)
         .into_par_iter()
         .map(|f| {
@@ -101,21 +106,13 @@ pub fn held_out_rss(
             let test = samples.select(|r| fold_of(r) == f);
             let fit = refit(&train, (base, freedom), causes, sigma);
             let predicted = fit.sensor.reads(&test, &fit.law);
-            let rss = per_run_rss(&test, &predicted);
-            (rss, fit)
+            (per_run_rss(&test, &predicted), fit)
         })
         .collect();
-    let rss = runs
-        .iter()
-        .map(|&r| {
-            per_fold
-                .iter()
-                .flat_map(|(rss, _)| rss)
-                .filter(|(s, _)| *s == r)
-                .map(|(_, e)| e)
-                .sum()
-        })
-        .collect();
+    let mut rss = vec![0.0; runs.len()];
+    for &(r, e) in per_fold.iter().flat_map(|(per_run, _)| per_run) {
+        rss[place[r]] += e;
+    }
     HeldOut {
         rss,
         fits: per_fold.into_iter().map(|(_, fit)| fit).collect(),

@@ -56,29 +56,6 @@ impl SensorGain {
     }
 }
 
-/// One contact event of `samples`: the indices of its first and last in-contact
-/// samples.
-fn events(samples: &ContactSamples) -> Vec<(usize, usize)> {
-    let mut out = Vec::new();
-    let mut i = 0;
-    while i < samples.len() {
-        if !samples.in_contact[i] {
-            i += 1;
-            continue;
-        }
-        let start = i;
-        while i + 1 < samples.len()
-            && samples.in_contact[i + 1]
-            && samples.run[i + 1] == samples.run[start]
-        {
-            i += 1;
-        }
-        out.push((start, i));
-        i += 1;
-    }
-    out
-}
-
 /// The sensor's gain from the events of `samples` (effective mass `mass` (kg) of the
 /// contact's normal motion), or None where fewer than [`MIN_EVENTS`] events have
 /// recorded flights on both sides.
@@ -86,7 +63,12 @@ pub fn sensor_gain(samples: &ContactSamples, mass: f64) -> Option<SensorGain> {
     if !(mass > 0.0 && mass.is_finite()) {
         return None;
     }
-    let events = events(samples);
+    // Each event as the indices of its first and last in-contact samples.
+    let events: Vec<(usize, usize)> = samples
+        .events()
+        .iter()
+        .map(|e| (e.start, e.end - 1))
+        .collect();
     let windows: Vec<(usize, usize)> = events.iter().map(|&e| window(samples, e)).collect();
     let offset = flight_reading(samples, &windows)?;
     let ratios: Vec<Ratio> = events

@@ -410,15 +410,12 @@ impl Problem<'_> {
             // Where the runs scatter, then on held-out runs, run by run (`held_out`): their
             // residuals move together, and the criterion's evidence over all samples is
             // not the data's. Without scatter the samples are independent and it is.
-            let reference = match (self.scattered, &before) {
-                (false, _) => None,
-                (true, Some(_)) => before.as_deref(),
-                (true, None) => {
-                    before = Some(self.held_out(&naming.chosen));
-                    before.as_deref()
-                }
+            let reference = if self.scattered {
+                before.get_or_insert_with(|| self.held_out(&naming.chosen))
+            } else {
+                &Vec::new()
             };
-            if let Some(reference) = reference.filter(|r| r.len() >= 2) {
+            if reference.len() >= 2 {
                 let (own, failed) = self.held_out_test(naming, &ranked, k, reference);
                 match failed {
                     Some((why, Some(m))) => {

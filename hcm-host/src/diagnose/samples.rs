@@ -74,6 +74,26 @@ impl ContactSamples {
         ranges
     }
 
+    /// The index ranges of the contact events: each a stretch of one run's consecutive
+    /// in-contact samples, in order.
+    pub fn events(&self) -> Vec<std::ops::Range<usize>> {
+        let mut events = Vec::new();
+        let mut start = 0;
+        while start < self.len() {
+            if !self.in_contact[start] {
+                start += 1;
+                continue;
+            }
+            let run = self.run[start];
+            let end = (start..self.len())
+                .find(|&i| !self.in_contact[i] || self.run[i] != run)
+                .unwrap_or(self.len());
+            events.push(start..end);
+            start = end;
+        }
+        events
+    }
+
     /// The contact state of sample `i` as a law reads it.
     pub fn state(&self, i: usize) -> (Indentation<f64>, ContactMemory<f64>) {
         (

@@ -902,17 +902,11 @@ const DELAY_GRID: usize = 40;
 /// Duration of the longest contact event of `samples` (s): the longest stretch of one
 /// run's in-contact samples; 0 without contact.
 fn longest_contact(samples: &ContactSamples) -> f64 {
-    let mut longest = 0.0_f64;
-    let mut begun: Option<(usize, f64)> = None;
-    for i in 0..samples.len() {
-        let (run, t) = (samples.run[i], samples.time[i]);
-        match begun {
-            Some((r, t0)) if r == run && samples.in_contact[i] => longest = longest.max(t - t0),
-            _ if samples.in_contact[i] => begun = Some((run, t)),
-            _ => begun = None,
-        }
-    }
-    longest
+    samples
+        .events()
+        .iter()
+        .map(|e| samples.time[e.end - 1] - samples.time[e.start])
+        .fold(0.0, f64::max)
 }
 
 /// Unknown k of `p` named `name` with its 95 % interval from `covariance` (NaN without).

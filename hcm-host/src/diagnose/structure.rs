@@ -174,25 +174,15 @@ pub fn residual_structure(samples: &ContactSamples, model_force: &[f64], sigma: 
 fn event_coordinates(samples: &ContactSamples) -> (Vec<f64>, Vec<f64>) {
     let n = samples.len();
     let (mut depth_fraction, mut phase) = (vec![f64::NAN; n], vec![f64::NAN; n]);
-    let mut start = 0;
-    while start < n {
-        if !samples.in_contact[start] {
-            start += 1;
-            continue;
-        }
-        let run = samples.run[start];
-        let end = (start..n)
-            .find(|&i| !samples.in_contact[i] || samples.run[i] != run)
-            .unwrap_or(n);
-        let peak = samples.depth[start..end]
+    for event in samples.events() {
+        let peak = samples.depth[event.clone()]
             .iter()
             .fold(f64::NEG_INFINITY, |a, &b| a.max(b));
-        let (t0, t1) = (samples.time[start], samples.time[end - 1]);
-        for i in start..end {
+        let (t0, t1) = (samples.time[event.start], samples.time[event.end - 1]);
+        for i in event {
             depth_fraction[i] = samples.depth[i] / peak;
             phase[i] = (samples.time[i] - t0) / (t1 - t0);
         }
-        start = end;
     }
     (depth_fraction, phase)
 }
