@@ -64,6 +64,11 @@ fn hide(effect: &str, x: f64, (f, depth, speed, duration): (f64, f64, f64, f64))
             "experiment.sensor_delay={}",
             x * duration / std::f64::consts::PI
         ),
+        // A filter lags by T to first order: the delay's strength.
+        "sensor_filter" => format!(
+            "experiment.sensor_filter={}",
+            x * duration / std::f64::consts::PI
+        ),
         _ => String::new(),
     }
 }

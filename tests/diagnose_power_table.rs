@@ -141,6 +141,11 @@ fn hide(effect: &str, x: f64, (f, depth, speed, duration): (f64, f64, f64, f64))
             let tau = x * duration / std::f64::consts::PI;
             (format!("experiment.sensor_delay={tau}"), tau)
         }
+        // A filter lags by T to first order: the delay's strength.
+        "sensor_filter" => {
+            let tau = x * duration / std::f64::consts::PI;
+            (format!("experiment.sensor_filter={tau}"), tau)
+        }
         _ => (String::new(), f64::NAN),
     }
 }

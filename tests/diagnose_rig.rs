@@ -435,6 +435,159 @@ fn a_ringing_sensor_mount_is_unexplained_and_nothing_is_named() {
 }
 
 // ---------------------------------------------------------------------------------
+// A sensor's lag: a delay or a first-order low-pass filter (issue 27, the measurement
+// family).
+
+/// Asserts that `d` answers a sensor lag: `effect` (`sensor_delay` or
+/// `sensor_filter`) alone named — true —, or nothing named and "ambiguous between
+/// `sensor_delay` and `sensor_filter`" — false. To first order a delay τ and a filter
+/// T = τ are one correction, −τ·df/dt; the second order, τ²·f̈/2 against T²·f̈, tells
+/// them apart only where it stands out of the noise.
+fn lag_named_or_ambiguous(d: &Diagnosis, effect: &str) -> bool {
+    if d.causes.is_empty() {
+        let mut pair = d.ambiguous.clone();
+        pair.sort_unstable();
+        assert_eq!(
+            pair,
+            ["sensor_delay", "sensor_filter"],
+            "{:#?}",
+            d.not_accepted
+        );
+        false
+    } else {
+        assert_eq!(names(d), [effect], "{:#?}", d.causes);
+        true
+    }
+}
+
+/// A delay at half a percent of the peak force (≈ 0.15 µs on the paper's ball): a lag
+/// the data cannot tell from a filter's; never a physical name.
+#[test]
+fn a_sensor_delay_at_half_a_percent_is_a_lag_a_delay_or_a_filter() {
+    let (rig, name, _, truth) = hide(ball(), Effect::Delay, 0.005);
+    let d = diagnosed(&format!("delay {truth:.3e} s"), &rig, 54);
+    if lag_named_or_ambiguous(&d, name) {
+        let p = &d.causes[0].parameters[0];
+        assert!((p.value / truth - 1.0).abs() < 0.3, "{p:?} vs {truth}");
+    }
+}
+
+/// A force sensor behind a first-order low-pass filter: named `sensor_filter` with its
+/// time constant where the lag stands out (2.5 and 5 µs on a 110 µs contact), else
+/// ambiguous with a delay (0.5 and 1 µs) — never a physical effect, never the delay
+/// alone.
+#[test]
+fn a_low_pass_filtered_sensor_is_named_with_its_time_constant() {
+    let cases = [(0.5e-6, 126), (1e-6, 127), (2.5e-6, 128), (5e-6, 129)];
+    let answers: Vec<Diagnosis> = cases
+        .par_iter()
+        .map(|&(tau, seed)| {
+            let mut rig = ball();
+            rig.sensor.filter = tau;
+            diagnosed(&format!("filter {tau:e} s"), &rig, seed)
+        })
+        .collect();
+    for (&(tau, _), d) in cases.iter().zip(&answers) {
+        let named = lag_named_or_ambiguous(d, "sensor_filter");
+        assert!(named || tau < 2.5e-6, "{tau}: {:?}", d.ambiguous);
+        if named {
+            let p = &d.causes[0].parameters[0];
+            assert!((p.value / tau - 1.0).abs() < 0.05, "{p:?} vs {tau}");
+            assert!(p.ci.0 <= tau && tau <= p.ci.1, "{p:?} vs {tau}");
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// Close to the catalogue, not equal (issue 27, class 4): partial answers.
+
+/// The plain ball's peak force (N).
+fn peak_force(rig: &Rig) -> f64 {
+    plain(rig).0
+}
+
+/// `rig` with `effect` hidden.
+fn with(mut rig: Rig, effect: Physical) -> Rig {
+    rig.effects.push(effect);
+    rig
+}
+
+/// A plastic set unloading along another curve than the catalogue's (which unloads
+/// along the base law shifted) and damping nonlinear in the rate (the catalogue's is
+/// linear in δ̇): their catalogue relative removes most of what is wrong, not all. The
+/// answer names it, partially — the share it leaves is unexplained and said — and
+/// nothing else: the effects that only fitted what it left are not named.
+#[test]
+fn a_shape_close_to_a_catalogued_one_gets_a_partial_answer() {
+    let peak = peak_force(&ball());
+    let cases = [
+        (
+            "plastic set unloading as δ^2",
+            Physical::PlasticCurve(0.05, 2.0),
+            "plasticity",
+            103,
+        ),
+        (
+            "plastic set unloading as δ^3",
+            Physical::PlasticCurve(0.05, 3.0),
+            "plasticity",
+            104,
+        ),
+        (
+            "plastic set 2 % unloading as δ^2",
+            Physical::PlasticCurve(0.02, 2.0),
+            "plasticity",
+            117,
+        ),
+        (
+            "damping as |δ̇|^0.5 at 3 % of the peak",
+            Physical::RateDamping(0.03 * peak / 1.4_f64.sqrt(), 0.0, 0.5),
+            "viscous_damping",
+            105,
+        ),
+        (
+            "damping as |δ̇|^0.7 at 3 % of the peak",
+            Physical::RateDamping(0.03 * peak / 1.4_f64.powf(0.7), 0.0, 0.7),
+            "viscous_damping",
+            106,
+        ),
+    ];
+    let answers: Vec<_> = cases
+        .par_iter()
+        .map(|(label, effect, _, seed)| diagnosed(label, &with(ball(), *effect), *seed))
+        .collect();
+    for ((label, _, name, _), d) in cases.iter().zip(&answers) {
+        assert_eq!(names(d), [*name], "{label}: {:#?}", d.causes);
+        assert!(d.partial, "{label}");
+        assert!(
+            d.unexplained_share > 0.0 && d.unexplained_share < 0.1,
+            "{label}: unexplained {}",
+            d.unexplained_share
+        );
+        let line = hcm_host::diagnose::report::answer_line(d);
+        assert!(
+            line.contains("a partial answer") && line.contains("left unexplained"),
+            "{line}"
+        );
+        assert!(d.ambiguous.is_empty(), "{label}: {:?}", d.ambiguous);
+    }
+}
+
+/// A plastic set unloading linearly is far from the catalogue's Hertzian unloading: a
+/// stiffness-exponent change removes 66–72 % of what is wrong and a delay much of the
+/// rest, together — no single effect is its shape, so nothing is named.
+#[test]
+fn a_shape_the_catalogue_mimics_only_in_combination_is_unexplained() {
+    for (rho, seed) in [(0.05, 102), (0.1, 118)] {
+        let rig = with(ball(), Physical::PlasticCurve(rho, 1.0));
+        let d = diagnosed(&format!("plastic set {rho}, linear unloading"), &rig, seed);
+        assert!(d.causes.is_empty(), "{:#?}", d.causes);
+        assert!(!d.partial);
+        assert!(d.unexplained_share > 0.5, "{}", d.unexplained_share);
+    }
+}
+
+// ---------------------------------------------------------------------------------
 // No effect.
 
 #[test]
@@ -599,7 +752,6 @@ catalogued! {
     force_offset_at_5_percent_is_named: Offset, 0.05, 51, 0.15;
     force_offset_at_half_a_percent_is_named: Offset, 0.005, 52, 0.3;
     sensor_delay_at_5_percent_is_named: Delay, 0.05, 53, 0.15;
-    sensor_delay_at_half_a_percent_is_named: Delay, 0.005, 54, 0.3;
 }
 
 /// A hysteresis damping at 0.5 % of the peak (15 N, the sensor noise) lies, to first
@@ -841,19 +993,22 @@ fn a_5_us_sensor_delay_behind_camera_rows_is_named() {
 }
 
 #[test]
-fn a_1_us_sensor_delay_behind_camera_rows_is_named() {
+fn a_1_us_sensor_delay_behind_camera_rows_is_a_lag_a_delay_or_a_filter() {
     // Too small to move the landing by 3 standard deviations (gap 1.74), but the delay
-    // that closes the gaps is over 5 of its standard deviations from 0.
+    // that closes the gaps is over 5 of its standard deviations from 0. A 1 µs
+    // first-order filter lags the force as much (the camera's timing cannot tell them
+    // either), so "ambiguous between the two" is a right answer too.
     let mut rig = camera();
     rig.sensor.delay = 1e-6;
     let d = diagnosed("delay 1 µs, camera rows", &rig, 89);
-    assert_eq!(names(&d), ["sensor_delay"], "{:#?}", d.causes);
-    let p = &d.causes[0].parameters[0];
-    assert!(
-        p.ci.0.is_finite() && p.ci.1.is_finite() && p.ci.0 <= 1e-6 && 1e-6 <= p.ci.1,
-        "interval {:?}",
-        p.ci
-    );
+    if lag_named_or_ambiguous(&d, "sensor_delay") {
+        let p = &d.causes[0].parameters[0];
+        assert!(
+            p.ci.0.is_finite() && p.ci.1.is_finite() && p.ci.0 <= 1e-6 && 1e-6 <= p.ci.1,
+            "interval {:?}",
+            p.ci
+        );
+    }
 }
 
 #[test]

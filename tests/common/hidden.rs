@@ -9,7 +9,7 @@ use hcm_host::experiment::generate;
 use hcm_host::scenario::{Model, Scenario};
 
 /// The catalogue's force effects by name, in report order (the power tests' rows).
-pub const EFFECTS: [&str; 7] = [
+pub const EFFECTS: [&str; 8] = [
     "viscous_damping",
     "hysteresis_damping",
     "stiffness_exponent",
@@ -17,6 +17,7 @@ pub const EFFECTS: [&str; 7] = [
     "plasticity",
     "force_offset",
     "sensor_delay",
+    "sensor_filter",
 ];
 
 /// The scenario `name` with `overrides`, resolved to a model.

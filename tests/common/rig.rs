@@ -37,6 +37,12 @@ pub enum Physical {
     Adhesion(f64),
     /// Unloading below δ_max at δ_eff = (δ − ρ·δ_max)/(1 − ρ), ρ (–).
     Plasticity(f64),
+    /// Out of the catalogue's shape: a plastic set ρ (–) unloading along another curve,
+    /// f = k·δ_max^n·((δ − ρ·δ_max)/((1 − ρ)·δ_max))^m, m (–) ≠ n.
+    PlasticCurve(f64, f64),
+    /// Out of the catalogue's shape: damping nonlinear in the rate,
+    /// f += c·δ^p·sign(δ̇)·|δ̇|^q: (c (N·s^q/m^(p+q)), p (–), q (–)), q ≠ 1.
+    RateDamping(f64, f64, f64),
 }
 
 /// A decaying ringing of the sensor mount, A·e^(−t'/T)·sin(2π·f_r·t') after touch-down.
@@ -63,6 +69,11 @@ pub struct Sensor {
     pub offset: f64,
     /// Gain g (–): it reads g·f(t − τ) + b.
     pub gain: f64,
+    /// Quadratic nonlinearity κ (1/N): it reads g·(f + κ·f²)(t − τ) + b.
+    pub nonlinearity: f64,
+    /// Time constant T of a first-order low-pass filter on the force (s), 0 for none:
+    /// it reads g·y(t − τ) + b with T·ẏ + y = f + κ·f².
+    pub filter: f64,
     /// Ringing of the mount, if any.
     pub resonance: Option<Resonance>,
 }
@@ -174,6 +185,8 @@ impl Rig {
                 delay: 0.0,
                 offset: 0.0,
                 gain: 1.0,
+                nonlinearity: 0.0,
+                filter: 0.0,
                 resonance: None,
             },
             motion: Motion::AtForceRows(0.0, 0.0),
@@ -190,11 +203,21 @@ impl Rig {
     /// The contact force (N) at δ (m), δ̇ (m/s), impact speed δ̇0 and deepest δ_max so far.
     pub fn force(&self, depth: f64, rate: f64, approach: f64, max_depth: f64) -> f64 {
         let mut d = depth;
+        let unloading = depth > 0.0 && rate < 0.0 && depth < max_depth;
         for e in &self.effects {
-            if let Physical::Plasticity(rho) = *e {
-                if depth > 0.0 && rate < 0.0 && depth < max_depth {
+            match *e {
+                Physical::Plasticity(rho) if unloading => {
                     d = (depth - rho * max_depth) / (1.0 - rho);
                 }
+                Physical::PlasticCurve(rho, m) if unloading => {
+                    let s = (depth - rho * max_depth) / ((1.0 - rho) * max_depth);
+                    d = if s > 0.0 {
+                        max_depth * s.powf(m / self.exponent)
+                    } else {
+                        0.0
+                    };
+                }
+                _ => {}
             }
         }
         if d <= 0.0 {
@@ -214,7 +237,10 @@ impl Rig {
                     elastic * ((d / reference).powf(change) - 1.0)
                 }
                 Physical::Adhesion(a) => -a,
-                Physical::Plasticity(_) => 0.0,
+                Physical::Plasticity(_) | Physical::PlasticCurve(..) => 0.0,
+                Physical::RateDamping(c, p, q) => {
+                    c * d.powf(p) * rate.signum() * rate.abs().powf(q)
+                }
             };
         }
         f
@@ -274,6 +300,26 @@ impl Rig {
         c
     }
 
+    /// The sensor element's output f + κ·f² at the contact's nodes, through the
+    /// first-order filter if any: exact for an input linear between the nodes,
+    /// y₊ = f₊ − m·T + (y − f + m·T)·e^(−h/T), m the input's slope (N/s).
+    fn filtered(&self, contact: &Contact) -> Vec<f64> {
+        let kappa = self.sensor.nonlinearity;
+        let input: Vec<f64> = contact.force.iter().map(|f| f + kappa * f * f).collect();
+        let tau = self.sensor.filter;
+        if tau <= 0.0 {
+            return input;
+        }
+        let (h, decay) = (contact.step, (-contact.step / tau).exp());
+        let mut y = vec![input[0]];
+        for k in 1..input.len() {
+            let slope = (input[k] - input[k - 1]) / h;
+            let previous = y[k - 1];
+            y.push(input[k] - slope * tau + (previous - input[k - 1] + slope * tau) * decay);
+        }
+        y
+    }
+
     /// Writes `runs` runs, deterministic for `seed`.
     pub fn record(&self, runs: usize, seed: u64) -> Recording {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -290,6 +336,7 @@ impl Rig {
                 rig: self,
                 touch_down,
                 speed,
+                filtered: self.filtered(&contact),
                 contact: &contact,
             };
             let end = touch_down + contact.lift_off + self.margin;
@@ -316,7 +363,8 @@ impl Rig {
     /// What the sensor records at `t` (s): g·f(t − τ) + b + ringing + noise (N).
     fn read_force(&self, fly: &Flight, t: f64, rng: &mut ChaCha8Rng) -> f64 {
         let s = &self.sensor;
-        let mut f = s.gain * fly.force(t - s.delay) + s.offset + s.noise * gaussian(rng);
+        let read = fly.read(t - s.delay);
+        let mut f = s.gain * read + s.offset + s.noise * gaussian(rng);
         if let Some(ring) = s.resonance.filter(|_| t >= fly.touch_down) {
             let since = t - fly.touch_down;
             f += ring.amplitude
@@ -462,6 +510,8 @@ struct Flight<'a> {
     /// Impact speed (m/s).
     speed: f64,
     contact: &'a Contact,
+    /// The sensor element's output at the contact's nodes ([`Rig::filtered`]) (N).
+    filtered: Vec<f64>,
 }
 
 impl Flight<'_> {
@@ -496,12 +546,25 @@ impl Flight<'_> {
         (r - depth, -rate)
     }
 
-    /// The true contact force (N) at `t` (s), linear between the RK4 nodes.
-    fn force(&self, t: f64) -> f64 {
-        self.locate(t).map_or(0.0, |(i, s)| {
-            let f = &self.contact.force;
-            f[i] + s * (f[i + 1] - f[i])
-        })
+    /// What the sensor element outputs at `t` (s), before gain, offset and noise (N):
+    /// [`Rig::filtered`] linear between the nodes, 0 before touch-down and, after
+    /// lift-off, the filter's last output decaying with its time constant.
+    fn read(&self, t: f64) -> f64 {
+        let y = &self.filtered;
+        match self.locate(t) {
+            Some((i, s)) => y[i] + s * (y[i + 1] - y[i]),
+            None if t < self.touch_down => 0.0,
+            None => {
+                let tau = self.rig.sensor.filter;
+                let since = t - self.touch_down - self.contact.lift_off;
+                let last = y[y.len() - 1];
+                if tau > 0.0 {
+                    last * (-since / tau).exp()
+                } else {
+                    0.0
+                }
+            }
+        }
     }
 }
 

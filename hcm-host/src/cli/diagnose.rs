@@ -171,6 +171,7 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
     json!({
         "causes": causes,
         "unexplained_share": d.unexplained_share,
+        "partial": d.partial,
         "answer": answer(d),
         "noise_sigma": d.noise.sigma,
         "base_structured": d.base_structured,

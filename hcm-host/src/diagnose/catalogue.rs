@@ -16,6 +16,7 @@
 //! | `plasticity` | ρ (–) | −(δ_max − δ)·∂f/∂δ while unloading |
 //! | `force_offset` | b (N) | 1 on every sample, in flight too |
 //! | `sensor_delay` | τ (s) | −df/dt of the model force along the run |
+//! | `sensor_filter` | T (s) | −df/dt too: a first-order low-pass lags by T at first order |
 //!
 //! Air drag lives in the flight motion, not in the force, and is read from the
 //! recorded velocities (not part of this force library).
@@ -54,10 +55,12 @@ pub enum Candidate {
     ForceOffset,
     /// The sensor reads f(t − τ).
     SensorDelay,
+    /// The sensor reads y, T·ẏ + y = f: a first-order low-pass filter.
+    SensorFilter,
 }
 
 /// Every candidate, in report order.
-pub const CATALOGUE: [Candidate; 7] = [
+pub const CATALOGUE: [Candidate; 8] = [
     Candidate::ViscousDamping,
     Candidate::HysteresisDamping,
     Candidate::StiffnessExponent,
@@ -65,6 +68,7 @@ pub const CATALOGUE: [Candidate; 7] = [
     Candidate::Plasticity,
     Candidate::ForceOffset,
     Candidate::SensorDelay,
+    Candidate::SensorFilter,
 ];
 
 /// Grid of the hysteresis exponent p searched by the selection (the joint re-fit then
@@ -84,13 +88,16 @@ impl Candidate {
             Candidate::Plasticity => "plasticity",
             Candidate::ForceOffset => "force_offset",
             Candidate::SensorDelay => "sensor_delay",
+            Candidate::SensorFilter => "sensor_filter",
         }
     }
 
     /// Physical or measurement.
     pub fn kind(self) -> Kind {
         match self {
-            Candidate::ForceOffset | Candidate::SensorDelay => Kind::Measurement,
+            Candidate::ForceOffset | Candidate::SensorDelay | Candidate::SensorFilter => {
+                Kind::Measurement
+            }
             _ => Kind::Physical,
         }
     }
@@ -114,6 +121,7 @@ impl Candidate {
             Candidate::Plasticity => ("permanent_ratio", "–"),
             Candidate::ForceOffset => ("offset", "N"),
             Candidate::SensorDelay => ("delay", "s"),
+            Candidate::SensorFilter => ("time_constant", "s"),
         }
     }
 
@@ -175,7 +183,7 @@ impl Candidate {
                     .collect()
             }
             Candidate::ForceOffset => vec![1.0; n],
-            Candidate::SensorDelay => (0..n)
+            Candidate::SensorDelay | Candidate::SensorFilter => (0..n)
                 .map(|i| {
                     let same = |j: usize| samples.run[j] == samples.run[i];
                     let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
@@ -220,7 +228,9 @@ impl Candidate {
                 permanent_ratio: strength,
             }
             .into(),
-            Candidate::ForceOffset | Candidate::SensorDelay => return None,
+            Candidate::ForceOffset | Candidate::SensorDelay | Candidate::SensorFilter => {
+                return None
+            }
         })
     }
 }

@@ -85,6 +85,9 @@ pub struct Diagnosis {
     /// Share of the structured residual no catalogued effect explains (0 if what is
     /// left is indistinguishable from noise).
     pub unexplained_share: f64,
+    /// A partial answer: one cause named, removing most of the base model's excess
+    /// (`naming::PARTIAL_SHARE`), with structure left that no catalogued effect explains.
+    pub partial: bool,
     /// Whether the base model departs from the data beyond the noise at all (the χ²
     /// test of `before`, which also gates the selection).
     pub base_structured: bool,
@@ -463,6 +466,7 @@ pub fn diagnose(
         drag,
         drag_body: body.name.clone(),
         unexplained_share,
+        partial: naming.partial,
         base_parameters: fit.base_parameters,
         base_freedom: settings.base_freedom,
         extended: fit.law,

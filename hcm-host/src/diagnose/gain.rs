@@ -837,6 +837,7 @@ mod tests {
                 offset: 40.0 / 1.03,
                 delay: 1e-6,
                 gain: 1.03,
+                filter: 0.0,
             },
             ..judged("sensor corrected", &truth)
         };

@@ -114,7 +114,12 @@ pub fn answer_line(d: &Diagnosis) -> String {
         })
         .collect();
     let left = d.unexplained_share.clamp(0.0, 1.0);
-    let beyond = if d.ambiguous.is_empty() {
+    let beyond = if d.partial {
+        format!(
+            " — a partial answer: the cause's shape is close to what the data show, not equal (it removes at least {:.0} % of the base model's excess), so its value also absorbs part of what is left",
+            100.0 * super::naming::PARTIAL_SHARE
+        )
+    } else if d.ambiguous.is_empty() {
         String::new()
     } else {
         format!(
@@ -245,7 +250,7 @@ fn the_cause(md: &mut String, d: &Diagnosis) {
     if d.causes.is_empty() {
         // The rule as `naming` applies it (the linear ranking's share ≥ 2 % only orders
         // the report's selection steps; it decides nothing).
-        let _ = writeln!(md, "No cause is named. Every catalogued effect was re-fitted with the base law; one is named when its RSS drop exceeds ln(n)·σ² per parameter (BIC), its 95 % intervals are finite, no effect of another family comes within {} of it in the criterion, and the residual it leaves is noise. The effects tried and why none was accepted are listed under the decision below.\n", super::naming::EVIDENCE);
+        let _ = writeln!(md, "No cause is named. Every catalogued effect was re-fitted with the base law; one is named when its RSS drop exceeds ln(n)·σ² per parameter (BIC), its 95 % intervals are finite, no effect of another family comes within {} of it in the criterion, and the residual it leaves is noise — or, re-fitted alone, it removes at least {:.0} % of the base model's excess over the noise and wins on held-out runs by {HELD_OUT_T} standard errors (a partial answer). The effects tried and why none was accepted are listed under the decision below.\n", super::naming::EVIDENCE, 100.0 * super::naming::PARTIAL_SHARE);
     } else {
         let _ = writeln!(md, "| effect | kind | parameter | value | 95 % interval | share |\n|---|---|---|---|---|---|");
         for c in &d.causes {

@@ -580,7 +580,7 @@ pub struct Refit {
     pub causes: Vec<Cause>,
     /// Base parameters after the re-fit.
     pub base_parameters: Vec<Fitted>,
-    /// The sensor's offset and delay as found (0 where not named).
+    /// The sensor's offset, delay and filter as found (0 where not named).
     pub(crate) sensor: Sensor,
     /// RSS of the re-fitted model (N²).
     pub rss: f64,
@@ -629,7 +629,7 @@ pub fn refit(
     if total > 0.0 {
         causes.iter_mut().for_each(|c| c.share /= total);
     }
-    let (law, offset, delay) = model.build(&p);
+    let (law, sensor) = model.build(&p);
     Refit {
         law,
         causes,
@@ -639,11 +639,7 @@ pub fn refit(
             .enumerate()
             .map(|(k, n)| fitted(n, k))
             .collect(),
-        sensor: Sensor {
-            offset,
-            delay,
-            gain: 1.0,
-        },
+        sensor,
         rss,
         left_share: if total > 0.0 { left / total } else { 0.0 },
         structured: total,
@@ -711,6 +707,7 @@ impl Unknowns {
             Candidate::Plasticity => (0.01, (0.0, 0.9)),
             Candidate::ForceOffset => (10.0, (f64::NEG_INFINITY, f64::INFINITY)),
             Candidate::SensorDelay => (1e-6, (f64::NEG_INFINITY, f64::INFINITY)),
+            Candidate::SensorFilter => (1e-6, (0.0, f64::INFINITY)),
         };
         self.initial.push(0.0);
         self.scales.push(typical);
@@ -759,19 +756,21 @@ struct RefitModel<'a> {
 }
 
 impl RefitModel<'_> {
-    /// The extended law and the sensor's offset (N) and delay (s) at unknowns `p`.
-    fn build(&self, p: &[f64]) -> (ExtendedLaw<f64>, f64, f64) {
+    /// The extended law and the sensor (offset (N), delay and filter (s)) at unknowns
+    /// `p`.
+    fn build(&self, p: &[f64]) -> (ExtendedLaw<f64>, Sensor) {
         let (base, free) = (self.base, &self.free);
         let mut law = base.clone();
         law.base = base
             .base
             .map_named(|n, v| free.iter().position(|f| f == n).map_or(v, |k| p[k]));
-        let (mut offset, mut delay) = (0.0, 0.0);
+        let mut sensor = Sensor::default();
         for (&(candidate, shape), &slot) in self.chosen.iter().zip(&self.slots) {
             let shape = if shape.is_nan() { shape } else { p[slot + 1] };
             match candidate {
-                Candidate::ForceOffset => offset = p[slot],
-                Candidate::SensorDelay => delay = p[slot],
+                Candidate::ForceOffset => sensor.offset = p[slot],
+                Candidate::SensorDelay => sensor.delay = p[slot],
+                Candidate::SensorFilter => sensor.filter = p[slot],
                 _ => {
                     if let Some(e) = candidate.effect(p[slot], shape, self.delta_ref) {
                         let _ = law.effects.push(e);
@@ -779,18 +778,13 @@ impl RefitModel<'_> {
                 }
             }
         }
-        (law, offset, delay)
+        (law, sensor)
     }
 
     /// The force the sensor reads at unknowns `p` (N), per sample.
     fn predict(&self, p: &[f64]) -> Vec<f64> {
-        let (law, offset, delay) = self.build(p);
-        Sensor {
-            offset,
-            delay,
-            gain: 1.0,
-        }
-        .reads(self.samples, &law)
+        let (law, sensor) = self.build(p);
+        sensor.reads(self.samples, &law)
     }
 
     /// Σ (predicted − measured)² at unknowns `p` (N²).
@@ -833,36 +827,39 @@ impl RefitModel<'_> {
         }
     }
 
-    /// The start of the re-fit: `unknowns.initial`, with a chosen sensor delay started
-    /// at the best of a grid over its plausible range instead of 0 — the delay's RSS
-    /// has a single valley about the true τ, but a linearisation at τ = 0 reaches only
-    /// delays a fraction of a sample long. The grid spans ±¼ of the longest contact
-    /// event in [`DELAY_GRID`] steps (a delay that long would leave no contact shape
-    /// to fit), the other unknowns held at their starts.
+    /// The start of the re-fit: `unknowns.initial`, with a chosen sensor delay (or
+    /// filter) started at the best of a grid over its plausible range instead of 0 —
+    /// the delay's RSS has a single valley about the true τ, but a linearisation at
+    /// τ = 0 reaches only delays a fraction of a sample long. The grid spans ±¼ of the
+    /// longest contact event (a filter's 0 to ¼) in [`DELAY_GRID`] steps (a lag that
+    /// long would leave no contact shape to fit), the other unknowns held at their
+    /// starts.
     fn delay_start(&self, unknowns: &Unknowns) -> Vec<f64> {
         let mut start = unknowns.initial.clone();
-        let Some(slot) = self
-            .chosen
-            .iter()
-            .zip(&self.slots)
-            .find(|((c, _), _)| *c == Candidate::SensorDelay)
-            .map(|(_, &slot)| slot)
-        else {
-            return start;
-        };
-        let reach = 0.25 * longest_contact(self.samples);
-        if !(reach.is_finite() && reach > 0.0) {
-            return start;
-        }
-        let mut best = (self.rss(&start), start[slot]);
-        for k in 0..=DELAY_GRID {
-            start[slot] = reach * (2.0 * k as f64 / DELAY_GRID as f64 - 1.0);
-            let rss = self.rss(&start);
-            if rss < best.0 {
-                best = (rss, start[slot]);
+        let lags =
+            self.chosen.iter().zip(&self.slots).filter(|((c, _), _)| {
+                matches!(c, Candidate::SensorDelay | Candidate::SensorFilter)
+            });
+        for (&(candidate, _), &slot) in lags {
+            let reach = 0.25 * longest_contact(self.samples);
+            if !(reach.is_finite() && reach > 0.0) {
+                return start;
             }
+            let low = if candidate == Candidate::SensorFilter {
+                0.0
+            } else {
+                -reach
+            };
+            let mut best = (self.rss(&start), start[slot]);
+            for k in 0..=DELAY_GRID {
+                start[slot] = low + (reach - low) * k as f64 / DELAY_GRID as f64;
+                let rss = self.rss(&start);
+                if rss < best.0 {
+                    best = (rss, start[slot]);
+                }
+            }
+            start[slot] = best.1;
         }
-        start[slot] = best.1;
         start
     }
 

@@ -8,6 +8,7 @@
 //! velocity components), a fresh ζ per component and sample.
 
 use crate::dataset::{Run, Sample};
+use crate::numerics::sampled::{hermite, low_pass};
 use crate::scenario::{Contact, ExperimentSpec, FrictionSpec, Model};
 use crate::simulate::{simulate, SimulationError};
 use hcm_core::LawError;
@@ -36,13 +37,16 @@ pub fn noisy_model(model: &Model, rng: &mut ChaCha8Rng) -> Result<Model, Simulat
     Ok(model)
 }
 
-/// Eq 19 and the sensor effects on a simulated run: a lagging force sensor, its gain
-/// and offset, then σ·ζ on every force, torque, position and velocity component whose σ
+/// Eq 19 and the sensor effects on a simulated run: a lagging force sensor, its
+/// low-pass filter, gain and offset, then σ·ζ on every force, torque, position and velocity component whose σ
 /// is set, sample by sample in time order.
 fn add_output_noise(e: &ExperimentSpec, run: &mut Run, rng: &mut ChaCha8Rng) {
     for track in &mut run.bodies {
         if e.sensor_delay > 0.0 {
             delay_forces(&mut track.samples, e.sensor_delay);
+        }
+        if e.sensor_filter > 0.0 {
+            filter_forces(&mut track.samples, e.sensor_filter);
         }
         for sample in &mut track.samples {
             for (f, b) in sample.force.iter_mut().zip(e.force_offset) {
@@ -86,25 +90,34 @@ fn scatter_parameters(contact: &mut Contact, rng: &mut ChaCha8Rng) -> Result<(),
     }
 }
 
-/// Replaces each sample's force by the force τ (s) earlier, linearly interpolated
-/// between the samples (held at the first sample's value before it): a lagging sensor.
+/// Replaces each sample's force by the force τ (s) earlier: a lagging sensor, read
+/// between the samples on the cubic Hermite curve through them (the one the diagnosis'
+/// sensor model reads, `numerics::sampled::hermite`; a straight line between samples
+/// would average two of them, a low-pass filter of its own at a coarse rate), held at
+/// the first sample's value before it.
 fn delay_forces(samples: &mut [Sample], delay: f64) {
     let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
-    let forces: Vec<[f64; 3]> = samples.iter().map(|s| s.force).collect();
-    let mut j = 0;
+    let component = |k: usize| -> Vec<f64> { samples.iter().map(|s| s.force[k]).collect() };
+    let forces = [component(0), component(1), component(2)];
     for sample in samples.iter_mut() {
         let t = sample.time - delay;
-        while j + 1 < times.len() && times[j + 1] <= t {
-            j += 1;
-        }
-        sample.force = if t <= times[0] {
-            forces[0]
-        } else if j + 1 >= times.len() {
-            forces[j]
-        } else {
-            let s = (t - times[j]) / (times[j + 1] - times[j]);
-            std::array::from_fn(|k| forces[j][k] + s * (forces[j + 1][k] - forces[j][k]))
-        };
+        sample.force = std::array::from_fn(|k| hermite(&times, &forces[k], t));
+    }
+}
+
+/// Passes each sample's force through a first-order low-pass filter of time constant
+/// τ (s), T·ẏ + y = f, at rest on the first sample's force (`numerics::sampled::
+/// low_pass`: exact for a force linear between the samples).
+fn filter_forces(samples: &mut [Sample], tau: f64) {
+    let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
+    let filtered: Vec<Vec<f64>> = (0..3)
+        .map(|k| {
+            let f: Vec<f64> = samples.iter().map(|s| s.force[k]).collect();
+            low_pass(&times, &f, tau)
+        })
+        .collect();
+    for (i, sample) in samples.iter_mut().enumerate() {
+        sample.force = std::array::from_fn(|k| filtered[k][i]);
     }
 }
 

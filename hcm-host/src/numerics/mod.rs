@@ -8,6 +8,8 @@
 //! - [`euclidean_norm`]: ‖x‖₂ without overflow.
 //! - [`median`]: of a list, in place (the noise floors, the data-quality checks, the
 //!   toss scores' summaries).
+//! - [`sampled`]: a signal between its samples (cubic Hermite) and through a
+//!   first-order low-pass filter.
 //! - [`optimize`]: the bounded minimisers (genetic algorithm, Levenberg–Marquardt,
 //!   scalar and two-variable searches, Nelder–Mead) behind one bounds type, one
 //!   progress observer and one trait for a vector of named parameters.
@@ -16,6 +18,7 @@ pub mod linear_least_squares;
 mod median;
 mod norm;
 pub mod optimize;
+pub mod sampled;
 
 pub use linear_least_squares::{
     linear_least_squares, Covariance, LinearFit, LinearLeastSquaresError, Reduction,

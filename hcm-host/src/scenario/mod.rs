@@ -239,6 +239,12 @@ pub struct ExperimentSpec {
     /// value before it). A measurement effect, for testing `hcm diagnose`.
     #[serde(default)]
     pub(crate) sensor_delay: f64,
+    /// Force-sensor low-pass time constant T (s, ≥ 0): the recorded force y follows
+    /// T·ẏ + y = f (after the lag, before gain and offset; exact for a force linear
+    /// between the simulation's samples, at rest on the first). A measurement effect,
+    /// for testing `hcm diagnose`.
+    #[serde(default)]
+    pub(crate) sensor_filter: f64,
     /// Force-sensor gain g (–, > 0): every recorded force component is g times the
     /// true one (after the lag, before the offset), torques too. A measurement effect,
     /// for testing `hcm diagnose`.
@@ -266,6 +272,7 @@ impl Default for ExperimentSpec {
             velocity_noise: 0.0,
             force_offset: [0.0; 3],
             sensor_delay: 0.0,
+            sensor_filter: 0.0,
             force_gain: unit_gain(),
             conditions: Vec::new(),
             holdout_conditions: Vec::new(),

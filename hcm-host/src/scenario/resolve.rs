@@ -339,18 +339,29 @@ impl Scenario {
                 "must be zero or a positive number of s".into(),
             ));
         }
+        self.check_experiment()?;
+        if !self.gravity.iter().all(|g| g.is_finite()) {
+            return Err(("gravity".into(), "must be finite".into()));
+        }
+        Ok(())
+    }
+
+    /// The `[experiment]` table: noise σ ≥ 0, sensor lag and filter ≥ 0 (s), a positive
+    /// gain, a hold-out share in (0, 1), conditions named once and hold-out conditions
+    /// among them.
+    fn check_experiment(&self) -> Result<(), (String, String)> {
         let e = &self.experiment;
-        for (name, value) in [
-            ("experiment.force_noise", e.force_noise),
-            ("experiment.torque_noise", e.torque_noise),
-            ("experiment.position_noise", e.position_noise),
-            ("experiment.velocity_noise", e.velocity_noise),
+        let (sd, time) = ("a standard deviation ≥ 0", "a time ≥ 0 (s)");
+        for (name, value, what) in [
+            ("experiment.force_noise", e.force_noise, sd),
+            ("experiment.torque_noise", e.torque_noise, sd),
+            ("experiment.position_noise", e.position_noise, sd),
+            ("experiment.velocity_noise", e.velocity_noise, sd),
+            ("experiment.sensor_delay", e.sensor_delay, time),
+            ("experiment.sensor_filter", e.sensor_filter, time),
         ] {
             if !(value >= 0.0 && value.is_finite()) {
-                return Err((
-                    name.into(),
-                    format!("must be a standard deviation ≥ 0, found {value}"),
-                ));
+                return Err((name.into(), format!("must be {what}, found {value}")));
             }
         }
         if !(e.force_gain > 0.0 && e.force_gain.is_finite()) {
@@ -387,9 +398,6 @@ impl Scenario {
                     format!("no condition `{name}` (conditions: {})", names.join(", ")),
                 ));
             }
-        }
-        if !self.gravity.iter().all(|g| g.is_finite()) {
-            return Err(("gravity".into(), "must be finite".into()));
         }
         Ok(())
     }
