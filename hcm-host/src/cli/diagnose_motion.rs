@@ -3,7 +3,7 @@
 
 use super::progress::Bars;
 use anyhow::Context;
-use hcm_host::diagnose::motion::{diagnose_motion, MotionDiagnosis, HELPS_T, MIN_GAIN, RIVAL_T};
+use hcm_host::diagnose::motion::{diagnose_motion, MotionDiagnosis, GAIN_T, MIN_GAIN, RIVAL_T};
 use hcm_host::output::write_bytes;
 use std::path::PathBuf;
 
@@ -56,7 +56,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
 fn print_diagnosis(d: &MotionDiagnosis) {
     println!(
-        "{} training and {} held-out tosses; a candidate helps at t ≥ {HELPS_T} and a gain \
+        "{} training and {} held-out tosses; a candidate helps at t ≥ {GAIN_T} and a gain \
          ≥ {:.0} % of the model's held-out score, and is named if it beats the others by \
          t ≥ {RIVAL_T}",
         d.training_tosses,

@@ -24,10 +24,6 @@ use rayon::prelude::*;
 /// Folds of the runs (–).
 pub const FOLDS: usize = 4;
 
-/// The paired t a held-out gain must reach to count as evidence (–): about a 1 %
-/// two-sided level for the 10–30 runs a diagnosis fits.
-pub const HELD_OUT_T: f64 = 3.0;
-
 /// What the held-out fits give.
 #[derive(Clone, Debug)]
 pub struct HeldOut {

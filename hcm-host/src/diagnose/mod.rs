@@ -20,6 +20,7 @@ pub mod report;
 pub mod select;
 pub mod sensor;
 pub mod structure;
+pub mod verdict;
 pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};
 pub mod drag;
 pub mod momentum;

@@ -31,7 +31,8 @@
 //! residuals move together and the criterion over all samples overstates the evidence;
 //! there a cause must also win on held-out runs, run by run ([`super::held_out`]): its
 //! gain over the causes already named, and its lead over the best cause of another
-//! family, each at [`HELD_OUT_T`] standard errors of the runs' paired differences (else
+//! family, each at [`GAIN_T`] and [`RIVAL_T`] standard errors of the runs' paired
+//! differences — the one rule of both diagnoses, [`super::verdict`] (else
 //! not named, or "ambiguous"); viscous damping is named only where hysteresis damping
 //! does not predict the held-out runs better by [`FAMILY_T`] standard error. The named
 //! causes' intervals are then widened to the folds' grouped jackknife where wider.
@@ -55,10 +56,14 @@
 //! [`structure`]: super::structure::residual_structure
 
 use super::catalogue::Candidate;
-use super::held_out::{held_out_rss, HELD_OUT_T};
+use super::held_out::held_out_rss;
 use super::paired::Paired;
 use super::select::{candidates, parameters, refit, BaseFreedom, Fitted, Refit};
 use super::structure::{residual_structure, Structure};
+use super::verdict::{decide, decide_with, Margins, Verdict, GAIN_T};
+
+/// The held-out rival margin of a force diagnosis ([`Margins::RUNS`]).
+pub const RIVAL_T: f64 = Margins::RUNS.rival_t;
 use super::ContactSamples;
 use hcm_core::effect::ExtendedLaw;
 use rayon::prelude::*;
@@ -287,7 +292,7 @@ impl Ranked {
 /// How much better the richer member of a family (hysteresis damping) may predict
 /// held-out runs than the simpler one (viscous damping, its p = 0) for the simpler to
 /// be named (paired t, –): naming viscous damping claims p = 0, so the richer one must
-/// not do better by even one standard error; between that and [`HELD_OUT_T`] the data
+/// not do better by even one standard error; between that and [`RIVAL_T`] the data
 /// lean to p > 0 without telling, and neither is named.
 pub const FAMILY_T: f64 = 1.0;
 
@@ -353,23 +358,42 @@ impl Problem<'_> {
         };
         let own = with(k);
         let name = |m: usize| ranked.trials[m].0 .0.name();
-        let gain = Paired::of(before, &own);
-        if gain.t() < HELD_OUT_T {
-            let why = format!(
-                "its gain on held-out runs, {:.3e} ± {:.3e} N² per run, is {:.1} standard \
-                 errors, less than {HELD_OUT_T}",
-                gain.mean,
-                gain.standard_error,
-                gain.t()
-            );
-            return (own, Some((why, None)));
-        }
-        if let Some(m) = ranked.best_other(k, false) {
-            let lead = Paired::of(&with(m), &own);
-            if lead.t() < HELD_OUT_T {
+        // The one rule (`verdict`) on the trial and the best of another family.
+        let rival = ranked.best_other(k, false);
+        let other = rival.map(with);
+        let mut contenders = vec![Some(own.as_slice())];
+        contenders.extend(other.as_deref().map(Some));
+        let pair = |a: usize, b: usize| {
+            let mut causes = naming.chosen.clone();
+            causes.extend([a, b].map(|i| ranked.trials[[k, rival.unwrap_or(k)][i]].0));
+            self.held_out(&causes)
+        };
+        let decision = decide_with(before, &contenders, (0.0, Margins::RUNS), |a, b| {
+            Some(pair(a, b))
+        });
+        match decision.verdict {
+            Verdict::Named(0) => {}
+            Verdict::Nothing => {
+                let gain = decision.gains[0];
                 let why = format!(
-                    "on held-out runs `{}` predicts better than `{}` by only {:.1} standard \
-                     errors (less than {HELD_OUT_T}): the data cannot tell them apart",
+                    "its gain on held-out runs, {:.3e} ± {:.3e} N² per run, is {:.1} standard \
+                     errors, less than {GAIN_T}",
+                    gain.mean,
+                    gain.standard_error,
+                    gain.t()
+                );
+                return (own, Some((why, None)));
+            }
+            // A rival of another family the held-out runs do not tell from it (with it
+            // in the model, this one adds nothing more) — or prefer, though the
+            // criterion preferred this one: the two evidences disagree, and neither is
+            // named.
+            _ => {
+                let m = rival.unwrap_or(k);
+                let lead = Paired::of(other.as_deref().unwrap_or(&[]), &own);
+                let why = format!(
+                    "on held-out runs `{}` predicts better than `{}` by {:.1} standard \
+                     errors (not {RIVAL_T}): the data cannot tell them apart",
                     name(k),
                     name(m),
                     lead.t()
@@ -381,7 +405,7 @@ impl Problem<'_> {
             let richer = parameters(ranked.trials[k].0 .1) > parameters(ranked.trials[j].0 .1);
             let other = with(j);
             let (lead, bar) = if richer {
-                (Paired::of(&other, &own).t(), HELD_OUT_T)
+                (Paired::of(&other, &own).t(), RIVAL_T)
             } else {
                 (-Paired::of(&own, &other).t(), -FAMILY_T)
             };
@@ -493,7 +517,7 @@ impl Problem<'_> {
     /// A partial answer where the chosen causes leave structure (`naming.unexplained`):
     /// each chosen cause re-fitted alone; the best one is named alone when it removes at
     /// least [`PARTIAL_SHARE`] of the base model's excess over the noise (`base_fit`) and
-    /// its gain on held-out runs, run by run, is at least [`HELD_OUT_T`] standard errors
+    /// its gain on held-out runs, run by run, is at least [`GAIN_T`] standard errors
     /// (a misfit shape leaves residuals that move together within a run, so the samples
     /// are not independent evidence). The others, and a later step's provisional term,
     /// are reported as not accepted. False (nothing changed) otherwise.
@@ -512,8 +536,9 @@ impl Problem<'_> {
         if (base_fit.rss - fit.rss) / excess < PARTIAL_SHARE {
             return false;
         }
-        let gain = Paired::of(&self.held_out(&[]), &self.held_out(&[cause]));
-        if gain.t() < HELD_OUT_T {
+        let alone = self.held_out(&[cause]);
+        let verdict = decide(&self.held_out(&[]), &[Some(&alone)], (0.0, Margins::RUNS)).verdict;
+        if verdict != Verdict::Named(0) {
             return false;
         }
         let after = self.structure_of(&fit);

@@ -4,11 +4,12 @@
 
 use super::catalogue::Kind;
 use super::gain::{self, GainTable};
-use super::held_out::HELD_OUT_T;
+use super::naming::RIVAL_T;
 use super::naming::{EVIDENCE, FAMILY_T};
 use super::quality::DataQuality;
 use super::select::BaseFreedom;
 use super::structure::Structure;
+use super::verdict::GAIN_T;
 use super::Diagnosis;
 use crate::dataset::newton::MAX_MISFIT;
 use std::fmt::Write as _;
@@ -250,7 +251,7 @@ fn the_cause(md: &mut String, d: &Diagnosis) {
     if d.causes.is_empty() {
         // The rule as `naming` applies it (the linear ranking's share ≥ 2 % only orders
         // the report's selection steps; it decides nothing).
-        let _ = writeln!(md, "No cause is named. Every catalogued effect was re-fitted with the base law; one is named when its RSS drop exceeds ln(n)·σ² per parameter (BIC), its 95 % intervals are finite, no effect of another family comes within {} of it in the criterion, and the residual it leaves is noise — or, re-fitted alone, it removes at least {:.0} % of the base model's excess over the noise and wins on held-out runs by {HELD_OUT_T} standard errors (a partial answer). The effects tried and why none was accepted are listed under the decision below.\n", super::naming::EVIDENCE, 100.0 * super::naming::PARTIAL_SHARE);
+        let _ = writeln!(md, "No cause is named. Every catalogued effect was re-fitted with the base law; one is named when its RSS drop exceeds ln(n)·σ² per parameter (BIC), its 95 % intervals are finite, no effect of another family comes within {} of it in the criterion, and the residual it leaves is noise — or, re-fitted alone, it removes at least {:.0} % of the base model's excess over the noise and wins on held-out runs by {GAIN_T} standard errors (a partial answer). The effects tried and why none was accepted are listed under the decision below.\n", super::naming::EVIDENCE, 100.0 * super::naming::PARTIAL_SHARE);
     } else {
         let _ = writeln!(md, "| effect | kind | parameter | value | 95 % interval | share |\n|---|---|---|---|---|---|");
         for c in &d.causes {
@@ -320,7 +321,7 @@ fn decision(md: &mut String, d: &Diagnosis) {
     };
     let scattered = if d.before.scattered {
         format!(
-            "; the runs scatter beyond the sample noise, so it must also win on held-out runs, run by run: its gain and its lead over the best effect of another family each at {HELD_OUT_T} standard errors of the runs' paired differences (viscous damping only where hysteresis damping is not better by {FAMILY_T})"
+            "; the runs scatter beyond the sample noise, so it must also win on held-out runs, run by run: its gain at {GAIN_T} and its lead over the best effect of another family at {RIVAL_T} standard errors of the runs' paired differences (viscous damping only where hysteresis damping is not better by {FAMILY_T})"
         )
     } else {
         String::new()

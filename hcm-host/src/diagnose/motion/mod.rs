@@ -9,21 +9,25 @@
 //! user's model otherwise fixed ([`fit`]), and judged on the held-out tosses by its
 //! paired gain over the user's model, toss by toss ([`Paired`]). A toss's score is its
 //! mean position error (%) plus mean rotation error (°), plus, where the data hold a
-//! force channel, its mean force error (% of the body's weight). A candidate *helps*
-//! when that gain is at least [`HELPS_T`] standard errors above zero and at least
-//! [`MIN_GAIN`] of the model's held-out score. The one with the largest gain is named
-//! only if it also beats by [`RIVAL_T`] standard errors, on the same tosses, every other
-//! helping candidate and every candidate whose mean gain is larger than its own though
-//! less sure (a large gain carried by a few tosses may be the true cause, of which a
-//! small steady gain is only a shadow); otherwise the answer is "ambiguous" and names
-//! none. A named
-//! cause is added to the model, and the search repeats on what is left (at most
-//! [`MAX_ROUNDS`] causes). Nothing helping: the answer is "none".
+//! force channel, its mean force error (% of the body's weight). The decision is the
+//! one rule of every diagnosis, [`super::verdict`], with the tosses as the units: a
+//! candidate *helps* when its gain is at least [`GAIN_T`] standard errors above zero
+//! and at least [`MIN_GAIN`] of the model's held-out score; the helping one with the
+//! largest gain is named only if it also beats by [`RIVAL_T`] standard errors, on the
+//! same tosses, every other helping candidate and every candidate whose mean gain is
+//! larger than its own though less sure; otherwise the answer is "ambiguous" and names
+//! none. A named cause is added to the model, and the search repeats on what is left
+//! (at most [`MAX_ROUNDS`] causes). Nothing helping: the answer is "none".
 
 pub mod catalogue;
 pub mod fit;
 
 pub use super::paired::Paired;
+pub use super::verdict::GAIN_T;
+use super::verdict::{decide_with, Margins, Verdict};
+/// Standard errors the best candidate must beat each rival by on the held-out tosses
+/// ([`Margins::TOSSES`]).
+pub const RIVAL_T: f64 = Margins::TOSSES.rival_t;
 pub use catalogue::{Family, MotionEffect};
 
 use crate::dataset::Dataset;
@@ -34,16 +38,10 @@ use crate::toss::{TossError, TossSetup};
 use fit::{Fitted, Part, Subject};
 use serde::Serialize;
 
-/// How many standard errors a held-out gain must lie above zero to help (one-sided;
-/// with the normal approximation a chance of about 1 in 700 for one candidate).
-pub const HELPS_T: f64 = 3.0;
 /// The least held-out gain that helps, as a fraction of the user's model's held-out
 /// score (the first round's, also in later rounds): a significant but negligible
 /// improvement is not a cause worth adding.
 pub const MIN_GAIN: f64 = 0.01;
-/// How many standard errors the best candidate must beat each other helping one by,
-/// on the same held-out tosses, to be named alone.
-pub const RIVAL_T: f64 = 2.0;
 /// Causes named one after another, at most.
 pub const MAX_ROUNDS: usize = 2;
 /// Held-out tosses a diagnosis needs, at least.
@@ -138,8 +136,6 @@ struct Stage<'a> {
     held_out: Part<'a>,
     /// The round's model's held-out scores, toss by toss (% + °).
     base_held: Vec<f64>,
-    /// The least held-out gain that helps (% + °).
-    floor: f64,
     /// The body's mass (kg), which scales the candidates' bounds.
     mass: f64,
     /// The body's half width (m), which scales the candidates' bounds.
@@ -165,15 +161,7 @@ fn fit_candidates(
         let neutral = effect.neutral(subject.model, subject.contact);
         let fitted = fit::fit(subject, effect, &bounds, &neutral, &stage.training);
         let held = subject.scores(effect, &fitted.values, &stage.held_out);
-        let base_held = &stage.base_held;
-        let result = judge(
-            effect,
-            &bounds,
-            &fitted,
-            base_held,
-            held.as_deref(),
-            stage.floor,
-        );
+        let result = judge(effect, &bounds, &fitted, held.as_deref());
         results.push(result);
         held_scores.push((effect, fitted, held));
     }
@@ -242,12 +230,13 @@ impl Search {
             training: training_part,
             held_out: held_part,
             base_held,
-            floor,
             mass: self.mass,
             size: self.size,
         };
-        let (results, held_scores) = fit_candidates(&stage, &open, round, progress);
-        let (chosen, tied) = choose(&results, &held_scores);
+        let (mut results, held_scores) = fit_candidates(&stage, &open, round, progress);
+        // Whether the best adds beyond a rival: the best fitted on top of the rival.
+        let both = |b: usize, r: usize| self.stacked(&held_scores[r], held_scores[b].0);
+        let (chosen, tied) = decided(&mut results, &held_scores, (&stage.base_held, floor), both);
         let this = Round {
             training: base_training,
             held_out: mean(&stage.base_held),
@@ -262,6 +251,36 @@ impl Search {
         };
         self.name(this, held_scores, index);
         Ok(true)
+    }
+
+    /// The held-out scores of the current model with `first` as fitted, then `second`
+    /// fitted on top of it on the training tosses (read through `first` where it is a
+    /// measurement effect): the model with both, for the rule's test whether the best
+    /// candidate (`second`) adds beyond a rival (`first`). None where `second` cannot change that model or a
+    /// replay fails.
+    fn stacked(&self, first: &Fit, second: MotionEffect) -> Option<Vec<f64>> {
+        let (contact, plane) = (self.indices.contact, self.indices.plane);
+        let (effect, fitted, _) = first;
+        let model = effect.apply(&self.current, contact, plane, &fitted.values);
+        if !second.changes(&model, contact) {
+            return None;
+        }
+        let read = |data: &Dataset| effect.transform(data, &fitted.values);
+        let training = read(&self.training).unwrap_or_else(|| self.training.clone());
+        let held_out = read(&self.held_out).unwrap_or_else(|| self.held_out.clone());
+        let (training, held_out) = (
+            Part::new(&model, &training).ok()?,
+            Part::new(&model, &held_out).ok()?,
+        );
+        let subject = Subject {
+            model: &model,
+            contact,
+            plane,
+        };
+        let bounds = second.bounds(self.mass, self.size);
+        let neutral = second.neutral(&model, contact);
+        let fitted = fit::fit(&subject, second, &bounds, &neutral, &training);
+        subject.scores(second, &fitted.values, &held_out)
     }
 
     /// Names candidate `index` of the round `this`: adds it to the model, reads the
@@ -364,65 +383,51 @@ fn search(
     Ok(search.diagnosis())
 }
 
-/// A candidate's verdict from its fit and held-out scores.
+/// A candidate's result from its fit and held-out scores (its gain and whether it
+/// helps filled in by [`decided`]).
 fn judge(
     effect: MotionEffect,
     bounds: &[crate::numerics::optimize::Bound],
     fitted: &Fitted,
-    base_held: &[f64],
     held: Option<&[f64]>,
-    floor: f64,
 ) -> CandidateResult {
     let parameters = (bounds.iter().zip(&fitted.values))
         .map(|(b, v)| (b.name.clone(), *v))
         .collect();
-    let (held_out, gain) = match held {
-        Some(scores) => (mean(scores), Paired::of(base_held, scores)),
-        None => (f64::INFINITY, Paired::of(&[], &[])),
-    };
-    let helps = gain.t() >= HELPS_T && gain.mean >= floor;
     CandidateResult {
         name: effect.name(),
         family: effect.family().name(),
         parameters,
         training: fitted.fitness,
-        held_out,
-        gain,
-        helps,
+        held_out: held.map_or(f64::INFINITY, mean),
+        gain: Paired::of(&[], &[]),
+        helps: false,
         evaluations: fitted.evaluations,
     }
 }
 
-/// The helping candidate with the largest gain, if it beats by [`RIVAL_T`] on the same
-/// tosses every other helping one and every one with a larger mean gain; else the
-/// tied names (best first).
-fn choose(
-    results: &[CandidateResult],
-    held: &[(MotionEffect, Fitted, Option<Vec<f64>>)],
+/// The one rule ([`decide_with`]) on the round's candidates: each result's gain over
+/// `base_held` and whether it helps (gain ≥ `floor`) filled in; the candidate named,
+/// if any, else the tied names (best first). `both(best, rival)` scores the model with
+/// both on the held-out tosses.
+fn decided(
+    results: &mut [CandidateResult],
+    held: &[Fit],
+    (base_held, floor): (&[f64], f64),
+    both: impl Fn(usize, usize) -> Option<Vec<f64>>,
 ) -> (Option<usize>, Vec<&'static str>) {
-    let helping: Vec<usize> = (0..results.len()).filter(|&i| results[i].helps).collect();
-    let Some(&best) = helping
-        .iter()
-        .max_by(|&&a, &&b| results[a].gain.mean.total_cmp(&results[b].gain.mean))
-    else {
-        return (None, Vec::new());
-    };
-    let best_scores = held[best].2.as_deref().unwrap_or(&[]);
-    let larger = |i: usize| results[i].gain.mean > results[best].gain.mean;
-    let tied: Vec<&'static str> = (0..results.len())
-        .filter(|&i| i != best && (results[i].helps || larger(i)))
-        .filter(|&i| {
-            let other = held[i].2.as_deref().unwrap_or(&[]);
-            Paired::of(other, best_scores).t() < RIVAL_T
-        })
-        .map(|i| results[i].name)
-        .collect();
-    if tied.is_empty() {
-        (Some(best), Vec::new())
-    } else {
-        let mut names = vec![results[best].name];
-        names.extend(tied);
-        (None, names)
+    let scores: Vec<Option<&[f64]>> = held.iter().map(|h| h.2.as_deref()).collect();
+    let decision = decide_with(base_held, &scores, (floor, Margins::TOSSES), both);
+    for (r, (gain, helps)) in results
+        .iter_mut()
+        .zip(decision.gains.iter().zip(&decision.helps))
+    {
+        (r.gain, r.helps) = (*gain, *helps);
+    }
+    match decision.verdict {
+        Verdict::Named(i) => (Some(i), Vec::new()),
+        Verdict::Ambiguous(tied) => (None, tied.iter().map(|&i| results[i].name).collect()),
+        Verdict::Nothing => (None, Vec::new()),
     }
 }
 

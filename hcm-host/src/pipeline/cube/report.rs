@@ -3,7 +3,7 @@
 
 use super::phases::{IMPACT_AFTER, REST_ANGLE, REST_DISTANCE, REST_SPAN};
 use super::results::CubeResults;
-use crate::diagnose::motion::{HELPS_T, MIN_GAIN, RIVAL_T};
+use crate::diagnose::motion::{GAIN_T, MIN_GAIN, RIVAL_T};
 use crate::identify::motion::set_options;
 use std::fmt::Write;
 
@@ -153,7 +153,7 @@ impl CubeResults {
             "## What the fitted model still gets wrong (diagnose-motion)\n\nEach candidate \
              fitted on the {} training tosses, judged on the {} held-out ones by its gain \
              (the model's score minus the candidate's, % + ° per toss); it helps at t ≥ \
-             {HELPS_T} and a gain ≥ {:.0} % of the model's held-out score, and is named if it \
+             {GAIN_T} and a gain ≥ {:.0} % of the model's held-out score, and is named if it \
              beats every other helping one by t ≥ {RIVAL_T}.\n",
             d.training_tosses,
             d.held_out_tosses,
