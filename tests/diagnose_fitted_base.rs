@@ -6,12 +6,11 @@
 //! exponent change is not a candidate, on several base laws, with an effect hidden
 //! and with nothing hidden.
 
-use hcm_host::diagnose::naming::name_causes;
 use hcm_host::diagnose::select::BaseFreedom;
 use hcm_host::diagnose::{contact_samples, diagnose, noise::noise_floor, DiagnoseSettings};
 use hcm_host::identify::{identify, Method};
 use hcm_host::progress::Silent;
-use hcm_tests::hidden::hidden;
+use hcm_tests::hidden::{decided, hidden};
 
 /// The names a diagnosis gives on 12 runs with `effect` hidden, against a base of
 /// `law` fitted by least squares on the same runs (its exponent free), judged with
@@ -37,7 +36,7 @@ fn diagnosed_against_fitted(
     base.contacts[0].model.normal.base = fit.law;
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
-    let naming = name_causes(&samples, &base.contacts[0].model.normal, freedom, sigma);
+    let naming = decided(&base, &samples, freedom, sigma);
     let names: Vec<&'static str> = naming.chosen.iter().map(|(c, _)| c.name()).collect();
     println!(
         "{law}, {effect:?}, {freedom:?}: fitted {:?} → {names:?}",

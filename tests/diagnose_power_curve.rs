@@ -12,10 +12,9 @@
 //! ball's own law's damping exponent (variable stiffness, δ^1.25·δ̇) re-tuning the base
 //! absorbs most of it (README, "Known limit"), which would measure the base, not the rule.
 
-use hcm_host::diagnose::naming::name_causes;
 use hcm_host::diagnose::select::BaseFreedom;
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
-use hcm_tests::hidden::{hidden, EFFECTS};
+use hcm_tests::hidden::{decided, hidden, EFFECTS};
 use rayon::prelude::*;
 
 /// Runs per data set, as in tests/diagnose.rs.
@@ -78,8 +77,7 @@ fn named(hidden_effect: &str, seed: u64) -> Vec<&'static str> {
     let (base, data) = hidden(hidden_effect, RUNS, seed);
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
-    let law = base.contacts[0].model.normal.clone();
-    let naming = name_causes(&samples, &law, BaseFreedom::Given, sigma);
+    let naming = decided(&base, &samples, BaseFreedom::Given, sigma);
     naming.chosen.iter().map(|(c, _)| c.name()).collect()
 }
 

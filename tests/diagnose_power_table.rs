@@ -10,13 +10,12 @@
 //! Strengths are scaled as in tests/diagnose_power_curve.rs, from each law's own
 //! no-effect runs.
 
-use hcm_host::diagnose::naming::name_causes;
 use hcm_host::diagnose::select::BaseFreedom;
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::identify::{identify, Method};
 use hcm_host::progress::Silent;
 use hcm_host::scenario::Model;
-use hcm_tests::hidden::{measured, model, EFFECTS};
+use hcm_tests::hidden::{decided, measured, model, EFFECTS};
 use rayon::prelude::*;
 
 /// Runs per data set.
@@ -175,8 +174,7 @@ fn named(setup: Setup, l: usize, hidden: &str, seed: u64) -> Vec<(&'static str, 
     };
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
-    let law = base.contacts[0].model.normal.clone();
-    let naming = name_causes(&samples, &law, freedom, sigma);
+    let naming = decided(&base, &samples, freedom, sigma);
     naming
         .fit
         .causes

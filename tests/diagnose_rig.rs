@@ -499,6 +499,39 @@ fn a_low_pass_filtered_sensor_is_named_with_its_time_constant() {
 }
 
 // ---------------------------------------------------------------------------------
+// A force sensor whose gain grows with the force: measurement, never physics.
+
+/// A sensor reading f + κ·f² (κ·F_peak from −6 % to +21 %): once the momentum balance
+/// has taken its mean gain off, its shape is a stiffness-exponent change's, and the
+/// force alone cannot tell them. The balance saw the sensor off, so no physical effect
+/// is named — the answer is the gain with "ambiguous (stiffness_exponent or
+/// sensor_nonlinearity)" or with what is left unexplained. Before
+/// `diagnose::nonlinearity`, κ·F_peak = 2.1 % was answered `sensor_gain +
+/// stiffness_exponent`.
+#[test]
+fn a_sensor_whose_gain_grows_with_the_force_is_never_a_stiffness_change() {
+    let cases = [(1e-5, 108), (3e-5, 109), (-3e-5, 123), (1e-4, 124)];
+    let answers: Vec<Diagnosis> = cases
+        .par_iter()
+        .map(|&(kappa, seed)| {
+            let mut rig = ball();
+            rig.sensor.nonlinearity = kappa;
+            diagnosed(&format!("nonlinearity {kappa:e}/N"), &rig, seed)
+        })
+        .collect();
+    for (&(kappa, _), d) in cases.iter().zip(&answers) {
+        assert_eq!(names(d), ["sensor_gain"], "{kappa}: {:#?}", d.causes);
+        if !d.ambiguous.is_empty() {
+            assert!(
+                d.ambiguous.contains(&"sensor_nonlinearity"),
+                "{kappa}: {:?}",
+                d.ambiguous
+            );
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------
 // Close to the catalogue, not equal (issue 27, class 4): partial answers.
 
 /// The plain ball's peak force (N).

@@ -3,10 +3,9 @@
 //! and damping, Eq 18) and a quiet sensor, nothing hidden must name nothing, and a
 //! hidden effect must still be named.
 
-use hcm_host::diagnose::naming::name_causes;
 use hcm_host::diagnose::select::BaseFreedom;
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
-use hcm_tests::hidden::{measured, model};
+use hcm_tests::hidden::{decided, measured, model};
 
 /// The names a diagnosis gives on `runs` runs of the ball with the scenario's own 2 %
 /// scatter, force noise `sigma` (N) and `effect` hidden, against the scenario's law.
@@ -25,8 +24,7 @@ fn named_with_scatter(
     let base = model("bouncing_ball.toml", &[]);
     let samples = contact_samples(&base, &data, 0).unwrap();
     let sigma = noise_floor(&samples).sigma;
-    let law = base.contacts[0].model.normal.clone();
-    let naming = name_causes(&samples, &law, BaseFreedom::Given, sigma);
+    let naming = decided(&base, &samples, BaseFreedom::Given, sigma);
     let names: Vec<&'static str> = naming.chosen.iter().map(|(c, _)| c.name()).collect();
     println!(
         "{effect:?}, σ {sigma:.2} N, {runs} runs, seed {seed}: {names:?}, unexplained {}",

@@ -2,8 +2,10 @@
 //! stepwise selection and joint re-fit name from them, shared by the diagnose tests.
 
 use hcm_host::dataset::Dataset;
-use hcm_host::diagnose::naming::name_causes;
+use hcm_host::diagnose::momentum::sensor_gain;
+use hcm_host::diagnose::naming::{name_causes_beside_momentum, Naming};
 use hcm_host::diagnose::select::{select, BaseFreedom, Refit, Selection};
+use hcm_host::diagnose::ContactSamples;
 use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_host::experiment::generate;
 use hcm_host::scenario::{Model, Scenario};
@@ -68,8 +70,18 @@ pub fn selected(effect: &str, runs: usize, seed: u64) -> (Selection, Refit) {
     let sigma = noise_floor(&samples).sigma;
     let law = base.contacts[0].model.normal.clone();
     let selection = select(&samples, &law, BaseFreedom::Given, sigma);
-    let naming = name_causes(&samples, &law, BaseFreedom::Given, sigma);
-    (selection, naming.fit)
+    (
+        selection,
+        decided(&base, &samples, BaseFreedom::Given, sigma).fit,
+    )
+}
+
+/// The decision `hcm diagnose` takes on contact 0 of `base` along `samples` (noise σ in
+/// N), the base's freedom `freedom`: the causes named beside the momentum balance.
+pub fn decided(base: &Model, samples: &ContactSamples, freedom: BaseFreedom, sigma: f64) -> Naming {
+    let contact = &base.contacts[0];
+    let gain = sensor_gain(samples, contact.effective_mass);
+    name_causes_beside_momentum(samples, &contact.model.normal, freedom, sigma, gain)
 }
 
 /// The named causes of a re-fit, each as (effect name, parameter values, share).

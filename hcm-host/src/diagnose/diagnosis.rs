@@ -3,7 +3,7 @@
 
 use super::gain::{gain, group_table, holdout, GainTable, Judged};
 use super::momentum::{sensor_gain, with_gain, SensorGain};
-use super::naming::{name_causes, unnamed, Naming, NotAccepted, Trial};
+use super::naming::{name_causes_beside_momentum, unnamed, Naming, NotAccepted, Trial};
 use super::noise::{noise_floor, NoiseFloor};
 use super::quality::{assess, reconstruction_gap, DataQuality, MAX_GAP_SIGMAS};
 use super::samples::contact_samples_of;
@@ -223,9 +223,10 @@ fn rescaled(base: &Model, data: &Dataset, c: usize, factor: f64) -> Result<Datas
 fn examine(
     base: &Model,
     (completed, fitted): (&Completed<'_>, &Completed<'_>),
-    (c, gain): (usize, f64),
+    (c, momentum): (usize, Option<SensorGain>),
     freedom: BaseFreedom,
 ) -> Result<Findings, IdentifyError> {
+    let gain = momentum.filter(|g| g.named).map_or(1.0, |g| g.value);
     let samples: ContactSamples = contact_samples_of(base, fitted, c)?;
     let noise = noise_floor(&samples);
     let sigma = noise.sigma;
@@ -246,7 +247,7 @@ fn examine(
     // What the contact's reconstruction (camera-rate motion) adds to the noise.
     let judged_sigma = super::noise::effective_sigma(&samples, &law, sigma);
     let naming = if quality.sufficient {
-        name_causes(&samples, &law, freedom, judged_sigma)
+        name_causes_beside_momentum(&samples, &law, freedom, judged_sigma, momentum)
     } else {
         unnamed(&samples, &law, freedom, judged_sigma)
     };
@@ -415,11 +416,10 @@ pub fn diagnose(
     // The training runs with their reconstructions, so that each sample carries its
     // reconstruction's uncertainty (0 where motion and force share every row).
     let fitted = completed.subset(&split.training);
-    let gain_value = named_gain.map_or(1.0, |g| g.value);
     let findings = examine(
         base,
         (&completed, &fitted),
-        (c, gain_value),
+        (c, momentum_gain),
         settings.base_freedom,
     )?;
     let (naming, sigma) = (findings.naming, findings.noise.sigma);

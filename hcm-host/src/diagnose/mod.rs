@@ -14,6 +14,7 @@ pub mod gain;
 pub mod held_out;
 pub mod naming;
 pub mod noise;
+pub mod nonlinearity;
 pub mod paired;
 pub mod quality;
 pub mod report;

@@ -57,6 +57,8 @@
 
 use super::catalogue::Candidate;
 use super::held_out::held_out_rss;
+use super::momentum::SensorGain;
+use super::nonlinearity::{mimicking_gain_shift, ruled_out, SENSOR_NONLINEARITY};
 use super::paired::Paired;
 use super::select::{candidates, parameters, refit, BaseFreedom, Fitted, Refit};
 use super::structure::{residual_structure, Structure};
@@ -625,6 +627,59 @@ impl Naming {
         }
     }
 
+    /// A named `stiffness_exponent` a force-dependent sensor gain could have made
+    /// ([`super::nonlinearity`]): unless the momentum balance's `gain` rules that sensor
+    /// out, the change is not named — "ambiguous" between it and `sensor_nonlinearity`,
+    /// its term kept in the extended model as a provisional one; in a partial answer,
+    /// withdrawn with the rest (`base` gives the base re-fit and its residual).
+    fn doubt_stiffness(
+        &mut self,
+        samples: &ContactSamples,
+        gain: Option<SensorGain>,
+        base: impl FnOnce() -> (Refit, Structure),
+    ) {
+        let stiffness = |(c, _): &(Candidate, f64)| *c == Candidate::StiffnessExponent;
+        let Some(index) = self.chosen.iter().position(stiffness) else {
+            return;
+        };
+        let Some(shift) = mimicking_gain_shift(samples, &self.fit.law) else {
+            return;
+        };
+        if ruled_out(shift, gain) {
+            return;
+        }
+        if self.partial {
+            let (fit, after) = base();
+            self.withdraw(fit, after);
+            self.partial = false;
+            return;
+        }
+        let balance = match gain {
+            Some(g) => format!(
+                "found the sensor's gain {:.4} ≠ 1, so it cannot rule that out",
+                g.value
+            ),
+            None => "could not measure (no motion recorded through the contacts)".to_owned(),
+        };
+        let cause = self.fit.causes.remove(index);
+        self.not_accepted.push(NotAccepted {
+            effect: cause.effect,
+            parameters: cause.parameters.clone(),
+            reason: format!(
+                "a force sensor whose gain grows with the force (f + κ·f²) has its shape and would \
+                 read impulses {:.2} % high, which the momentum balance {balance}",
+                100.0 * shift
+            ),
+        });
+        self.fit.causes.push(cause);
+        self.chosen.remove(index);
+        self.provisional = self
+            .provisional
+            .or(Some((Candidate::StiffnessExponent, f64::NAN)));
+        self.ambiguous
+            .extend([Candidate::StiffnessExponent.name(), SENSOR_NONLINEARITY]);
+    }
+
     /// Structure is left: report every cause that entered as not accepted, with the
     /// residual's χ², and fall back to the base re-fit `base_fit` and its residual; the
     /// answer is then "unexplained" alone, not also "ambiguous".
@@ -692,6 +747,25 @@ pub fn name_causes(
         causes.extend(naming.provisional);
         held_out_rss(samples, (base, freedom), &causes, sigma).widen(&mut naming.fit);
     }
+    naming
+}
+
+/// [`name_causes`] beside the momentum balance's `gain` (None where the motion cannot
+/// give one): a named stiffness-exponent change the balance cannot tell from a force
+/// sensor whose gain grows with the force is not named but "ambiguous" with it
+/// ([`super::nonlinearity`]). What `hcm diagnose` decides.
+pub fn name_causes_beside_momentum(
+    samples: &ContactSamples,
+    base: &ExtendedLaw<f64>,
+    freedom: BaseFreedom,
+    sigma: f64,
+    gain: Option<SensorGain>,
+) -> Naming {
+    let mut naming = name_causes(samples, base, freedom, sigma);
+    naming.doubt_stiffness(samples, gain, || {
+        let unnamed = unnamed(samples, base, freedom, sigma);
+        (unnamed.fit, unnamed.after)
+    });
     naming
 }
 

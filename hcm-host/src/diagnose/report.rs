@@ -326,7 +326,7 @@ fn decision(md: &mut String, d: &Diagnosis) {
     } else {
         String::new()
     };
-    let _ = writeln!(md, "\nThe decision, on full re-fits: each step adds every effect not yet named to the model and re-fits base and effects together ({freedom}); the best by information criterion enters if its RSS drop passes the criterion, its parameters are determined and the best effect of another family scores worse by at least {EVIDENCE} (else `ambiguous`, neither named){scattered}; a cause is named only if the residual then holds nothing but noise.\n\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|");
+    let _ = writeln!(md, "\nThe decision, on full re-fits: each step adds every effect not yet named to the model and re-fits base and effects together ({freedom}); the best by information criterion enters if its RSS drop passes the criterion, its parameters are determined and the best effect of another family scores worse by at least {EVIDENCE} (else `ambiguous`, neither named){scattered}; a cause is named only if the residual then holds nothing but noise, or alone removes at least {:.0} % of the base model's excess and wins on held-out runs (a partial answer); a `stiffness_exponent` only where the momentum balance rules out a force sensor whose gain grows with the force (else `ambiguous` with `sensor_nonlinearity`).\n\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|", 100.0 * super::naming::PARTIAL_SHARE);
     for t in &d.naming {
         let _ = writeln!(
             md,

@@ -90,7 +90,7 @@ pub struct Contact {
     /// ships, evaluated by every host stage.
     pub model: HostContactModel,
     /// Effective mass m_e = m1·m2/(m1 + m2) (kg) of the pair.
-    pub(crate) effective_mass: f64,
+    pub effective_mass: f64,
     /// Parameter noise b per law or friction parameter (Eq 18), for generated
     /// experiments, sorted by name (the order of the draws).
     pub noise: Vec<(String, f64)>,
