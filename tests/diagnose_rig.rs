@@ -453,6 +453,13 @@ fn lag_named_or_ambiguous(d: &Diagnosis, effect: &str) -> bool {
             "{:#?}",
             d.not_accepted
         );
+        // The answer still says how long the lag is, either way.
+        let line = hcm_host::diagnose::report::answer_line(d);
+        assert!(
+            line.contains("sensor_delay (delay = ")
+                && line.contains("sensor_filter (time_constant = "),
+            "{line}"
+        );
         false
     } else {
         assert_eq!(names(d), [effect], "{:#?}", d.causes);

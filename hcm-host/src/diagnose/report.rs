@@ -93,7 +93,7 @@ pub fn answer_line(d: &Diagnosis) -> String {
         return if !d.ambiguous.is_empty() {
             format!(
                 "ambiguous between {}: either explains the residual and the data cannot tell which, so neither is named",
-                d.ambiguous.join(" and ")
+                ambiguous_with_values(d)
             )
         } else if d.unexplained_share > 0.0 {
             "unexplained: the base model leaves a structured residual that no catalogued effect explains".into()
@@ -125,7 +125,7 @@ pub fn answer_line(d: &Diagnosis) -> String {
     } else {
         format!(
             "; beyond them, ambiguous between {} (neither named)",
-            d.ambiguous.join(" and ")
+            ambiguous_with_values(d)
         )
     };
     format!(
@@ -134,6 +134,24 @@ pub fn answer_line(d: &Diagnosis) -> String {
         100.0 * (1.0 - left),
         100.0 * left
     )
+}
+
+/// The effects `d` could not tell apart, each with its first parameter as fitted where
+/// the decision reports one (`sensor_delay (delay = 1.02e-6) and sensor_filter
+/// (time_constant = 1.05e-6)`): what either would be, though neither is named.
+fn ambiguous_with_values(d: &Diagnosis) -> String {
+    let with_value = |name: &str| {
+        (d.not_accepted.iter())
+            .find(|n| n.effect == name)
+            .and_then(|n| n.parameters.first())
+            .map_or(name.to_owned(), |p| {
+                format!("{name} ({} = {:.3e})", p.name, p.value)
+            })
+    };
+    (d.ambiguous.iter())
+        .map(|name| with_value(name))
+        .collect::<Vec<_>>()
+        .join(" and ")
 }
 
 /// `value [lo, hi]` in scientific notation with enough significant digits (3 to 8)
