@@ -338,3 +338,28 @@ fn data_that_cannot_show_a_shape_get_a_verdict_not_a_cause() {
     let names: Vec<&str> = good.causes.iter().map(|c| c.effect).collect();
     assert_eq!(names, ["viscous_damping"]);
 }
+
+/// A force sensor whose gain grows with the force (`experiment.force_nonlinearity`,
+/// κ·F_peak ≈ 3 % and 9 % on the ball's 2.9 kN): its shape, once the momentum balance
+/// has taken the mean gain off, is a stiffness-exponent change's, so the physics is not
+/// named — the gain is, and the rest is "ambiguous" with `sensor_nonlinearity` or left
+/// unexplained (`diagnose::nonlinearity`).
+#[test]
+fn a_force_sensor_whose_gain_grows_with_the_force_is_not_named_physics() {
+    use hcm_host::diagnose::{diagnose, DiagnoseSettings};
+    for kappa in [1e-5, 3e-5] {
+        let (base, data) = hidden(&format!("experiment.force_nonlinearity={kappa}"), 12, 7);
+        let settings = DiagnoseSettings {
+            hcm_epochs: 2,
+            ..DiagnoseSettings::default()
+        };
+        let d = diagnose(&base, &data, &settings).unwrap();
+        let names: Vec<&str> = d.causes.iter().map(|c| c.effect).collect();
+        println!(
+            "{kappa}: {} {:?}",
+            hcm_host::diagnose::report::answer(&d),
+            d.sensor_gain
+        );
+        assert_eq!(names, ["sensor_gain"], "{kappa}: {:#?}", d.causes);
+    }
+}

@@ -37,11 +37,18 @@ pub fn noisy_model(model: &Model, rng: &mut ChaCha8Rng) -> Result<Model, Simulat
     Ok(model)
 }
 
-/// Eq 19 and the sensor effects on a simulated run: a lagging force sensor, its
-/// low-pass filter, gain and offset, then σ·ζ on every force, torque, position and velocity component whose σ
+/// Eq 19 and the sensor effects on a simulated run: a force sensor's nonlinearity,
+/// lag, low-pass filter, gain and offset, then σ·ζ on every force, torque, position and velocity component whose σ
 /// is set, sample by sample in time order.
 fn add_output_noise(e: &ExperimentSpec, run: &mut Run, rng: &mut ChaCha8Rng) {
     for track in &mut run.bodies {
+        if e.force_nonlinearity != 0.0 {
+            for sample in &mut track.samples {
+                let magnitude = sample.force.iter().map(|f| f * f).sum::<f64>().sqrt();
+                let scale = 1.0 + e.force_nonlinearity * magnitude;
+                sample.force.iter_mut().for_each(|f| *f *= scale);
+            }
+        }
         if e.sensor_delay > 0.0 {
             delay_forces(&mut track.samples, e.sensor_delay);
         }

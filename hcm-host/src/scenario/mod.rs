@@ -245,6 +245,11 @@ pub struct ExperimentSpec {
     /// for testing `hcm diagnose`.
     #[serde(default)]
     pub(crate) sensor_filter: f64,
+    /// Force-sensor nonlinearity κ (1/N): the sensor element reads f + κ·|f|·f, a gain
+    /// growing with the force (before the lag and the filter). A measurement effect,
+    /// for testing `hcm diagnose`.
+    #[serde(default)]
+    pub(crate) force_nonlinearity: f64,
     /// Force-sensor gain g (–, > 0): every recorded force component is g times the
     /// true one (after the lag, before the offset), torques too. A measurement effect,
     /// for testing `hcm diagnose`.
@@ -273,6 +278,7 @@ impl Default for ExperimentSpec {
             force_offset: [0.0; 3],
             sensor_delay: 0.0,
             sensor_filter: 0.0,
+            force_nonlinearity: 0.0,
             force_gain: unit_gain(),
             conditions: Vec::new(),
             holdout_conditions: Vec::new(),

@@ -364,6 +364,12 @@ impl Scenario {
                 return Err((name.into(), format!("must be {what}, found {value}")));
             }
         }
+        if !e.force_nonlinearity.is_finite() {
+            return Err((
+                "experiment.force_nonlinearity".into(),
+                format!("must be a finite κ (1/N), found {}", e.force_nonlinearity),
+            ));
+        }
         if !(e.force_gain > 0.0 && e.force_gain.is_finite()) {
             return Err((
                 "experiment.force_gain".into(),
