@@ -655,9 +655,13 @@ impl Naming {
             return;
         }
         let balance = match gain {
-            Some(g) => format!(
+            Some(g) if g.named => format!(
                 "found the sensor's gain {:.4} ≠ 1, so it cannot rule that out",
                 g.value
+            ),
+            Some(g) => format!(
+                "measured the gain at {:.4} ± {:.4}, too uncertain to rule that out",
+                g.value, g.standard_error
             ),
             None => "could not measure (no motion recorded through the contacts)".to_owned(),
         };
@@ -667,7 +671,7 @@ impl Naming {
             parameters: cause.parameters.clone(),
             reason: format!(
                 "a force sensor whose gain grows with the force (f + κ·f²) has its shape and would \
-                 read impulses {:.2} % high, which the momentum balance {balance}",
+                 read impulses {:+.2} % off, which the momentum balance {balance}",
                 100.0 * shift
             ),
         });
