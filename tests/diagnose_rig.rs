@@ -149,6 +149,20 @@ fn diagnosed(label: &str, rig: &Rig, seed: u64) -> Diagnosis {
     d
 }
 
+/// [`diagnosed`] on each case in parallel: `case` gives its label, rig and seed.
+fn diagnosed_each<C: Sync>(
+    cases: &[C],
+    case: impl Fn(&C) -> (String, Rig, u64) + Sync,
+) -> Vec<Diagnosis> {
+    cases
+        .par_iter()
+        .map(|c| {
+            let (label, rig, seed) = case(c);
+            diagnosed(&label, &rig, seed)
+        })
+        .collect()
+}
+
 /// The names diagnose gave, in its order.
 fn names(d: &Diagnosis) -> Vec<&'static str> {
     d.causes.iter().map(|c| c.effect).collect()
@@ -486,14 +500,11 @@ fn a_sensor_delay_at_half_a_percent_is_a_lag_a_delay_or_a_filter() {
 #[test]
 fn a_low_pass_filtered_sensor_is_named_with_its_time_constant() {
     let cases = [(0.5e-6, 126), (1e-6, 127), (2.5e-6, 128), (5e-6, 129)];
-    let answers: Vec<Diagnosis> = cases
-        .par_iter()
-        .map(|&(tau, seed)| {
-            let mut rig = ball();
-            rig.sensor.filter = tau;
-            diagnosed(&format!("filter {tau:e} s"), &rig, seed)
-        })
-        .collect();
+    let answers = diagnosed_each(&cases, |&(tau, seed)| {
+        let mut rig = ball();
+        rig.sensor.filter = tau;
+        (format!("filter {tau:e} s"), rig, seed)
+    });
     for (&(tau, _), d) in cases.iter().zip(&answers) {
         let named = lag_named_or_ambiguous(d, "sensor_filter");
         assert!(named || tau < 2.5e-6, "{tau}: {:?}", d.ambiguous);
@@ -518,14 +529,11 @@ fn a_low_pass_filtered_sensor_is_named_with_its_time_constant() {
 #[test]
 fn a_sensor_whose_gain_grows_with_the_force_is_never_a_stiffness_change() {
     let cases = [(1e-5, 108), (3e-5, 109), (-3e-5, 123), (1e-4, 124)];
-    let answers: Vec<Diagnosis> = cases
-        .par_iter()
-        .map(|&(kappa, seed)| {
-            let mut rig = ball();
-            rig.sensor.nonlinearity = kappa;
-            diagnosed(&format!("nonlinearity {kappa:e}/N"), &rig, seed)
-        })
-        .collect();
+    let answers = diagnosed_each(&cases, |&(kappa, seed)| {
+        let mut rig = ball();
+        rig.sensor.nonlinearity = kappa;
+        (format!("nonlinearity {kappa:e}/N"), rig, seed)
+    });
     for (&(kappa, _), d) in cases.iter().zip(&answers) {
         assert_eq!(names(d), ["sensor_gain"], "{kappa}: {:#?}", d.causes);
         if !d.ambiguous.is_empty() {
@@ -592,10 +600,9 @@ fn a_shape_close_to_a_catalogued_one_gets_a_partial_answer() {
             106,
         ),
     ];
-    let answers: Vec<_> = cases
-        .par_iter()
-        .map(|(label, effect, _, seed)| diagnosed(label, &with(ball(), *effect), *seed))
-        .collect();
+    let answers = diagnosed_each(&cases, |&(label, effect, _, seed)| {
+        (label.to_owned(), with(ball(), effect), seed)
+    });
     for ((label, _, name, _), d) in cases.iter().zip(&answers) {
         assert_eq!(names(d), [*name], "{label}: {:#?}", d.causes);
         assert!(d.partial, "{label}");

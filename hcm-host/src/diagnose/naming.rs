@@ -63,12 +63,12 @@ use super::paired::Paired;
 use super::select::{candidates, parameters, refit, BaseFreedom, Fitted, Refit};
 use super::structure::{residual_structure, Structure};
 use super::verdict::{decide, decide_with, Margins, Verdict, GAIN_T};
-
-/// The held-out rival margin of a force diagnosis ([`Margins::RUNS`]).
-pub const RIVAL_T: f64 = Margins::RUNS.rival_t;
 use super::ContactSamples;
 use hcm_core::effect::ExtendedLaw;
 use rayon::prelude::*;
+
+/// The held-out rival margin of a force diagnosis ([`Margins::RUNS`]).
+pub const RIVAL_T: f64 = Margins::RUNS.rival_t;
 use serde::Serialize;
 
 /// Most causes named together.
@@ -365,14 +365,14 @@ impl Problem<'_> {
         let other = rival.map(with);
         let mut contenders = vec![Some(own.as_slice())];
         contenders.extend(other.as_deref().map(Some));
-        let pair = |a: usize, b: usize| {
+        // Both in the model, whichever is the best (the only pair there is).
+        let both = |_: usize, _: usize| {
             let mut causes = naming.chosen.clone();
-            causes.extend([a, b].map(|i| ranked.trials[[k, rival.unwrap_or(k)][i]].0));
-            self.held_out(&causes)
+            causes.push(ranked.trials[k].0);
+            causes.extend(rival.map(|m| ranked.trials[m].0));
+            Some(self.held_out(&causes))
         };
-        let decision = decide_with(before, &contenders, (0.0, Margins::RUNS), |a, b| {
-            Some(pair(a, b))
-        });
+        let decision = decide_with(before, &contenders, (0.0, Margins::RUNS), both);
         match decision.verdict {
             Verdict::Named(0) => {}
             Verdict::Nothing => {

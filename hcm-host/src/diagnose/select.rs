@@ -840,11 +840,11 @@ impl RefitModel<'_> {
             self.chosen.iter().zip(&self.slots).filter(|((c, _), _)| {
                 matches!(c, Candidate::SensorDelay | Candidate::SensorFilter)
             });
+        let reach = 0.25 * longest_contact(self.samples);
+        if !(reach.is_finite() && reach > 0.0) {
+            return start;
+        }
         for (&(candidate, _), &slot) in lags {
-            let reach = 0.25 * longest_contact(self.samples);
-            if !(reach.is_finite() && reach > 0.0) {
-                return start;
-            }
             let low = if candidate == Candidate::SensorFilter {
                 0.0
             } else {

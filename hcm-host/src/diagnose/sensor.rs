@@ -13,7 +13,7 @@
 use super::ContactSamples;
 use crate::dataset::Run;
 use crate::indicators::{contact_history, ContactHistory, IndicatorError};
-use crate::numerics::sampled::{hermite, low_pass};
+use crate::numerics::sampled::{delayed, low_pass};
 use crate::scenario::Model;
 use hcm_core::effect::ExtendedLaw;
 use nalgebra::Vector3;
@@ -70,7 +70,7 @@ impl Sensor {
             let delayed: Vec<f64> = if self.delay == 0.0 {
                 v.to_vec()
             } else {
-                t.iter().map(|&ti| hermite(t, v, ti - self.delay)).collect()
+                delayed(t, v, self.delay)
             };
             let read = low_pass(t, &delayed, self.filter);
             out.extend(read.iter().map(|y| g * (y + self.offset)));

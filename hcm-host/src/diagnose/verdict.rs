@@ -14,9 +14,10 @@
 //!    every other candidate that helps or whose mean gain is larger though less sure
 //!    (a large gain carried by a few units may be the true cause, of which a small
 //!    steady gain is only a shadow) — unless the best one **adds beyond** the rival:
-//!    with the rival in the model, adding the best one still helps. The rival then does not explain the same gain (it is the best
-//!    one's shadow, or a second cause the next step judges). Otherwise the answer is
-//!    **ambiguous** between it and those rivals, and names none.
+//!    with the rival in the model, adding the best one still helps. The rival then does
+//!    not explain the same gain (it is the best one's shadow, or a second cause the next
+//!    step judges). Otherwise the answer is **ambiguous** between it and those rivals,
+//!    and names none.
 //!
 //! Nothing helping: **nothing** is named.
 //!
@@ -64,7 +65,7 @@ impl Margins {
 pub enum Verdict {
     /// The candidate at this index.
     Named(usize),
-    /// The best candidate and the rivals it does not beat by [`RIVAL_T`], best first.
+    /// The best candidate and the rivals it does not beat by the rival margin, best first.
     Ambiguous(Vec<usize>),
     /// No candidate helps.
     Nothing,

@@ -8,7 +8,7 @@
 //! velocity components), a fresh ζ per component and sample.
 
 use crate::dataset::{Run, Sample};
-use crate::numerics::sampled::{hermite, low_pass};
+use crate::numerics::sampled::{delayed, low_pass};
 use crate::scenario::{Contact, ExperimentSpec, FrictionSpec, Model};
 use crate::simulate::{simulate, SimulationError};
 use hcm_core::LawError;
@@ -38,8 +38,8 @@ pub fn noisy_model(model: &Model, rng: &mut ChaCha8Rng) -> Result<Model, Simulat
 }
 
 /// Eq 19 and the sensor effects on a simulated run: a force sensor's nonlinearity,
-/// lag, low-pass filter, gain and offset, then σ·ζ on every force, torque, position and velocity component whose σ
-/// is set, sample by sample in time order.
+/// lag, low-pass filter, gain and offset, then σ·ζ on every force, torque, position and
+/// velocity component whose σ is set, sample by sample in time order.
 fn add_output_noise(e: &ExperimentSpec, run: &mut Run, rng: &mut ChaCha8Rng) {
     for track in &mut run.bodies {
         if e.force_nonlinearity != 0.0 {
@@ -97,35 +97,34 @@ fn scatter_parameters(contact: &mut Contact, rng: &mut ChaCha8Rng) -> Result<(),
     }
 }
 
-/// Replaces each sample's force by the force τ (s) earlier: a lagging sensor, read
-/// between the samples on the cubic Hermite curve through them (the one the diagnosis'
-/// sensor model reads, `numerics::sampled::hermite`; a straight line between samples
-/// would average two of them, a low-pass filter of its own at a coarse rate), held at
-/// the first sample's value before it.
-fn delay_forces(samples: &mut [Sample], delay: f64) {
+/// Replaces each force component's series along `samples` by `through(times, series)`.
+fn map_force_components(samples: &mut [Sample], through: impl Fn(&[f64], &[f64]) -> Vec<f64>) {
     let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
-    let component = |k: usize| -> Vec<f64> { samples.iter().map(|s| s.force[k]).collect() };
-    let forces = [component(0), component(1), component(2)];
-    for sample in samples.iter_mut() {
-        let t = sample.time - delay;
-        sample.force = std::array::from_fn(|k| hermite(&times, &forces[k], t));
+    let mapped: Vec<Vec<f64>> = (0..3)
+        .map(|k| {
+            let f: Vec<f64> = samples.iter().map(|s| s.force[k]).collect();
+            through(&times, &f)
+        })
+        .collect();
+    for (i, sample) in samples.iter_mut().enumerate() {
+        sample.force = std::array::from_fn(|k| mapped[k][i]);
     }
+}
+
+/// Replaces each sample's force by the force τ (s) earlier: a lagging sensor, read
+/// between the samples on the cubic Hermite curve through them (`numerics::sampled::
+/// delayed`, as the diagnosis' sensor model reads; a straight line between samples would
+/// average two of them, a low-pass filter of its own at a coarse rate), held at the
+/// first sample's value before it.
+fn delay_forces(samples: &mut [Sample], delay: f64) {
+    map_force_components(samples, |t, f| delayed(t, f, delay));
 }
 
 /// Passes each sample's force through a first-order low-pass filter of time constant
 /// τ (s), T·ẏ + y = f, at rest on the first sample's force (`numerics::sampled::
 /// low_pass`: exact for a force linear between the samples).
 fn filter_forces(samples: &mut [Sample], tau: f64) {
-    let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
-    let filtered: Vec<Vec<f64>> = (0..3)
-        .map(|k| {
-            let f: Vec<f64> = samples.iter().map(|s| s.force[k]).collect();
-            low_pass(&times, &f, tau)
-        })
-        .collect();
-    for (i, sample) in samples.iter_mut().enumerate() {
-        sample.force = std::array::from_fn(|k| filtered[k][i]);
-    }
+    map_force_components(samples, |t, f| low_pass(t, f, tau));
 }
 
 /// ζ ~ N(0, 1).

@@ -35,6 +35,12 @@ pub fn hermite(t: &[f64], v: &[f64], s: f64) -> f64 {
         + (x3 - x2) * h * slope(b)
 }
 
+/// `v` sampled at ascending times `t`, read `tau` (s) earlier at each sample: [`hermite`]
+/// at t − τ, the first value held before the first sample (a lagging sensor).
+pub fn delayed(t: &[f64], v: &[f64], tau: f64) -> Vec<f64> {
+    t.iter().map(|&ti| hermite(t, v, ti - tau)).collect()
+}
+
 /// `v` sampled at ascending times `t` through a first-order low-pass filter of time
 /// constant `tau` (s), at rest on `v[0]` at `t[0]`: exact for `v` linear between the
 /// samples, y₊ = v₊ − m·T + (y − v + m·T)·e^(−h/T) with m the slope (v per s). `v` itself
