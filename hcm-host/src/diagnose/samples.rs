@@ -58,6 +58,40 @@ impl ContactSamples {
         nonzero(&self.depth_sd) || nonzero(&self.rate_sd)
     }
 
+    /// `predicted` (N, per sample) with each run's force scaled by its own factor about
+    /// the data set's: (Σq·(y − b)/Σq²)_run ÷ (Σq·(y − b)/Σq²)_all, q = predicted − b
+    /// over the run's samples (y measured, b the sensor's `offset`, N). Each run's contact
+    /// is its own (its stiffness scatters from run to run, 2 % with `hcm generate`'s
+    /// scatter), and one law fitted through every run bends to their mixture: the deep
+    /// runs are the soft ones, which a pooled fit reads as a force falling off with
+    /// depth. Normalised by the pooled factor, so the data set's level stays the law's.
+    /// A run without force (Σq² = 0) keeps factor 1.
+    pub fn scaled_per_run(&self, predicted: &[f64], offset: f64) -> Vec<f64> {
+        let sums = |range: std::ops::Range<usize>| {
+            range.fold((0.0, 0.0), |(qy, qq), i| {
+                let q = predicted[i] - offset;
+                (qy + q * (self.measured[i] - offset), qq + q * q)
+            })
+        };
+        let ranges = self.run_ranges();
+        let per_run: Vec<(f64, f64)> = ranges.iter().map(|r| sums(r.clone())).collect();
+        let (qy, qq) = per_run
+            .iter()
+            .fold((0.0, 0.0), |(a, b), (y, q)| (a + y, b + q));
+        let pooled = qy / qq;
+        let mut out = predicted.to_vec();
+        for (range, (y, q)) in ranges.into_iter().zip(per_run) {
+            let factor = y / q / pooled;
+            if !(q > 0.0 && factor.is_finite()) {
+                continue;
+            }
+            for i in range {
+                out[i] = factor * (predicted[i] - offset) + offset;
+            }
+        }
+        out
+    }
+
     /// The index ranges of the runs' samples, in order: each a run's consecutive
     /// samples (a run's samples are contiguous and in time order).
     pub fn run_ranges(&self) -> Vec<std::ops::Range<usize>> {
@@ -242,5 +276,53 @@ impl<'a> Spread<'a> {
             variance.1 += along(&track.velocity_variance[i]);
         }
         (variance.0.sqrt(), variance.1.sqrt())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ContactSamples;
+
+    /// Two runs of three samples, the second run's force `gain` times the first's.
+    fn two_runs(measured: Vec<f64>) -> ContactSamples {
+        ContactSamples {
+            run: vec![0, 0, 0, 1, 1, 1],
+            time: vec![0.0, 1e-6, 2e-6, 0.0, 1e-6, 2e-6],
+            measured,
+            ..ContactSamples::default()
+        }
+    }
+
+    #[test]
+    fn each_run_is_scaled_to_its_own_level_about_the_pooled_one() {
+        let predicted = [1.0, 2.0, 1.0, 1.0, 2.0, 1.0];
+        // Runs 10 % above and below the prediction: the pooled factor is 1.
+        let measured: Vec<f64> = (predicted.iter().enumerate())
+            .map(|(i, p)| p * if i < 3 { 1.1 } else { 0.9 })
+            .collect();
+        let scaled = two_runs(measured.clone()).scaled_per_run(&predicted, 0.0);
+        for (s, m) in scaled.iter().zip(&measured) {
+            assert!((s - m).abs() < 1e-12, "{scaled:?} against {measured:?}");
+        }
+        // Both runs 20 % high: the data set's level is the law's, so nothing moves.
+        let high: Vec<f64> = predicted.iter().map(|p| 1.2 * p).collect();
+        assert_eq!(two_runs(high).scaled_per_run(&predicted, 0.0), predicted);
+        // An offset stays out of the factor: b + 1.1·q against b + q.
+        let (b, q) = (5.0, [1.0, 2.0, 1.0]);
+        let measured: Vec<f64> = (0..6)
+            .map(|i| b + q[i % 3] * if i < 3 { 1.1 } else { 0.9 })
+            .collect();
+        let predicted: Vec<f64> = (0..6).map(|i| b + q[i % 3]).collect();
+        let scaled = two_runs(measured.clone()).scaled_per_run(&predicted, b);
+        for (s, m) in scaled.iter().zip(&measured) {
+            assert!((s - m).abs() < 1e-12, "{scaled:?} against {measured:?}");
+        }
+    }
+
+    #[test]
+    fn a_run_without_force_keeps_its_prediction() {
+        let predicted = [0.0, 0.0, 0.0, 1.0, 2.0, 1.0];
+        let scaled = two_runs(vec![0.1, 0.0, -0.1, 1.0, 2.0, 1.0]).scaled_per_run(&predicted, 0.0);
+        assert_eq!(scaled, predicted);
     }
 }

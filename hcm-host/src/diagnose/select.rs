@@ -600,9 +600,35 @@ pub struct Refit {
 /// Σ ΔRSS_i + L, so the causes' shares and the unexplained share add up to 1.
 pub fn refit(
     samples: &ContactSamples,
+    base: (&ExtendedLaw<f64>, BaseFreedom),
+    chosen: &[(Candidate, f64)],
+    sigma: f64,
+) -> Refit {
+    refit_model(samples, base, chosen, sigma, false)
+}
+
+/// [`refit`] with each run's force scaled by its own factor about the data set's
+/// ([`ContactSamples::scaled_per_run`], profiled out of the least squares): the run-to-
+/// run scatter of the contact as a nuisance. Its causes' values are what a pooled fit's
+/// would be without the bias the runs' mixture gives them (see
+/// [`super::naming::name_causes`], which widens the named causes' intervals to cover
+/// both). Its `law` and `sensor` read without the factors.
+pub fn refit_per_run_scaled(
+    samples: &ContactSamples,
+    base: (&ExtendedLaw<f64>, BaseFreedom),
+    chosen: &[(Candidate, f64)],
+    sigma: f64,
+) -> Refit {
+    refit_model(samples, base, chosen, sigma, true)
+}
+
+/// [`refit`], each run's force scaled by its own factor where `per_run_scale`.
+fn refit_model(
+    samples: &ContactSamples,
     (base, freedom): (&ExtendedLaw<f64>, BaseFreedom),
     chosen: &[(Candidate, f64)],
     sigma: f64,
+    per_run_scale: bool,
 ) -> Refit {
     let free = free_parameters(samples, &base.base, freedom);
     let delta_ref = reference_depth(samples);
@@ -619,6 +645,7 @@ pub fn refit(
         chosen,
         slots: unknowns.slots.clone(),
         delta_ref,
+        per_run_scale,
     };
     let (p, covariance) = model.fit(&unknowns);
     let rss = model.rss(&p);
@@ -753,6 +780,9 @@ struct RefitModel<'a> {
     slots: Vec<usize>,
     /// δ_ref of the stiffness-exponent effect (m).
     delta_ref: f64,
+    /// Whether each run's force is scaled by its own factor
+    /// ([`ContactSamples::scaled_per_run`]).
+    per_run_scale: bool,
 }
 
 impl RefitModel<'_> {
@@ -784,7 +814,12 @@ impl RefitModel<'_> {
     /// The force the sensor reads at unknowns `p` (N), per sample.
     fn predict(&self, p: &[f64]) -> Vec<f64> {
         let (law, sensor) = self.build(p);
-        sensor.reads(self.samples, &law)
+        let reads = sensor.reads(self.samples, &law);
+        if self.per_run_scale {
+            self.samples.scaled_per_run(&reads, sensor.offset)
+        } else {
+            reads
+        }
     }
 
     /// Σ (predicted − measured)² at unknowns `p` (N²).
