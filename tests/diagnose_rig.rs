@@ -973,6 +973,40 @@ fn filmed_motion_with_viscous_damping_names_it() {
     named_alone(&d, name, index, truth, 0.15);
 }
 
+/// A sensor lag behind a camera's frames splined onto the force rows. The motion through
+/// the contacts is replaced by the force's, on the clock the check's pooled delay puts
+/// the force on where that delay is real; a lag named has an interval that holds the
+/// truth, also where the replacement stays on the force's clock and follows part of the
+/// lag (before the replacement read the check's delay, a 5 µs delay was named
+/// 2.74 µs [2.63, 2.85]).
+#[test]
+fn a_lag_behind_splined_camera_frames_is_measured_against_the_frames() {
+    let cases = [(5e-6, 0.0, 91), (3e-6, 0.0, 92), (0.0, 5e-6, 93)];
+    let answers = diagnosed_each(&cases, |&(delay, filter, seed)| {
+        let mut rig = filmed();
+        rig.sensor.delay = delay;
+        rig.sensor.filter = filter;
+        let label = format!("delay {delay:e} s, filter {filter:e} s, filmed and splined");
+        (label, rig, seed)
+    });
+    for (&(delay, filter, _), d) in cases.iter().zip(&answers) {
+        let (effect, truth) = if filter > 0.0 {
+            ("sensor_filter", filter)
+        } else {
+            ("sensor_delay", delay)
+        };
+        if lag_named_or_ambiguous(d, effect) {
+            let p = &d.causes[0].parameters[0];
+            assert!(
+                p.ci.0 <= truth && truth <= p.ci.1,
+                "{effect} {truth:e}: {:e} {:?}",
+                p.value,
+                p.ci
+            );
+        }
+    }
+}
+
 /// The paper's ball filmed at 20 kfps (3 µm noise, no velocity), the camera's rows and
 /// the force sensor's (1 MHz) in one file with empty cells, 2 ms of flight on each side
 /// (40 frames to fit the flight before and after each contact).

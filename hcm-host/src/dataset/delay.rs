@@ -66,6 +66,32 @@ pub fn fit(completed: &Completed<'_>) -> Option<Delay> {
     })
 }
 
+/// The delay behind motion recorded on every row (a camera's frames splined onto the
+/// force rows, `super::newton`): the delays its contacts' checks fitted, `delays` (s),
+/// pooled — their mean, its standard deviation their spread over √n (each contact's is
+/// fitted against its own frames, so they are independent); None with fewer than 2
+/// contacts. Taken as real, as the camera rows' ([`fit`]), beyond [`DELAY_SIGMAS`]
+/// standard deviations from 0 (`Delay::real`).
+pub(crate) fn pooled(delays: &[f64]) -> Option<Delay> {
+    let n = delays.len();
+    if n < 2 {
+        return None;
+    }
+    let mean = delays.iter().sum::<f64>() / n as f64;
+    let variance = delays.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    Some(Delay {
+        value: mean,
+        sd: (variance / n as f64).sqrt(),
+    })
+}
+
+impl Delay {
+    /// Whether it lies beyond [`DELAY_SIGMAS`] standard deviations from 0.
+    pub(crate) fn real(&self) -> bool {
+        self.value.abs() > DELAY_SIGMAS * self.sd
+    }
+}
+
 /// `through` (integrated over samples at `time`, from the flight `before`, with
 /// accelerations `acceleration` (m/s², gravity included) at those samples) as it is
 /// when the force read `delay` late: state at t from the integration at t + τ, the
@@ -129,6 +155,17 @@ pub(super) fn shift(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn contacts_delays_pool_to_their_mean_with_its_standard_error() {
+        let d = pooled(&[1e-6, 2e-6, 3e-6]).unwrap();
+        assert!((d.value - 2e-6).abs() < 1e-18, "{d:?}");
+        assert!((d.sd - 1e-6 / 3f64.sqrt()).abs() < 1e-18, "{d:?}");
+        // 3.5 standard deviations from 0: not taken as real; a tighter spread is.
+        assert!(!d.real());
+        assert!(pooled(&[1.9e-6, 2e-6, 2.1e-6]).unwrap().real());
+        assert_eq!(pooled(&[2e-6]), None);
+    }
     use crate::dataset::through_contact::{integrate, ForceSeries};
 
     #[test]

@@ -108,6 +108,20 @@ impl Implied {
             hermite(v[i][k], v[j][k], a[i][k], a[j][k]),
         )
     }
+
+    /// The acceleration (f − b)/m along axis `k` at time `t` (m/s²): linear between the
+    /// window's samples, 0 outside it.
+    pub fn acceleration(&self, t: f64, k: usize) -> f64 {
+        let n = self.time.len();
+        if t <= self.time[0] || t >= self.time[n - 1] {
+            return 0.0;
+        }
+        let j = self.time.partition_point(|&x| x <= t);
+        let (i, h) = (j - 1, self.time[j] - self.time[j - 1]);
+        let x = (t - self.time[i]) / h;
+        let a = &self.acceleration;
+        a[i][k] + x * (a[j][k] - a[i][k])
+    }
 }
 
 #[cfg(test)]

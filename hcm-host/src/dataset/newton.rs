@@ -21,6 +21,7 @@
 //! rows' correlation (`independent`), carried per row as an empty-cell reconstruction
 //! carries its own.
 
+use super::delay::Delay;
 use super::implied::Implied;
 use crate::numerics::optimize::minimize_scalar;
 
@@ -116,15 +117,16 @@ fn line(s: &[f64], y: &[f64], w: &[f64]) -> (f64, f64, f64) {
 
 /// The check's misfit (RMS in standard deviations, –) of `recorded` against the motion
 /// `implied` gives, with gravity g (m/s²), force noise σ_f (N) per axis, the force
-/// samples h (s) apart and mass m (kg); the delay is fitted. Axes with neither motion
-/// noise nor force noise (a 1D record's unused ones) are left out; None if none is left.
+/// samples h (s) apart and mass m (kg), and the delay τ (s) fitted with it. Axes with
+/// neither motion noise nor force noise (a 1D record's unused ones) are left out; None
+/// if none is left.
 pub(super) fn misfit(
     recorded: &Rows<'_>,
     implied: &Implied,
     gravity: [f64; 3],
     force_noise: [f64; 3],
     (h, mass): (f64, f64),
-) -> Option<f64> {
+) -> Option<(f64, f64)> {
     let axes: Vec<usize> = (0..3)
         .filter(|&k| recorded.noise[k] > 0.0 || force_noise[k] > 0.0)
         .collect();
@@ -170,7 +172,7 @@ pub(super) fn misfit(
     // τ that makes every row least certain), then the misfit weighted at it.
     let tau = minimise(&|tau| chi2(tau, false), 0.5 * implied.duration());
     let dof = (axes.len() * (recorded.rows.len() - 3)) as f64;
-    Some((chi2(tau, true) / dof).sqrt())
+    Some(((chi2(tau, true) / dof).sqrt(), tau))
 }
 
 /// Where `f` is smallest over τ ∈ [−span, span]: the identification's scalar search
@@ -192,15 +194,19 @@ fn independent(r: &[f64]) -> f64 {
 /// The contact's motion from `implied` with p0 and v0 fitted by ordinary least squares
 /// to every row of `recorded` (see the module documentation), at the window's samples
 /// `window` (times, s); variances from the fit's misfit scaled by the rows'
-/// correlation, plus the force noise integrated.
+/// correlation, plus the force noise integrated. With a `delay`, the force is taken as
+/// read τ late: the motion at t is the force's integral read at t + τ (the motion as it
+/// was, against which the sensor lags), and τ's variance is carried per row, δ moving
+/// by V(t + τ)·sd(τ) and δ̇ by A(t + τ)·sd(τ).
 pub(super) fn replace(
     recorded: &Rows<'_>,
     implied: &Implied,
     window: &[f64],
-    gravity: [f64; 3],
-    force_noise: [f64; 3],
+    (gravity, force_noise): ([f64; 3], [f64; 3]),
     (h, mass): (f64, f64),
+    delay: Option<Delay>,
 ) -> Replaced {
+    let (lag, lag_variance) = delay.map_or((0.0, 0.0), |d| (d.value, d.sd * d.sd));
     let t0 = implied.start();
     let rows = recorded.rows.iter().copied();
     let s: Vec<f64> = rows.clone().map(|j| recorded.time[j] - t0).collect();
@@ -222,7 +228,7 @@ pub(super) fn replace(
             .map(|(j, &s)| {
                 recorded.position[j][k]
                     - 0.5 * gravity[k] * s * s
-                    - implied.at(recorded.time[j], k).0
+                    - implied.at(recorded.time[j] + lag, k).0
             })
             .collect();
         let (p0, v0, rss) = line(&s, &y, &ones);
@@ -231,7 +237,7 @@ pub(super) fn replace(
             .clone()
             .zip(&s)
             .map(|(j, &s)| {
-                let v = v0 + gravity[k] * s + implied.at(recorded.time[j], k).1;
+                let v = v0 + gravity[k] * s + implied.at(recorded.time[j] + lag, k).1;
                 (recorded.velocity[j][k] - v).powi(2)
             })
             .sum();
@@ -243,13 +249,16 @@ pub(super) fn replace(
         let c_aa = 1.0 / n + mean * mean / s_uu;
         for (i, &t) in window.iter().enumerate() {
             let u = t - t0;
-            let (d, v) = implied.at(t, k);
+            let (d, v) = implied.at(t + lag, k);
             out.position[i][k] = p0 + v0 * u + 0.5 * gravity[k] * u * u + d;
             out.velocity[i][k] = v0 + gravity[k] * u + v;
             let force = integrated_variance(force_noise[k], mass, h, u, implied.duration());
-            out.position_variance[i][k] = scale * (c_aa + 2.0 * u * c_ab + u * u * c_bb) + force;
-            out.velocity_variance[i][k] =
-                scale * c_bb + (force_noise[k] / mass).powi(2) * h * u.min(implied.duration());
+            let a = implied.acceleration(t + lag, k);
+            out.position_variance[i][k] =
+                scale * (c_aa + 2.0 * u * c_ab + u * u * c_bb) + force + v * v * lag_variance;
+            out.velocity_variance[i][k] = scale * c_bb
+                + (force_noise[k] / mass).powi(2) * h * u.min(implied.duration())
+                + a * a * lag_variance;
         }
     }
     out

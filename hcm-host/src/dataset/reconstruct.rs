@@ -86,6 +86,11 @@ pub struct Completed<'a> {
     pub(crate) motion_misfit: Option<f64>,
     /// The sensor delay the reconstruction was done with, if any.
     pub(crate) delay: Option<Delay>,
+    /// The delay the check of motion recorded on every row found behind the force,
+    /// pooled over its contacts (`dataset::delay::pooled`), where that motion was
+    /// replaced: used for the replacement only where real, reported either way (a lag
+    /// the replacement does not undo is partly hidden in the motion it gives).
+    pub(crate) checked_delay: Option<Delay>,
 }
 
 /// What [`complete_with`] checks beyond [`complete`].
@@ -115,6 +120,7 @@ impl Completed<'_> {
             tracks: runs.iter().map(|&r| self.tracks[r].clone()).collect(),
             motion_misfit: self.motion_misfit,
             delay: self.delay,
+            checked_delay: self.checked_delay,
         }
     }
 
@@ -211,14 +217,21 @@ pub(crate) fn complete_with<'a>(
             tracks[r][b] = Some(reconstruction);
         }
     }
-    let motion_misfit = (!misfits.is_empty()).then(|| median(&mut misfits));
+    let mut values: Vec<f64> = misfits.iter().map(|m| m.0).collect();
+    let motion_misfit = (!values.is_empty()).then(|| median(&mut values));
     // One instrument recorded every track: when its motion fails the check (median over
-    // contacts), every contact's motion is replaced.
+    // contacts), every contact's motion is replaced — on the clock the checks' pooled
+    // delay puts the force on, where that delay is real (a sensor lagging the camera;
+    // replaced on the force's own clock, the motion would lag with it and hide it).
+    let (mut checked_delay, mut splined_delay) = (None, None);
     if motion_misfit.is_some_and(|m| m > super::newton::MAX_MISFIT) {
+        let delays: Vec<f64> = misfits.iter().map(|m| m.1).collect();
+        checked_delay = super::delay::pooled(&delays);
+        splined_delay = checked_delay.filter(Delay::real);
         for (r, b, mass) in recorded {
             let track = &data.runs[r].bodies[b];
             let (rebuilt, reconstruction) =
-                super::recorded_motion::replace_track(track, gravity, mass);
+                super::recorded_motion::replace_track(track, gravity, mass, splined_delay);
             runs[r].get_or_insert_with(|| data.runs[r].clone()).bodies[b] = rebuilt;
             tracks[r][b] = Some(reconstruction);
         }
@@ -229,6 +242,7 @@ pub(crate) fn complete_with<'a>(
             tracks,
             motion_misfit,
             delay: None,
+            checked_delay: None,
         });
     }
     let runs = runs
@@ -240,7 +254,8 @@ pub(crate) fn complete_with<'a>(
         data: Cow::Owned(Dataset { runs }),
         tracks,
         motion_misfit,
-        delay: checks.sensor_delay,
+        delay: checks.sensor_delay.or(splined_delay),
+        checked_delay,
     })
 }
 

@@ -8,6 +8,7 @@
 //! ends in flight; an offset above the contact threshold would otherwise make the whole
 //! record one contact), then the median between the contacts found.
 
+use super::delay::Delay;
 use super::implied::Implied;
 use super::newton::{misfit, position_noise, replace, Rows};
 use super::reconstruct::TrackReconstruction;
@@ -89,9 +90,10 @@ impl TrackContacts {
     }
 }
 
-/// The check's misfit (–) of each contact of a track whose every row holds position,
-/// velocity and force, with gravity g (m/s²) on a body of mass m (kg).
-pub(super) fn misfits(track: &BodyTrack, gravity: [f64; 3], mass: f64) -> Vec<f64> {
+/// The check's misfit (–) and fitted delay (s) of each contact of a track whose every
+/// row holds position, velocity and force, with gravity g (m/s²) on a body of mass m
+/// (kg).
+pub(super) fn misfits(track: &BodyTrack, gravity: [f64; 3], mass: f64) -> Vec<(f64, f64)> {
     let contacts = TrackContacts::new(track);
     (0..contacts.windows.len())
         .filter_map(|w| {
@@ -104,11 +106,13 @@ pub(super) fn misfits(track: &BodyTrack, gravity: [f64; 3], mass: f64) -> Vec<f6
 
 /// The track with the motion through every contact replaced by the force's (see the
 /// module documentation), and its uncertainty; the rows left as recorded come from the
-/// instrument that failed the check, so they carry the error it showed there.
+/// instrument that failed the check, so they carry the error it showed there. With a
+/// `delay`, the force is taken as read that late ([`super::newton::replace`]).
 pub(super) fn replace_track(
     track: &BodyTrack,
     gravity: [f64; 3],
     mass: f64,
+    delay: Option<Delay>,
 ) -> (BodyTrack, TrackReconstruction) {
     let contacts = TrackContacts::new(track);
     let n = contacts.time.len();
@@ -128,7 +132,7 @@ pub(super) fn replace_track(
         let window = &contacts.time[first..=last];
         let sampling = contacts.sampling(w, mass);
         let noise = contacts.series.noise;
-        let motion = replace(&rows, &implied, window, gravity, noise, sampling);
+        let motion = replace(&rows, &implied, window, (gravity, noise), sampling, delay);
         for k in 0..3 {
             error.0[k] = error.0[k].max(motion.recorded_error.0[k]);
             error.1[k] = error.1[k].max(motion.recorded_error.1[k]);

@@ -265,19 +265,30 @@ fn examine(
 /// the reconstruction aligned the motion with, and air drag if its fit is significant.
 fn named_causes(
     mut causes: Vec<Cause>,
-    delay: Option<Delay>,
+    (delay, checked): (Option<Delay>, Option<Delay>),
     drag: Option<&super::drag::DragFit>,
 ) -> Vec<Cause> {
-    // A delay found by the reconstruction: the motion was aligned with it, so the delay
-    // named is that alignment, uncertain by the reconstruction's own sd as well.
-    if let Some(delay) = delay {
-        for p in causes
-            .iter_mut()
-            .filter(|c| c.effect == "sensor_delay")
-            .flat_map(|c| c.parameters.iter_mut())
-        {
-            let half = (0.5 * (p.ci.1 - p.ci.0)).hypot(1.96 * delay.sd);
-            p.ci = (p.value - half, p.value + half);
+    let lags = causes
+        .iter_mut()
+        .filter(|c| matches!(c.effect, "sensor_delay" | "sensor_filter"))
+        .flat_map(|c| c.parameters.iter_mut());
+    for p in lags {
+        match (delay, checked) {
+            // A delay found by the reconstruction: the motion was aligned with it, so the
+            // lag named is that alignment, uncertain by the reconstruction's own sd too.
+            (Some(delay), _) => {
+                let half = (0.5 * (p.ci.1 - p.ci.0)).hypot(1.96 * delay.sd);
+                p.ci = (p.value - half, p.value + half);
+            }
+            // Motion recorded on every row, replaced on the force's own clock (the
+            // check's delay was not beyond noise): the motion follows part of the lag,
+            // and the lag named is that much short. The check measured the whole lag
+            // against the frames: the interval holds its 95 % too.
+            (None, Some(check)) => {
+                let (lo, hi) = (check.value - 1.96 * check.sd, check.value + 1.96 * check.sd);
+                p.ci = (p.ci.0.min(lo), p.ci.1.max(hi));
+            }
+            (None, None) => {}
         }
     }
     if let Some(d) = drag.filter(|d| d.significant) {
@@ -427,7 +438,8 @@ pub fn diagnose(
     let chosen = chosen_causes(&naming, &mut fit, &findings.samples, named_gain);
     let body = &base.bodies[base.contacts[c].body_1];
     let drag = super::drag::fit_drag(&findings.samples, body.mass);
-    let causes = named_causes(chosen, completed.delay, drag.as_ref());
+    let lags = (completed.delay, completed.checked_delay);
+    let causes = named_causes(chosen, lags, drag.as_ref());
     let unexplained_share = if naming.unexplained {
         fit.left_share
     } else {
