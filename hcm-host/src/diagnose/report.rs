@@ -269,7 +269,7 @@ fn the_cause(md: &mut String, d: &Diagnosis) {
     if d.causes.is_empty() {
         // The rule as `naming` applies it (the linear ranking's share ≥ 2 % only orders
         // the report's selection steps; it decides nothing).
-        let _ = writeln!(md, "No cause is named. Every catalogued effect was re-fitted with the base law; one is named when its RSS drop exceeds ln(n)·σ² per parameter (BIC), its 95 % intervals are finite, no effect of another family comes within {} of it in the criterion, and the residual it leaves is noise — or, re-fitted alone, it removes at least {:.0} % of the base model's excess over the noise and wins on held-out runs by {GAIN_T} standard errors (a partial answer). The effects tried and why none was accepted are listed under the decision below.\n", super::naming::EVIDENCE, 100.0 * super::naming::PARTIAL_SHARE);
+        let _ = writeln!(md, "No cause is named. Every catalogued effect was re-fitted with the base law; one is named when its RSS drop exceeds ln(n)·σ² per parameter (BIC), its 95 % intervals are finite, no effect of another family comes within {} of it in the criterion, it predicts held-out runs better by {GAIN_T} standard errors of the runs' paired differences, and the residual it leaves is noise — or, re-fitted alone, it removes at least {:.0} % of the base model's excess over the noise and wins on held-out runs by {GAIN_T} standard errors (a partial answer). The effects tried and why none was accepted are listed under the decision below.\n", super::naming::EVIDENCE, 100.0 * super::naming::PARTIAL_SHARE);
     } else {
         let _ = writeln!(md, "| effect | kind | parameter | value | 95 % interval | share |\n|---|---|---|---|---|---|");
         for c in &d.causes {
@@ -339,12 +339,12 @@ fn decision(md: &mut String, d: &Diagnosis) {
     };
     let scattered = if d.before.scattered {
         format!(
-            "; the runs scatter beyond the sample noise, so it must also win on held-out runs, run by run: its gain at {GAIN_T} and its lead over the best effect of another family at {RIVAL_T} standard errors of the runs' paired differences (viscous damping only where hysteresis damping is not better by {FAMILY_T})"
+            "; the runs scatter beyond the sample noise, so its lead over the best effect of another family must also hold on held-out runs, at {RIVAL_T} standard errors of the runs' paired differences (viscous damping only where hysteresis damping is not better by {FAMILY_T})"
         )
     } else {
         String::new()
     };
-    let _ = writeln!(md, "\nThe decision, on full re-fits: each step adds every effect not yet named to the model and re-fits base and effects together ({freedom}); the best by information criterion enters if its RSS drop passes the criterion, its parameters are determined and the best effect of another family scores worse by at least {EVIDENCE} (else `ambiguous`, neither named){scattered}; a cause is named only if the residual then holds nothing but noise, or alone removes at least {:.0} % of the base model's excess and wins on held-out runs (a partial answer); a `stiffness_exponent` only where the momentum balance rules out a force sensor whose gain grows with the force (else `ambiguous` with `sensor_nonlinearity`).\n\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|", 100.0 * super::naming::PARTIAL_SHARE);
+    let _ = writeln!(md, "\nThe decision, on full re-fits: each step adds every effect not yet named to the model and re-fits base and effects together ({freedom}); the best by information criterion enters if its RSS drop passes the criterion, its parameters are determined and the best effect of another family scores worse by at least {EVIDENCE} (else `ambiguous`, neither named); it must predict runs it was not fitted on, its gain on held-out runs, run by run, at {GAIN_T} standard errors{scattered}; a cause is named only if the residual then holds nothing but noise, or alone removes at least {:.0} % of the base model's excess and wins on held-out runs (a partial answer); a `stiffness_exponent` only where the momentum balance rules out a force sensor whose gain grows with the force (else `ambiguous` with `sensor_nonlinearity`).\n\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|", 100.0 * super::naming::PARTIAL_SHARE);
     for t in &d.naming {
         let _ = writeln!(
             md,
