@@ -342,8 +342,10 @@ fn data_that_cannot_show_a_shape_get_a_verdict_not_a_cause() {
 /// A force sensor whose gain grows with the force (`experiment.force_nonlinearity`,
 /// κ·F_peak ≈ 3 % and 9 % on the ball's 2.9 kN): its shape, once the momentum balance
 /// has taken the mean gain off, is a stiffness-exponent change's, so the physics is not
-/// named — the gain is, and the rest is "ambiguous" with `sensor_nonlinearity` or left
-/// unexplained (`diagnose::nonlinearity`).
+/// named — the gain is, and the rest is "ambiguous" with `sensor_nonlinearity`
+/// (`diagnose::nonlinearity`); or, where the rest is left unexplained, the gain is not
+/// named either (a gain beside a residual no cause explains obeys the rule every cause
+/// does: κ = 3e-5 /N was "sensor_gain + unexplained (5 %)" before it did).
 #[test]
 fn a_force_sensor_whose_gain_grows_with_the_force_is_not_named_physics() {
     use hcm_host::diagnose::{diagnose, DiagnoseSettings};
@@ -360,6 +362,13 @@ fn a_force_sensor_whose_gain_grows_with_the_force_is_not_named_physics() {
             hcm_host::diagnose::report::answer(&d),
             d.sensor_gain
         );
-        assert_eq!(names, ["sensor_gain"], "{kappa}: {:#?}", d.causes);
+        if d.unexplained_share > 0.0 {
+            assert!(names.is_empty(), "{kappa}: {:#?}", d.causes);
+        } else {
+            assert_eq!(names, ["sensor_gain"], "{kappa}: {:#?}", d.causes);
+        }
+        if kappa == 1e-5 {
+            assert_eq!(names, ["sensor_gain"], "{kappa}: {:#?}", d.causes);
+        }
     }
 }

@@ -448,6 +448,47 @@ fn a_ringing_sensor_mount_is_unexplained_and_nothing_is_named() {
     assert!(d.ambiguous.is_empty(), "{:?}", d.ambiguous);
 }
 
+/// Mounts that ring at other rates and decays: never a gain, never any name. A ringing
+/// through the contact reads as a gain in the momentum balance (1.003 at 5 % of the
+/// peak and 40 kHz, seed 501, before the gain obeyed the rule every cause does); one
+/// that rings on after lift-off is seen in flight (`SensorGain::rings`). A true gain
+/// behind a 10 µs filter, whose tail also reads after lift-off, is still named.
+#[test]
+fn a_mount_ringing_at_any_rate_is_never_a_gain() {
+    let peak = ball()
+        .impact(ball().impact_speed)
+        .force
+        .iter()
+        .copied()
+        .fold(0.0, f64::max);
+    let cases = [
+        (0.05, 40e3, 60e-6, 501),
+        (0.02, 15e3, 200e-6, 503),
+        (0.03, 20e3, 100e-6, 504),
+    ];
+    let answers = diagnosed_each(&cases, |&(share, frequency, decay, seed)| {
+        let mut rig = ball();
+        rig.sensor.resonance = Some(Resonance {
+            amplitude: share * peak,
+            decay,
+            frequency,
+        });
+        let label = format!("mount ringing {share} of the peak at {frequency} Hz, {decay} s");
+        (label, rig, seed)
+    });
+    for (case, d) in cases.iter().zip(&answers) {
+        assert!(d.causes.is_empty(), "{case:?}: {:#?}", d.causes);
+    }
+    // At 15 kHz over 200 µs the flight after lift-off shows it.
+    assert!(answers[1].sensor_gain.is_some_and(|g| g.rings.is_some()));
+    let mut rig = ball();
+    rig.sensor.gain = 1.03;
+    rig.sensor.filter = 10e-6;
+    let d = diagnosed("gain 3 % behind a 10 µs filter", &rig, 505);
+    assert!(d.sensor_gain.is_some_and(|g| g.rings.is_none() && g.named));
+    assert!(names(&d).contains(&"sensor_gain"), "{:#?}", d.causes);
+}
+
 // ---------------------------------------------------------------------------------
 // A sensor's lag: a delay or a first-order low-pass filter (issue 27, the measurement
 // family).
@@ -523,9 +564,9 @@ fn a_low_pass_filtered_sensor_is_named_with_its_time_constant() {
 /// has taken its mean gain off, its shape is a stiffness-exponent change's, and the
 /// force alone cannot tell them. The balance saw the sensor off, so no physical effect
 /// is named — the answer is the gain with "ambiguous (stiffness_exponent or
-/// sensor_nonlinearity)" or with what is left unexplained. Before
-/// `diagnose::nonlinearity`, κ·F_peak = 2.1 % was answered `sensor_gain +
-/// stiffness_exponent`.
+/// sensor_nonlinearity)", or "unexplained" (the gain, beside a residual no cause
+/// explains, not named either). Before `diagnose::nonlinearity`, κ·F_peak = 2.1 % was
+/// answered `sensor_gain + stiffness_exponent`.
 #[test]
 fn a_sensor_whose_gain_grows_with_the_force_is_never_a_stiffness_change() {
     let cases = [(1e-5, 108), (3e-5, 109), (-3e-5, 123), (1e-4, 124)];
@@ -535,7 +576,12 @@ fn a_sensor_whose_gain_grows_with_the_force_is_never_a_stiffness_change() {
         (format!("nonlinearity {kappa:e}/N"), rig, seed)
     });
     for (&(kappa, _), d) in cases.iter().zip(&answers) {
-        assert_eq!(names(d), ["sensor_gain"], "{kappa}: {:#?}", d.causes);
+        let expected: &[&str] = if d.unexplained_share > 0.0 {
+            &[]
+        } else {
+            &["sensor_gain"]
+        };
+        assert_eq!(names(d), expected, "{kappa}: {:#?}", d.causes);
         if !d.ambiguous.is_empty() {
             assert!(
                 d.ambiguous.contains(&"sensor_nonlinearity"),

@@ -805,6 +805,9 @@ pub fn name_causes_beside_momentum(
     gain: Option<SensorGain>,
 ) -> Naming {
     let mut naming = name_causes(samples, base, freedom, sigma);
+    // A sensor that reads beyond its offset in flight gives no gain to rule anything
+    // out with.
+    let gain = gain.filter(|g| g.rings.is_none());
     naming.doubt_stiffness(samples, gain, || {
         let unnamed = unnamed(samples, base, freedom, sigma);
         (unnamed.fit, unnamed.after)

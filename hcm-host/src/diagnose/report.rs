@@ -202,6 +202,9 @@ fn motion_note(q: &DataQuality) -> Option<String> {
 fn head(md: &mut String, d: &Diagnosis) {
     md.push_str("# hcm diagnose\n\n");
     let _ = writeln!(md, "**Answer: {}.**\n", answer_line(d));
+    if let Some((chi, threshold)) = d.sensor_gain.and_then(|g| g.rings) {
+        let _ = writeln!(md, "**Sensor.** The force sensor does not read its offset in flight after the contacts (χ² {chi:.0} > {threshold:.0} over the readings from ¼ to 1¼ of a contact's duration after lift-off): it rings or drifts, so the momentum balance's gain is not named.\n");
+    }
     if let Some(line) = gain_takeaway(&d.gain) {
         let _ = writeln!(md, "**Gain.** {line}\n");
     }
