@@ -47,8 +47,9 @@ fn scatter_alone_names_nothing_and_an_effect_is_still_named() {
     }
 }
 
-/// The report states the rule the decision applied (issue 27, class 6): with scattered
-/// runs, the held-out test and its thresholds; without scatter, not.
+/// The report states the rule the decision applied (issue 27, class 6): every cause's
+/// held-out gain always; with scattered runs, the held-out rival test and its
+/// thresholds too; without scatter, not.
 #[test]
 fn the_report_states_the_held_out_rule_where_the_runs_scatter() {
     use hcm_host::diagnose::{diagnose, report::markdown, DiagnoseSettings};
@@ -67,8 +68,11 @@ fn the_report_states_the_held_out_rule_where_the_runs_scatter() {
         let d = diagnose(&base, &data, &settings).unwrap();
         assert_eq!(d.before.scattered, scatter);
         let text = markdown(&d, &[]);
+        assert!(text.contains("it must predict runs it was not fitted on"));
         assert_eq!(
-            text.contains("it must also win on held-out runs, run by run"),
+            text.contains(
+                "its lead over the best effect of another family must also hold on held-out runs"
+            ),
             says,
             "scatter {scatter}"
         );

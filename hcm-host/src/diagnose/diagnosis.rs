@@ -394,6 +394,8 @@ fn chosen_causes(
     // — and leaves the shape only a ringing has.
     let gain_cause = match gain_cause {
         Some(cause) if naming.unexplained && !naming.partial => {
+            // What it removes is not explained by a named cause: it is left unexplained.
+            fit.left_share += cause.share;
             naming.not_accepted.push(NotAccepted {
                 effect: cause.effect,
                 parameters: cause.parameters,
