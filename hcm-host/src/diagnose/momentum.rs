@@ -48,7 +48,7 @@ pub struct SensorGain {
     /// sensor reads its offset in flight after the contacts: named.
     pub named: bool,
     /// The flight check's χ² and its threshold (–) where the sensor does not read its
-    /// offset in flight after the contacts ([`flight_after_contacts`]): it rings or
+    /// offset in flight after the contacts (`flight_after_contacts`): it rings or
     /// drifts, its impulse is not the contact's alone, and no gain is named.
     pub rings: Option<(f64, f64)>,
 }
