@@ -169,3 +169,51 @@ fn hcm_identify_fits_a_rigid_contact_and_writes_its_friction() {
     assert_eq!(law.static_coefficient, friction.mu_static);
     assert_eq!(law.dynamic_speed, friction.v_dynamic);
 }
+
+/// A fit is never silent (issue 28): the generating physics, replayed, misses no event's
+/// indicator; ten times its stiffness misses them by more than the runs scatter, and a
+/// stiffness at either end of its search interval is said.
+#[test]
+fn a_fit_that_does_not_reproduce_the_events_is_said() {
+    use hcm_host::identify::rigid::quality::warnings;
+    let scenario = peg();
+    let nominal = scenario.model().unwrap();
+    let data = generate(&scenario, 6, 3, &hcm_host::progress::Silent).unwrap();
+    let target = WrenchTarget::from_data(&nominal, &data, 0, Some(2)).unwrap();
+    let parameters = RigidParameters::new(&nominal, 0, &BTreeMap::new()).unwrap();
+    let bounds = parameters.bounds();
+    let said = |m: &Model| {
+        let w = warnings(
+            &bounds,
+            &parameters.values(m),
+            &target,
+            &as_replay(&target, m),
+        );
+        println!("{w:#?}");
+        w
+    };
+    // The peg's stiffness, 1e8 N/m^n, is the low end of IMPACT's default box: said;
+    // nothing else is.
+    let w = said(&nominal);
+    assert!(
+        w.iter()
+            .all(|w| w.starts_with("`stiffness` ended at its lower")),
+        "{w:#?}"
+    );
+    let stiffness = nominal.contacts[0].law().get("stiffness").unwrap();
+    let with_stiffness = |k: f64| {
+        let mut m = nominal.clone();
+        m.contacts[0].model.normal.base.set("stiffness", k).unwrap();
+        m
+    };
+    let w = said(&with_stiffness(10.0 * stiffness));
+    assert!(
+        w.iter().any(|w| w.contains("max_force is off by")),
+        "{w:#?}"
+    );
+    let w = said(&with_stiffness(bounds[0].upper));
+    assert!(
+        w[0].starts_with("`stiffness` ended at its upper search bound"),
+        "{w:#?}"
+    );
+}

@@ -99,6 +99,9 @@ fn print_found(law: &str, start: &Contact, target: &WrenchTarget, found: &RigidI
         "  fitness              {:.4e} (mean squared relative error of the events' indicators)",
         found.fitness
     );
+    for w in &found.warnings {
+        eprintln!("warning: {w}");
+    }
 }
 
 /// The physics file's record of the fit: method, data, runs and events used, time (s),
@@ -115,6 +118,7 @@ fn fit_record(args: &RigidArgs, target: &WrenchTarget, found: &RigidIdentificati
     for m in &target.left_out {
         notes.push(format!("run {} left out: {} events", m.run, m.events));
     }
+    notes.extend(found.warnings.iter().map(|w| format!("warning: {w}")));
     FitRecord {
         method: "ga (contact events)".into(),
         data: args.data.display().to_string(),

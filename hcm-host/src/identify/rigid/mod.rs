@@ -5,6 +5,7 @@
 
 pub mod fitness;
 pub mod parameters;
+pub mod quality;
 pub mod target;
 
 pub use fitness::{event_errors, fitness, replay};
@@ -60,6 +61,10 @@ pub struct RigidIdentification {
     pub evaluations: usize,
     /// Wall-clock time (s).
     pub seconds: f64,
+    /// What the fit did not do, each with what to try ([`quality::warnings`]): a
+    /// parameter at its search bound, events the best replay does not make, an
+    /// indicator missed by more than the runs scatter. Empty for a fit that fitted.
+    pub warnings: Vec<String>,
 }
 
 /// Finds contact `target.contact`'s parameters of `model` (law without exponent, and
@@ -85,7 +90,11 @@ pub fn identify_rigid(
             },
         )
     })?;
+    let bounds = parameters.bounds();
+    let best = parameters.apply(&target.model, &result.best);
+    let warnings = quality::warnings(&bounds, &result.best, target, &best);
     Ok(RigidIdentification {
+        warnings,
         model: parameters.apply(model, &result.best),
         parameters: parameters.named(&result.best),
         fitness: result.fitness,
