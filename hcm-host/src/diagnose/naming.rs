@@ -769,9 +769,9 @@ pub fn name_causes(
 /// ([`super::select::refit_per_run_scaled`]). Runs whose contact scatters (a stiffness
 /// 2 % apart) bias a pooled fit's effect in a direction set by the draw, the same at
 /// every strength and in every fold, which neither the covariance nor the folds'
-/// jackknife sees: on the power table's fitted bases 19 of 86 adhesions missed the
-/// truth, every one high by 3–5 N, before this. Where the runs do not scatter the factors
-/// are ≈ 1 and the two intervals agree.
+/// jackknife sees: on the power table's fitted bases 14 of 86 adhesions missed the
+/// truth before this, every one high, by 2.9–5.2 N. Where the runs do not scatter the
+/// factors are ≈ 1 and the two intervals agree.
 fn cover_run_scatter(problem: &Problem<'_>, naming: &mut Naming) {
     if naming.chosen.is_empty() || problem.samples.run_ranges().len() < 2 {
         return;
