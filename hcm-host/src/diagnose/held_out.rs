@@ -123,14 +123,7 @@ pub fn held_out_rss(
 /// stiffness, which sets their depth.
 fn per_run_rss(test: &ContactSamples, predicted: &[f64]) -> Vec<(usize, f64)> {
     let mut rss: Vec<(usize, f64)> = Vec::new();
-    for range in test.run_ranges() {
-        let inside = range.clone().filter(|&i| test.in_contact[i]);
-        let (py, pp) = inside.fold((0.0, 0.0), |(a, b), i| {
-            (
-                a + predicted[i] * test.measured[i],
-                b + predicted[i] * predicted[i],
-            )
-        });
+    for (range, py, pp) in test.run_scale_sums(predicted, 0.0, |i| test.in_contact[i]) {
         let scale = if pp > 0.0 && (py / pp).is_finite() {
             py / pp
         } else {

@@ -67,20 +67,13 @@ impl ContactSamples {
     /// depth. Normalised by the pooled factor, so the data set's level stays the law's.
     /// A run without force (Σq² = 0) keeps factor 1.
     pub fn scaled_per_run(&self, predicted: &[f64], offset: f64) -> Vec<f64> {
-        let sums = |range: std::ops::Range<usize>| {
-            range.fold((0.0, 0.0), |(qy, qq), i| {
-                let q = predicted[i] - offset;
-                (qy + q * (self.measured[i] - offset), qq + q * q)
-            })
-        };
-        let ranges = self.run_ranges();
-        let per_run: Vec<(f64, f64)> = ranges.iter().map(|r| sums(r.clone())).collect();
+        let per_run = self.run_scale_sums(predicted, offset, |_| true);
         let (qy, qq) = per_run
             .iter()
-            .fold((0.0, 0.0), |(a, b), (y, q)| (a + y, b + q));
+            .fold((0.0, 0.0), |(a, b), (_, y, q)| (a + y, b + q));
         let pooled = qy / qq;
         let mut out = predicted.to_vec();
-        for (range, (y, q)) in ranges.into_iter().zip(per_run) {
+        for (range, y, q) in per_run {
             let factor = y / q / pooled;
             if !(q > 0.0 && factor.is_finite()) {
                 continue;
@@ -90,6 +83,33 @@ impl ContactSamples {
             }
         }
         out
+    }
+
+    /// Each run's sample range with the sums of the least-squares factor that scales
+    /// `predicted` onto the measured force about the sensor's `offset` b (N), over the
+    /// run's samples that `counts`: Σq·(y − b) and Σq² (N²), q = predicted − b. The one
+    /// per-run scale of a contact whose stiffness scatters from run to run, for the
+    /// re-fit ([`Self::scaled_per_run`]) and the held-out score (`held_out`).
+    pub(crate) fn run_scale_sums(
+        &self,
+        predicted: &[f64],
+        offset: f64,
+        counts: impl Fn(usize) -> bool,
+    ) -> Vec<(std::ops::Range<usize>, f64, f64)> {
+        self.run_ranges()
+            .into_iter()
+            .map(|range| {
+                let (qy, qq) =
+                    range
+                        .clone()
+                        .filter(|&i| counts(i))
+                        .fold((0.0, 0.0), |(qy, qq), i| {
+                            let q = predicted[i] - offset;
+                            (qy + q * (self.measured[i] - offset), qq + q * q)
+                        });
+                (range, qy, qq)
+            })
+            .collect()
     }
 
     /// The index ranges of the runs' samples, in order: each a run's consecutive
