@@ -28,6 +28,16 @@ pub fn mean_std(values: &[f64]) -> (f64, f64) {
     (mean, var.sqrt())
 }
 
+/// A scene of the tests' own (`tests/common/scenes/`), written with the README's keys
+/// and shipped with no example of its own: the checks that hcm's commands work on
+/// scenarios they were not shaped around.
+pub fn scene(name: &str) -> hcm_host::scenario::Scenario {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/common/scenes")
+        .join(name);
+    hcm_host::scenario::Scenario::load(&path, &[]).expect("the test scene reads")
+}
+
 /// The path of a scenario file in the workspace's `scenarios/`.
 pub fn scenario(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -36,8 +36,10 @@ pub struct Args {
     /// Law to identify (see `hcm laws`).
     #[arg(long)]
     law: String,
-    /// `lsq`: separable least squares + Levenberg–Marquardt on the force samples
-    /// (fast). `ga`: the paper's genetic algorithm on simulated vs measured data.
+    /// `lsq`: least squares on the force samples (fast; 1D: separable + Levenberg–
+    /// Marquardt; 3D: Levenberg–Marquardt on the wrench at the recorded poses, from
+    /// several starts). `ga`: the paper's genetic algorithm on simulated vs measured
+    /// data (3D: replayed contact events).
     #[arg(long, value_parser = ["lsq", "ga"], default_value = "lsq")]
     method: String,
     /// GA fitness: `curve` (force curves, default) or `indicators`.
@@ -60,7 +62,8 @@ pub struct Args {
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::generations)]
     generations: usize,
     /// Rigid contacts: fix the law's exponent at this value (PM2's; default: the
-    /// scenario's) and identify the rest.
+    /// scenario's) and identify the rest. With `--method lsq` and without it, the
+    /// exponent is fitted too.
     #[arg(long)]
     exponent: Option<f64>,
     /// Rigid contacts: how many contact events to fit, from the first (default: as
@@ -92,8 +95,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let model = scenario.model()?;
     super::check_contact(args.contact, &model)?;
     let data = Dataset::read(&args.data)?;
-    let needs = if model.is_rigid() {
+    let needs = if model.is_rigid() && args.method == "ga" {
         &needs::IDENTIFY_RIGID
+    } else if model.is_rigid() {
+        &needs::IDENTIFY_RIGID_SAMPLES
     } else {
         &needs::IDENTIFY
     };

@@ -1,12 +1,14 @@
-//! `hcm identify` on a rigid (3D) contact: PM2 as issue 15 defines it — the scenario's
-//! law with its exponent fixed and the rest, friction included, found by the genetic
-//! algorithm replaying S1's contact events from their mean pre-contact state.
+//! `hcm identify` on a rigid (3D) contact: by least squares on the wrench at the
+//! recorded poses (`--method lsq`, issue 28), or as issue 15 defines PM2 — the law with
+//! its exponent fixed and the rest, friction included, found by the genetic algorithm
+//! replaying S1's contact events from their mean pre-contact state (`--method ga`).
 
 use super::progress::Bars;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::rigid::{
-    identify_rigid, RigidIdentification, RigidParameters, WrenchTarget,
+    identify_from_samples, identify_rigid, ContactScales, RecordedContact, RigidIdentification,
+    RigidParameters, SampleFit, WrenchTarget,
 };
 use hcm_host::identify::{FitRecord, Physics};
 use hcm_host::numerics::optimize::genetic::GeneticSettings;
@@ -32,11 +34,18 @@ pub fn run(
     settings: GeneticSettings,
 ) -> anyhow::Result<()> {
     let c = args.contact;
-    let law = model.contacts[c].law().name();
-    check_method_and_law(args, scenario, law)?;
     let start = start_model(args, model)?;
+    if args.method == "lsq" {
+        return run_samples(args, scenario, &start, data);
+    }
+    let mut parameters = RigidParameters::new(&start, c, &scenario.identify.bounds)?;
+    // The GA replays events; its box is scaled from the force samples where the data
+    // have them, else it keeps the defaults.
+    if let Ok(recorded) = RecordedContact::from_data(&start, data, c) {
+        scale_box(&start, c, &recorded, &mut parameters);
+    }
+    let law = start.contacts[c].law().name();
     let target = WrenchTarget::from_data(&start, data, c, args.events)?;
-    let parameters = RigidParameters::new(&start, c, &scenario.identify.bounds)?;
     let bars = Bars::with_status(|_| "GA generations");
     let found = identify_rigid(&start, &target, &parameters, &settings, &bars)?;
     print_found(law, &start.contacts[c], &target, &found);
@@ -45,35 +54,122 @@ pub fn run(
     super::identify::write_physics(&physics, &scenario.name, &args.out)
 }
 
-/// Refuses a method other than the GA and a law other than the scenario's `law`.
-fn check_method_and_law(args: &RigidArgs, scenario: &Scenario, law: &str) -> anyhow::Result<()> {
-    let c = args.contact;
-    anyhow::ensure!(
-        args.method == "ga",
-        "--method {}: least squares fits 1D force samples; contact {c} of scenario `{}` is \
-         rigid (3D) and is identified by replaying its contact events: use --method ga",
-        args.method,
-        scenario.name
-    );
-    anyhow::ensure!(
-        args.law == law,
-        "--law {}: a rigid contact keeps the scenario's law (`{law}`) and fixes its exponent \
-         (--exponent); give --law {law}, or change the law in the scenario",
-        args.law
-    );
-    Ok(())
+/// Scales `parameters`' box from `recorded` and says which bounds moved.
+fn scale_box(
+    start: &Model,
+    c: usize,
+    recorded: &RecordedContact,
+    parameters: &mut RigidParameters,
+) {
+    let exponent = start.contacts[c].law().get("exponent").unwrap_or(1.5);
+    let scales = ContactScales::of(recorded, exponent);
+    let changed = scales.apply(start, c, parameters);
+    print_scaled(&scales, exponent, &changed);
 }
 
-/// The model the search starts from: `model` with the contact's exponent set to
+/// Says which bounds were scaled from the data, and from what.
+fn print_scaled(scales: &ContactScales, exponent: f64, changed: &[String]) {
+    if !changed.is_empty() {
+        println!(
+            "search box scaled from the data (peak normal force {:.3e} N, deepest point \
+             {:.3e} m, fastest approach {:.3e} m/s, elastic level {:.3e} N/m^{exponent}): {}",
+            scales.peak_force,
+            scales.peak_depth,
+            scales.peak_rate,
+            scales.stiffness,
+            changed.join(", ")
+        );
+    }
+}
+
+/// `--method lsq`: the law (and friction) fitted to the wrench at the recorded poses.
+fn run_samples(
+    args: &RigidArgs,
+    scenario: &Scenario,
+    start: &Model,
+    data: &Dataset,
+) -> anyhow::Result<()> {
+    let c = args.contact;
+    anyhow::ensure!(
+        args.events.is_none(),
+        "--events: the least-squares fit uses every touching sample; --events is for \
+         --method ga, which replays the first contact events"
+    );
+    let bars = Bars::with_status(|_| "least-squares starts");
+    let bounds = &scenario.identify.bounds;
+    let found = identify_from_samples(start, data, c, bounds, args.exponent.is_none(), &bars)?;
+    let exponent = start.contacts[c].law().get("exponent").unwrap_or(1.5);
+    println!(
+        "{} touching samples with a measured force ({} with torque) in {} runs",
+        found.fit.rows, found.torque_rows, found.fit.runs
+    );
+    print_scaled(&found.scales, exponent, &found.scaled);
+    let found = found.fit;
+    print_samples_fit(start.contacts[c].law().name(), &found);
+    let fit = FitRecord {
+        method: "lsq (wrench at the recorded poses)".into(),
+        data: args.data.display().to_string(),
+        runs: found.runs,
+        events: 0,
+        samples: found.rows,
+        force_rms: found.force_rms,
+        curve_rms: f64::NAN,
+        seconds: found.seconds,
+        notes: (found.parameters.iter().zip(&found.standard_errors))
+            .map(|((n, v), e)| format!("{n} = {v:.6e} ± {e:.3e} (1σ)"))
+            .chain(found.warnings.iter().map(|w| format!("warning: {w}")))
+            .collect(),
+    };
+    let physics = Physics::for_contact(&found.model, c, found.model.contacts[c].law(), fit);
+    super::identify::write_physics(&physics, &scenario.name, &args.out)
+}
+
+/// Prints the least-squares fit: parameters with standard errors, residual RMS, time,
+/// and its warnings on standard error.
+fn print_samples_fit(law: &str, found: &SampleFit) {
+    println!(
+        "{law} and STEP friction by least squares on {} samples of {} runs in {:.1} s \
+         ({} wrench evaluations of every sample)",
+        found.rows, found.runs, found.seconds, found.evaluations
+    );
+    for ((name, value), se) in found.parameters.iter().zip(&found.standard_errors) {
+        println!("  {name:<20} {value:.6e}  ± {se:.3e} (1σ)");
+    }
+    println!("  force residual RMS   {:.4e} N", found.force_rms);
+    if found.torque_rms.is_finite() {
+        println!("  torque residual RMS  {:.4e} N·m", found.torque_rms);
+    }
+    for w in &found.warnings {
+        eprintln!("warning: {w}");
+    }
+}
+
+/// The model the search starts from: `model` with contact `--contact`'s law replaced by
+/// `--law` when it names another (parameters it shares with the scenario's law kept,
+/// the others at the middle of their default search box) and its exponent set to
 /// `--exponent` if given.
 fn start_model(args: &RigidArgs, model: &Model) -> anyhow::Result<Model> {
     let mut start = model.clone();
+    let base = &mut start.contacts[args.contact].model.normal.base;
+    if args.law != base.name() {
+        let entry = hcm_host::law_catalogue::entry(&args.law)?;
+        let middle = hcm_host::identify::bounds::Bounds::for_law(&args.law, None)
+            .map_err(anyhow::Error::msg)?
+            .middle();
+        let values: Vec<(String, f64)> = (entry.parameters.iter())
+            .map(|p| {
+                let kept = base
+                    .get(p.name)
+                    .ok()
+                    .or_else(|| middle.iter().find(|(n, _)| n == p.name).map(|(_, v)| *v));
+                (p.name.to_owned(), kept.unwrap_or(1.5))
+            })
+            .collect();
+        *base = hcm_host::law_catalogue::build(&args.law, &values)
+            .with_context(|| format!("--law {}", args.law))?;
+    }
     if let Some(exponent) = args.exponent {
-        start.contacts[args.contact]
-            .model
-            .normal
-            .base
-            .set("exponent", exponent)
+        base.set("exponent", exponent)
             .with_context(|| format!("--exponent {exponent}"))?;
     }
     Ok(start)

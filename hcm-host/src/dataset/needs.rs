@@ -4,7 +4,8 @@
 //! | command | needs, on the bodies of the contact |
 //! |---|---|
 //! | `identify`, `train`, `diagnose`, `evaluate`, `indicators` (1D) | position somewhere (camera frames) and force somewhere (the sensor's rows); the motion at the force samples is reconstructed |
-//! | `identify`, `indicators` (rigid, 3D) | position, orientation, velocity, angular velocity, force and torque on every row |
+//! | `identify --method ga`, `indicators` (rigid, 3D) | position, orientation, velocity, angular velocity, force and torque on every row |
+//! | `identify --method lsq`, `train` (rigid, 3D) | position, orientation, velocity and angular velocity of the moving body and a force (its own or a plate's) on some rows |
 
 use super::channel::Channel;
 use super::{DataError, Dataset};
@@ -62,6 +63,32 @@ pub const IDENTIFY_RIGID: Requirement = Requirement {
     because: "it replays each contact event from its full pre-contact state and compares \
               wrenches; 3D motion is not reconstructed from camera frames yet, so give every \
               channel on every row",
+};
+
+/// The rigid fit from force samples: the mover's state where the force was measured.
+const STATES_AND_FORCE: &[(Channel, Need)] = &[
+    (Channel::Position, Need::SomeRows),
+    (Channel::Orientation, Need::SomeRows),
+    (Channel::Velocity, Need::SomeRows),
+    (Channel::AngularVelocity, Need::SomeRows),
+    (Channel::Force, Need::SomeRows),
+];
+
+/// `hcm identify --method lsq` on a rigid (3D) contact, and `hcm train` there.
+pub const IDENTIFY_RIGID_SAMPLES: Requirement = Requirement {
+    command: "hcm identify (rigid, 3D, force samples)",
+    channels: STATES_AND_FORCE,
+    because: "it compares the law's wrench at each recorded pose with the force measured \
+              there (on the moving body, or on the fixed one by a force plate at the same \
+              instant; torque is used where recorded)",
+};
+
+/// `hcm train` on a rigid (3D) contact.
+pub const TRAIN_RIGID: Requirement = Requirement {
+    command: "hcm train (rigid, 3D)",
+    channels: STATES_AND_FORCE,
+    because: "the residual network learns the measured minus the modelled wrench at each \
+              recorded state",
 };
 
 /// `hcm train`.

@@ -48,7 +48,7 @@ fn defaults(law: &str) -> &'static [(&'static str, f64, f64, bool)] {
 impl Bounds {
     /// The box for `law`, with the scenario's `[identify.bounds.<law>]` entries
     /// (`name = [lower, upper]`) replacing the defaults.
-    pub(crate) fn for_law(
+    pub fn for_law(
         law: &str,
         overrides: Option<&BTreeMap<String, [f64; 2]>>,
     ) -> Result<Bounds, String> {

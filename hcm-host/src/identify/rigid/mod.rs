@@ -6,10 +6,16 @@
 pub mod fitness;
 pub mod parameters;
 pub mod quality;
+pub mod recorded;
+pub mod sample_fit;
+pub mod scaled;
 pub mod target;
 
 pub use fitness::{event_errors, fitness, replay};
 pub use parameters::RigidParameters;
+pub use recorded::RecordedContact;
+pub use sample_fit::{fit_samples, identify_from_samples, SampleFit, SampleIdentification};
+pub use scaled::ContactScales;
 pub use target::{EventTarget, WrenchTarget};
 
 use crate::indicators::IndicatorError;

@@ -28,6 +28,9 @@ pub struct RigidParameters {
     law: Bounds,
     /// Whether the contact has friction to fit.
     friction: bool,
+    /// The law's parameters whose box the scenario sets (`[identify.bounds.<law>]`):
+    /// [`RigidParameters::scale`] leaves them alone.
+    given: Vec<String>,
 }
 
 impl RigidParameters {
@@ -46,11 +49,57 @@ impl RigidParameters {
         let mut law =
             Bounds::for_law(name, overrides.get(name)).map_err(RigidIdentifyError::Setup)?;
         law.parameters.retain(|p| p.name != "exponent");
+        let given = overrides
+            .get(name)
+            .map_or_else(Vec::new, |o| o.keys().cloned().collect());
         Ok(RigidParameters {
             contact: c,
             law,
             friction: contact.model.friction.is_some(),
+            given,
         })
+    }
+
+    /// The same parameters with the law's exponent free too, in its box (the default
+    /// or the scenario's): the least-squares fit from force samples can find it where
+    /// the replayed events of PM2 (Table 15) fix it.
+    pub fn with_exponent(
+        mut self,
+        model: &Model,
+        overrides: &BoundsOverrides,
+    ) -> Result<RigidParameters, RigidIdentifyError> {
+        let name = model.contacts[self.contact].law().name();
+        let all = Bounds::for_law(name, overrides.get(name)).map_err(RigidIdentifyError::Setup)?;
+        let at = all.parameters.iter().position(|p| p.name == "exponent");
+        if let (Some(at), false) = (at, self.fits_exponent()) {
+            let exponent = all.parameters[at].clone();
+            self.law
+                .parameters
+                .insert(at.min(self.law.parameters.len()), exponent);
+        }
+        Ok(self)
+    }
+
+    /// Whether the exponent is among the free parameters.
+    pub fn fits_exponent(&self) -> bool {
+        self.law.parameters.iter().any(|p| p.name == "exponent")
+    }
+
+    /// Sets the box of the law's parameter `name` to [lower, upper] (its units) unless
+    /// the scenario gives that box or the law has no such free parameter; whether it
+    /// did. A box scaled from the data ([`super::scaled`]) replaces the defaults, which
+    /// fit the paper's examples and not every rig.
+    pub fn scale(&mut self, name: &str, lower: f64, upper: f64) -> bool {
+        if self.given.iter().any(|g| g == name) || !(lower < upper && lower.is_finite()) {
+            return false;
+        }
+        match self.law.parameters.iter_mut().find(|p| p.name == name) {
+            Some(bound) if !bound.log_scale || lower > 0.0 => {
+                (bound.lower, bound.upper) = (lower, upper);
+                true
+            }
+            _ => false,
+        }
     }
 }
 

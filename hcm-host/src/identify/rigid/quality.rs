@@ -46,7 +46,7 @@ pub fn warnings(
 }
 
 /// A warning per gene at (within [`AT_BOUND`] of) an end of its search interval.
-fn at_bounds(bounds: &[Bound], genes: &[f64]) -> Vec<String> {
+pub(crate) fn at_bounds(bounds: &[Bound], genes: &[f64]) -> Vec<String> {
     bounds
         .iter()
         .zip(genes)

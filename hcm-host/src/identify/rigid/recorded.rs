@@ -1,0 +1,279 @@
+//! A rigid contact as the rig recorded it (issue 28, "per-point least squares on the
+//! recorded poses"): at every sample where the moving body's recorded pose touches the
+//! other body, the contact points the scenario's geometry gives there — depth δ (m),
+//! rate δ̇ (m/s), normal, slip velocity (m/s) — and the wrench the sensor measured on the
+//! moving body.
+//!
+//! The points depend on the poses alone, never on the law's parameters, so they are
+//! built once and a candidate law is judged by [`ContactModel::pair_load`] on them:
+//! thousands of candidates per second, no simulation.
+//!
+//! **History.** Each point's approach speed δ̇0 (Lankarani–Nikravesh, Flores) and
+//! deepest indentation δ_max (plasticity) are latched along each run in time order, as
+//! the simulator latches them after each step ([`crate::simulate::RigidSystem::latch`]);
+//! a point's δ̇0 is its δ̇ at the first sample that touches, so with samples sparse
+//! against a contact's duration the memory laws read the approach speed late. IMPACT
+//! and Hertz-type laws without memory are exact at every sample.
+//!
+//! **The measured wrench** is the moving body's force and torque channels (N, N·m
+//! about its centre of mass, world frame) where it has them, else a force plate's: the
+//! fixed body's channels at the same instant, turned into the wrench on the mover
+//! (F_m = −F_p, T_m = −T_p + (p_m − p_p) × F_p, p the bodies' centres (m)). A sample
+//! without pose, velocity or a measured force is not a row.
+//!
+//! [`ContactModel::pair_load`]: hcm_core::model::ContactModel::pair_load
+
+use super::RigidIdentifyError;
+use crate::dataset::{BodyTrack, Channel, Dataset, Run, Sample};
+use crate::scenario::Model;
+use crate::simulate::{RigidLayout, RigidSystem};
+use crate::train::wrench_samples::state_input;
+use hcm_core::model::Manifold;
+use nalgebra::Vector3;
+use rayon::prelude::*;
+
+/// Largest time difference (s, relative to the time) between a pose sample and a force
+/// plate's sample taken as the same instant.
+const SAME_INSTANT: f64 = 1e-9;
+
+/// One touching sample.
+#[derive(Clone, Debug)]
+pub struct RecordedSample {
+    /// Index of its run in the data.
+    pub run: usize,
+    /// Time (s).
+    pub time: f64,
+    /// The contact's touching points at the recorded poses, histories latched.
+    pub(crate) points: Manifold<f64>,
+    /// Body 1's and body 2's centres (m): the torques' reference points.
+    pub(crate) references: [Vector3<f64>; 2],
+    /// The measured force (N) and torque (N·m, about the mover's centre of mass) on
+    /// the mover, world frame; a torque not measured is NaN.
+    pub measured: [f64; 6],
+}
+
+/// Every touching sample of one contact.
+#[derive(Clone, Debug)]
+pub struct RecordedContact {
+    /// Index of the contact in the model.
+    pub contact: usize,
+    /// Whether the mover is the contact's body 1.
+    mover_is_1: bool,
+    /// The rows, runs in file order and samples in time order.
+    pub samples: Vec<RecordedSample>,
+    /// Runs in the data.
+    pub runs: usize,
+    /// RMS of the measured force's magnitude over the rows (N): the force residuals'
+    /// unit.
+    pub force_scale: f64,
+    /// RMS of the measured torque's magnitude (N·m), 0 when no row has torque.
+    pub torque_scale: f64,
+}
+
+impl RecordedContact {
+    /// Contact `c`'s touching samples in `data`, with `model`'s geometry. Errors: no
+    /// such contact, not one moving body against a fixed one, a run without the
+    /// mover's track, or no row with a pose, velocities and a measured force — each
+    /// naming the channel or body that is missing.
+    pub fn from_data(
+        model: &Model,
+        data: &Dataset,
+        c: usize,
+    ) -> Result<RecordedContact, RigidIdentifyError> {
+        let mover_name = super::mover_name(model, c)?;
+        let contact = &model.contacts[c];
+        let mover = if model.bodies[contact.body_1].fixed {
+            contact.body_2
+        } else {
+            contact.body_1
+        };
+        let plate = if mover == contact.body_1 {
+            contact.body_2
+        } else {
+            contact.body_1
+        };
+        let plate_name = &model.bodies[plate].name;
+        let mut physics = model.clone();
+        physics.contacts[c].model.residual = None;
+        let layout = RigidLayout::new(&physics);
+        let per_run: Vec<Vec<RecordedSample>> = (data.runs.iter().enumerate())
+            .collect::<Vec<_>>()
+            .par_iter()
+            .map(|&(r, run)| {
+                let track = run
+                    .body(&mover_name)
+                    .ok_or_else(|| missing_body(run, &mover_name))?;
+                let rig = Rig {
+                    model: &physics,
+                    layout: &layout,
+                    c,
+                    mover,
+                    plate: run.body(plate_name),
+                    plate_position: model.bodies[plate].position,
+                };
+                Ok(rig.rows(r, track))
+            })
+            .collect::<Result<_, RigidIdentifyError>>()?;
+        let samples: Vec<RecordedSample> = per_run.into_iter().flatten().collect();
+        if samples.is_empty() {
+            return Err(RigidIdentifyError::Setup(format!(
+                "no sample of body `{mover_name}` both touches `{plate_name}` (at the \
+                 scenario's geometry) and carries a pose, velocity, angular velocity and a \
+                 measured force (its own fx, fy, fz or `{plate_name}`'s at the same time): \
+                 the fit from force samples has nothing to fit. Check the channels \
+                 (`hcm indicators` lists them), the bodies' geometry in the scenario, or \
+                 fit from the motion alone with `hcm identify-motion`"
+            )));
+        }
+        let rms = |part: std::ops::Range<usize>| {
+            let rows = samples
+                .iter()
+                .filter(|s| s.measured[part.clone()][0].is_finite());
+            let (sum, n) = rows.fold((0.0, 0usize), |(sum, n), s| {
+                let v = &s.measured[part.clone()];
+                (sum + v.iter().map(|x| x * x).sum::<f64>(), n + 1)
+            });
+            if n == 0 {
+                0.0
+            } else {
+                (sum / n as f64).sqrt()
+            }
+        };
+        let (force_scale, torque_scale) = (rms(0..3), rms(3..6));
+        Ok(RecordedContact {
+            contact: c,
+            mover_is_1: mover == contact.body_1,
+            samples,
+            runs: data.runs.len(),
+            force_scale,
+            torque_scale,
+        })
+    }
+
+    /// The wrench (force (N), torque (N·m) about the mover's centre, world frame) that
+    /// `candidate`'s contact (physics only) exerts on the mover at `sample`.
+    pub fn predicted(&self, candidate: &Model, sample: &RecordedSample) -> [f64; 6] {
+        let contact = &candidate.contacts[self.contact].model;
+        let [r1, r2] = &sample.references;
+        let load = contact.pair_load(&sample.points, r1, r2, &[]);
+        let w = &load.wrench;
+        let (f, t) = if self.mover_is_1 {
+            (w.force_1, w.torque_1)
+        } else {
+            (w.force_2, w.torque_2)
+        };
+        [f.x, f.y, f.z, t.x, t.y, t.z]
+    }
+
+    /// The weighted residuals of `candidate`: per row, (measured − predicted) force
+    /// over [`Self::force_scale`] and torque over [`Self::torque_scale`] (0 where the
+    /// torque was not measured); `out` holds 6 per row.
+    pub fn residuals(&self, candidate: &Model, out: &mut [f64]) {
+        for (sample, row) in self.samples.iter().zip(out.chunks_exact_mut(6)) {
+            let got = self.predicted(candidate, sample);
+            for k in 0..6 {
+                let scale = if k < 3 {
+                    self.force_scale
+                } else {
+                    self.torque_scale
+                };
+                let error = sample.measured[k] - got[k];
+                row[k] = if error.is_finite() && scale > 0.0 {
+                    error / scale
+                } else {
+                    0.0
+                };
+            }
+        }
+    }
+}
+
+/// What the rows of one run are built from.
+struct Rig<'a> {
+    model: &'a Model,
+    layout: &'a RigidLayout,
+    c: usize,
+    mover: usize,
+    /// The other body's track (a force plate), if the run has one.
+    plate: Option<&'a BodyTrack>,
+    /// The other body's centre (m), where the scenario fixes it.
+    plate_position: Vector3<f64>,
+}
+
+impl Rig<'_> {
+    /// The run's touching rows, its point histories latched sample by sample.
+    fn rows(&self, run: usize, track: &BodyTrack) -> Vec<RecordedSample> {
+        let mut system = RigidSystem::new(self.model, self.layout);
+        let mut y = self.layout.initial_state(self.model).0;
+        let Some(slot) = self.layout.slot(self.mover) else {
+            return Vec::new();
+        };
+        let mut rows = Vec::new();
+        for sample in &track.samples {
+            let kinematic = [
+                Channel::Position,
+                Channel::Orientation,
+                Channel::Velocity,
+                Channel::AngularVelocity,
+            ];
+            if !kinematic.iter().all(|&ch| sample.has(ch)) {
+                continue;
+            }
+            let state = state_input(sample);
+            y[slot..slot + state.len()].copy_from_slice(&state);
+            let manifold = system.manifold(&y, self.c);
+            system.latch(&y);
+            if manifold.points.is_empty() {
+                continue;
+            }
+            let Some(measured) = self.measured(sample) else {
+                continue;
+            };
+            rows.push(RecordedSample {
+                run,
+                time: sample.time,
+                points: manifold.points,
+                references: [manifold.pose_1.position, manifold.pose_2.position],
+                measured,
+            });
+        }
+        rows
+    }
+
+    /// The wrench measured on the mover at `sample`: its own channels, else the plate's
+    /// at the same instant turned onto the mover; `None` without a force.
+    fn measured(&self, sample: &Sample) -> Option<[f64; 6]> {
+        if sample.has(Channel::Force) {
+            let [fx, fy, fz] = sample.force;
+            let [tx, ty, tz] = sample.torque;
+            return Some([fx, fy, fz, tx, ty, tz]);
+        }
+        let plate = self.plate?;
+        let at = plate
+            .samples
+            .partition_point(|s| s.time < sample.time - SAME_INSTANT * sample.time.abs().max(1.0));
+        let reading = plate.samples.get(at).filter(|s| {
+            (s.time - sample.time).abs() <= SAME_INSTANT * sample.time.abs().max(1.0)
+                && s.has(Channel::Force)
+        })?;
+        let force = Vector3::from(reading.force);
+        let arm = Vector3::from(sample.position) - self.plate_position;
+        let torque = -Vector3::from(reading.torque) + arm.cross(&force);
+        Some([-force.x, -force.y, -force.z, torque.x, torque.y, torque.z])
+    }
+}
+
+/// The error for a run without the mover's track.
+fn missing_body(run: &Run, body: &str) -> RigidIdentifyError {
+    RigidIdentifyError::Setup(format!(
+        "run `{}` has no samples of body `{body}`, the contact's moving body: the data's \
+         `body` column names it differently, or the run does not record it (bodies in the \
+         run: {})",
+        run.id,
+        run.bodies
+            .iter()
+            .map(|b| format!("`{}`", b.body))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ))
+}
