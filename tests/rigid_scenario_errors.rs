@@ -102,14 +102,20 @@ fn one_dimensional_commands_refuse_a_3d_scenario_and_say_what_works() {
     )
     .unwrap();
     let message = hcm
-        .run("train")
+        .run("diagnose")
         .opt("--scenario", hcm_tests::scenario("cube_drop.toml"))
         .opt("--data", hcm.path("data.csv"))
         .opt("--physics", hcm.path("pm2.toml"))
-        .opt("--out", hcm.path("residual.json"))
+        .opt("--out", hcm.path("diagnosis"))
         .fails();
     assert_says(
         &message,
-        &["is 3D", "hcm train", "hcm simulate", "hcm identify"],
+        &[
+            "is 3D",
+            "hcm diagnose",
+            "hcm simulate",
+            "hcm identify",
+            "hcm train",
+        ],
     );
 }

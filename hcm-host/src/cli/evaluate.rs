@@ -2,7 +2,7 @@
 
 use anyhow::Context;
 use hcm_host::dataset::{needs, reconstruct, Dataset};
-use hcm_host::evaluate::{evaluate, markdown};
+use hcm_host::evaluate::{evaluate, evaluate_rigid, markdown, rigid_markdown};
 use hcm_host::identify::Physics;
 use hcm_host::residual::ContactResidual;
 use std::path::PathBuf;
@@ -53,9 +53,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let physics = Physics::read(&args.physics)?;
     let pm2 = physics.apply(&scenario, &args.physics)?.model()?;
-    super::require_one_dimensional(&pm2, "evaluate")?;
     super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
+    if pm2.is_rigid() {
+        return run_rigid(&args, &pm2, &data);
+    }
     data.require(
         &args.data.display().to_string(),
         &pm2,
@@ -65,15 +67,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // Camera frames and force rows on their own clocks: the motion at the force samples.
     let completed = reconstruct::complete(&pm2, &data)?;
     let data = completed.data.as_ref();
-    let mut models = vec![("PM2", pm2.clone())];
-    if let Some(path) = &args.residual {
-        let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
-        let residual = ContactResidual::decode(&bytes)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-        let mut hcm = pm2.clone();
-        hcm.contacts[args.contact].model.residual = Some(residual);
-        models.push(("HCM", hcm));
-    }
+    let models = with_hcm(&args, &pm2)?;
     let columns: Vec<(&str, &hcm_host::scenario::Model)> =
         models.iter().map(|(l, m)| (*l, m)).collect();
     let tables = evaluate(&columns, data, args.contact)?;
@@ -96,6 +90,53 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
         print!("{}", markdown(table));
         println!();
+    }
+    Ok(())
+}
+
+/// PM2, and the HCM (PM2 with `--residual`'s blob on the contact) when given.
+fn with_hcm(
+    args: &Args,
+    pm2: &hcm_host::scenario::Model,
+) -> anyhow::Result<Vec<(&'static str, hcm_host::scenario::Model)>> {
+    let mut models = vec![("PM2", pm2.clone())];
+    if let Some(path) = &args.residual {
+        let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
+        let residual = ContactResidual::decode(&bytes)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let mut hcm = pm2.clone();
+        hcm.contacts[args.contact].model.residual = Some(residual);
+        models.push(("HCM", hcm));
+    }
+    Ok(models)
+}
+
+/// The rigid path: every run replayed from its own pre-contact state by PM2 (and the
+/// HCM), its events' indicators and the moving body's path against the data.
+fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> anyhow::Result<()> {
+    data.require(
+        &args.data.display().to_string(),
+        pm2,
+        &[args.contact],
+        &needs::INDICATORS_RIGID,
+    )?;
+    let models = with_hcm(args, pm2)?;
+    let columns: Vec<(&str, &hcm_host::scenario::Model)> =
+        models.iter().map(|(l, m)| (*l, m)).collect();
+    let evaluation = evaluate_rigid(&columns, data, args.contact)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&evaluation)?);
+        return Ok(());
+    }
+    println!(
+        "{} — {} runs replayed from their own pre-contact states, PM2 = {}\n",
+        pm2.scenario.name,
+        evaluation.runs,
+        pm2.contacts[args.contact].law().name()
+    );
+    print!("{}", rigid_markdown(&evaluation));
+    for why in &evaluation.left_out {
+        eprintln!("warning: left out: {why}");
     }
     Ok(())
 }

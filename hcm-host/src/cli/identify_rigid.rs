@@ -4,11 +4,10 @@
 //! replaying S1's contact events from their mean pre-contact state (`--method ga`).
 
 use super::progress::Bars;
-use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::rigid::{
-    identify_from_samples, identify_rigid, ContactScales, RecordedContact, RigidIdentification,
-    RigidParameters, SampleFit, WrenchTarget,
+    identify_from_samples, identify_rigid, with_law, ContactScales, RecordedContact,
+    RigidIdentification, RigidParameters, SampleFit, WrenchTarget,
 };
 use hcm_host::identify::{FitRecord, Physics};
 use hcm_host::numerics::optimize::genetic::GeneticSettings;
@@ -144,35 +143,9 @@ fn print_samples_fit(law: &str, found: &SampleFit) {
     }
 }
 
-/// The model the search starts from: `model` with contact `--contact`'s law replaced by
-/// `--law` when it names another (parameters it shares with the scenario's law kept,
-/// the others at the middle of their default search box) and its exponent set to
-/// `--exponent` if given.
+/// The model the search starts from ([`with_law`]).
 fn start_model(args: &RigidArgs, model: &Model) -> anyhow::Result<Model> {
-    let mut start = model.clone();
-    let base = &mut start.contacts[args.contact].model.normal.base;
-    if args.law != base.name() {
-        let entry = hcm_host::law_catalogue::entry(&args.law)?;
-        let middle = hcm_host::identify::bounds::Bounds::for_law(&args.law, None)
-            .map_err(anyhow::Error::msg)?
-            .middle();
-        let values: Vec<(String, f64)> = (entry.parameters.iter())
-            .map(|p| {
-                let kept = base
-                    .get(p.name)
-                    .ok()
-                    .or_else(|| middle.iter().find(|(n, _)| n == p.name).map(|(_, v)| *v));
-                (p.name.to_owned(), kept.unwrap_or(1.5))
-            })
-            .collect();
-        *base = hcm_host::law_catalogue::build(&args.law, &values)
-            .with_context(|| format!("--law {}", args.law))?;
-    }
-    if let Some(exponent) = args.exponent {
-        base.set("exponent", exponent)
-            .with_context(|| format!("--exponent {exponent}"))?;
-    }
-    Ok(start)
+    Ok(with_law(model, args.contact, &args.law, args.exponent)?)
 }
 
 /// Prints what the GA found: the runs and events it used, its time (s) and replays,

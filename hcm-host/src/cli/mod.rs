@@ -151,7 +151,7 @@ impl ScenarioArgs {
 }
 
 /// Refuses a 3D scenario for a command that so far works along a line of centres
-/// (identify, train, evaluate, diagnose), saying what does work with it.
+/// (diagnose), saying what does work with it.
 pub fn require_one_dimensional(
     model: &hcm_host::scenario::Model,
     command: &str,
@@ -161,8 +161,9 @@ pub fn require_one_dimensional(
         "scenario `{}` is 3D (a box or compound body, friction, or a body that starts turned \
          or spinning), and `hcm {command}` works only on 1D scenarios so far (spheres against a \
          plane or a sphere, moving without rotation, like scenarios/bouncing_ball.toml). \
-         3D scenarios work with `hcm simulate`, `hcm generate`, `hcm indicators`, `hcm identify` \
-         and `hcm reproduce peg-in-hole`",
+         3D scenarios work with `hcm simulate`, `hcm generate`, `hcm indicators`, \
+         `hcm identify`, `hcm train`, `hcm export`, `hcm evaluate` and `hcm reproduce \
+         peg-in-hole`",
         model.scenario.name
     );
     Ok(())

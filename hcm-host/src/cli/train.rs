@@ -5,7 +5,7 @@ use super::progress::Bars;
 use hcm_host::dataset::{needs, Dataset};
 use hcm_host::identify::Physics;
 use hcm_host::progress::Stage;
-use hcm_host::train::{train_force_residual, ResidualSettings};
+use hcm_host::train::{train_force_residual, train_wrench_residual, ResidualSettings};
 use std::path::PathBuf;
 
 /// Train the residual network of the HCM on S1 (and its int8 twin).
@@ -53,6 +53,11 @@ pub struct Args {
     #[arg(long, default_value_t = 20)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::fine_tuning_epochs)]
     int8_epochs: usize,
+    /// Rigid (3D) contacts: train on the samples before the contact event of this
+    /// number (0-based; e.g. 2 = the first two events only). Default: every touching
+    /// sample.
+    #[arg(long)]
+    events: Option<usize>,
     /// Trained residual file to write (JSON), e.g. `residual.json`.
     #[arg(long)]
     out: PathBuf,
@@ -63,9 +68,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let pm2 = Physics::read(&args.physics)?
         .apply(&scenario, &args.physics)?
         .model()?;
-    super::require_one_dimensional(&pm2, "train")?;
     super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
+    if pm2.is_rigid() {
+        return run_rigid(&args, &pm2, &data);
+    }
     data.require(
         &args.data.display().to_string(),
         &pm2,
@@ -98,6 +105,69 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         tuned.rounded_rms, tuned.tuned_rms, tuned.epochs, tuned.tuned_max, tuned.seconds
     );
     trained.residual.write(&args.out)?;
+    println!(
+        "→ {} (export with `hcm export --residual {0} --out residual.bin`)",
+        args.out.display()
+    );
+    Ok(())
+}
+
+/// The rigid path: the wrench residual of Eq 12 on every touching sample (or those
+/// before `--events`), its outputs' R², and a warning when it explains nothing.
+fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> anyhow::Result<()> {
+    data.require(
+        &args.data.display().to_string(),
+        pm2,
+        &[args.contact],
+        &needs::TRAIN_RIGID,
+    )?;
+    let settings = ResidualSettings {
+        epochs: args.epochs,
+        int8_epochs: args.int8_epochs,
+        seed: args.seed,
+    };
+    let bars = Bars::with_status(|stage| match stage {
+        Stage::Int8Twin => "int8 fine-tuning",
+        _ => "training epochs",
+    });
+    let events = args.events.unwrap_or(usize::MAX);
+    let trained = train_wrench_residual(pm2, data, args.contact, events, &settings, &bars)?;
+    let report = &trained.report;
+    println!(
+        "trained the wrench residual (13 state inputs → force and torque on the moving body) \
+         on {} touching samples of {} runs: {} epochs (best {}), train MSE {:.3e}, validation \
+         MSE {:.3e}, {:.2} s",
+        trained.rows,
+        data.runs.len(),
+        report.epochs,
+        report.best_epoch,
+        report.train_loss,
+        report.validation_loss,
+        report.seconds
+    );
+    let names = ["fx", "fy", "fz", "tx", "ty", "tz"];
+    let explained: Vec<String> = (names.iter().zip(trained.explained()))
+        .map(|(n, r2)| format!("{n} {r2:.2}"))
+        .collect();
+    println!(
+        "share of PM2's error explained (R², training rows): {}",
+        explained.join(", ")
+    );
+    if trained.silenced.len() == names.len() {
+        eprintln!(
+            "warning: the network explains under 10 % of PM2's error in every output and is \
+             no better than a zero output: every output is fixed at 0 (the HCM is PM2). \
+             PM2 may already fit the data (see `hcm identify`'s residual RMS), or the error \
+             depends on what the 13 state inputs do not show — try more runs"
+        );
+    } else if !trained.silenced.is_empty() {
+        let silenced: Vec<&str> = trained.silenced.iter().map(|&k| names[k]).collect();
+        println!(
+            "fixed at 0 (R² under 0.1: noise to the network): {}",
+            silenced.join(", ")
+        );
+    }
+    trained.residual().write(&args.out)?;
     println!(
         "→ {} (export with `hcm export --residual {0} --out residual.bin`)",
         args.out.display()

@@ -18,7 +18,9 @@ mod write;
 
 pub use generation::Generation;
 pub use noise::{noisy_model, noisy_run};
-pub use pre_contact::{pre_contact_states, replay_model, PreContact, PreContactError};
+pub use pre_contact::{
+    pre_contact_states, replay_model, state_before, PreContact, PreContactError,
+};
 pub use split::{check_split, condition_of, split, split_sizes, Holdout, Split};
 pub use write::{ExperimentWriter, Written};
 

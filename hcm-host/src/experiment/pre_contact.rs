@@ -92,6 +92,17 @@ fn pre_contact(model: &Model, run: &Run) -> Result<PreContact, PreContactError> 
         .ok_or_else(|| PreContactError::NoContact {
             run: run.id.clone(),
         })?;
+    state_before(model, run, touch_down)
+}
+
+/// The recorded state of every moving body of `run` at its last sample at or before
+/// `touch_down` (s): where a replay of the contact event that starts then begins (the
+/// first event's is the run's [`PreContact`]).
+pub fn state_before(
+    model: &Model,
+    run: &Run,
+    touch_down: f64,
+) -> Result<PreContact, PreContactError> {
     let mut states: Vec<(usize, Sample)> = Vec::new();
     for (index, body) in model.bodies.iter().enumerate().filter(|(_, b)| !b.fixed) {
         let track = run

@@ -34,7 +34,7 @@ pub struct WrenchTrained {
     /// The f32 network and its int8 twin.
     pub(crate) residual: TrainedResidual,
     /// Training rows (contact samples of the first events).
-    pub(crate) rows: usize,
+    pub rows: usize,
     /// The f32 network's training.
     pub report: TrainReport,
     /// The int8 twin's fine-tuning.
@@ -43,6 +43,18 @@ pub struct WrenchTrained {
     pub(crate) explained: Vec<f64>,
     /// Outputs fixed at zero: R² below [`EXPLAINED_MIN`] (see [`super::explained`]).
     pub silenced: Vec<usize>,
+}
+
+impl WrenchTrained {
+    /// The f32 network and its int8 twin, to write or export.
+    pub fn residual(&self) -> &TrainedResidual {
+        &self.residual
+    }
+
+    /// R² of each output on the training rows (force x y z, torque x y z).
+    pub fn explained(&self) -> &[f64] {
+        &self.explained
+    }
 }
 
 /// Why the stage failed.

@@ -9,6 +9,7 @@ pub mod quality;
 pub mod recorded;
 pub mod sample_fit;
 pub mod scaled;
+pub mod start;
 pub mod target;
 
 pub use fitness::{event_errors, fitness, replay};
@@ -16,6 +17,7 @@ pub use parameters::RigidParameters;
 pub use recorded::RecordedContact;
 pub use sample_fit::{fit_samples, identify_from_samples, SampleFit, SampleIdentification};
 pub use scaled::ContactScales;
+pub use start::with_law;
 pub use target::{EventTarget, WrenchTarget};
 
 use crate::indicators::IndicatorError;

@@ -4,6 +4,10 @@
 //! [`ModelRow`], the shape every judged model takes (`evaluate --json`,
 //! `results.json`, `diagnosis.json`).
 
+pub mod rigid;
+
+pub use rigid::{evaluate_rigid, rigid_markdown, RigidEvaluation};
+
 use crate::dataset::Dataset;
 use crate::identify::replay::{simulate_target_with, targets};
 use crate::identify::IdentifyError;
