@@ -97,8 +97,10 @@ mod through_contact;
 mod write;
 
 pub use channel::Channel;
+pub mod state;
 pub use flight::FlightFit;
 pub use needs::{Need, Requirement};
+pub use state::state_input;
 pub use write::RunWriter;
 
 use std::fmt::Write as _;

@@ -26,3 +26,4 @@ pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};
 pub mod drag;
 pub mod momentum;
 pub mod motion;
+pub mod rigid;

@@ -26,15 +26,15 @@
 //! its current δ̇, its δ_max its current δ): exact for a memory-free law such as
 //! IMPACT (Eq 8–9) with STEP friction, PM2's laws on the peg.
 
+pub use crate::dataset::state_input;
 use crate::dataset::{Dataset, Sample};
 use crate::scenario::Model;
 use crate::simulate::{RigidLayout, RigidSystem};
-use hcm_core::rigid::RigidState;
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::Vector3;
 use rayon::prelude::*;
 
 /// Residual inputs of a rigid contact: the moving body's 13 state components.
-pub(crate) const STATE_INPUTS: usize = 13;
+pub(crate) use crate::dataset::state::STATE_INPUTS;
 
 /// The training pairs of one contact, one row per touching sample, runs in file
 /// order and samples in time order.
@@ -114,23 +114,6 @@ pub fn wrench_pairs(
         }
     }
     Ok(pairs)
-}
-
-/// The residual input of a recorded sample: [`RigidState`]'s components, ω turned from
-/// the data's world frame into the body frame.
-pub fn state_input(sample: &Sample) -> [f64; STATE_INPUTS] {
-    let [w, x, y, z] = sample.orientation;
-    let orientation = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
-    let omega = orientation.inverse_transform_vector(&Vector3::from(sample.angular_velocity));
-    let mut state = RigidState::new(
-        Vector3::from(sample.position),
-        orientation,
-        Vector3::from(sample.velocity),
-        omega,
-    );
-    // Keep the recorded quaternion itself (the integrator's, up to its drift).
-    state.components[3..7].copy_from_slice(&sample.orientation);
-    state.components
 }
 
 /// The (force (N), torque (N·m) about its centre of mass, world frame) that contact

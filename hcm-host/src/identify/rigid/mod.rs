@@ -15,7 +15,9 @@ pub mod target;
 pub use fitness::{event_errors, fitness, replay};
 pub use parameters::RigidParameters;
 pub use recorded::RecordedContact;
-pub use sample_fit::{fit_samples, identify_from_samples, SampleFit, SampleIdentification};
+pub use sample_fit::{
+    fit_samples, identify_from_samples, least_squares, SampleFit, SampleIdentification,
+};
 pub use scaled::ContactScales;
 pub use start::with_law;
 pub use target::{EventTarget, WrenchTarget};

@@ -24,10 +24,10 @@
 //! [`ContactModel::pair_load`]: hcm_core::model::ContactModel::pair_load
 
 use super::RigidIdentifyError;
+use crate::dataset::state_input;
 use crate::dataset::{BodyTrack, Channel, Dataset, Run, Sample};
 use crate::scenario::Model;
 use crate::simulate::{RigidLayout, RigidSystem};
-use crate::train::wrench_samples::state_input;
 use hcm_core::model::Manifold;
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -80,6 +80,17 @@ impl RecordedContact {
         data: &Dataset,
         c: usize,
     ) -> Result<RecordedContact, RigidIdentifyError> {
+        Self::with_rows(model, data, c, false)
+    }
+
+    /// [`Self::from_data`], with the samples out of contact too when `flight` (no
+    /// points: the model predicts no wrench there, and a sensor's offset shows alone).
+    pub fn with_rows(
+        model: &Model,
+        data: &Dataset,
+        c: usize,
+        flight: bool,
+    ) -> Result<RecordedContact, RigidIdentifyError> {
         let mover_name = super::mover_name(model, c)?;
         let contact = &model.contacts[c];
         let mover = if model.bodies[contact.body_1].fixed {
@@ -110,6 +121,7 @@ impl RecordedContact {
                     mover,
                     plate: run.body(plate_name),
                     plate_position: model.bodies[plate].position,
+                    flight,
                 };
                 Ok(rig.rows(r, track))
             })
@@ -125,21 +137,13 @@ impl RecordedContact {
                  fit from the motion alone with `hcm identify-motion`"
             )));
         }
-        let rms = |part: std::ops::Range<usize>| {
-            let rows = samples
-                .iter()
-                .filter(|s| s.measured[part.clone()][0].is_finite());
-            let (sum, n) = rows.fold((0.0, 0usize), |(sum, n), s| {
-                let v = &s.measured[part.clone()];
-                (sum + v.iter().map(|x| x * x).sum::<f64>(), n + 1)
-            });
-            if n == 0 {
-                0.0
-            } else {
-                (sum / n as f64).sqrt()
-            }
-        };
-        let (force_scale, torque_scale) = (rms(0..3), rms(3..6));
+        if !samples.iter().any(|s| !s.points.is_empty()) {
+            return Err(RigidIdentifyError::Setup(format!(
+                "no sample of body `{mover_name}` touches `{plate_name}` at the scenario's \
+                 geometry: check the bodies' shapes and the fixed body's pose"
+            )));
+        }
+        let (force_scale, torque_scale) = (rms(&samples, 0..3), rms(&samples, 3..6));
         Ok(RecordedContact {
             contact: c,
             mover_is_1: mover == contact.body_1,
@@ -148,6 +152,19 @@ impl RecordedContact {
             force_scale,
             torque_scale,
         })
+    }
+
+    /// Whether the mover is the contact's body 1 (its centre is `references[0]`).
+    pub fn mover_is_1(&self) -> bool {
+        self.mover_is_1
+    }
+
+    /// The rows of the runs `keep` says to keep, as a contact of their own (the scales
+    /// kept: a fit on a part weighs force and torque as on the whole).
+    pub fn part(&self, keep: impl Fn(usize) -> bool) -> RecordedContact {
+        let mut out = self.clone();
+        out.samples.retain(|s| keep(s.run));
+        out
     }
 
     /// The wrench (force (N), torque (N·m) about the mover's centre, world frame) that
@@ -165,12 +182,54 @@ impl RecordedContact {
         [f.x, f.y, f.z, t.x, t.y, t.z]
     }
 
-    /// The weighted residuals of `candidate`: per row, (measured − predicted) force
-    /// over [`Self::force_scale`] and torque over [`Self::torque_scale`] (0 where the
-    /// torque was not measured); `out` holds 6 per row.
+    /// What `candidate`'s sensor reads at every row: its contact's wrench on the mover
+    /// ([`Self::predicted`]) as the scenario's `[experiment]` keys say a sensor turns
+    /// it into a reading (the generator's order and meaning, `hcm generate`): the force
+    /// read `sensor_delay` τ late (on the cubic Hermite curve through the run's rows,
+    /// [`crate::numerics::sampled::delayed`]), then force and torque times
+    /// `force_gain` g, plus `force_offset` b on the force. τ = 0, g = 1, b = 0: the
+    /// wrench itself.
+    pub fn readings(&self, candidate: &Model) -> Vec<[f64; 6]> {
+        let mut read: Vec<[f64; 6]> = (self.samples.iter())
+            .map(|s| self.predicted(candidate, s))
+            .collect();
+        let sensor = &candidate.scenario.experiment;
+        let (delay, gain, offset) = (sensor.sensor_delay, sensor.force_gain, sensor.force_offset);
+        if delay != 0.0 {
+            let mut first = 0;
+            while first < self.samples.len() {
+                let run = self.samples[first].run;
+                let end = first
+                    + (self.samples[first..].iter())
+                        .take_while(|s| s.run == run)
+                        .count();
+                let times: Vec<f64> = self.samples[first..end].iter().map(|s| s.time).collect();
+                for k in 0..3 {
+                    let series: Vec<f64> = read[first..end].iter().map(|r| r[k]).collect();
+                    let late = crate::numerics::sampled::delayed(&times, &series, delay);
+                    for (r, v) in read[first..end].iter_mut().zip(late) {
+                        r[k] = v;
+                    }
+                }
+                first = end;
+            }
+        }
+        if gain != 1.0 || offset != [0.0; 3] {
+            for r in &mut read {
+                for (k, v) in r.iter_mut().enumerate() {
+                    *v = gain * *v + if k < 3 { offset[k] } else { 0.0 };
+                }
+            }
+        }
+        read
+    }
+
+    /// The weighted residuals of `candidate`: per row, (measured − read) force over
+    /// [`Self::force_scale`] and torque over [`Self::torque_scale`] (0 where the
+    /// torque was not measured); `out` holds 6 per row. See [`Self::readings`].
     pub fn residuals(&self, candidate: &Model, out: &mut [f64]) {
-        for (sample, row) in self.samples.iter().zip(out.chunks_exact_mut(6)) {
-            let got = self.predicted(candidate, sample);
+        let read = self.readings(candidate);
+        for ((sample, got), row) in self.samples.iter().zip(&read).zip(out.chunks_exact_mut(6)) {
             for k in 0..6 {
                 let scale = if k < 3 {
                     self.force_scale
@@ -188,6 +247,23 @@ impl RecordedContact {
     }
 }
 
+/// RMS over `samples` of the magnitude of `part` of the measured wrench (0..3 the
+/// force, 3..6 the torque), over the rows that have it; 0 for none.
+fn rms(samples: &[RecordedSample], part: std::ops::Range<usize>) -> f64 {
+    let rows = samples
+        .iter()
+        .filter(|s| s.measured[part.clone()][0].is_finite());
+    let (sum, n) = rows.fold((0.0, 0usize), |(sum, n), s| {
+        let v = &s.measured[part.clone()];
+        (sum + v.iter().map(|x| x * x).sum::<f64>(), n + 1)
+    });
+    if n == 0 {
+        0.0
+    } else {
+        (sum / n as f64).sqrt()
+    }
+}
+
 /// What the rows of one run are built from.
 struct Rig<'a> {
     model: &'a Model,
@@ -198,6 +274,8 @@ struct Rig<'a> {
     plate: Option<&'a BodyTrack>,
     /// The other body's centre (m), where the scenario fixes it.
     plate_position: Vector3<f64>,
+    /// Whether samples out of contact are rows too.
+    flight: bool,
 }
 
 impl Rig<'_> {
@@ -223,7 +301,7 @@ impl Rig<'_> {
             y[slot..slot + state.len()].copy_from_slice(&state);
             let manifold = system.manifold(&y, self.c);
             system.latch(&y);
-            if manifold.points.is_empty() {
+            if manifold.points.is_empty() && !self.flight {
                 continue;
             }
             let Some(measured) = self.measured(sample) else {

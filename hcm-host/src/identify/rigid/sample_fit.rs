@@ -120,10 +120,10 @@ pub fn identify_from_samples(
 
 /// Fits contact `recorded.contact`'s free `parameters` of `model` to `recorded`,
 /// reporting [`Stage::Identify`] (one step per start) to `progress`.
-pub fn fit_samples(
+pub fn fit_samples<P: Parameters<Target = Model> + Sync>(
     model: &Model,
     recorded: &RecordedContact,
-    parameters: &RigidParameters,
+    parameters: &P,
     progress: &dyn Progress,
 ) -> Result<SampleFit, RigidIdentifyError> {
     let started = Instant::now();
@@ -195,11 +195,29 @@ pub fn fit_samples(
     Ok(fit)
 }
 
+/// One Levenberg–Marquardt fit of `parameters` to `recorded` from `start` (genes, in
+/// the box), at most `iterations` Jacobians: the genes found and the cost (½ the sum
+/// of the weighted residuals squared); `None` if it fails. The building block of a
+/// diagnosis' many fits.
+pub fn least_squares<P: Parameters<Target = Model> + Sync>(
+    model: &Model,
+    recorded: &RecordedContact,
+    parameters: &P,
+    start: &[f64],
+    iterations: usize,
+) -> Option<(Vec<f64>, f64)> {
+    let space = Space::new(&parameters.bounds());
+    let z = space.inside(start);
+    let found = space
+        .fit(model, recorded, parameters, &z, iterations, &[])
+        .ok()?;
+    Some((space.genes(&found.parameters), found.cost))
+}
+
 /// RMS of the force (N) and torque (N·m) residuals of `candidate` over `recorded`.
 fn rms(recorded: &RecordedContact, candidate: &Model) -> (f64, f64) {
     let (mut f, mut t, mut nf, mut nt) = (0.0, 0.0, 0usize, 0usize);
-    for sample in &recorded.samples {
-        let got = recorded.predicted(candidate, sample);
+    for (sample, got) in recorded.samples.iter().zip(recorded.readings(candidate)) {
         let e: Vec<f64> = (0..6).map(|k| sample.measured[k] - got[k]).collect();
         if e[..3].iter().all(|x| x.is_finite()) {
             f += e[..3].iter().map(|x| x * x).sum::<f64>();
@@ -329,11 +347,11 @@ impl Space {
     }
 
     /// Levenberg–Marquardt from `start` (coordinates), at most `iterations` Jacobians.
-    fn fit(
+    fn fit<P: Parameters<Target = Model> + Sync>(
         &self,
         model: &Model,
         recorded: &RecordedContact,
-        parameters: &RigidParameters,
+        parameters: &P,
         start: &[f64],
         iterations: usize,
         held: &[(usize, f64)],
@@ -361,11 +379,11 @@ impl Space {
 
     /// Each named parameter's delete-a-group jackknife standard error over the runs,
     /// and the residual evaluations it took.
-    fn jackknife(
+    fn jackknife<P: Parameters<Target = Model> + Sync>(
         &self,
         model: &Model,
         recorded: &RecordedContact,
-        parameters: &RigidParameters,
+        parameters: &P,
         z: &[f64],
     ) -> (Vec<f64>, usize) {
         let count = parameters.named(&self.genes(z)).len();
@@ -407,11 +425,11 @@ impl Space {
     /// from the soft runs and a pooled fit leans with them — a bias every jackknife
     /// group shares. The distance to the re-fit is added to each standard error, so
     /// that its interval (±2 SE) holds both. Empty when the re-fit fails.
-    fn per_run_scaled(
+    fn per_run_scaled<P: Parameters<Target = Model> + Sync>(
         &self,
         model: &Model,
         recorded: &RecordedContact,
-        parameters: &RigidParameters,
+        parameters: &P,
         z: &[f64],
     ) -> (Vec<f64>, usize) {
         let fitted = parameters.apply(model, &self.genes(z));
@@ -460,11 +478,11 @@ impl Space {
     /// re-fitted: a parameter fixed only given an unfelt one (STEP's μ_s, read where the
     /// slip passes transition speeds that nothing fixes) is no better known than that.
     /// The largest move per parameter (its units; 0 for none), and the evaluations.
-    fn confounded(
+    fn confounded<P: Parameters<Target = Model> + Sync>(
         &self,
         model: &Model,
         recorded: &RecordedContact,
-        parameters: &RigidParameters,
+        parameters: &P,
         z: &[f64],
         unfelt: &[usize],
     ) -> (Vec<f64>, usize) {
@@ -495,11 +513,11 @@ impl Space {
     /// a coordinate whose column is negligible (the data do not feel it) gets an
     /// infinite variance and no covariance with the others, which are inverted
     /// without it. `None` when the rest is singular too.
-    fn covariance(
+    fn covariance<P: Parameters<Target = Model> + Sync>(
         &self,
         model: &Model,
         recorded: &RecordedContact,
-        parameters: &RigidParameters,
+        parameters: &P,
         z: &[f64],
     ) -> Option<Vec<Vec<f64>>> {
         let m = 6 * recorded.samples.len();
@@ -549,9 +567,9 @@ impl Space {
     /// The named parameters' asymptotic standard errors from the coordinates'
     /// covariance (delta method, central differences of the names' values); infinite
     /// without a covariance (a parameter the data do not feel).
-    fn named_errors(
+    fn named_errors<P: Parameters<Target = Model> + Sync>(
         &self,
-        parameters: &RigidParameters,
+        parameters: &P,
         z: &[f64],
         covariance: Option<&[Vec<f64>]>,
     ) -> Vec<f64> {

@@ -1,0 +1,134 @@
+//! The force diagnosis of a rigid contact (issue 28) on scenes of the tests' own, each
+//! generated with an effect its PM2 lacks — or none — and diagnosed from PM2 fitted on
+//! the same data by `hcm identify`'s least squares: the effect named, or an honest
+//! "ambiguous"/"none", never a wrong name. Run with `--nocapture` for the rounds.
+
+use hcm_host::diagnose::rigid::{diagnose_rigid, RigidDiagnoseSettings, RigidDiagnosis};
+use hcm_host::experiment::generate;
+use hcm_host::identify::rigid::identify_from_samples;
+use hcm_host::progress::Silent;
+use hcm_host::scenario::Scenario;
+
+/// The scene `name` of `tests/common/scenes/` with `contact` lines added to its
+/// `[[contact]]` table and `experiment` lines to its `[experiment]` table.
+fn scene_with(name: &str, contact: &str, experiment: &str) -> Scenario {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/common/scenes")
+        .join(name);
+    let text = std::fs::read_to_string(path).unwrap();
+    let text = text
+        .replace("[simulation]", &format!("{contact}\n\n[simulation]"))
+        .replace("[experiment]", &format!("[experiment]\n{experiment}"));
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join(name);
+    std::fs::write(&file, text).unwrap();
+    Scenario::load(&file, &[]).unwrap()
+}
+
+/// PM2 identified on 24 runs of `scenario` (without the effects: the scene's law and
+/// friction, fitted), then the diagnosis.
+fn diagnosed(scenario: &Scenario, plain: &Scenario) -> RigidDiagnosis {
+    let data = generate(scenario, 24, 11, &Silent).unwrap();
+    let model = plain.model().unwrap();
+    let bounds = &plain.identify.bounds;
+    let pm2 = identify_from_samples(&model, &data, 0, bounds, true, &Silent)
+        .unwrap()
+        .fit
+        .model;
+    let settings = RigidDiagnoseSettings {
+        contact: 0,
+        fitted_base: true,
+        overrides: bounds.clone(),
+    };
+    let d = diagnose_rigid(&pm2, &data, &settings, &Silent).unwrap();
+    for (k, round) in d.rounds.iter().enumerate() {
+        println!("round {k}: score {:.4e}", round.score);
+        for c in &round.candidates {
+            println!(
+                "  {:<22} gain {:+.3e} ± {:.2e} (t {:.1}){}",
+                c.name,
+                c.gain.mean,
+                c.gain.standard_error,
+                c.gain.t(),
+                if c.helps { " helps" } else { "" }
+            );
+        }
+    }
+    println!("{}", d.answer);
+    for ((n, v), se) in d.fit.parameters.iter().zip(&d.fit.standard_errors) {
+        println!("  {n:<32} {v:.4e} ± {se:.2e}");
+    }
+    d
+}
+
+#[test]
+fn hidden_effects_on_a_ball_are_named_or_honestly_left() {
+    let plain = hcm_tests::scene("ball_on_plate.toml");
+    let cases: [(&str, &str, &str); 5] = [
+        ("none", "", ""),
+        (
+            "viscous_damping",
+            "effects = [{ viscous_damping = { coefficient = 15.0 } }]",
+            "",
+        ),
+        (
+            "viscous_friction",
+            "tangential = { viscous_friction = { coefficient = 2.0 } }",
+            "",
+        ),
+        ("force_offset", "", "force_offset = [0.0, 0.0, 0.8]"),
+        ("sensor_delay", "", "sensor_delay = 2e-5"),
+    ];
+    let only = std::env::var("HCM_CASE").ok();
+    for (truth, contact, experiment) in cases {
+        if only.as_deref().is_some_and(|o| o != truth) {
+            continue;
+        }
+        println!("== hidden: {truth}");
+        let d = diagnosed(
+            &scene_with("ball_on_plate.toml", contact, experiment),
+            &plain,
+        );
+        let said: Vec<&str> = d.named.iter().chain(&d.ambiguous).copied().collect();
+        assert!(
+            said.iter().all(|n| *n == truth) || (d.named.is_empty() && said.contains(&truth)),
+            "hidden {truth}: {}",
+            d.answer
+        );
+    }
+}
+
+#[test]
+fn hidden_effects_on_a_block_landing_on_a_block_are_named_or_honestly_left() {
+    let plain = hcm_tests::scene("block_on_block.toml");
+    let cases: [(&str, &str, &str); 3] = [
+        (
+            "torsional_resistance",
+            "tangential = { torsional_resistance = { arm = 2e-3, spin_rate = 0.1 } }",
+            "",
+        ),
+        (
+            "adhesion",
+            "effects = [{ adhesion = { pull_off_force = 20.0 } }]",
+            "",
+        ),
+        ("force_offset", "", "force_offset = [0.5, -0.3, 0.0]"),
+    ];
+    let only = std::env::var("HCM_CASE").ok();
+    for (truth, contact, experiment) in cases {
+        if only.as_deref().is_some_and(|o| o != truth) {
+            continue;
+        }
+        println!("== hidden: {truth}");
+        let d = diagnosed(
+            &scene_with("block_on_block.toml", contact, experiment),
+            &plain,
+        );
+        let said: Vec<&str> = d.named.iter().chain(&d.ambiguous).copied().collect();
+        assert!(
+            said.iter().all(|n| *n == truth) || (d.named.is_empty() && said.contains(&truth)),
+            "hidden {truth}: {}",
+            d.answer
+        );
+    }
+}
