@@ -88,34 +88,3 @@ fn unsupported_pairs_and_moving_compounds_are_refused() {
         &["compound body must be fixed"],
     );
 }
-
-#[test]
-fn one_dimensional_commands_refuse_a_3d_scenario_and_say_what_works() {
-    let hcm = Hcm::new();
-    std::fs::write(hcm.path("data.csv"), "run,body,time\n").unwrap();
-    std::fs::write(
-        hcm.path("pm2.toml"),
-        "[[contact]]\nbodies = [\"cube\", \"ground\"]\nlaw = \"impact\"\n\
-         [contact.parameters]\nstiffness = 1e7\nexponent = 1.5\nmax_damping = 50.0\n\
-         full_damping_depth = 1e-4\n[fit]\nmethod = \"ga\"\ndata = \"\"\nruns = 0\n\
-         events = 0\nsamples = 0\nforce_rms = 0.0\nseconds = 0.0\n",
-    )
-    .unwrap();
-    let message = hcm
-        .run("diagnose")
-        .opt("--scenario", hcm_tests::scenario("cube_drop.toml"))
-        .opt("--data", hcm.path("data.csv"))
-        .opt("--physics", hcm.path("pm2.toml"))
-        .opt("--out", hcm.path("diagnosis"))
-        .fails();
-    assert_says(
-        &message,
-        &[
-            "is 3D",
-            "hcm diagnose",
-            "hcm simulate",
-            "hcm identify",
-            "hcm train",
-        ],
-    );
-}

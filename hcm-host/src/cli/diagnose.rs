@@ -73,8 +73,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let physics = Physics::read(&args.physics)?;
     let base = physics.apply(&scenario, &args.physics)?.model()?;
-    super::require_one_dimensional(&base, "diagnose")?;
     super::check_contact(args.contact, &base)?;
+    if base.is_rigid() {
+        let rigid = super::diagnose_rigid::RigidArgs {
+            data: &args.data,
+            out: &args.out,
+            contact: args.contact,
+            fitted: physics.fitted(),
+        };
+        return super::diagnose_rigid::run(&rigid, &scenario, &base);
+    }
     let data = Dataset::read(&args.data)?;
     data.require(
         &args.data.display().to_string(),

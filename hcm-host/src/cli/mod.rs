@@ -2,6 +2,7 @@
 
 mod diagnose;
 mod diagnose_motion;
+mod diagnose_rigid;
 mod evaluate;
 mod export;
 mod force;
@@ -148,25 +149,6 @@ impl ScenarioArgs {
     pub fn load(&self) -> Result<hcm_host::scenario::Scenario, hcm_host::scenario::ScenarioError> {
         hcm_host::scenario::Scenario::load(&self.scenario, &self.overrides)
     }
-}
-
-/// Refuses a 3D scenario for a command that so far works along a line of centres
-/// (diagnose), saying what does work with it.
-pub fn require_one_dimensional(
-    model: &hcm_host::scenario::Model,
-    command: &str,
-) -> anyhow::Result<()> {
-    anyhow::ensure!(
-        !model.is_rigid(),
-        "scenario `{}` is 3D (a box or compound body, friction, or a body that starts turned \
-         or spinning), and `hcm {command}` works only on 1D scenarios so far (spheres against a \
-         plane or a sphere, moving without rotation, like scenarios/bouncing_ball.toml). \
-         3D scenarios work with `hcm simulate`, `hcm generate`, `hcm indicators`, \
-         `hcm identify`, `hcm train`, `hcm export`, `hcm evaluate` and `hcm reproduce \
-         peg-in-hole`",
-        model.scenario.name
-    );
-    Ok(())
 }
 
 /// Checks that `contact` indexes one of `model`'s contacts.

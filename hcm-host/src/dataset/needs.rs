@@ -141,6 +141,7 @@ impl Dataset {
         requirement: &Requirement,
     ) -> Result<(), DataError> {
         for run in &self.runs {
+            known_bodies(file, model, run)?;
             for &c in contacts {
                 let contact = &model.contacts[c];
                 let pair = [contact.body_1, contact.body_2];
@@ -185,6 +186,53 @@ impl Dataset {
         }
         Ok(())
     }
+}
+
+/// An error unless every track of `run` is a body of `model` and every moving body of
+/// a contact has a track: a name the scenario does not know (a misspelt body, a sensor
+/// on a body the scenario lacks) would otherwise be read as no data at all.
+fn known_bodies(file: &str, model: &Model, run: &super::Run) -> Result<(), DataError> {
+    let names = |it: &mut dyn Iterator<Item = &str>| {
+        it.map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+    };
+    let scenario = names(&mut model.bodies.iter().map(|b| b.name.as_str()));
+    if let Some(track) =
+        (run.bodies.iter()).find(|t| !model.bodies.iter().any(|b| b.name == t.body))
+    {
+        return Err(DataError::new(
+            file,
+            format!(
+                "run `{}` holds body `{}`, which scenario `{}` does not have (its bodies: \
+                 {scenario}): rename it in the `body` column, or add the body to the \
+                 scenario (a force plate is the fixed body it is bolted to)",
+                run.id, track.body, model.scenario.name
+            ),
+        )
+        .in_column("body"));
+    }
+    let in_contact = |b: usize| {
+        model
+            .contacts
+            .iter()
+            .any(|c| c.body_1 == b || c.body_2 == b)
+    };
+    for (b, body) in model.bodies.iter().enumerate() {
+        if !body.fixed && in_contact(b) && run.body(&body.name).is_none() {
+            return Err(DataError::new(
+                file,
+                format!(
+                    "run `{}` has no rows of body `{}`, the scenario's moving body (the run's \
+                     bodies: {}): name it `{}` in the `body` column",
+                    run.id,
+                    body.name,
+                    names(&mut run.bodies.iter().map(|t| t.body.as_str())),
+                    body.name
+                ),
+            )
+            .in_column("body"));
+        }
+    }
+    Ok(())
 }
 
 /// The error for a channel a command needs and the data lack.

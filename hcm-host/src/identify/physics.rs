@@ -29,6 +29,11 @@ pub struct PhysicsContact {
     /// the scenario's stays.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub friction: Option<FrictionSpec>,
+    /// Tangential effects at every point (viscous friction, torsional and rolling
+    /// resistance), as `hcm diagnose` names them on a rigid contact; absent: the
+    /// scenario's stay.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential: Option<hcm_core::friction::TangentialEffects<f64>>,
 }
 
 /// How a physics file was obtained (for people; not read back into the model).
@@ -143,6 +148,7 @@ impl Physics {
                 parameters,
                 effects: Vec::new(),
                 friction: contact.model.friction.as_ref().map(FrictionSpec::of),
+                tangential: None,
             }],
             bodies: Vec::new(),
             fit,
@@ -206,6 +212,13 @@ impl Physics {
                     ("v_dynamic", f.v_dynamic),
                 ];
                 assignments.push(set("friction", float_table(&friction)));
+            }
+            if let Some(t) = &contact.tangential {
+                let table = toml::Value::try_from(t).map_err(|e| PhysicsError::File {
+                    path: path.display().to_string(),
+                    message: format!("tangential: {e}"),
+                })?;
+                assignments.push(set("tangential", table));
             }
         }
         for body in &self.bodies {
