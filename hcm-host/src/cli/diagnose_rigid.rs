@@ -4,7 +4,7 @@
 //! diagnosis.json and extended.toml.
 
 use super::progress::Bars;
-use hcm_host::dataset::{needs, Dataset};
+use hcm_host::dataset::{inventory, needs, Dataset};
 use hcm_host::diagnose::rigid::{diagnose_rigid, RigidDiagnoseSettings, RigidDiagnosis};
 use hcm_host::identify::{FitRecord, Physics};
 use hcm_host::output::write_bytes;
@@ -22,6 +22,7 @@ pub struct RigidArgs<'a> {
 
 pub fn run(args: &RigidArgs<'_>, scenario: &Scenario, base: &Model) -> anyhow::Result<()> {
     let data = Dataset::read(args.data)?;
+    println!("{}", inventory::summary(&data, base, args.contact));
     data.require(
         &args.data.display().to_string(),
         base,

@@ -1,7 +1,7 @@
 //! `hcm evaluate`: the paper's table for a physics model on validation data.
 
 use anyhow::Context;
-use hcm_host::dataset::{needs, reconstruct, Dataset};
+use hcm_host::dataset::{inventory, needs, reconstruct, Dataset};
 use hcm_host::evaluate::{evaluate, evaluate_rigid, markdown, rigid_markdown};
 use hcm_host::identify::Physics;
 use hcm_host::residual::ContactResidual;
@@ -114,6 +114,9 @@ fn with_hcm(
 /// The rigid path: every run replayed from its own pre-contact state by PM2 (and the
 /// HCM), its events' indicators and the moving body's path against the data.
 fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> anyhow::Result<()> {
+    if !args.json {
+        println!("{}", inventory::summary(data, pm2, args.contact));
+    }
     data.require(
         &args.data.display().to_string(),
         pm2,

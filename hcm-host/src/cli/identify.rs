@@ -2,7 +2,7 @@
 
 use super::progress::Bars;
 use anyhow::Context;
-use hcm_host::dataset::{needs, Dataset};
+use hcm_host::dataset::{inventory, needs, Dataset};
 use hcm_host::identify::evolve::Fitness;
 use hcm_host::identify::{identify, FitRecord, Identification, Method, Physics};
 use hcm_host::numerics::optimize::genetic::GeneticSettings;
@@ -95,6 +95,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let model = scenario.model()?;
     super::check_contact(args.contact, &model)?;
     let data = Dataset::read(&args.data)?;
+    if model.is_rigid() {
+        println!("{}", inventory::summary(&data, &model, args.contact));
+    }
     let needs = if model.is_rigid() && args.method == "ga" {
         &needs::IDENTIFY_RIGID
     } else if model.is_rigid() {

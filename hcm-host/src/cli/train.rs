@@ -2,7 +2,7 @@
 //! quantisation-aware int8 twin; `hcm export` turns the result into weights blobs.
 
 use super::progress::Bars;
-use hcm_host::dataset::{needs, Dataset};
+use hcm_host::dataset::{inventory, needs, Dataset};
 use hcm_host::identify::Physics;
 use hcm_host::progress::Stage;
 use hcm_host::train::{train_force_residual, train_wrench_residual, ResidualSettings};
@@ -115,6 +115,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 /// The rigid path: the wrench residual of Eq 12 on every touching sample (or those
 /// before `--events`), its outputs' R², and a warning when it explains nothing.
 fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> anyhow::Result<()> {
+    println!("{}", inventory::summary(data, pm2, args.contact));
     data.require(
         &args.data.display().to_string(),
         pm2,

@@ -97,6 +97,7 @@ mod through_contact;
 mod write;
 
 pub use channel::Channel;
+pub mod inventory;
 pub mod state;
 pub use flight::FlightFit;
 pub use needs::{Need, Requirement};
