@@ -139,21 +139,16 @@ pub fn diagnose_rigid(
         contact: c,
         effects: Vec::new(),
     };
-    let judge = Judge {
-        base,
-        recorded: &recorded,
-        runs: data.runs.len(),
-    };
+    let judge = Judge::new(base, &recorded, data.runs.len());
     let catalogue: Vec<ForceEffect> = (ForceEffect::ALL.iter().copied())
         .filter(|e| e.applies(base, c, settings.fitted_base))
         .collect();
-    let first = judge.scores(&model);
     let search = Search {
         judge: &judge,
         scales: &scales,
         catalogue: &catalogue,
     };
-    let (rounds, named, ambiguous) = search.rounds(&mut model, first.clone(), progress);
+    let (rounds, named, ambiguous, first) = search.rounds(&mut model, progress);
     let fit = fit_samples(
         base,
         &recorded.part(|_| true),
@@ -186,29 +181,29 @@ struct Search<'a> {
     catalogue: &'a [ForceEffect],
 }
 
-/// Rounds, causes named, and the last tie.
-type Rounds = (Vec<RigidRound>, Vec<&'static str>, Vec<&'static str>);
+/// Rounds, causes named, the last tie, and the first round's reference scores.
+type Rounds = (
+    Vec<RigidRound>,
+    Vec<&'static str>,
+    Vec<&'static str>,
+    Option<Vec<f64>>,
+);
 
 impl Search<'_> {
     /// Up to [`MAX_ROUNDS`] rounds from `model` (its held-out scores `first`), each
     /// named cause added to it.
-    fn rounds(
-        &self,
-        model: &mut Extended,
-        first: Option<Vec<f64>>,
-        progress: &dyn Progress,
-    ) -> Rounds {
+    fn rounds(&self, model: &mut Extended, progress: &dyn Progress) -> Rounds {
         let (judge, scales, catalogue) = (self.judge, self.scales, self.catalogue);
+        let mut first: Option<Vec<f64>> = None;
+        let mut seed: Option<Folds> = None;
         let mut rounds = Vec::new();
         let mut named = Vec::new();
         let mut ambiguous = Vec::new();
         let steps = (catalogue.len() * MAX_ROUNDS) as u64;
         in_stage(progress, Stage::Diagnose, steps, || {
             for round in 0..MAX_ROUNDS {
-                let reference = if round == 0 {
-                    first.clone()
-                } else {
-                    judge.scores(model)
+                let Some(mut fitted) = judge.fit_folds(model, seed.as_ref()) else {
+                    break;
                 };
                 let left: Vec<ForceEffect> = (catalogue.iter().copied())
                     .filter(|e| !model.effects.iter().any(|(n, _)| n == e))
@@ -216,19 +211,31 @@ impl Search<'_> {
                 // Candidates in parallel, collected in catalogue order: the same answer
                 // whatever the thread count.
                 let done = std::sync::atomic::AtomicUsize::new(round * catalogue.len());
-                let scored: Vec<Option<Vec<f64>>> = (left.par_iter())
+                let fits: Vec<Option<Folds>> = (left.par_iter())
                     .map(|e| {
-                        let scores = judge.scores(&model.with(*e, scales));
+                        let fit = judge.fit_folds(&model.with(*e, scales), Some(&fitted));
                         let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                         progress.advance(k as u64 + 1, steps);
-                        scores
+                        fit
+                    })
+                    .collect();
+                judge.improve(model, &mut fitted, &fits);
+                let reference = judge.held_out(model, &fitted);
+                if round == 0 {
+                    first = Some(reference.clone());
+                }
+                let scored: Vec<Option<Vec<f64>>> = (left.iter().zip(&fits))
+                    .map(|(e, f)| {
+                        f.as_ref()
+                            .map(|f| judge.held_out(&model.with(*e, scales), f))
                     })
                     .collect();
                 let candidates: Vec<Option<&[f64]>> = scored.iter().map(|s| s.as_deref()).collect();
-                let reference = reference.unwrap_or_default();
                 let floor = MIN_GAIN * mean(&reference);
                 let both = |a: usize, b: usize| {
-                    judge.scores(&model.with(left[a], scales).with(left[b], scales))
+                    let pair = model.with(left[a], scales).with(left[b], scales);
+                    let fit = judge.fit_folds(&pair, fits[a].as_ref())?;
+                    Some(judge.held_out(&pair, &fit))
                 };
                 let decision = decide_with(&reference, &candidates, (floor, Margins::RUNS), both);
                 let mut this = RigidRound {
@@ -246,6 +253,7 @@ impl Search<'_> {
                 };
                 match decision.verdict {
                     Verdict::Named(i) => {
+                        seed.clone_from(&fits[i]);
                         this.named = Some(left[i].name());
                         named.push(left[i].name());
                         *model = model.with(left[i], scales);
@@ -264,7 +272,7 @@ impl Search<'_> {
                 }
             }
         });
-        (rounds, named, ambiguous)
+        (rounds, named, ambiguous, first)
     }
 }
 
@@ -333,23 +341,47 @@ fn mean(v: &[f64]) -> f64 {
     v.iter().sum::<f64>() / v.len().max(1) as f64
 }
 
+/// One model fitted on each fold's training half: genes and training cost per fold.
+#[derive(Clone, Debug)]
+struct Folds {
+    genes: [Vec<f64>; 2],
+    cost: [f64; 2],
+}
+
 /// Fits on one fold and scores the other.
 struct Judge<'a> {
     base: &'a Model,
-    recorded: &'a RecordedContact,
+    /// Per fold: (training half, held-out half): fold f holds out the runs r % 2 = f.
+    parts: [(RecordedContact, RecordedContact); 2],
     runs: usize,
 }
 
 impl Judge<'_> {
-    /// The held-out score of every run with rows (in run order) under `parameters`:
-    /// fitted on the other fold; `None` if a fold's fit fails.
+    fn new<'a>(base: &'a Model, recorded: &RecordedContact, runs: usize) -> Judge<'a> {
+        let part = |fold: usize| {
+            (
+                recorded.part(|r| r % 2 != fold),
+                recorded.part(|r| r % 2 == fold),
+            )
+        };
+        Judge {
+            base,
+            parts: [part(0), part(1)],
+            runs,
+        }
+    }
+
+    /// The held-out score of every run with rows (in run order) under `parameters`.
     fn scores(&self, parameters: &Extended) -> Option<Vec<f64>> {
+        Some(self.held_out(parameters, &self.fit_folds(parameters, None)?))
+    }
+
+    /// Each run's held-out score under `parameters` fitted as `folds`: its rows' mean
+    /// squared weighted residual, the run scored by the fit on the other half.
+    fn held_out(&self, parameters: &Extended, folds: &Folds) -> Vec<f64> {
         let mut per_run = vec![f64::NAN; self.runs];
-        for fold in 0..2 {
-            let training = self.recorded.part(|r| r % 2 != fold);
-            let held = self.recorded.part(|r| r % 2 == fold);
-            let genes = self.fit(parameters, &training)?;
-            let model = parameters.apply(self.base, &genes);
+        for (fold, (_, held)) in self.parts.iter().enumerate() {
+            let model = parameters.apply(self.base, &folds.genes[fold]);
             let mut out = vec![0.0; 6 * held.samples.len()];
             held.residuals(&model, &mut out);
             let mut sums = vec![(0.0, 0usize); self.runs];
@@ -363,12 +395,22 @@ impl Judge<'_> {
                 }
             }
         }
-        Some(per_run.into_iter().filter(|s| s.is_finite()).collect())
+        per_run.into_iter().filter(|s| s.is_finite()).collect()
     }
 
-    /// The best of the fits on `training` from the model's values with the effects
-    /// neutral, and with the effects [`INTO_BOX`] of the way into their box.
-    fn fit(&self, parameters: &Extended, training: &RecordedContact) -> Option<Vec<f64>> {
+    /// ½ Σ r² of `parameters` at `genes` on fold `fold`'s training half.
+    fn cost(&self, parameters: &Extended, genes: &[f64], fold: usize) -> f64 {
+        let training = &self.parts[fold].0;
+        let mut out = vec![0.0; 6 * training.samples.len()];
+        training.residuals(&parameters.apply(self.base, genes), &mut out);
+        0.5 * out.iter().map(|x| x * x).sum::<f64>()
+    }
+
+    /// `parameters` fitted on each fold's training half: the best of the fits from the
+    /// model's values with the effects neutral, with the effects [`INTO_BOX`] of the
+    /// way into their box, and from `seed`'s genes of that fold (a nested model's fit,
+    /// the extra effects neutral); `None` if a fold has no fit.
+    fn fit_folds(&self, parameters: &Extended, seed: Option<&Folds>) -> Option<Folds> {
         let neutral = parameters.values(self.base);
         let bounds = parameters.bounds();
         let effect_len: usize = parameters.effects.iter().map(|(_, b)| b.len()).sum();
@@ -383,9 +425,40 @@ impl Judge<'_> {
                 starts.push(start);
             }
         }
-        (starts.iter())
-            .filter_map(|s| least_squares(self.base, training, parameters, s, ITERATIONS))
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(genes, _)| genes)
+        let mut folds = Folds {
+            genes: [Vec::new(), Vec::new()],
+            cost: [f64::INFINITY; 2],
+        };
+        for fold in 0..2 {
+            let mut own = starts.clone();
+            if let Some(seed) = seed {
+                let mut start = seed.genes[fold].clone();
+                start.extend_from_slice(&neutral[start.len().min(neutral.len())..]);
+                own.push(start);
+            }
+            let training = &self.parts[fold].0;
+            let (genes, cost) = (own.iter())
+                .filter_map(|s| least_squares(self.base, training, parameters, s, ITERATIONS))
+                .min_by(|a, b| a.1.total_cmp(&b.1))?;
+            (folds.genes[fold], folds.cost[fold]) = (genes, cost);
+        }
+        Some(folds)
+    }
+
+    /// `reference` improved by the candidates' fits: a candidate's genes without its
+    /// own effect are a fit of the reference, and where one has a lower training cost
+    /// than the reference's own fit it replaces it — so that no candidate gains by
+    /// having found a better optimum of the model's own parameters.
+    fn improve(&self, parameters: &Extended, reference: &mut Folds, fits: &[Option<Folds>]) {
+        for fit in fits.iter().flatten() {
+            for fold in 0..2 {
+                let genes = &fit.genes[fold][..reference.genes[fold].len()];
+                let cost = self.cost(parameters, genes, fold);
+                if cost < reference.cost[fold] {
+                    reference.genes[fold] = genes.to_vec();
+                    reference.cost[fold] = cost;
+                }
+            }
+        }
     }
 }
