@@ -1,8 +1,8 @@
 //! Every command the README shows runs. Each `hcm …` and `cargo run … -p hcm-host -- …`
 //! line of the README's `sh` blocks runs through the `hcm` fixture, block by block, each
-//! block in a fresh directory holding a copy of `scenarios/` (as a clone's root does), so
-//! that relative paths resolve as they would for a reader and outputs land in the
-//! temporary directory. A failing command fails the test, naming its README line.
+//! block in a fresh directory holding a copy of `scenarios/` and `examples/rig/` (as a
+//! clone's root does), so that relative paths resolve as they would for a reader and
+//! outputs land in the temporary directory. A failing command fails the test, naming its README line.
 //!
 //! As the README says, two kinds of line are too long for CI and run smaller: a `--runs`
 //! above [`MOST_RUNS`] runs with `--runs` [`MOST_RUNS`], and `reproduce` (the paper's
@@ -155,6 +155,7 @@ fn every_command_of_the_readme_runs() {
     for block in &blocks {
         let hcm = Hcm::new();
         copy_files(&root.join("scenarios"), &hcm.path("scenarios"));
+        copy_files(&root.join("examples/rig"), &hcm.path("examples/rig"));
         for line in block {
             let words = words(&line.text);
             let Some(arguments) = hcm_arguments(&words) else {
