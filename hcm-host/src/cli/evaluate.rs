@@ -13,7 +13,9 @@ use std::path::PathBuf;
 ///
 /// For each condition of the data: the mean indicators of its runs beside those of each
 /// model, simulated from the runs' mean state just before touch-down, and each model's
-/// error.
+/// error. On a 3D (rigid) scenario: every contact event of every run replayed from the
+/// recorded state before it (maximum force and torque, linear and angular impulse,
+/// duration), the moving body's path from the run's start, and HCM − PM2 run by run.
 ///
 /// Terms:
 ///   S2          the validation set written by `hcm generate` (OUT.s2.csv)
@@ -132,7 +134,8 @@ fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> an
         return Ok(());
     }
     println!(
-        "{} — {} runs replayed from their own pre-contact states, PM2 = {}\n",
+        "{} — {} held-out runs, each contact event replayed from the recorded state before \
+         it, the path from the run's pre-contact state; PM2 = {}\n",
         pm2.scenario.name,
         evaluation.runs,
         pm2.contacts[args.contact].law().name()

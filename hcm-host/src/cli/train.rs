@@ -13,7 +13,8 @@ use std::path::PathBuf;
 /// Example: `hcm train --scenario scenarios/bouncing_ball.toml --data data.s1.csv --physics pm2.toml --out residual.json`
 ///
 /// Its inputs are δ, δ̇ and δ̇0 of each contact sample, its output the measured force
-/// minus PM2's. OUT (JSON) holds the network, its int8 twin and its envelope; turn it
+/// minus PM2's. On a 3D (rigid) scenario: the moving body's 13 state components in, the
+/// wrench PM2 misses on it out (Eq 12), at every touching sample. OUT (JSON) holds the network, its int8 twin and its envelope; turn it
 /// into a blob for the core with `hcm export`.
 ///
 /// Terms:

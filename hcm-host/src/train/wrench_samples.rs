@@ -27,11 +27,11 @@
 //! IMPACT (Eq 8–9) with STEP friction, PM2's laws on the peg.
 
 pub use crate::dataset::state_input;
-use crate::dataset::{Dataset, Sample};
+use crate::dataset::Dataset;
+use crate::identify::rigid::RecordedContact;
 use crate::scenario::Model;
-use crate::simulate::{RigidLayout, RigidSystem};
+use crate::simulate::RigidSystem;
 use nalgebra::Vector3;
-use rayon::prelude::*;
 
 /// Residual inputs of a rigid contact: the moving body's 13 state components.
 pub(crate) use crate::dataset::state::STATE_INPUTS;
@@ -62,56 +62,43 @@ pub enum WrenchSampleError {
         "contact `{0}`: the wrench residual is trained for one moving body against a fixed one"
     )]
     NotOneMover(String),
-    /// A run does not record the moving body.
-    #[error("run `{run}` has no samples of body `{body}`, the contact's moving body; record it (scenario `record.bodies`)")]
-    MissingBody { run: String, body: String },
+    /// The touching samples could not be read (see the message).
+    #[error("{0}")]
+    Recorded(String),
 }
 
 /// The training pairs of contact `c` of `physics` (PM2; its residual, if any, left
-/// out) from the measured `data`.
+/// out) from the measured `data`: the rows of [`RecordedContact`] — every touching
+/// sample with the mover's state and a measured force, its own or a force plate's,
+/// point histories latched along each run — the measured minus PM2's wrench as the
+/// target. A torque not measured has a target of 0 (nothing to learn there).
 pub fn wrench_pairs(
     physics: &Model,
     data: &Dataset,
     c: usize,
 ) -> Result<WrenchPairs, WrenchSampleError> {
-    let mover = moving_body(physics, c)?;
+    moving_body(physics, c)?;
     let mut model = physics.clone();
     model.contacts[c].model.residual = None;
-    let name = &model.bodies[mover].name;
-    let tracks = data
-        .runs
-        .iter()
-        .map(|run| {
-            run.body(name)
-                .ok_or_else(|| WrenchSampleError::MissingBody {
-                    run: run.id.clone(),
-                    body: name.clone(),
-                })
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let layout = RigidLayout::new(&model);
-    // Per run in parallel, collected in run order: the rows do not depend on the
-    // number of threads.
-    let per_run: Vec<Vec<Row>> = tracks
-        .par_iter()
-        .map(|track| {
-            let system = RigidSystem::new(&model, &layout);
-            let mut y = layout.initial_state(&model).0;
-            track
-                .samples
-                .iter()
-                .filter_map(|s| pair(&system, &mut y, mover, c, s).map(|(x, t)| (x, t, s.time)))
-                .collect()
-        })
-        .collect();
+    let recorded = RecordedContact::from_data(&model, data, c)
+        .map_err(|e| WrenchSampleError::Recorded(e.to_string()))?;
     let mut pairs = WrenchPairs::default();
-    for (run, rows) in per_run.into_iter().enumerate() {
-        for (input, target, time) in rows {
-            pairs.inputs.push(input);
-            pairs.targets.push(target);
-            pairs.runs.push(run);
-            pairs.times.push(time);
-        }
+    for sample in &recorded.samples {
+        let got = recorded.predicted(&model, sample);
+        let target: Vec<f64> = (0..6)
+            .map(|k| {
+                let d = sample.measured[k] - got[k];
+                if d.is_finite() {
+                    d
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        pairs.inputs.push(sample.state.to_vec());
+        pairs.targets.push(target);
+        pairs.runs.push(sample.run);
+        pairs.times.push(sample.time);
     }
     Ok(pairs)
 }
@@ -132,25 +119,6 @@ pub fn contact_wrench(
     y[slot..slot + STATE_INPUTS].copy_from_slice(state);
     let load = system.contact_load(y, c);
     (load.points > 0).then_some(load.on_mover)
-}
-
-/// One training row: input, target, sample time (s).
-type Row = (Vec<f64>, Vec<f64>, f64);
-
-/// One row, or `None` when the sample does not touch.
-fn pair(
-    system: &RigidSystem<'_>,
-    y: &mut [f64],
-    mover: usize,
-    c: usize,
-    sample: &Sample,
-) -> Option<(Vec<f64>, Vec<f64>)> {
-    let input = state_input(sample);
-    let (force, torque) = contact_wrench(system, y, mover, c, &input)?;
-    let measured = Vector3::from(sample.force);
-    let measured_torque = Vector3::from(sample.torque);
-    let (df, dt) = (measured - force, measured_torque - torque);
-    Some((input.to_vec(), vec![df.x, df.y, df.z, dt.x, dt.y, dt.z]))
 }
 
 /// Contact `c`'s moving body, body 1; an error unless body 1 moves and body 2 is

@@ -50,6 +50,9 @@ pub struct RecordedSample {
     /// The measured force (N) and torque (N·m, about the mover's centre of mass) on
     /// the mover, world frame; a torque not measured is NaN.
     pub measured: [f64; 6],
+    /// The mover's recorded state as the integrator holds it (the residual's Eq 12
+    /// input, [`state_input`]).
+    pub state: [f64; crate::dataset::state::STATE_INPUTS],
 }
 
 /// Every touching sample of one contact.
@@ -313,6 +316,7 @@ impl Rig<'_> {
                 points: manifold.points,
                 references: [manifold.pose_1.position, manifold.pose_2.position],
                 measured,
+                state,
             });
         }
         rows
