@@ -82,7 +82,7 @@ pub fn summary(data: &Dataset, model: &Model, c: usize) -> String {
     let can = match (states, force) {
         (true, true) => "force and motion: identify (lsq, ga), train, evaluate, diagnose",
         (true, false) => "motion only: no force to fit a law to — a tossed body's fit is `hcm identify-motion`, its diagnosis `hcm diagnose-motion`",
-        (false, true) => "force without the moving body's full state (position, orientation, velocity, angular velocity): nothing a rigid contact can be fitted on",
+        (false, true) => "force without the moving body's poses (position and orientation): nothing a rigid contact can be fitted on",
         (false, false) => "neither force nor the moving body's state",
     };
     let _ = write!(out, "\n  → {can}");

@@ -5,7 +5,7 @@
 //! |---|---|
 //! | `identify`, `train`, `diagnose`, `evaluate`, `indicators` (1D) | position somewhere (camera frames) and force somewhere (the sensor's rows); the motion at the force samples is reconstructed |
 //! | `identify --method ga`, `indicators` (rigid, 3D) | position, orientation, velocity, angular velocity, force and torque on every row |
-//! | `identify --method lsq`, `train` (rigid, 3D) | position, orientation, velocity and angular velocity of the moving body and a force (its own or a plate's) on some rows |
+//! | `identify --method lsq`, `train`, `diagnose` (rigid, 3D) | position and orientation of the moving body (velocities from them where absent) and a force (its own or a plate's) on some rows, each at its own rate |
 
 use super::channel::Channel;
 use super::{DataError, Dataset};
@@ -65,12 +65,11 @@ pub const IDENTIFY_RIGID: Requirement = Requirement {
               channel on every row",
 };
 
-/// The rigid fit from force samples: the mover's state where the force was measured.
+/// The rigid fit from force samples: the mover's poses (velocities, where missing,
+/// from the poses) and a force, each at its own rate.
 const STATES_AND_FORCE: &[(Channel, Need)] = &[
     (Channel::Position, Need::SomeRows),
     (Channel::Orientation, Need::SomeRows),
-    (Channel::Velocity, Need::SomeRows),
-    (Channel::AngularVelocity, Need::SomeRows),
     (Channel::Force, Need::SomeRows),
 ];
 

@@ -17,13 +17,17 @@
 //!
 //! **The measured wrench** is the moving body's force and torque channels (N, N·m
 //! about its centre of mass, world frame) where it has them, else a force plate's: the
-//! fixed body's channels at the same instant, turned into the wrench on the mover
-//! (F_m = −F_p, T_m = −T_p + (p_m − p_p) × F_p, p the bodies' centres (m)). A sample
-//! without pose, velocity or a measured force is not a row.
+//! fixed body's channels, turned into the wrench on the mover (F_m = −F_p,
+//! T_m = −T_p + (p_m − p_p) × F_p, p the bodies' centres (m)). Every instant with a
+//! measured force is a row; the mover's state there is its own sample where that has
+//! every motion channel, else read from its frames at their own rate
+//! ([`crate::dataset::state::Frames`]: velocities differentiated where the tracker
+//! gives none).
 //!
 //! [`ContactModel::pair_load`]: hcm_core::model::ContactModel::pair_load
 
 use super::RigidIdentifyError;
+use crate::dataset::state::Frames;
 use crate::dataset::state_input;
 use crate::dataset::{BodyTrack, Channel, Dataset, Run, Sample};
 use crate::scenario::Model;
@@ -53,6 +57,9 @@ pub struct RecordedSample {
     /// The mover's recorded state as the integrator holds it (the residual's Eq 12
     /// input, [`state_input`]).
     pub state: [f64; crate::dataset::state::STATE_INPUTS],
+    /// Whether that state was read between the mover's frames rather than recorded at
+    /// this instant.
+    pub between_frames: bool,
 }
 
 /// Every touching sample of one contact.
@@ -132,11 +139,11 @@ impl RecordedContact {
         let samples: Vec<RecordedSample> = per_run.into_iter().flatten().collect();
         if samples.is_empty() {
             return Err(RigidIdentifyError::Setup(format!(
-                "no sample of body `{mover_name}` both touches `{plate_name}` (at the \
-                 scenario's geometry) and carries a pose, velocity, angular velocity and a \
-                 measured force (its own fx, fy, fz or `{plate_name}`'s at the same time): \
+                "no instant with a measured force (fx, fy, fz of `{mover_name}` or of \
+                 `{plate_name}`) falls within the frames of `{mover_name}` (position and \
+                 orientation) while it touches `{plate_name}` at the scenario's geometry: \
                  the fit from force samples has nothing to fit. Check the channels \
-                 (`hcm indicators` lists them), the bodies' geometry in the scenario, or \
+                 (each command prints what it found), the bodies' geometry in the scenario, or \
                  fit from the motion alone with `hcm identify-motion`"
             )));
         }
@@ -282,67 +289,112 @@ struct Rig<'a> {
 }
 
 impl Rig<'_> {
-    /// The run's touching rows, its point histories latched sample by sample.
+    /// The run's touching rows, its point histories latched sample by sample: one row
+    /// per instant a force was measured (the mover's own rows, or the plate's), with
+    /// the mover's state there — its own sample where it has every motion channel,
+    /// else read from its frames ([`Frames`]).
     fn rows(&self, run: usize, track: &BodyTrack) -> Vec<RecordedSample> {
         let mut system = RigidSystem::new(self.model, self.layout);
         let mut y = self.layout.initial_state(self.model).0;
         let Some(slot) = self.layout.slot(self.mover) else {
             return Vec::new();
         };
+        let frames = Frames::of(&track.samples);
         let mut rows = Vec::new();
-        for sample in &track.samples {
-            let kinematic = [
-                Channel::Position,
-                Channel::Orientation,
-                Channel::Velocity,
-                Channel::AngularVelocity,
-            ];
-            if !kinematic.iter().all(|&ch| sample.has(ch)) {
-                continue;
-            }
-            let state = state_input(sample);
+        for (time, reading) in self.readings(track) {
+            let (state_sample, between_frames) = match reading {
+                Reading::Own(sample) if full_state(sample) => (sample.clone(), false),
+                _ => match frames.at(time) {
+                    Some(s) => {
+                        let recorded = frames.recorded_at(time);
+                        (s, !recorded)
+                    }
+                    None => continue,
+                },
+            };
+            let state = state_input(&state_sample);
             y[slot..slot + state.len()].copy_from_slice(&state);
             let manifold = system.manifold(&y, self.c);
             system.latch(&y);
             if manifold.points.is_empty() && !self.flight {
                 continue;
             }
-            let Some(measured) = self.measured(sample) else {
-                continue;
-            };
             rows.push(RecordedSample {
                 run,
-                time: sample.time,
+                time,
                 points: manifold.points,
                 references: [manifold.pose_1.position, manifold.pose_2.position],
-                measured,
+                measured: self.measured(&reading, &state_sample),
                 state,
+                between_frames,
             });
         }
         rows
     }
 
-    /// The wrench measured on the mover at `sample`: its own channels, else the plate's
-    /// at the same instant turned onto the mover; `None` without a force.
-    fn measured(&self, sample: &Sample) -> Option<[f64; 6]> {
-        if sample.has(Channel::Force) {
-            let [fx, fy, fz] = sample.force;
-            let [tx, ty, tz] = sample.torque;
-            return Some([fx, fy, fz, tx, ty, tz]);
+    /// Every instant with a measured force, in time order: the mover's own rows with
+    /// a force, and the plate's rows with a force at instants the mover has no force.
+    fn readings<'t>(&'t self, track: &'t BodyTrack) -> Vec<(f64, Reading<'t>)> {
+        let mut out: Vec<(f64, Reading<'t>)> = (track.samples.iter())
+            .filter(|s| s.has(Channel::Force))
+            .map(|s| (s.time, Reading::Own(s)))
+            .collect();
+        let own = out.len();
+        if let Some(plate) = self.plate {
+            let taken = |t: f64| {
+                let at = out[..own]
+                    .partition_point(|(time, _)| *time < t - SAME_INSTANT * t.abs().max(1.0));
+                out[..own]
+                    .get(at)
+                    .is_some_and(|(time, _)| (time - t).abs() <= SAME_INSTANT * t.abs().max(1.0))
+            };
+            let extra: Vec<(f64, Reading<'t>)> = (plate.samples.iter())
+                .filter(|s| s.has(Channel::Force) && !taken(s.time))
+                .map(|s| (s.time, Reading::Plate(s)))
+                .collect();
+            out.extend(extra);
+            out.sort_by(|a, b| a.0.total_cmp(&b.0));
         }
-        let plate = self.plate?;
-        let at = plate
-            .samples
-            .partition_point(|s| s.time < sample.time - SAME_INSTANT * sample.time.abs().max(1.0));
-        let reading = plate.samples.get(at).filter(|s| {
-            (s.time - sample.time).abs() <= SAME_INSTANT * sample.time.abs().max(1.0)
-                && s.has(Channel::Force)
-        })?;
-        let force = Vector3::from(reading.force);
-        let arm = Vector3::from(sample.position) - self.plate_position;
-        let torque = -Vector3::from(reading.torque) + arm.cross(&force);
-        Some([-force.x, -force.y, -force.z, torque.x, torque.y, torque.z])
+        out
     }
+
+    /// The wrench measured on the mover by `reading`, the mover at `state`: its own
+    /// channels, or the plate's turned onto the mover.
+    fn measured(&self, reading: &Reading<'_>, state: &Sample) -> [f64; 6] {
+        match reading {
+            Reading::Own(sample) => {
+                let [fx, fy, fz] = sample.force;
+                let [tx, ty, tz] = sample.torque;
+                [fx, fy, fz, tx, ty, tz]
+            }
+            Reading::Plate(reading) => {
+                let force = Vector3::from(reading.force);
+                let arm = Vector3::from(state.position) - self.plate_position;
+                let torque = -Vector3::from(reading.torque) + arm.cross(&force);
+                [-force.x, -force.y, -force.z, torque.x, torque.y, torque.z]
+            }
+        }
+    }
+}
+
+/// Where a row's force comes from.
+enum Reading<'a> {
+    /// The mover's own sample.
+    Own(&'a Sample),
+    /// The plate's (the fixed body's) sample.
+    Plate(&'a Sample),
+}
+
+/// Whether `sample` has every motion channel of a rigid state.
+fn full_state(sample: &Sample) -> bool {
+    [
+        Channel::Position,
+        Channel::Orientation,
+        Channel::Velocity,
+        Channel::AngularVelocity,
+    ]
+    .iter()
+    .all(|&ch| sample.has(ch))
 }
 
 /// The error for a run without the mover's track.

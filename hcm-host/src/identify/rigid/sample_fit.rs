@@ -257,6 +257,18 @@ fn warnings(fit: &SampleFit, genes: &[f64], recorded: &RecordedContact) -> Vec<S
             ));
         }
     }
+    let between = recorded.samples.iter().filter(|s| s.between_frames).count();
+    if between > 0 {
+        out.push(format!(
+            "{between} of {} rows read the moving body's state between its frames \
+             (interpolated, velocities differentiated where the tracker gives none): the \
+             fit is only as good as that reading — friction near sticking needs slip \
+             speeds of mm/s. Measured on a ball at 20 kHz: velocities differentiated from \
+             frames at the force rate took the stiffness 39 % low; record the state at \
+             the force's instants, or its velocities",
+            recorded.samples.len()
+        ));
+    }
     let explained = 1.0 - (fit.force_rms / recorded.force_scale).powi(2);
     if explained.is_nan() || explained < EXPLAINED_MIN {
         out.push(format!(
