@@ -61,34 +61,18 @@ fn diagnosed(scenario: &Scenario, plain: &Scenario) -> RigidDiagnosis {
     d
 }
 
-#[test]
-fn hidden_effects_on_a_ball_are_named_or_honestly_left() {
-    let plain = hcm_tests::scene("ball_on_plate.toml");
-    let cases: [(&str, &str, &str); 5] = [
-        ("none", "", ""),
-        (
-            "viscous_damping",
-            "effects = [{ viscous_damping = { coefficient = 15.0 } }]",
-            "",
-        ),
-        (
-            "viscous_friction",
-            "tangential = { viscous_friction = { coefficient = 2.0 } }",
-            "",
-        ),
-        ("force_offset", "", "force_offset = [0.0, 0.0, 0.8]"),
-        ("sensor_delay", "", "sensor_delay = 2e-5"),
-    ];
+/// Each `(hidden effect, [[contact]] lines, [experiment] lines)` on the scene `name`:
+/// the effect named alone, or "ambiguous" with it among the tied, or for "none" nothing
+/// named — never a wrong name. `HCM_CASE=<effect>` runs one case.
+fn each_named_right(name: &str, cases: &[(&str, &str, &str)]) {
+    let plain = hcm_tests::scene(name);
     let only = std::env::var("HCM_CASE").ok();
-    for (truth, contact, experiment) in cases {
+    for &(truth, contact, experiment) in cases {
         if only.as_deref().is_some_and(|o| o != truth) {
             continue;
         }
         println!("== hidden: {truth}");
-        let d = diagnosed(
-            &scene_with("ball_on_plate.toml", contact, experiment),
-            &plain,
-        );
+        let d = diagnosed(&scene_with(name, contact, experiment), &plain);
         let said: Vec<&str> = d.named.iter().chain(&d.ambiguous).copied().collect();
         assert!(
             said.iter().all(|n| *n == truth) || (d.named.is_empty() && said.contains(&truth)),
@@ -99,36 +83,43 @@ fn hidden_effects_on_a_ball_are_named_or_honestly_left() {
 }
 
 #[test]
+fn hidden_effects_on_a_ball_are_named_or_honestly_left() {
+    each_named_right(
+        "ball_on_plate.toml",
+        &[
+            ("none", "", ""),
+            (
+                "viscous_damping",
+                "effects = [{ viscous_damping = { coefficient = 15.0 } }]",
+                "",
+            ),
+            (
+                "viscous_friction",
+                "tangential = { viscous_friction = { coefficient = 2.0 } }",
+                "",
+            ),
+            ("force_offset", "", "force_offset = [0.0, 0.0, 0.8]"),
+            ("sensor_delay", "", "sensor_delay = 2e-5"),
+        ],
+    );
+}
+
+#[test]
 fn hidden_effects_on_a_block_landing_on_a_block_are_named_or_honestly_left() {
-    let plain = hcm_tests::scene("block_on_block.toml");
-    let cases: [(&str, &str, &str); 3] = [
-        (
-            "torsional_resistance",
-            "tangential = { torsional_resistance = { arm = 2e-3, spin_rate = 0.1 } }",
-            "",
-        ),
-        (
-            "adhesion",
-            "effects = [{ adhesion = { pull_off_force = 20.0 } }]",
-            "",
-        ),
-        ("force_offset", "", "force_offset = [0.5, -0.3, 0.0]"),
-    ];
-    let only = std::env::var("HCM_CASE").ok();
-    for (truth, contact, experiment) in cases {
-        if only.as_deref().is_some_and(|o| o != truth) {
-            continue;
-        }
-        println!("== hidden: {truth}");
-        let d = diagnosed(
-            &scene_with("block_on_block.toml", contact, experiment),
-            &plain,
-        );
-        let said: Vec<&str> = d.named.iter().chain(&d.ambiguous).copied().collect();
-        assert!(
-            said.iter().all(|n| *n == truth) || (d.named.is_empty() && said.contains(&truth)),
-            "hidden {truth}: {}",
-            d.answer
-        );
-    }
+    each_named_right(
+        "block_on_block.toml",
+        &[
+            (
+                "torsional_resistance",
+                "tangential = { torsional_resistance = { arm = 2e-3, spin_rate = 0.1 } }",
+                "",
+            ),
+            (
+                "adhesion",
+                "effects = [{ adhesion = { pull_off_force = 20.0 } }]",
+                "",
+            ),
+            ("force_offset", "", "force_offset = [0.5, -0.3, 0.0]"),
+        ],
+    );
 }

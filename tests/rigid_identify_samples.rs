@@ -9,6 +9,7 @@
 //! parameter the data cannot fix must be said to be so. Run with `--nocapture` for the
 //! fitted values.
 
+use hcm_host::dataset::Dataset;
 use hcm_host::experiment::generate;
 use hcm_host::identify::rigid::{identify_from_samples, SampleIdentification};
 use hcm_host::progress::Silent;
@@ -143,37 +144,49 @@ fn a_block_on_a_block_gives_back_a_law_with_memory() {
     );
 }
 
+/// `data` with each run's force and torque moved from the ball onto rows of a force
+/// plate under the fixed body (its centre [0, 0, −0.01] m, as the scene has it): the
+/// plate reads −F and −T − (p − p_plate) × F at the same instants. With `camera`, the
+/// ball's rows keep only position and orientation, as a camera gives them.
+fn on_a_force_plate(data: &Dataset, camera: bool) -> Dataset {
+    use hcm_host::dataset::{BodyTrack, Channel, Sample};
+    let mut out = data.clone();
+    for run in &mut out.runs {
+        let ball = &mut run.bodies[0];
+        let mut plate = Vec::new();
+        for s in &mut ball.samples {
+            let f = nalgebra::Vector3::from(s.force);
+            let t = nalgebra::Vector3::from(s.torque);
+            let arm = nalgebra::Vector3::from(s.position) - nalgebra::Vector3::new(0.0, 0.0, -0.01);
+            let mut reading = Sample::unsampled(s.time);
+            reading.force = (-f).into();
+            reading.torque = (-t - arm.cross(&f)).into();
+            plate.push(reading);
+            s.clear(Channel::Force);
+            s.clear(Channel::Torque);
+            if camera {
+                s.clear(Channel::Velocity);
+                s.clear(Channel::AngularVelocity);
+            }
+        }
+        run.bodies.push(BodyTrack {
+            body: "plate".to_owned(),
+            samples: plate,
+        });
+    }
+    out
+}
+
 /// The same data measured by a force plate under the fixed body instead of a sensor on
 /// the moving one: the plate reads −F and −T − (p − p_plate) × F (its torque about its
 /// own centre, here the origin) at the same instants, the moving body's force and
 /// torque cells empty. The fit is the same.
 #[test]
 fn a_force_plate_under_the_fixed_body_fits_as_a_sensor_on_the_moving_one() {
-    use hcm_host::dataset::{BodyTrack, Channel, Sample};
     let scenario = hcm_tests::scene("ball_on_plate.toml");
     let model = scenario.model().unwrap();
     let data = generate(&scenario, 8, 5, &Silent).unwrap();
-    let mut plate = data.clone();
-    for run in &mut plate.runs {
-        let ball = &mut run.bodies[0];
-        let mut readings = Vec::new();
-        for s in &mut ball.samples {
-            let f = nalgebra::Vector3::from(s.force);
-            let t = nalgebra::Vector3::from(s.torque);
-            // The plate's centre in the scenario: [0, 0, −0.01] m.
-            let arm = nalgebra::Vector3::from(s.position) - nalgebra::Vector3::new(0.0, 0.0, -0.01);
-            let mut reading = Sample::unsampled(s.time);
-            reading.force = (-f).into();
-            reading.torque = (-t - arm.cross(&f)).into();
-            readings.push(reading);
-            s.clear(Channel::Force);
-            s.clear(Channel::Torque);
-        }
-        run.bodies.push(BodyTrack {
-            body: "plate".to_owned(),
-            samples: readings,
-        });
-    }
+    let plate = on_a_force_plate(&data, false);
     let bounds = &scenario.identify.bounds;
     let fit = |d| identify_from_samples(&model, d, 0, bounds, true, &Silent).unwrap();
     let (own, by_plate) = (fit(&data), fit(&plate));
@@ -197,36 +210,10 @@ fn a_force_plate_under_the_fixed_body_fits_as_a_sensor_on_the_moving_one() {
 /// transition speeds off), so it is never silent. Complete data get no such warning.
 #[test]
 fn camera_frames_and_a_force_plate_on_rows_of_their_own_are_read_and_said() {
-    use hcm_host::dataset::{BodyTrack, Channel, Sample};
     let scenario = hcm_tests::scene("ball_on_plate.toml");
     let model = scenario.model().unwrap();
     let data = generate(&scenario, 12, 9, &Silent).unwrap();
-    let mut rig = data.clone();
-    for run in &mut rig.runs {
-        let ball = &mut run.bodies[0];
-        let mut plate = Vec::new();
-        for s in &mut ball.samples {
-            let f = nalgebra::Vector3::from(s.force);
-            let t = nalgebra::Vector3::from(s.torque);
-            let arm = nalgebra::Vector3::from(s.position) - nalgebra::Vector3::new(0.0, 0.0, -0.01);
-            let mut reading = Sample::unsampled(s.time);
-            reading.force = (-f).into();
-            reading.torque = (-t - arm.cross(&f)).into();
-            plate.push(reading);
-            for ch in [
-                Channel::Velocity,
-                Channel::AngularVelocity,
-                Channel::Force,
-                Channel::Torque,
-            ] {
-                s.clear(ch);
-            }
-        }
-        run.bodies.push(BodyTrack {
-            body: "plate".to_owned(),
-            samples: plate,
-        });
-    }
+    let rig = on_a_force_plate(&data, true);
     let bounds = &scenario.identify.bounds;
     let fit = |d| identify_from_samples(&model, d, 0, bounds, true, &Silent).unwrap();
     let (complete, camera) = (fit(&data), fit(&rig));

@@ -64,6 +64,20 @@ pub struct Args {
     out: PathBuf,
 }
 
+/// The training settings the options give, and the bars that show it.
+fn settings_and_bars(args: &Args) -> (ResidualSettings, Bars) {
+    let settings = ResidualSettings {
+        epochs: args.epochs,
+        int8_epochs: args.int8_epochs,
+        seed: args.seed,
+    };
+    let bars = Bars::with_status(|stage| match stage {
+        Stage::Int8Twin => "int8 fine-tuning",
+        _ => "training epochs",
+    });
+    (settings, bars)
+}
+
 pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let pm2 = Physics::read(&args.physics)?
@@ -80,15 +94,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         &[args.contact],
         &needs::TRAIN,
     )?;
-    let settings = ResidualSettings {
-        epochs: args.epochs,
-        int8_epochs: args.int8_epochs,
-        seed: args.seed,
-    };
-    let bars = Bars::with_status(|stage| match stage {
-        Stage::Int8Twin => "int8 fine-tuning",
-        _ => "training epochs",
-    });
+    let (settings, bars) = settings_and_bars(&args);
     let trained = train_force_residual(&pm2, &data, args.contact, &settings, &bars)?;
     let (report, tuned) = (&trained.report, &trained.int8);
     println!(
@@ -123,15 +129,7 @@ fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> an
         &[args.contact],
         &needs::TRAIN_RIGID,
     )?;
-    let settings = ResidualSettings {
-        epochs: args.epochs,
-        int8_epochs: args.int8_epochs,
-        seed: args.seed,
-    };
-    let bars = Bars::with_status(|stage| match stage {
-        Stage::Int8Twin => "int8 fine-tuning",
-        _ => "training epochs",
-    });
+    let (settings, bars) = settings_and_bars(args);
     let events = args.events.unwrap_or(usize::MAX);
     let trained = train_wrench_residual(pm2, data, args.contact, events, &settings, &bars)?;
     let report = &trained.report;
