@@ -85,3 +85,27 @@ fn each_bad_3d_data_set_is_told_what_is_wrong() {
         &["`force_plate`", "does not have", "add the body"],
     );
 }
+
+/// Too few runs to judge on held-out ones: the diagnosis says how many it needs, and
+/// leaves no output directory behind.
+#[test]
+fn a_diagnosis_on_too_few_runs_says_how_many_it_needs() {
+    let hcm = Hcm::new();
+    cube_rows(&hcm);
+    let scenario = hcm_tests::scenario("cube_drop.toml");
+    hcm.run("identify")
+        .opt("--scenario", &scenario)
+        .opt("--data", hcm.path("gen.s1.csv"))
+        .opt("--law", "impact")
+        .opt("--out", hcm.path("pm2.toml"))
+        .ok();
+    let message = hcm
+        .run("diagnose")
+        .opt("--scenario", &scenario)
+        .opt("--data", hcm.path("gen.s1.csv"))
+        .opt("--physics", hcm.path("pm2.toml"))
+        .opt("--out", hcm.path("diagnosis"))
+        .fails();
+    assert!(message.contains("needs at least 6 runs"), "{message}");
+    assert!(!hcm.path("diagnosis").exists(), "no directory left behind");
+}

@@ -29,7 +29,6 @@ pub fn run(args: &RigidArgs<'_>, scenario: &Scenario, base: &Model) -> anyhow::R
         &[args.contact],
         &needs::IDENTIFY_RIGID_SAMPLES,
     )?;
-    std::fs::create_dir_all(args.out)?;
     let settings = RigidDiagnoseSettings {
         contact: args.contact,
         fitted_base: args.fitted,
@@ -37,6 +36,8 @@ pub fn run(args: &RigidArgs<'_>, scenario: &Scenario, base: &Model) -> anyhow::R
     };
     let bars = Bars::with_status(|_| "candidates fitted");
     let diagnosis = diagnose_rigid(base, &data, &settings, &bars)?;
+    // Created once there is something to write: an error leaves no empty directory.
+    std::fs::create_dir_all(args.out)?;
     let extended = extended_physics(&diagnosis, args);
     extended.write(
         &args.out.join("extended.toml"),

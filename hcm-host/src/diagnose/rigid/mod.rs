@@ -45,6 +45,9 @@ use serde::Serialize;
 pub const MIN_GAIN: f64 = 0.001;
 /// Causes named one after another, at most.
 pub const MAX_ROUNDS: usize = 2;
+/// Runs with contact each half needs, at least: the paired gain's standard error
+/// needs several units.
+pub const MIN_RUNS_PER_HALF: usize = 3;
 /// Jacobians per fit.
 const ITERATIONS: usize = 40;
 /// Where in their box the effects' other starts lie (shares, on the scale searched):
@@ -124,6 +127,20 @@ pub fn diagnose_rigid(
 ) -> Result<RigidDiagnosis, RigidIdentifyError> {
     let c = settings.contact;
     let recorded = RecordedContact::with_rows(base, data, c, true)?;
+    for fold in 0..2 {
+        let runs = (0..data.runs.len())
+            .filter(|r| r % 2 == fold && recorded.samples.iter().any(|s| s.run == *r))
+            .count();
+        if runs < MIN_RUNS_PER_HALF {
+            return Err(RigidIdentifyError::Setup(format!(
+                "the diagnosis fits on half the runs and judges on the other half, run by \
+                 run: it needs at least {} runs with measured contact ({MIN_RUNS_PER_HALF} \
+                 even, {MIN_RUNS_PER_HALF} odd); the data have {} — record more runs",
+                2 * MIN_RUNS_PER_HALF,
+                data.runs.len()
+            )));
+        }
+    }
     let exponent = base.contacts[c].law().get("exponent").unwrap_or(1.5);
     let scales = Scales::of(&recorded, exponent);
     let base_parameters = if settings.fitted_base {
