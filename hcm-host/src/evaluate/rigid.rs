@@ -352,6 +352,17 @@ pub fn rigid_markdown(e: &RigidEvaluation) -> String {
     let _ = writeln!(out);
     for (m, label) in e.models.iter().enumerate().skip(1) {
         let (d, se) = e.paired[m];
+        if d == 0.0 && se == 0.0 {
+            let _ = writeln!(
+                out,
+                "{label} = {} on every run: its residual never acted — these runs lie outside \
+                 the envelope it was trained in (the moving body's states: a held-out \
+                 condition the training never saw), where the HCM is PM2 alone, or training \
+                 silenced every output",
+                e.models[0]
+            );
+            continue;
+        }
         let verdict = if d + 2.0 * se < 0.0 {
             "better"
         } else if d - 2.0 * se > 0.0 {
