@@ -138,6 +138,24 @@ fn print_samples_fit(law: &str, found: &SampleFit) {
     if found.torque_rms.is_finite() {
         println!("  torque residual RMS  {:.4e} N·m", found.torque_rms);
     }
+    let (fixed, loose): (Vec<&str>, Vec<&str>) = (found.parameters.iter())
+        .map(|(name, _)| name.as_str())
+        .partition(|name| {
+            !(found.warnings.iter()).any(|w| w.starts_with(&format!("`{name}` is not fixed")))
+        });
+    println!(
+        "  fixed by the data: {}; not fixed by them (see the warnings): {}",
+        if fixed.is_empty() {
+            "none".to_owned()
+        } else {
+            fixed.join(", ")
+        },
+        if loose.is_empty() {
+            "none".to_owned()
+        } else {
+            loose.join(", ")
+        }
+    );
     for w in &found.warnings {
         eprintln!("warning: {w}");
     }
