@@ -38,28 +38,13 @@ pub fn noisy_model(model: &Model, rng: &mut ChaCha8Rng) -> Result<Model, Simulat
 }
 
 /// Eq 19 and the sensor effects on a simulated run: a force sensor's nonlinearity,
-/// lag, low-pass filter, gain and offset, then σ·ζ on every force, torque, position and
-/// velocity component whose σ is set, sample by sample in time order.
+/// lag, low-pass filter, gain and offset ([`read_by_sensor`]), then σ·ζ on every
+/// force, torque, position and velocity component whose σ is set, sample by sample in
+/// time order.
 fn add_output_noise(e: &ExperimentSpec, run: &mut Run, rng: &mut ChaCha8Rng) {
     for track in &mut run.bodies {
-        if e.force_nonlinearity != 0.0 {
-            for sample in &mut track.samples {
-                let magnitude = sample.force.iter().map(|f| f * f).sum::<f64>().sqrt();
-                let scale = 1.0 + e.force_nonlinearity * magnitude;
-                sample.force.iter_mut().for_each(|f| *f *= scale);
-            }
-        }
-        if e.sensor_delay > 0.0 {
-            delay_forces(&mut track.samples, e.sensor_delay);
-        }
-        if e.sensor_filter > 0.0 {
-            filter_forces(&mut track.samples, e.sensor_filter);
-        }
+        read_by_sensor(e, &mut track.samples);
         for sample in &mut track.samples {
-            for (f, b) in sample.force.iter_mut().zip(e.force_offset) {
-                *f = e.force_gain * *f + b;
-            }
-            sample.torque.iter_mut().for_each(|t| *t *= e.force_gain);
             for (values, sigma) in [
                 (&mut sample.force[..], e.force_noise),
                 (&mut sample.torque[..], e.torque_noise),
@@ -71,6 +56,43 @@ fn add_output_noise(e: &ExperimentSpec, run: &mut Run, rng: &mut ChaCha8Rng) {
                 }
             }
         }
+    }
+}
+
+/// Whether the scenario's sensor reads the wrench as it is: no nonlinearity, lag or
+/// filter, gain 1, offset 0.
+pub fn sensor_is_exact(e: &ExperimentSpec) -> bool {
+    e.force_nonlinearity == 0.0
+        && e.sensor_delay == 0.0
+        && e.sensor_filter == 0.0
+        && e.force_gain == 1.0
+        && e.force_offset == [0.0; 3]
+}
+
+/// The reading of `samples` (one body's track, time ascending) by the scenario's force
+/// sensor, in place: the force through its nonlinearity, read `sensor_delay` late,
+/// through its low-pass filter, then force and torque times `force_gain`, plus
+/// `force_offset` on the force. What `hcm generate` records, and what a model that
+/// names a sensor effect compares with the data.
+pub fn read_by_sensor(e: &ExperimentSpec, samples: &mut [Sample]) {
+    if e.force_nonlinearity != 0.0 {
+        for sample in samples.iter_mut() {
+            let magnitude = sample.force.iter().map(|f| f * f).sum::<f64>().sqrt();
+            let scale = 1.0 + e.force_nonlinearity * magnitude;
+            sample.force.iter_mut().for_each(|f| *f *= scale);
+        }
+    }
+    if e.sensor_delay > 0.0 {
+        delay_forces(samples, e.sensor_delay);
+    }
+    if e.sensor_filter > 0.0 {
+        filter_forces(samples, e.sensor_filter);
+    }
+    for sample in samples.iter_mut() {
+        for (f, b) in sample.force.iter_mut().zip(e.force_offset) {
+            *f = e.force_gain * *f + b;
+        }
+        sample.torque.iter_mut().for_each(|t| *t *= e.force_gain);
     }
 }
 

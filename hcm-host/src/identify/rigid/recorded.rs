@@ -30,6 +30,7 @@ use super::RigidIdentifyError;
 use crate::dataset::state::Frames;
 use crate::dataset::state_input;
 use crate::dataset::{BodyTrack, Channel, Dataset, Run, Sample};
+use crate::experiment::{read_by_sensor, sensor_is_exact};
 use crate::scenario::Model;
 use crate::simulate::{RigidLayout, RigidSystem};
 use hcm_core::model::Manifold;
@@ -193,43 +194,45 @@ impl RecordedContact {
     }
 
     /// What `candidate`'s sensor reads at every row: its contact's wrench on the mover
-    /// ([`Self::predicted`]) as the scenario's `[experiment]` keys say a sensor turns
-    /// it into a reading (the generator's order and meaning, `hcm generate`): the force
-    /// read `sensor_delay` τ late (on the cubic Hermite curve through the run's rows,
-    /// [`crate::numerics::sampled::delayed`]), then force and torque times
-    /// `force_gain` g, plus `force_offset` b on the force. τ = 0, g = 1, b = 0: the
-    /// wrench itself.
+    /// ([`Self::predicted`]) read, run by run over the run's rows, by the sensor the
+    /// scenario's `[experiment]` keys describe — the one `hcm generate` records
+    /// through ([`read_by_sensor`]). An exact sensor reads the wrench itself.
     pub fn readings(&self, candidate: &Model) -> Vec<[f64; 6]> {
         let mut read: Vec<[f64; 6]> = (self.samples.iter())
             .map(|s| self.predicted(candidate, s))
             .collect();
         let sensor = &candidate.scenario.experiment;
-        let (delay, gain, offset) = (sensor.sensor_delay, sensor.force_gain, sensor.force_offset);
-        if delay != 0.0 {
-            let mut first = 0;
-            while first < self.samples.len() {
-                let run = self.samples[first].run;
-                let end = first
-                    + (self.samples[first..].iter())
-                        .take_while(|s| s.run == run)
-                        .count();
-                let times: Vec<f64> = self.samples[first..end].iter().map(|s| s.time).collect();
-                for k in 0..3 {
-                    let series: Vec<f64> = read[first..end].iter().map(|r| r[k]).collect();
-                    let late = crate::numerics::sampled::delayed(&times, &series, delay);
-                    for (r, v) in read[first..end].iter_mut().zip(late) {
-                        r[k] = v;
-                    }
-                }
-                first = end;
-            }
+        if sensor_is_exact(sensor) {
+            return read;
         }
-        if gain != 1.0 || offset != [0.0; 3] {
-            for r in &mut read {
-                for (k, v) in r.iter_mut().enumerate() {
-                    *v = gain * *v + if k < 3 { offset[k] } else { 0.0 };
-                }
+        let mut first = 0;
+        while first < self.samples.len() {
+            let run = self.samples[first].run;
+            let end = first
+                + (self.samples[first..].iter())
+                    .take_while(|s| s.run == run)
+                    .count();
+            let mut track: Vec<Sample> = (self.samples[first..end].iter())
+                .zip(&read[first..end])
+                .map(|(s, r)| {
+                    let mut sample = Sample::unsampled(s.time);
+                    sample.force = [r[0], r[1], r[2]];
+                    sample.torque = [r[3], r[4], r[5]];
+                    sample
+                })
+                .collect();
+            read_by_sensor(sensor, &mut track);
+            for (r, s) in read[first..end].iter_mut().zip(&track) {
+                *r = [
+                    s.force[0],
+                    s.force[1],
+                    s.force[2],
+                    s.torque[0],
+                    s.torque[1],
+                    s.torque[2],
+                ];
             }
+            first = end;
         }
         read
     }

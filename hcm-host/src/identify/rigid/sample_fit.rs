@@ -296,6 +296,12 @@ impl Space {
         }
     }
 
+    /// The named parameters' values (SI units) at coordinates `z`.
+    fn named_values<P: Parameters<Target = Model>>(&self, parameters: &P, z: &[f64]) -> Vec<f64> {
+        let named = parameters.named(&self.genes(z));
+        named.into_iter().map(|(_, v)| v).collect()
+    }
+
     /// Genes (the parameters' units) of coordinates `z`.
     fn genes(&self, z: &[f64]) -> Vec<f64> {
         (self.bounds.iter().zip(z))
@@ -406,15 +412,13 @@ impl Space {
         let mut evaluations = 0;
         let mut estimates: Vec<Vec<f64>> = Vec::new();
         for g in 0..groups {
-            let mut part = recorded.clone();
-            part.samples.retain(|s| s.run % groups != g);
+            let part = recorded.part(|r| r % groups != g);
             if part.samples.len() * 6 <= z.len() {
                 continue;
             }
             if let Ok(found) = self.fit(model, &part, parameters, z, 30, &[]) {
                 evaluations += found.evaluations;
-                let named = parameters.named(&self.genes(&found.parameters));
-                estimates.push(named.into_iter().map(|(_, v)| v).collect());
+                estimates.push(self.named_values(parameters, &found.parameters));
             }
         }
         let n = estimates.len() as f64;
@@ -498,10 +502,7 @@ impl Space {
         z: &[f64],
         unfelt: &[usize],
     ) -> (Vec<f64>, usize) {
-        let values = |z: &[f64]| -> Vec<f64> {
-            let named = parameters.named(&self.genes(z));
-            named.into_iter().map(|(_, v)| v).collect()
-        };
+        let values = |z: &[f64]| self.named_values(parameters, z);
         let at = values(z);
         let mut moved = vec![0.0_f64; at.len()];
         let mut evaluations = 0;
@@ -585,10 +586,7 @@ impl Space {
         z: &[f64],
         covariance: Option<&[Vec<f64>]>,
     ) -> Vec<f64> {
-        let values = |z: &[f64]| -> Vec<f64> {
-            let named = parameters.named(&self.genes(z));
-            named.into_iter().map(|(_, v)| v).collect()
-        };
+        let values = |z: &[f64]| self.named_values(parameters, z);
         let count = values(z).len();
         let Some(cov) = covariance else {
             return vec![f64::INFINITY; count];
