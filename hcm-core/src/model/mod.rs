@@ -10,15 +10,19 @@
 //!   T1 = Σ l1 × (f_n·**n** + **f_f**), and the opposite on body 2;
 //! - plus the learned residual r(x) (Section 3.2, Eq 12), added only while at least
 //!   one point touches and the residual's input lies inside its training envelope
-//!   ([`Residual`]); elsewhere the physics alone, and [`Evaluated`] says which.
+//!   ([`Residual`]); elsewhere the physics alone, and [`Evaluated`] says which. A
+//!   contact-frame residual ([`PerPoint`]) instead adds its correction at each
+//!   touching point, from that point's own state ([`point_residual`]).
 //!
 //! Generic over [`Real`]: `f32` in the controller, `f64` in the host's stiff
 //! simulation, the same formulas in both.
 
 mod point;
+pub mod point_residual;
 mod residual;
 
 pub use point::{ContactPoint, Manifold, PointForce, MAX_POINTS};
+pub use point_residual::{PerPoint, POINT_INPUTS, POINT_OUTPUTS};
 pub use residual::{Correction, NoResidual, Residual};
 
 use crate::effect::{ContactMemory, ExtendedLaw};
@@ -118,6 +122,13 @@ impl<T: Real, R> ContactModel<T, R> {
     #[inline]
     pub fn point_force(&self, point: &ContactPoint<T>) -> PointForce<T> {
         let normal_force = self.physics_normal_force(&point.indentation, &point.memory);
+        self.point_force_with(point, normal_force)
+    }
+
+    /// The force at one point under normal force `normal_force` (N): the friction law
+    /// and the tangential effects read it (none for 0).
+    #[inline]
+    pub fn point_force_with(&self, point: &ContactPoint<T>, normal_force: T) -> PointForce<T> {
         let mut friction = match &self.friction {
             Some(law) if normal_force != T::zero() => {
                 law.force(&point.relative_velocity, &point.normal, normal_force)
@@ -230,7 +241,8 @@ impl<T: Real, R: Residual<T>> ContactModel<T, R> {
         // The residual was trained on (measured − physics): it adds to the physics'
         // result and does not feed back into the friction law.
         let correction = self.residual.correction(residual_input);
-        let mut force = self.point_force(first);
+        let mut corrected_points = false;
+        let mut force = self.corrected_point_force(first, &mut corrected_points);
         if let Some(Correction::NormalForce(extra)) = correction {
             force.normal_force = (force.normal_force + extra).saturate();
         }
@@ -239,20 +251,20 @@ impl<T: Real, R: Residual<T>> ContactModel<T, R> {
         let mut load = PairLoad {
             wrench: point_wrench(first, &force, reference_1, reference_2),
             normal_force: force.normal_force,
-            evaluated: match correction {
-                Some(_) => Evaluated::PhysicsAndResidual,
-                None => Evaluated::PhysicsOnly,
-            },
+            evaluated: Evaluated::PhysicsOnly,
         };
         let rest = points.get(at + 1..).unwrap_or(&[]);
         for point in rest.iter().filter(touches) {
-            let force = self.point_force(point);
+            let force = self.corrected_point_force(point, &mut corrected_points);
             load.normal_force = (load.normal_force + force.normal_force).saturate();
             let w = point_wrench(point, &force, reference_1, reference_2);
             load.wrench.force_1 += w.force_1;
             load.wrench.torque_1 += w.torque_1;
             load.wrench.force_2 += w.force_2;
             load.wrench.torque_2 += w.torque_2;
+        }
+        if correction.is_some() || corrected_points {
+            load.evaluated = Evaluated::PhysicsAndResidual;
         }
         let Some(correction) = correction else {
             return load;
@@ -282,6 +294,42 @@ impl<T: Real, R: Residual<T>> ContactModel<T, R> {
     }
 }
 
+impl<T: Real, R: Residual<T>> ContactModel<T, R> {
+    /// The physics force at a touching `point` plus a contact-frame residual's
+    /// correction there, if it gives one (then `corrected` is set): the normal
+    /// correction added before friction reads the normal force (a tensile total gives
+    /// no friction), the friction law's force at the law's own normal force scaled by
+    /// r_f, and the motion's terms beside them.
+    #[inline]
+    fn corrected_point_force(
+        &self,
+        point: &ContactPoint<T>,
+        corrected: &mut bool,
+    ) -> PointForce<T> {
+        let Some(outputs) = self.residual.point_correction(point) else {
+            return self.point_force(point);
+        };
+        *corrected = true;
+        let physics = self.physics_normal_force(&point.indentation, &point.memory);
+        let normal = (physics + point_residual::normal_correction(point, &outputs)).saturate();
+        let pressing = if normal < T::zero() {
+            T::zero()
+        } else {
+            normal
+        };
+        let mut force = self.point_force_with(point, pressing);
+        force.normal_force = normal;
+        if let Some(law) = &self.friction {
+            let scale = point_residual::friction_scale(&outputs);
+            force.friction += law.force(&point.relative_velocity, &point.normal, physics) * scale;
+        }
+        let (friction, couple) = point_residual::tangential_correction(point, &outputs);
+        force.friction += friction;
+        force.couple += couple;
+        force
+    }
+}
+
 fn zero_wrench<T: Real>() -> ContactWrench<T> {
     ContactWrench {
         force_1: Vector3::zeros(),
@@ -291,9 +339,11 @@ fn zero_wrench<T: Real>() -> ContactWrench<T> {
     }
 }
 
-/// One point's force on both bodies by Eq 1.
+/// One point's force on both bodies by Eq 1: `force` at `point`, torques about
+/// `reference_1` and `reference_2` (m). Linear in `force`: the host weighs a
+/// contact-frame residual's outputs by the wrench each makes alone.
 #[inline]
-fn point_wrench<T: Real>(
+pub fn point_wrench<T: Real>(
     point: &ContactPoint<T>,
     force: &PointForce<T>,
     reference_1: &Vector3<T>,

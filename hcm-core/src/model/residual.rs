@@ -7,6 +7,8 @@
 //! be trusted — outside its training envelope, on a NaN input, on an input of the
 //! wrong length — and the model then falls back on the physics alone.
 
+use super::point::ContactPoint;
+use super::point_residual::POINT_OUTPUTS;
 use crate::residual::{Excursion, HiddenDepth, Mlp, WeightFormat};
 use crate::Real;
 use nalgebra::Vector3;
@@ -52,6 +54,14 @@ pub trait Residual<T: Real> {
     fn excursion(&self, _input: &[T]) -> Option<Excursion> {
         None
     }
+
+    /// Its five outputs at one touching point — a contact-frame residual's
+    /// ([`super::PerPoint`]), read from the point's own state, applied by
+    /// [`super::point_residual`] — or `None`: switched off there, or a residual of the
+    /// pair as a whole.
+    fn point_correction(&self, _point: &ContactPoint<T>) -> Option<[T; POINT_OUTPUTS]> {
+        None
+    }
 }
 
 /// No learned part: the contact model is the physics alone.
@@ -75,6 +85,11 @@ impl<T: Real, R: Residual<T>> Residual<T> for Option<R> {
     fn excursion(&self, input: &[T]) -> Option<Excursion> {
         self.as_ref().and_then(|r| r.excursion(input))
     }
+
+    #[inline]
+    fn point_correction(&self, point: &ContactPoint<T>) -> Option<[T; POINT_OUTPUTS]> {
+        self.as_ref().and_then(|r| r.point_correction(point))
+    }
 }
 
 impl<T: Real, R: Residual<T>> Residual<T> for &R {
@@ -86,6 +101,11 @@ impl<T: Real, R: Residual<T>> Residual<T> for &R {
     #[inline]
     fn excursion(&self, input: &[T]) -> Option<Excursion> {
         (*self).excursion(input)
+    }
+
+    #[inline]
+    fn point_correction(&self, point: &ContactPoint<T>) -> Option<[T; POINT_OUTPUTS]> {
+        (*self).point_correction(point)
     }
 }
 

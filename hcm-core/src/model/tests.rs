@@ -285,3 +285,114 @@ fn tangential_effects_add_viscous_friction_and_a_couple_at_touching_points() {
     let load = model.pair_load(&[apart], &centre, &Vector3::zeros(), &[]);
     assert_eq!(load.wrench.torque_1, Vector3::zeros());
 }
+
+/// A contact-frame residual with constant outputs k_n 1000 N/m, r_f 0.5, c_t −2 N·s/m,
+/// c_n 0.3 N·m·s, c_r 0.4 N·m·s, inside δ ∈ [0, 1 cm] (other features unbounded).
+fn point_residual() -> PerPoint<Mlp<POINT_INPUTS, 1, POINT_OUTPUTS, 1>> {
+    let mut network: Mlp<POINT_INPUTS, 1, POINT_OUTPUTS, 1> = Mlp::zeroed(Activation::Relu);
+    network.output_layer.bias = [1000.0, 0.5, -2.0, 0.3, 0.4];
+    let wide = 1e6;
+    network.envelope = Envelope {
+        min: [0.0, -wide, -wide, -wide, -wide],
+        max: [1e-2, wide, wide, wide, wide],
+        tolerance: [0.0; POINT_INPUTS],
+    };
+    PerPoint(network)
+}
+
+/// The friction law's force at `point` under the law's own normal force.
+fn base_point_friction(point: &ContactPoint<f64>) -> Vector3<f64> {
+    box_on_plane().point_force(point).friction
+}
+
+#[test]
+fn a_contact_frame_residual_acts_at_every_touching_point_along_its_own_directions() {
+    let model = box_on_plane().with_residual(point_residual());
+    let physics = box_on_plane();
+    // Two corners, one slipping along +x and spinning, the other at rest and rolling.
+    let mut a = point(1e-3, [0.05, 0.0, 0.0], [0.2, 0.0, -0.1]);
+    a.relative_angular_velocity = Vector3::new(0.0, 0.0, 3.0);
+    let mut b = point(2e-3, [-0.05, 0.0, 0.0], [0.0; 3]);
+    b.relative_angular_velocity = Vector3::new(0.0, -5.0, 0.0);
+    let (centre, ground) = (Vector3::new(0.0, 0.0, 0.05), Vector3::zeros());
+    let base = physics.pair_load(&[a, b], &centre, &ground, &[]);
+    let load = model.pair_load(&[a, b], &centre, &ground, &[]);
+    assert_eq!(load.evaluated, Evaluated::PhysicsAndResidual);
+    // 1000 N/m × δ more at each point (1 N at a, 2 N at b); at a, which slips at
+    // 0.2 m/s (beyond v_d: μ_d 0.4), the friction law reads the extra newton (−0.4 N),
+    // its force at the law's own normal force is scaled by 1.5, and −2 N·s/m ×
+    // 0.2 m/s adds to it; b does not slip.
+    assert!((load.normal_force - base.normal_force - 3.0).abs() < 1e-7);
+    let law_friction = base_point_friction(&a);
+    let extra_force = Vector3::new(-0.8, 0.0, 3.0) + law_friction * 0.5;
+    let df = load.wrench.force_1 - base.wrench.force_1;
+    assert!((df - extra_force).norm() < 1e-7, "{df}");
+    // Torque: the forces' moments about the centre, 0.3 × 3 N·m about the spin +z at
+    // a (it spins), 0.4 × 5 N·m about the rolling axis −y at b (it rolls); nothing
+    // about what does not move (b does not spin, a does not roll).
+    let arm_a = a.position - centre;
+    let arm_b = b.position - centre;
+    let expected = arm_a.cross(&(Vector3::new(-0.8, 0.0, 1.0) + law_friction * 0.5))
+        + arm_b.cross(&Vector3::new(0.0, 0.0, 2.0))
+        + Vector3::new(0.0, 0.0, 0.9)
+        + Vector3::new(0.0, -2.0, 0.0);
+    let dt = load.wrench.torque_1 - base.wrench.torque_1;
+    // (The outputs are f32: 0.4 is 0.4 + 6e-9.)
+    assert!((dt - expected).norm() < 1e-7, "{dt} vs {expected}");
+    // The pair balances: the ground takes the opposite.
+    assert!((load.wrench.force_1 + load.wrench.force_2).norm() < 1e-9);
+    let w = load.wrench;
+    assert!((w.torque_1 + centre.cross(&w.force_1) + w.torque_2).norm() < 1e-9);
+    // The pair's own input is not read: a pair input of any length changes nothing.
+    assert_eq!(model.pair_load(&[a, b], &centre, &ground, &[7.0]), load);
+}
+
+#[test]
+fn a_contact_frame_residual_switches_off_point_by_point() {
+    let model = box_on_plane().with_residual(point_residual());
+    let physics = box_on_plane();
+    // One point inside the envelope (1 mm), one beyond it (2 cm): only the first is
+    // corrected (1000 N/m × 1 mm).
+    let inside = point(1e-3, [0.05, 0.0, 0.0], [0.0; 3]);
+    let beyond = point(2e-2, [-0.05, 0.0, 0.0], [0.0; 3]);
+    let centre = Vector3::new(0.0, 0.0, 0.05);
+    let both = model.pair_load(&[inside, beyond], &centre, &Vector3::zeros(), &[]);
+    let base = physics.pair_load(&[inside, beyond], &centre, &Vector3::zeros(), &[]);
+    assert!((both.normal_force - base.normal_force - 1.0).abs() < 1e-7);
+    // Beyond alone: the physics exactly, and said.
+    let alone = model.pair_load(&[beyond], &centre, &Vector3::zeros(), &[]);
+    assert_eq!(alone.evaluated, Evaluated::PhysicsOnly);
+    assert_eq!(
+        alone.wrench,
+        physics
+            .pair_load(&[beyond], &centre, &Vector3::zeros(), &[])
+            .wrench
+    );
+    // NaN features: no panic, no correction.
+    let mut nan = inside;
+    nan.relative_velocity = Vector3::new(f64::NAN, 0.0, 0.0);
+    let load = model.pair_load(&[nan], &centre, &Vector3::zeros(), &[]);
+    assert_eq!(load.evaluated, Evaluated::PhysicsOnly);
+}
+
+#[test]
+fn the_features_are_the_same_wherever_and_however_turned_the_contact_happens() {
+    let mut p = point(1e-3, [0.3, -0.2, 0.1], [0.3, 0.4, -0.5]);
+    p.indentation.rate = 0.5;
+    p.relative_angular_velocity = Vector3::new(1.0, -2.0, -2.0);
+    let features = point_residual::point_features(&p);
+    let expected = [1e-3, 0.5, 0.5, 2.0, 5.0_f64.sqrt()];
+    for (f, e) in features.iter().zip(expected) {
+        assert!((f - e).abs() < 1e-12, "{features:?}");
+    }
+    // Rotated and moved: the same features.
+    let turn = nalgebra::Rotation3::from_euler_angles(0.3, -1.1, 2.0);
+    let mut q = p;
+    q.normal = turn * p.normal;
+    q.position = turn * p.position + Vector3::new(4.0, 5.0, 6.0);
+    q.relative_velocity = turn * p.relative_velocity;
+    q.relative_angular_velocity = turn * p.relative_angular_velocity;
+    for (f, g) in features.iter().zip(point_residual::point_features(&q)) {
+        assert!((f - g).abs() < 1e-12);
+    }
+}

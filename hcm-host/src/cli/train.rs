@@ -5,7 +5,10 @@ use super::progress::Bars;
 use hcm_host::dataset::{inventory, needs, Dataset};
 use hcm_host::identify::Physics;
 use hcm_host::progress::Stage;
-use hcm_host::train::{train_force_residual, train_wrench_residual, ResidualSettings};
+use hcm_host::train::{
+    explains_nothing, train_force_residual, train_point_residual, train_wrench_residual,
+    ResidualSettings,
+};
 use std::path::PathBuf;
 
 /// Train the residual network of the HCM on S1 (and its int8 twin).
@@ -13,9 +16,14 @@ use std::path::PathBuf;
 /// Example: `hcm train --scenario scenarios/bouncing_ball.toml --data data.s1.csv --physics pm2.toml --out residual.json`
 ///
 /// Its inputs are δ, δ̇ and δ̇0 of each contact sample, its output the measured force
-/// minus PM2's. On a 3D (rigid) scenario: the moving body's 13 state components in, the
-/// wrench PM2 misses on it out (Eq 12), at every touching sample. OUT (JSON) holds the network, its int8 twin and its envelope; turn it
-/// into a blob for the core with `hcm export`.
+/// minus PM2's. On a 3D (rigid) scenario it learns the wrench PM2 misses on the moving
+/// body at every touching sample, from one of two kinds of input (`--inputs`):
+///   state    the body's 13 state components (position, quaternion, velocity, angular
+///            velocity; Eq 12), one network for the whole contact;
+///   contact  each touching point's δ, δ̇, slip speed, spin and rolling rate, one
+///            network evaluated at every point, its force and couple added there.
+/// OUT (JSON) holds the network, its int8 twin and its envelope; turn it into a blob for
+/// the core with `hcm export`.
 ///
 /// Terms:
 ///   residual  the network's output: the force PM2 gets wrong (measured − PM2, N)
@@ -59,9 +67,22 @@ pub struct Args {
     /// sample.
     #[arg(long)]
     events: Option<usize>,
+    /// Rigid (3D) contacts: the residual's inputs, the moving body's state (`state`,
+    /// Eq 12) or each touching point's contact-frame features (`contact`).
+    #[arg(long, value_enum, default_value_t = Inputs::State)]
+    inputs: Inputs,
     /// Trained residual file to write (JSON), e.g. `residual.json`.
     #[arg(long)]
     out: PathBuf,
+}
+
+/// What a rigid contact's residual reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Inputs {
+    /// The moving body's 13 state components (Eq 12).
+    State,
+    /// Each touching point's δ, δ̇, slip speed, spin and rolling rate.
+    Contact,
 }
 
 /// The training settings the options give, and the bars that show it.
@@ -131,12 +152,20 @@ fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> an
     )?;
     let (settings, bars) = settings_and_bars(args);
     let events = args.events.unwrap_or(usize::MAX);
-    let trained = train_wrench_residual(pm2, data, args.contact, events, &settings, &bars)?;
+    let (trained, what) = match args.inputs {
+        Inputs::State => (
+            train_wrench_residual(pm2, data, args.contact, events, &settings, &bars)?,
+            "the wrench residual (13 state inputs → force and torque on the moving body)",
+        ),
+        Inputs::Contact => (
+            train_point_residual(pm2, data, args.contact, events, &settings, &bars)?,
+            "the contact-frame residual (5 inputs per touching point → its force and couple)",
+        ),
+    };
     let report = &trained.report;
     println!(
-        "trained the wrench residual (13 state inputs → force and torque on the moving body) \
-         on {} touching samples of {} runs: {} epochs (best {}), train MSE {:.3e}, validation \
-         MSE {:.3e}, {:.2} s",
+        "trained {what} on {} touching samples of {} runs: {} epochs (best {}), train MSE \
+         {:.3e}, validation MSE {:.3e}, {:.2} s",
         trained.rows,
         data.runs.len(),
         report.epochs,
@@ -153,12 +182,20 @@ fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> an
         "share of PM2's error explained (R², training rows): {}",
         explained.join(", ")
     );
-    if trained.silenced.len() == names.len() {
+    if args.inputs == Inputs::Contact && explains_nothing(&trained) {
+        eprintln!(
+            "warning: the network explains under 10 % of PM2's error in every component and \
+             is no better than a zero output. PM2 may already fit the data (see `hcm \
+             identify`'s residual RMS), or the error depends on what the contact's own state \
+             does not show — try `--inputs state` or more runs"
+        );
+    } else if trained.silenced.len() == names.len() {
         eprintln!(
             "warning: the network explains under 10 % of PM2's error in every output and is \
              no better than a zero output: every output is fixed at 0 (the HCM is PM2). \
              PM2 may already fit the data (see `hcm identify`'s residual RMS), or the error \
-             depends on what the 13 state inputs do not show — try more runs"
+             depends on what the 13 state inputs do not show — try `--inputs contact` or \
+             more runs"
         );
     } else if !trained.silenced.is_empty() {
         let silenced: Vec<&str> = trained.silenced.iter().map(|&k| names[k]).collect();

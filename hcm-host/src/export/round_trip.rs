@@ -48,7 +48,7 @@ pub fn round_trip_error_over(
         for (l, h) in largest.iter_mut().zip(&host) {
             *l = l.max(h.abs());
         }
-        if let Some(core) = Residual::<f64>::correction(decoded, x).map(outputs) {
+        if let Some(core) = core_outputs(decoded, x) {
             for ((w, h), c) in worst.iter_mut().zip(&host).zip(&core) {
                 *w = w.max((c - h).abs());
             }
@@ -66,6 +66,18 @@ pub fn round_trip_error_over(
         .zip(largest.chunks(group))
         .map(|(w, l)| most(w) / most(l).max(f64::MIN_POSITIVE))
         .fold(0.0, f64::max)
+}
+
+/// The decoded network's outputs at `x` as the core evaluates them (a contact-frame
+/// network's raw four, every other's correction), or `None` where it is switched off.
+fn core_outputs(decoded: &ContactResidual, x: &[f64]) -> Option<Vec<f64>> {
+    match decoded {
+        ContactResidual::Point(stored) => {
+            let features: &[f64; hcm_core::model::POINT_INPUTS] = x.try_into().ok()?;
+            stored.outputs(features).map(|o| o.to_vec())
+        }
+        _ => Residual::<f64>::correction(decoded, x).map(outputs),
+    }
 }
 
 /// A correction's values in the network's output order.

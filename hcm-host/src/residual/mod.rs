@@ -13,13 +13,18 @@
 //!   13-48-48-6: a rigid body's force and torque error (Eq 12, the peg) from its 13
 //!   state components (`crate::train::wrench_samples`); the wide one holds the six
 //!   per-output networks of width 8 merged block-diagonally
-//!   (`crate::train::per_output`), or one joint network of width 48.
+//!   (`crate::train::per_output`), or one joint network of width 48;
+//! - [`ContactResidual::Point`], 5-16-16-5: the contact-frame residual, evaluated at
+//!   every touching point from that point's δ, δ̇, slip speed, spin and rolling rate
+//!   ([`hcm_core::model::point_residual`]; trained by `crate::train::point_residual`).
 
 mod stored;
 
 pub use stored::Stored;
 
-use hcm_core::model::{ContactModel, Correction, Residual};
+use hcm_core::model::{
+    ContactModel, ContactPoint, Correction, Residual, POINT_INPUTS, POINT_OUTPUTS,
+};
 use hcm_core::residual::blob::Shape;
 use hcm_core::residual::{BlobError, Excursion};
 use nalgebra::Vector3;
@@ -42,6 +47,9 @@ pub(crate) const PER_OUTPUT_WIDTH: usize = 8;
 /// Hidden-layer width of the six per-output networks merged (6 × 8).
 pub(crate) const WIDE_WRENCH_WIDTH: usize = WRENCH_OUTPUTS * PER_OUTPUT_WIDTH;
 
+/// Hidden-layer width of the contact-frame residual.
+pub(crate) const POINT_WIDTH: usize = 16;
+
 /// A decoded residual network of one of the shipped shapes, either weight storage.
 #[derive(Clone, Debug)]
 pub enum ContactResidual {
@@ -51,15 +59,18 @@ pub enum ContactResidual {
     Wrench(Stored<WRENCH_INPUTS, WRENCH_WIDTH, WRENCH_OUTPUTS, HIDDEN>),
     /// The six per-output wrench networks merged, 13-48-48-6.
     WideWrench(Stored<WRENCH_INPUTS, WIDE_WRENCH_WIDTH, WRENCH_OUTPUTS, HIDDEN>),
+    /// The contact-frame residual, 5-16-16-5, one evaluation per touching point.
+    Point(Stored<POINT_INPUTS, POINT_WIDTH, POINT_OUTPUTS, HIDDEN>),
 }
 
 impl ContactResidual {
     /// The shapes this build decodes, in [`ContactResidual`]'s order.
-    pub fn shapes() -> [Shape; 3] {
+    pub fn shapes() -> [Shape; 4] {
         [
             Shape::of::<INPUTS, WIDTH, 1, HIDDEN>(),
             Shape::of::<WRENCH_INPUTS, WRENCH_WIDTH, WRENCH_OUTPUTS, HIDDEN>(),
             Shape::of::<WRENCH_INPUTS, WIDE_WRENCH_WIDTH, WRENCH_OUTPUTS, HIDDEN>(),
+            Shape::of::<POINT_INPUTS, POINT_WIDTH, POINT_OUTPUTS, HIDDEN>(),
         ]
     }
 
@@ -72,14 +83,17 @@ impl ContactResidual {
             Err(BlobError::WrongShape { found, .. }) => found,
             Err(e) => return Err(e),
         };
-        let [force, wrench, wide] = Self::shapes();
+        let [force, wrench, wide, point] = Self::shapes();
         if found == wrench {
             return Stored::decode(bytes).map(ContactResidual::Wrench);
+        }
+        if found == point {
+            return Stored::decode(bytes).map(ContactResidual::Point);
         }
         if found == wide {
             return Stored::decode(bytes).map(ContactResidual::WideWrench);
         }
-        let expected = [wrench, wide]
+        let expected = [wrench, wide, point]
             .into_iter()
             .find(|s| (s.inputs, s.outputs) == (found.inputs, found.outputs))
             .unwrap_or(force);
@@ -88,11 +102,12 @@ impl ContactResidual {
 
     /// The network's shape.
     pub fn shape(&self) -> Shape {
-        let [force, wrench, wide] = Self::shapes();
+        let [force, wrench, wide, point] = Self::shapes();
         match self {
             ContactResidual::Force(_) => force,
             ContactResidual::Wrench(_) => wrench,
             ContactResidual::WideWrench(_) => wide,
+            ContactResidual::Point(_) => point,
         }
     }
 
@@ -124,6 +139,14 @@ impl Residual<f64> for ContactResidual {
             ContactResidual::Force(m) => m.correction(input),
             ContactResidual::Wrench(m) => m.correction(input),
             ContactResidual::WideWrench(m) => m.correction(input),
+            ContactResidual::Point(_) => None,
+        }
+    }
+
+    fn point_correction(&self, point: &ContactPoint<f64>) -> Option<[f64; POINT_OUTPUTS]> {
+        match self {
+            ContactResidual::Point(m) => m.point_correction(point),
+            _ => None,
         }
     }
 
@@ -132,6 +155,7 @@ impl Residual<f64> for ContactResidual {
             ContactResidual::Force(m) => m.excursion(input),
             ContactResidual::Wrench(m) => m.excursion(input),
             ContactResidual::WideWrench(m) => m.excursion(input),
+            ContactResidual::Point(_) => None,
         }
     }
 }

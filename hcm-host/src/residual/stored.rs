@@ -1,6 +1,7 @@
 //! One residual shape in either weight storage, as the core decodes it.
 
-use hcm_core::model::{Correction, Residual};
+use hcm_core::model::point_residual::{point_features, point_outputs};
+use hcm_core::model::{ContactPoint, Correction, Residual, POINT_INPUTS, POINT_OUTPUTS};
 use hcm_core::residual::{
     decode, BlobError, Excursion, F32Weights, Hidden, HiddenDepth, Int8Weights, Mlp,
 };
@@ -58,6 +59,26 @@ where
         match self {
             Stored::F32(m) => Residual::<f64>::excursion(m.as_ref(), input),
             Stored::Int8(m) => Residual::<f64>::excursion(m.as_ref(), input),
+        }
+    }
+}
+
+impl<const WIDTH: usize, const HIDDEN: usize> Stored<POINT_INPUTS, WIDTH, POINT_OUTPUTS, HIDDEN>
+where
+    Hidden<HIDDEN>: HiddenDepth<WIDTH, F32Weights> + HiddenDepth<WIDTH, Int8Weights>,
+{
+    /// A contact-frame network's outputs at one touching point, as the core's
+    /// [`hcm_core::model::PerPoint`] computes them.
+    pub fn point_correction(&self, point: &ContactPoint<f64>) -> Option<[f64; POINT_OUTPUTS]> {
+        self.outputs(&point_features(point))
+    }
+
+    /// The network's five outputs at contact-frame `features`, or `None` outside its
+    /// envelope (the core's evaluation).
+    pub fn outputs(&self, features: &[f64; POINT_INPUTS]) -> Option<[f64; POINT_OUTPUTS]> {
+        match self {
+            Stored::F32(m) => point_outputs(m.as_ref(), features),
+            Stored::Int8(m) => point_outputs(m.as_ref(), features),
         }
     }
 }

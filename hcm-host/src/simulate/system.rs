@@ -152,7 +152,8 @@ impl RigidSystem<'_> {
         // The 1D force residual reads [δ (m), δ̇ (m/s), δ̇0 (m/s)] of the first point;
         // without a residual the input is not read.
         let inputs = match (&contact.model.residual, points.first()) {
-            (None, _) => 0,
+            // A contact-frame residual reads each point itself.
+            (None | Some(ContactResidual::Point(_)), _) => 0,
             (Some(ContactResidual::Force(_)), Some(p)) => {
                 let i = p.indentation;
                 input[..INPUTS].copy_from_slice(&[i.depth, i.rate, i.approach_speed]);

@@ -30,9 +30,12 @@ mod force_residual;
 mod int8;
 pub mod network;
 pub mod per_output;
+pub mod point_residual;
+pub mod point_samples;
 pub mod quantise;
 mod reported;
 pub mod samples;
+pub mod summed;
 pub mod trained;
 pub mod wrench_residual;
 pub mod wrench_samples;
@@ -45,6 +48,7 @@ pub use force_residual::{
 pub use int8::int8_row;
 pub use network::{Activation, Network};
 pub use per_output::OutputNets;
+pub use point_residual::{explains_nothing, train_point_residual};
 pub use quantise::{quantisation_aware, QuantiseReport};
 pub use samples::residual_pairs;
 pub use trained::TrainedResidual;
@@ -206,7 +210,7 @@ pub fn train(
         return per_output::train_each(inputs, targets, settings, &mut progress);
     }
     let mut rng = ChaCha8Rng::seed_from_u64(settings.seed);
-    let (mut training, validation) = split(inputs.len(), settings.validation_fraction, &mut rng)?;
+    let (training, validation) = split(inputs.len(), settings.validation_fraction, &mut rng)?;
     let data = Normalised::new(inputs, targets, &training, &settings.input_vectors);
     let layout = Layout::new(
         n_in,
@@ -215,25 +219,69 @@ pub fn train(
         n_out,
         settings.activation,
     );
-    let mut parameters = layout.initial_parameters(&mut rng);
+    let parameters = layout.initial_parameters(&mut rng);
+    let (best, report) = fit(
+        &data,
+        &layout,
+        parameters,
+        (training, &validation),
+        settings,
+        &mut rng,
+        &mut progress,
+    )?;
+    let report = TrainReport {
+        seconds: started.elapsed().as_secs_f64(),
+        ..report
+    };
+    Ok((data.network(&layout, &best, settings, inputs), report))
+}
+
+/// What the epoch loop ([`fit`]) minimises: a squared error over rows, each row with
+/// `columns` target values.
+pub(crate) trait Objective: Sync {
+    /// Target values per row (the divisor of the mean beside the rows).
+    fn columns(&self) -> usize;
+
+    /// (Σ over `rows` of ∂/∂θ of the row's squared error in normalised units, the raw
+    /// squared error summed over `rows`), in a fixed summation order.
+    fn gradient(&self, layout: &Layout, parameters: &[f64], rows: &[usize]) -> (Vec<f64>, f64);
+
+    /// Mean squared error over `rows` and columns, raw units².
+    fn loss(&self, layout: &Layout, parameters: &[f64], rows: &[usize]) -> f64;
+}
+
+/// Mini-batch Adam epochs on the `rows.0` (training) from `parameters`, with the
+/// reduce-on-plateau step and early stopping of [`TrainSettings`] judged on `rows.1`
+/// (validation): the parameters of the best epoch and the report (its `seconds` 0,
+/// for the caller to fill).
+pub(crate) fn fit(
+    objective: &impl Objective,
+    layout: &Layout,
+    mut parameters: Vec<f64>,
+    (mut training, validation): (Vec<usize>, &[usize]),
+    settings: &TrainSettings,
+    rng: &mut ChaCha8Rng,
+    progress: &mut impl FnMut(usize, f64, f64),
+) -> Result<(Vec<f64>, TrainReport), TrainError> {
+    let columns = objective.columns();
     let mut adam = Adam::new(parameters.len(), settings.learning_rate);
     let (mut best, mut best_epoch, mut best_loss) = (parameters.clone(), 0, f64::INFINITY);
     let mut history = Vec::new();
     // Epoch of the last improvement or step-size cut.
     let mut last_change = 0;
     for epoch in 1..=settings.max_epochs {
-        shuffle(&mut training, &mut rng);
+        shuffle(&mut training, rng);
         let mut sum = 0.0;
         for batch in training.chunks(settings.batch_size) {
-            let (mut gradient, squared_error) = data.gradient(&layout, &parameters, batch);
-            // ∂/∂θ of the batch mean over rows and outputs.
-            let mean = 1.0 / (batch.len() * n_out) as f64;
+            let (mut gradient, squared_error) = objective.gradient(layout, &parameters, batch);
+            // ∂/∂θ of the batch mean over rows and columns.
+            let mean = 1.0 / (batch.len() * columns) as f64;
             gradient.iter_mut().for_each(|g| *g *= mean);
             adam.step(&mut parameters, &gradient);
             sum += squared_error;
         }
-        let train_loss = sum / (training.len() * n_out) as f64;
-        let validation_loss = data.loss(&layout, &parameters, &validation);
+        let train_loss = sum / (training.len() * columns) as f64;
+        let validation_loss = objective.loss(layout, &parameters, validation);
         if !(train_loss.is_finite() && validation_loss.is_finite()) {
             return Err(TrainError::Diverged { epoch });
         }
@@ -252,12 +300,12 @@ pub fn train(
     let report = TrainReport {
         epochs: history.len(),
         best_epoch,
-        train_loss: data.loss(&layout, &best, &training),
+        train_loss: objective.loss(layout, &best, &training),
         validation_loss: best_loss,
-        seconds: started.elapsed().as_secs_f64(),
+        seconds: 0.0,
         history,
     };
-    Ok((data.network(&layout, &best, settings, inputs), report))
+    Ok((best, report))
 }
 
 /// (n_in, n_out) after checking that the rows are non-empty, rectangular and finite.
@@ -303,7 +351,7 @@ fn check_rows(which: &'static str, rows: &[Vec<f64>]) -> Result<usize, TrainErro
     Ok(expected)
 }
 
-fn check_settings(s: &TrainSettings) -> Result<(), TrainError> {
+pub(crate) fn check_settings(s: &TrainSettings) -> Result<(), TrainError> {
     let bad = |name, reason: &str| {
         Err(TrainError::BadSetting {
             name,
@@ -333,7 +381,7 @@ fn check_settings(s: &TrainSettings) -> Result<(), TrainError> {
 
 /// (training rows, validation rows): a seeded random `fraction` of the rows (at least
 /// one) for validation, the rest (at least one) for training, each in ascending order.
-fn split(
+pub(crate) fn split(
     rows: usize,
     fraction: f64,
     rng: &mut ChaCha8Rng,
@@ -351,7 +399,7 @@ fn split(
 }
 
 /// Fisher–Yates shuffle (written out so the sequence depends only on the generator).
-fn shuffle(items: &mut [usize], rng: &mut ChaCha8Rng) {
+pub(crate) fn shuffle(items: &mut [usize], rng: &mut ChaCha8Rng) {
     for i in (1..items.len()).rev() {
         let j = rng.random_range(0..=i);
         items.swap(i, j);
@@ -368,7 +416,7 @@ fn shuffle(items: &mut [usize], rng: &mut ChaCha8Rng) {
 /// network trains and evaluates with exactly the constants the controller holds (a
 /// unit quaternion's w ≈ 0.9988 with spread 8.5e-4 would otherwise be shifted by
 /// 3e-8/8.5e-4 ≈ 4e-5 of a normalised unit by the rounding of its mean alone).
-fn normalisation(table: &[Vec<f64>], rows: &[usize]) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn normalisation(table: &[Vec<f64>], rows: &[usize]) -> (Vec<f64>, Vec<f64>) {
     let (mean, scale) = exact_normalisation(table, rows);
     let stored = |v: Vec<f64>| v.into_iter().map(|x| f64::from(x as f32)).collect();
     (stored(mean), stored(scale))
@@ -402,7 +450,7 @@ fn exact_normalisation(table: &[Vec<f64>], rows: &[usize]) -> (Vec<f64>, Vec<f64
 /// Gives each component of `vectors` whose scale (its standard deviation) is below
 /// [`VECTOR_CONSTANT`] of the largest in its vector that largest scale (rounded to
 /// `f32`, as every stored constant). Ranges beyond the columns are ignored.
-fn constant_components(scale: &mut [f64], vectors: &[std::ops::Range<usize>]) {
+pub(crate) fn constant_components(scale: &mut [f64], vectors: &[std::ops::Range<usize>]) {
     for vector in vectors {
         let Some(components) = scale.get_mut(vector.clone()) else {
             continue;
@@ -490,6 +538,13 @@ impl Normalised {
             .map(|((y, t), s)| ((y - t) * s).powi(2))
             .sum()
     }
+}
+
+/// Row by row, target by target: (ŷ − t̂)² in normalised units.
+impl Objective for Normalised {
+    fn columns(&self) -> usize {
+        self.n_out
+    }
 
     /// (Σ over `rows` of ∂/∂θ Σ_o (ŷ_o − t̂_o)², raw squared error summed over `rows`).
     fn gradient(&self, layout: &Layout, parameters: &[f64], rows: &[usize]) -> (Vec<f64>, f64) {
@@ -534,7 +589,9 @@ impl Normalised {
             .collect();
         sums.iter().sum::<f64>() / (rows.len() * self.n_out) as f64
     }
+}
 
+impl Normalised {
     /// The exportable network: weights, normalisation and the envelope of all `inputs`.
     fn network(
         &self,
@@ -543,34 +600,57 @@ impl Normalised {
         settings: &TrainSettings,
         inputs: &[Vec<f64>],
     ) -> Network {
-        let envelope = |pick: fn(f64, f64) -> f64, start: f64| -> Vec<f64> {
-            (0..self.n_in)
-                .map(|c| inputs.iter().map(|row| row[c]).fold(start, pick))
-                .collect()
-        };
-        let (envelope_min, envelope_max) = (
-            envelope(f64::min, f64::INFINITY),
-            envelope(f64::max, f64::NEG_INFINITY),
-        );
-        Network {
-            envelope_tolerance: envelope_tolerance(
-                &envelope_min,
-                &envelope_max,
-                &self.input.1,
-                &settings.input_vectors,
-            ),
-            inputs: self.n_in,
-            width: settings.width,
-            outputs: self.n_out,
-            hidden_layers: settings.hidden_layers,
-            activation: settings.activation,
-            layers: layout.layers(parameters),
-            input_mean: self.input.0.clone(),
-            input_scale: self.input.1.clone(),
-            output_mean: self.output.0.clone(),
-            output_scale: self.output.1.clone(),
-            envelope_min,
-            envelope_max,
-        }
+        exportable(
+            layout,
+            parameters,
+            settings,
+            (&self.input, &self.output),
+            inputs,
+        )
+    }
+}
+
+/// Per column: (mean, scale), raw units.
+pub(crate) type Scaling = (Vec<f64>, Vec<f64>);
+
+/// The network of `layout` at `parameters` as it is exported: its (input, output)
+/// normalisation `scaling` and the envelope of all `inputs` (raw units).
+pub(crate) fn exportable(
+    layout: &Layout,
+    parameters: &[f64],
+    settings: &TrainSettings,
+    scaling: (&Scaling, &Scaling),
+    inputs: &[Vec<f64>],
+) -> Network {
+    let (input, output) = scaling;
+    let n_in = input.0.len();
+    let envelope = |pick: fn(f64, f64) -> f64, start: f64| -> Vec<f64> {
+        (0..n_in)
+            .map(|c| inputs.iter().map(|row| row[c]).fold(start, pick))
+            .collect()
+    };
+    let (envelope_min, envelope_max) = (
+        envelope(f64::min, f64::INFINITY),
+        envelope(f64::max, f64::NEG_INFINITY),
+    );
+    Network {
+        envelope_tolerance: envelope_tolerance(
+            &envelope_min,
+            &envelope_max,
+            &input.1,
+            &settings.input_vectors,
+        ),
+        inputs: n_in,
+        width: settings.width,
+        outputs: output.0.len(),
+        hidden_layers: settings.hidden_layers,
+        activation: settings.activation,
+        layers: layout.layers(parameters),
+        input_mean: input.0.clone(),
+        input_scale: input.1.clone(),
+        output_mean: output.0.clone(),
+        output_scale: output.1.clone(),
+        envelope_min,
+        envelope_max,
     }
 }

@@ -128,6 +128,12 @@ pub struct Scratch {
 }
 
 impl Scratch {
+    /// Sets ∂L/∂ŷ for [`Layout::backpropagate`].
+    pub(crate) fn set_output_gradient(&mut self, gradient: impl Iterator<Item = f64>) {
+        self.delta.clear();
+        self.delta.extend(gradient);
+    }
+
     /// The output ŷ of the last forward pass.
     pub fn output(&self) -> &[f64] {
         self.activations.last().map_or(&[], Vec::as_slice)
@@ -259,18 +265,28 @@ impl Layout {
         gradient: &mut [f64],
     ) {
         self.forward(parameters, x, scratch);
+        let output = &scratch.activations[scratch.activations.len() - 1];
+        let mut delta = std::mem::take(&mut scratch.delta);
+        delta.clear();
+        delta.extend(output.iter().zip(target).map(|(y, t)| 2.0 * (y - t)));
+        scratch.delta = delta;
+        self.backpropagate(parameters, scratch, gradient);
+    }
+
+    /// Adds ∂L/∂θ to `gradient` for the sample of the last [`Layout::forward`] into
+    /// `scratch`, given ∂L/∂ŷ in `scratch`'s output gradient (set by
+    /// [`Scratch::set_output_gradient`]).
+    pub(crate) fn backpropagate(
+        &self,
+        parameters: &[f64],
+        scratch: &mut Scratch,
+        gradient: &mut [f64],
+    ) {
         let Scratch {
             activations,
             delta,
             delta_previous,
         } = scratch;
-        delta.clear();
-        delta.extend(
-            activations[activations.len() - 1]
-                .iter()
-                .zip(target)
-                .map(|(y, t)| 2.0 * (y - t)),
-        );
         for (l, (offset, n_in, n_out)) in self.shapes().enumerate().rev() {
             let a = &activations[l];
             let split = offset + n_in * n_out;

@@ -32,7 +32,7 @@
 use super::adam::Adam;
 use super::int8::int8_row;
 use super::network::Layout;
-use super::{shuffle, Network, Normalised, TrainError, CHUNK_ROWS};
+use super::{shuffle, Network, Normalised, Objective, TrainError, CHUNK_ROWS};
 use crate::numerics::{LinearFit, Reduction};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

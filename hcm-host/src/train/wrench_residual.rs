@@ -131,15 +131,7 @@ pub fn pairs_before_event(
     events: usize,
 ) -> Result<WrenchPairs, WrenchResidualError> {
     let all = wrench_pairs(pm2, data, c)?;
-    let mut ends = Vec::with_capacity(data.runs.len());
-    for run in &data.runs {
-        let found = pair_events_from_run(pm2, run)?;
-        let next = found
-            .iter()
-            .filter(|e| e.event == events)
-            .map(|e| e.touch_down);
-        ends.push(next.fold(f64::INFINITY, f64::min));
-    }
+    let ends = event_ends(pm2, data, events)?;
     let mut walls = WrenchPairs::default();
     for (i, (&run, &time)) in all.runs.iter().zip(&all.times).enumerate() {
         if time < ends[run] {
@@ -150,4 +142,23 @@ pub fn pairs_before_event(
         }
     }
     Ok(walls)
+}
+
+/// For each run of `data`, the time (s) its contact event number `events` (0-based)
+/// touches down, infinite where it has none.
+pub fn event_ends(pm2: &Model, data: &Dataset, events: usize) -> Result<Vec<f64>, IndicatorError> {
+    let mut ends = Vec::with_capacity(data.runs.len());
+    for run in &data.runs {
+        if events == usize::MAX {
+            ends.push(f64::INFINITY);
+            continue;
+        }
+        let found = pair_events_from_run(pm2, run)?;
+        let next = found
+            .iter()
+            .filter(|e| e.event == events)
+            .map(|e| e.touch_down);
+        ends.push(next.fold(f64::INFINITY, f64::min));
+    }
+    Ok(ends)
 }
