@@ -76,6 +76,29 @@ pub struct Args {
     out: PathBuf,
 }
 
+/// What the contact-frame network's training leaves to say: the outputs no sample
+/// felt, and a warning when it explains nothing.
+fn warn_contact(trained: &hcm_host::train::WrenchTrained) {
+    let outputs = ["k_n", "r_f", "c_t", "c_n", "c_r"];
+    if !trained.silenced.is_empty() {
+        let silenced: Vec<&str> = (trained.silenced.iter())
+            .filter_map(|&k| outputs.get(k).copied())
+            .collect();
+        println!(
+            "fixed at 0 (the fit does not need them: each carries under 1 % of its gain): {}",
+            silenced.join(", ")
+        );
+    }
+    if explains_nothing(trained) {
+        eprintln!(
+            "warning: the network explains under 10 % of PM2's error in every component and \
+             is no better than a zero output. PM2 may already fit the data (see `hcm \
+             identify`'s residual RMS), or the error depends on what the contact's own state \
+             does not show — try `--inputs state` or more runs"
+        );
+    }
+}
+
 /// What a rigid contact's residual reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 enum Inputs {
@@ -182,13 +205,8 @@ fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> an
         "share of PM2's error explained (R², training rows): {}",
         explained.join(", ")
     );
-    if args.inputs == Inputs::Contact && explains_nothing(&trained) {
-        eprintln!(
-            "warning: the network explains under 10 % of PM2's error in every component and \
-             is no better than a zero output. PM2 may already fit the data (see `hcm \
-             identify`'s residual RMS), or the error depends on what the contact's own state \
-             does not show — try `--inputs state` or more runs"
-        );
+    if args.inputs == Inputs::Contact {
+        warn_contact(&trained);
     } else if trained.silenced.len() == names.len() {
         eprintln!(
             "warning: the network explains under 10 % of PM2's error in every output and is \

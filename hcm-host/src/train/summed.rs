@@ -46,12 +46,21 @@ pub struct SummedRow {
 /// points predict zero) and reports how it went; the report's losses are mean squared
 /// errors over rows and target columns, raw units². Deterministic for a seed,
 /// whatever the number of threads.
+///
+/// An output the fit does not need — fixed at 0, the training loss rises by less than
+/// [`UNNEEDED`] of what the network gains over a zero output — is fixed at 0 and
+/// listed last: nothing in the data says what it should be, and its scale, set by a
+/// lever that is tiny throughout training, would turn the network's arbitrary value
+/// there into a huge one wherever the lever is not tiny (measured on the peg, planar: a
+/// spin coefficient scaled by spin rates of 1e-10 rad/s broke every replay of a
+/// held-out condition). The test is unit-free: comparing the outputs' levers with each
+/// other (tried) silenced the normal stiffness, whose lever δ is 1e-4 m.
 pub fn train_summed(
     rows: &[SummedRow],
     outputs: usize,
     settings: &TrainSettings,
     mut progress: impl FnMut(usize, f64, f64),
-) -> Result<(Network, TrainReport), TrainError> {
+) -> Result<(Network, TrainReport, Vec<usize>), TrainError> {
     let started = Instant::now();
     check_settings(settings)?;
     let data = Summed::new(rows, outputs)?;
@@ -83,10 +92,21 @@ pub fn train_summed(
         &data.input,
         &(vec![0.0; outputs], data.output_scale.clone()),
     );
-    Ok((
-        exportable(&layout, &best, settings, scaling, &data.raw_inputs),
-        report,
-    ))
+    let unneeded = data.unneeded(&layout, &best, &training_rows(rows.len(), &validation));
+    let network = exportable(&layout, &best, settings, scaling, &data.raw_inputs);
+    let network = super::explained::silence_outputs(&network, &unneeded);
+    Ok((network, report, unneeded))
+}
+
+/// An output is unneeded when fixing it at 0 costs less than this share of the
+/// network's gain over a zero output, on the training rows.
+const UNNEEDED: f64 = 0.01;
+
+/// The rows of `0..rows` not in `validation` (ascending).
+fn training_rows(rows: usize, validation: &[usize]) -> Vec<usize> {
+    (0..rows)
+        .filter(|r| validation.binary_search(r).is_err())
+        .collect()
 }
 
 /// Every point's inputs of `rows`, in row order: what the network is evaluated on (its
@@ -227,6 +247,18 @@ impl Summed {
         r: usize,
         scratch: &mut super::network::Scratch,
     ) -> Vec<f64> {
+        self.predict_scaled(layout, parameters, r, scratch, &self.output_scale)
+    }
+
+    /// [`Self::predict`] with the outputs de-normalised by `scale` (0 fixes one at 0).
+    fn predict_scaled(
+        &self,
+        layout: &Layout,
+        parameters: &[f64],
+        r: usize,
+        scratch: &mut super::network::Scratch,
+        scale: &[f64],
+    ) -> Vec<f64> {
         let (n_t, n_out) = (self.n_target, self.n_out);
         let mut prediction = vec![0.0; n_t];
         for p in self.points[r].clone() {
@@ -234,7 +266,7 @@ impl Summed {
             let lever = self.lever(p);
             for (t, value) in prediction.iter_mut().enumerate() {
                 for k in 0..n_out {
-                    *value += lever[t * n_out + k] * y_hat[k] * self.output_scale[k];
+                    *value += lever[t * n_out + k] * y_hat[k] * scale[k];
                 }
             }
         }
@@ -292,6 +324,46 @@ impl Summed {
     }
 }
 
+impl Summed {
+    /// Σ over `rows` of the raw squared error with the outputs scaled by `scale`.
+    fn squared_error_scaled(
+        &self,
+        layout: &Layout,
+        parameters: &[f64],
+        rows: &[usize],
+        scale: &[f64],
+    ) -> f64 {
+        let sums: Vec<f64> = rows
+            .par_chunks(16 * CHUNK_ROWS)
+            .map(|chunk| {
+                let mut scratch = layout.scratch();
+                (chunk.iter())
+                    .map(|&r| {
+                        let y = self.predict_scaled(layout, parameters, r, &mut scratch, scale);
+                        self.raw_squared_error(&y, r)
+                    })
+                    .sum::<f64>()
+            })
+            .collect();
+        sums.iter().sum()
+    }
+
+    /// The outputs the fit on `rows` does not need (see [`train_summed`]).
+    fn unneeded(&self, layout: &Layout, parameters: &[f64], rows: &[usize]) -> Vec<usize> {
+        let full = self.squared_error_scaled(layout, parameters, rows, &self.output_scale);
+        let zero = self.squared_error_scaled(layout, parameters, rows, &vec![0.0; self.n_out]);
+        let gain = zero - full;
+        (0..self.n_out)
+            .filter(|&k| {
+                let mut scale = self.output_scale.clone();
+                scale[k] = 0.0;
+                let without = self.squared_error_scaled(layout, parameters, rows, &scale);
+                !(without - full >= UNNEEDED * gain && gain > 0.0)
+            })
+            .collect()
+    }
+}
+
 impl Objective for Summed {
     fn columns(&self) -> usize {
         self.n_target
@@ -320,19 +392,8 @@ impl Objective for Summed {
     }
 
     fn loss(&self, layout: &Layout, parameters: &[f64], rows: &[usize]) -> f64 {
-        let sums: Vec<f64> = rows
-            .par_chunks(16 * CHUNK_ROWS)
-            .map(|chunk| {
-                let mut scratch = layout.scratch();
-                (chunk.iter())
-                    .map(|&r| {
-                        let prediction = self.predict(layout, parameters, r, &mut scratch);
-                        self.raw_squared_error(&prediction, r)
-                    })
-                    .sum::<f64>()
-            })
-            .collect();
-        sums.iter().sum::<f64>() / (rows.len().max(1) * self.n_target) as f64
+        let sum = self.squared_error_scaled(layout, parameters, rows, &self.output_scale);
+        sum / (rows.len().max(1) * self.n_target) as f64
     }
 }
 
@@ -404,7 +465,8 @@ mod tests {
             seed: 3,
             ..TrainSettings::default()
         };
-        let (network, report) = train_summed(&rows, 1, &settings, |_, _, _| {}).unwrap();
+        let (network, report, unfelt) = train_summed(&rows, 1, &settings, |_, _, _| {}).unwrap();
+        assert!(unfelt.is_empty());
         for x in [-0.9, -0.3, 0.2, 0.8] {
             let y = network.evaluate(&[x])[0];
             assert!((y - truth(x)).abs() < 0.05, "y({x}) = {y} vs {}", truth(x));
@@ -415,7 +477,7 @@ mod tests {
             .num_threads(1)
             .build()
             .unwrap();
-        let (again, _) = pool
+        let (again, _, _) = pool
             .install(|| train_summed(&rows, 1, &settings, |_, _, _| {}))
             .unwrap();
         assert_eq!(again.layers, network.layers);

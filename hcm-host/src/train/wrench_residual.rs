@@ -41,7 +41,10 @@ pub struct WrenchTrained {
     pub(crate) int8: QuantiseReport,
     /// R² of each output on the training rows (force x y z, torque x y z).
     pub(crate) explained: Vec<f64>,
-    /// Outputs fixed at zero: R² below [`EXPLAINED_MIN`] (see [`super::explained`]).
+    /// Outputs fixed at zero: for the body-state network, wrench components whose R²
+    /// is below [`EXPLAINED_MIN`] (see [`super::explained`]); for the contact-frame
+    /// network, the point outputs no training sample felt
+    /// ([`super::summed::train_summed`]).
     pub silenced: Vec<usize>,
 }
 
