@@ -18,10 +18,11 @@ use std::path::PathBuf;
 /// Its inputs are δ, δ̇ and δ̇0 of each contact sample, its output the measured force
 /// minus PM2's. On a 3D (rigid) scenario it learns the wrench PM2 misses on the moving
 /// body at every touching sample, from one of two kinds of input (`--inputs`):
-///   state    the body's 13 state components (position, quaternion, velocity, angular
-///            velocity; Eq 12), one network for the whole contact;
 ///   contact  each touching point's δ, δ̇, slip speed, spin and rolling rate, one
-///            network evaluated at every point, its force and couple added there.
+///            network evaluated at every point, its force and couple added there
+///            (the default);
+///   state    the body's 13 state components (position, quaternion, velocity, angular
+///            velocity; Eq 12), one network for the whole contact.
 /// OUT (JSON) holds the network, its int8 twin and its envelope; turn it into a blob for
 /// the core with `hcm export`.
 ///
@@ -67,9 +68,11 @@ pub struct Args {
     /// sample.
     #[arg(long)]
     events: Option<usize>,
-    /// Rigid (3D) contacts: the residual's inputs, the moving body's state (`state`,
-    /// Eq 12) or each touching point's contact-frame features (`contact`).
-    #[arg(long, value_enum, default_value_t = Inputs::State)]
+    /// Rigid (3D) contacts: the residual's inputs, each touching point's contact-frame
+    /// features (`contact`, the default: it acts wherever the contact feels as in
+    /// training, also at another place or speed) or the moving body's state (`state`,
+    /// Eq 12: switched off wherever the body is not where and as it was in training).
+    #[arg(long, value_enum, default_value_t = Inputs::Contact)]
     inputs: Inputs,
     /// Trained residual file to write (JSON), e.g. `residual.json`.
     #[arg(long)]
