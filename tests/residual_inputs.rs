@@ -104,3 +104,110 @@ fn on_cube_drop_both_beat_pm2_and_the_contact_frame_hcm_keeps_the_path() {
     beats_pm2(&e, 2);
     assert!(path(&e, 2) < 0.5 * path(&e, 0), "{:?}", e.trajectory);
 }
+
+/// The contact-frame blob runs in the core as a controller holds it — decoded with
+/// fixed shapes into `PerPoint`, an f32 `ContactModel` — and gives the wrench the host
+/// simulated with, f32 and int8, at points across the envelope (a corner off the
+/// centre, slipping, spinning, rolling).
+#[test]
+fn the_contact_frame_blob_runs_in_the_core_as_the_host_simulated_it() {
+    use hcm_core::model::{PerPoint, POINT_INPUTS, POINT_OUTPUTS};
+    use hcm_core::residual::{decode, F32Weights, Int8Weights, Mlp};
+    use hcm_host::experiment::generate_split;
+    use hcm_host::export::export_blobs;
+    use hcm_host::identify::rigid::{identify_from_samples, with_law};
+    use hcm_host::progress::Silent;
+    use hcm_host::residual::HIDDEN;
+    use hcm_host::train::{train_point_residual, ResidualSettings};
+
+    let scenario = Scenario::load(&hcm_tests::scenario("cube_drop.toml"), &[]).unwrap();
+    let sets = generate_split(&scenario, 20, 5, &Silent).unwrap();
+    let start = with_law(&scenario.model().unwrap(), 0, "hunt_crossley", None).unwrap();
+    let bounds = &scenario.identify.bounds;
+    let pm2 = (identify_from_samples(&start, &sets.training, 0, bounds, true, &Silent))
+        .unwrap()
+        .fit
+        .model;
+    let settings = ResidualSettings {
+        epochs: 40,
+        int8_epochs: 5,
+        seed: 1,
+    };
+    let trained =
+        train_point_residual(&pm2, &sets.training, 0, usize::MAX, &settings, &Silent).unwrap();
+    let blobs = export_blobs(trained.residual()).unwrap();
+    let f32_net: Mlp<POINT_INPUTS, 16, POINT_OUTPUTS, HIDDEN, F32Weights> =
+        decode(&blobs.f32.bytes).unwrap();
+    let int8_net: Mlp<POINT_INPUTS, 16, POINT_OUTPUTS, HIDDEN, Int8Weights> =
+        decode(&blobs.int8.bytes).unwrap();
+    let envelope = (f32_net.envelope.min, f32_net.envelope.max);
+    let physics = pm2.contacts[0].model.cast::<f32>();
+    let mut host = pm2.contacts[0].model.clone();
+    host.residual = Some(blobs.f32.residual.clone());
+    let core = physics.clone().with_residual(PerPoint(f32_net));
+    agree(&host, &core, envelope);
+    host.residual = Some(blobs.int8.residual.clone());
+    let core = physics.with_residual(PerPoint(int8_net));
+    agree(&host, &core, envelope);
+}
+
+/// `host` (f64) and `core` (f32) give one wrench, to f32 precision, at points whose
+/// features lie at 20, 50 and 80 % of `envelope` (min, max of the five features).
+fn agree<R: hcm_core::model::Residual<f32>>(
+    host: &hcm_host::residual::HostContactModel,
+    core: &hcm_core::model::ContactModel<f32, R>,
+    (lo, hi): ([f32; 5], [f32; 5]),
+) {
+    use hcm_core::effect::ContactMemory;
+    use hcm_core::law::Indentation;
+    use hcm_core::model::{ContactPoint, Evaluated};
+    use nalgebra::Vector3;
+    let at = |i: usize, w: f32| f64::from(lo[i] + (hi[i] - lo[i]) * w);
+    let centre = Vector3::new(0.0, 0.0, 0.05);
+    for w in [0.2_f32, 0.5, 0.8] {
+        let normal = Vector3::new(0.1, -0.05, 1.0).normalize();
+        let tangent = normal.cross(&Vector3::y()).normalize();
+        let roll_axis = normal.cross(&tangent);
+        let point = ContactPoint {
+            indentation: Indentation {
+                depth: at(0, w),
+                rate: at(1, 1.0 - w),
+                approach_speed: at(1, 1.0),
+            },
+            memory: ContactMemory::touch_down(),
+            normal,
+            position: Vector3::new(0.03, -0.02, 0.0),
+            relative_velocity: tangent * at(2, w) - normal * at(1, 1.0 - w),
+            relative_angular_velocity: roll_axis * at(4, w) + normal * at(3, w),
+        };
+        let wide = host.pair_load(&[point], &centre, &Vector3::zeros(), &[]);
+        let i = point.indentation;
+        let narrow = ContactPoint {
+            indentation: Indentation {
+                depth: i.depth as f32,
+                rate: i.rate as f32,
+                approach_speed: i.approach_speed as f32,
+            },
+            memory: ContactMemory::touch_down(),
+            normal: normal.cast(),
+            position: point.position.cast(),
+            relative_velocity: point.relative_velocity.cast(),
+            relative_angular_velocity: point.relative_angular_velocity.cast(),
+        };
+        let small = core.pair_load(&[narrow], &centre.cast(), &Vector3::zeros(), &[]);
+        assert_eq!(wide.evaluated, Evaluated::PhysicsAndResidual, "at {w}");
+        assert_eq!(small.evaluated, Evaluated::PhysicsAndResidual, "at {w}");
+        let scale = wide.wrench.force_1.norm();
+        let df = (small.wrench.force_1.cast::<f64>() - wide.wrench.force_1).norm();
+        assert!(
+            df < 1e-4 * scale,
+            "force differs by {df} N of {scale} N at {w}"
+        );
+        let torque = wide.wrench.torque_1.norm();
+        let dt = (small.wrench.torque_1.cast::<f64>() - wide.wrench.torque_1).norm();
+        assert!(
+            dt < 1e-4 * torque,
+            "torque differs by {dt} of {torque} at {w}"
+        );
+    }
+}
