@@ -123,3 +123,28 @@ fn hidden_effects_on_a_block_landing_on_a_block_are_named_or_honestly_left() {
         ],
     );
 }
+
+/// Data of another law than PM2's (the ball's Hunt–Crossley, PM2 Hertz fitted on it):
+/// what Hertz lacks is Hunt–Crossley's damping c·δⁿ·δ̇, and that is the name — not a
+/// constant viscous damping, nor plasticity (both were named before
+/// `hysteresis_damping` joined the catalogue).
+#[test]
+fn a_hertz_pm2_on_hunt_crossley_data_lacks_hysteresis_damping() {
+    let scenario = hcm_tests::scene("ball_on_plate.toml");
+    let data = generate(&scenario, 24, 11, &Silent).unwrap();
+    let start =
+        hcm_host::identify::rigid::with_law(&scenario.model().unwrap(), 0, "hertz", None).unwrap();
+    let bounds = &scenario.identify.bounds;
+    let pm2 = identify_from_samples(&start, &data, 0, bounds, true, &Silent)
+        .unwrap()
+        .fit
+        .model;
+    let settings = RigidDiagnoseSettings {
+        contact: 0,
+        fitted_base: true,
+        overrides: bounds.clone(),
+    };
+    let d = diagnose_rigid(&pm2, &data, &settings, &Silent).unwrap();
+    println!("{}", d.answer);
+    assert_eq!(d.named, ["hysteresis_damping"], "{}", d.answer);
+}

@@ -10,6 +10,7 @@
 //! | friction | `viscous_friction` −c_v·v_t per point | c_v ∈ [0, F̂/v̂] N·s/m |
 //! | resistance | `torsional_resistance`, `rolling_resistance` (ω₀ = 0.1 rad/s) | a ∈ [0, L/2] m |
 //! | normal | `viscous_damping` c·δ̇ | c ∈ [0, 10·F̂/δ̇̂] N·s/m |
+//! | normal | `hysteresis_damping` c·δⁿ·δ̇, n the law's exponent (Hunt–Crossley's damping; Lankarani–Nikravesh's at one approach speed) | c ∈ [0, 10·F̂/(δ̂ⁿ·δ̇̂)] |
 //! | normal | `adhesion` −a in contact | a ∈ [0, F̂/2] N |
 //! | normal | `plasticity` ρ·δ_max on unloading | ρ ∈ [0, 0.9] |
 //! | measurement | `force_gain`: the sensor reads g × the wrench | g ∈ [0.5, 2] |
@@ -17,7 +18,7 @@
 //! | measurement | `sensor_delay`: the sensor reads the wrench at t − τ | τ ∈ [0, 20·Δt] s |
 //!
 //! F̂ the largest measured normal force, v̂ and δ̇̂ the fastest slip and approach of a
-//! point, L the largest lever arm of a point about the moving body's centre, Δt the
+//! point, δ̂ the deepest, L the largest lever arm of a point about the moving body's centre, Δt the
 //! median sample interval: every box from the data ([`Scales`]), none from an example.
 //!
 //! With a fitted base (PM2 from `hcm identify`) the friction's coefficients are free
@@ -27,7 +28,7 @@
 use crate::identify::rigid::{ContactScales, RecordedContact, RigidParameters};
 use crate::numerics::optimize::{Bound, Parameters};
 use crate::scenario::Model;
-use hcm_core::effect::{Adhesion, ContactEffect, Plasticity, ViscousDamping};
+use hcm_core::effect::{Adhesion, ContactEffect, HysteresisDamping, Plasticity, ViscousDamping};
 use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};
 
 /// Rotation rate (rad/s) below which the resistance couples fade.
@@ -57,6 +58,7 @@ pub enum ForceEffect {
     TorsionalResistance,
     RollingResistance,
     ViscousDamping,
+    HysteresisDamping,
     Adhesion,
     Plasticity,
     ForceGain,
@@ -75,6 +77,8 @@ pub struct Scales {
     pub arm: f64,
     /// Median interval between a run's rows (s).
     pub interval: f64,
+    /// The law's elastic exponent n (–): hysteresis damping's depth exponent.
+    pub exponent: f64,
 }
 
 impl Scales {
@@ -101,19 +105,21 @@ impl Scales {
             slip,
             arm,
             interval: gaps.get(gaps.len() / 2).copied().unwrap_or(0.0),
+            exponent,
         }
     }
 }
 
 impl ForceEffect {
     /// The catalogue, in report order.
-    pub const ALL: [ForceEffect; 11] = [
+    pub const ALL: [ForceEffect; 12] = [
         ForceEffect::FrictionCoefficient,
         ForceEffect::CoulombFriction,
         ForceEffect::ViscousFriction,
         ForceEffect::TorsionalResistance,
         ForceEffect::RollingResistance,
         ForceEffect::ViscousDamping,
+        ForceEffect::HysteresisDamping,
         ForceEffect::Adhesion,
         ForceEffect::Plasticity,
         ForceEffect::ForceGain,
@@ -130,6 +136,7 @@ impl ForceEffect {
             ForceEffect::TorsionalResistance => "torsional_resistance",
             ForceEffect::RollingResistance => "rolling_resistance",
             ForceEffect::ViscousDamping => "viscous_damping",
+            ForceEffect::HysteresisDamping => "hysteresis_damping",
             ForceEffect::Adhesion => "adhesion",
             ForceEffect::Plasticity => "plasticity",
             ForceEffect::ForceGain => "force_gain",
@@ -145,9 +152,10 @@ impl ForceEffect {
             | ForceEffect::CoulombFriction
             | ForceEffect::ViscousFriction => Family::Friction,
             ForceEffect::TorsionalResistance | ForceEffect::RollingResistance => Family::Resistance,
-            ForceEffect::ViscousDamping | ForceEffect::Adhesion | ForceEffect::Plasticity => {
-                Family::Normal
-            }
+            ForceEffect::ViscousDamping
+            | ForceEffect::HysteresisDamping
+            | ForceEffect::Adhesion
+            | ForceEffect::Plasticity => Family::Normal,
             ForceEffect::ForceGain | ForceEffect::ForceOffset | ForceEffect::SensorDelay => {
                 Family::Measurement
             }
@@ -166,9 +174,10 @@ impl ForceEffect {
                 !fitted_base
                     && friction.is_some_and(|f| f.static_coefficient != f.dynamic_coefficient)
             }
-            ForceEffect::ViscousDamping | ForceEffect::Adhesion | ForceEffect::Plasticity => {
-                !physics.normal.effects.is_full()
-            }
+            ForceEffect::ViscousDamping
+            | ForceEffect::HysteresisDamping
+            | ForceEffect::Adhesion
+            | ForceEffect::Plasticity => !physics.normal.effects.is_full(),
             _ => true,
         }
     }
@@ -190,6 +199,14 @@ impl ForceEffect {
             }
             ForceEffect::ViscousDamping => {
                 vec![linear("coefficient", 0.0, 10.0 * per(s.contact.peak_rate))]
+            }
+            ForceEffect::HysteresisDamping => {
+                let depth = s.contact.peak_depth.max(f64::MIN_POSITIVE).powf(s.exponent);
+                vec![linear(
+                    "coefficient",
+                    0.0,
+                    10.0 * per(s.contact.peak_rate) / depth,
+                )]
             }
             ForceEffect::Adhesion => vec![linear("pull_off_force", 0.0, 0.5 * force)],
             ForceEffect::Plasticity => vec![linear("permanent_ratio", 0.0, 0.9)],
@@ -256,6 +273,17 @@ impl ForceEffect {
                 physics,
                 ContactEffect::ViscousDamping(ViscousDamping { coefficient: first }),
             ),
+            ForceEffect::HysteresisDamping => {
+                // Hunt–Crossley's damping c·δ^n·δ̇, n the law's own exponent.
+                let exponent = physics.normal.base.get("exponent").unwrap_or(1.5);
+                push(
+                    physics,
+                    ContactEffect::HysteresisDamping(HysteresisDamping {
+                        coefficient: first,
+                        exponent,
+                    }),
+                )
+            }
             ForceEffect::Adhesion => push(
                 physics,
                 ContactEffect::Adhesion(Adhesion {
