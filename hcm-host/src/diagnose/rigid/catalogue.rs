@@ -13,6 +13,7 @@
 //! | normal | `hysteresis_damping` c·δⁿ·δ̇, n the law's exponent (Hunt–Crossley's damping; Lankarani–Nikravesh's at one approach speed) | c ∈ [0, 10·F̂/(δ̂ⁿ·δ̇̂)] |
 //! | normal | `adhesion` −a in contact | a ∈ [0, F̂/2] N |
 //! | normal | `plasticity` ρ·δ_max on unloading | ρ ∈ [0, 0.9] |
+//! | normal law | `law: <name>`: another law of the core in the model's place, every parameter of it fitted ([`Extended::with_law`]; a fitted base only, one swap) | the law's boxes, scaled as the base's |
 //! | measurement | `force_gain`: the sensor reads g × the wrench | g ∈ [0.5, 2] |
 //! | measurement | `force_offset`: the sensor reads F + b | b ∈ [−F̂/10, F̂/10]³ N |
 //! | measurement | `sensor_delay`: the sensor reads the wrench at t − τ | τ ∈ [0, 20·Δt] s |
@@ -25,11 +26,14 @@
 //! already: a scale or a Coulomb law of them changes nothing the fit cannot, and they
 //! are not candidates then.
 
-use crate::identify::rigid::{ContactScales, RecordedContact, RigidParameters};
+use crate::identify::bounds::BoundsOverrides;
+use crate::identify::rigid::{with_law, ContactScales, RecordedContact, RigidParameters};
 use crate::numerics::optimize::{Bound, Parameters};
 use crate::scenario::Model;
 use hcm_core::effect::{Adhesion, ContactEffect, HysteresisDamping, Plasticity, ViscousDamping};
 use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};
+use hcm_core::law::LawKind;
+use std::sync::Arc;
 
 /// Rotation rate (rad/s) below which the resistance couples fade.
 const RESISTANCE_RATE: f64 = 0.1;
@@ -308,6 +312,26 @@ impl ForceEffect {
     }
 }
 
+/// Another normal law in place of the model's: the normal-law family's candidates.
+#[derive(Clone, Debug)]
+pub struct LawSwap {
+    /// The diagnosed model with that law installed, at its start values (the
+    /// parameters it shares with the model's law kept).
+    pub(crate) model: Arc<Model>,
+}
+
+/// The candidate name of the law `kind` in place of the model's (`law: <name>`).
+pub fn law_label(kind: LawKind) -> &'static str {
+    match kind {
+        LawKind::Hertz => "law: hertz",
+        LawKind::LankaraniNikravesh => "law: lankarani_nikravesh",
+        LawKind::VariableStiffness => "law: variable_stiffness",
+        LawKind::Impact => "law: impact",
+        LawKind::HuntCrossley => "law: hunt_crossley",
+        LawKind::Flores => "law: flores",
+    }
+}
+
 /// The base's free parameters (none for a given base) and the effects on top, as one
 /// parameter vector: the base's genes, then each effect's.
 #[derive(Clone, Debug)]
@@ -318,9 +342,46 @@ pub struct Extended {
     pub(crate) contact: usize,
     /// Each effect with its box.
     pub(crate) effects: Vec<(ForceEffect, Vec<Bound>)>,
+    /// Another law in place of the model's, its parameters the base's genes.
+    pub(crate) law: Option<LawSwap>,
 }
 
 impl Extended {
+    /// The model the genes apply to: `model`, or the law swap's.
+    fn start<'a>(&'a self, model: &'a Model) -> &'a Model {
+        self.law.as_ref().map_or(model, |l| l.model.as_ref())
+    }
+
+    /// `self` with `kind` in place of `model`'s law — its parameters, exponent
+    /// included, fitted in the base's place (boxes scaled by `scales` as the base's
+    /// were) — or `None`: a given base (nothing of the law is fitted), or a law that
+    /// cannot stand in (its parameters need what the scenario does not give).
+    pub fn with_law(
+        &self,
+        model: &Model,
+        kind: LawKind,
+        overrides: &BoundsOverrides,
+        scales: &Scales,
+    ) -> Option<Extended> {
+        self.base.as_ref()?;
+        let c = self.contact;
+        let swapped = with_law(self.start(model), c, kind.name(), None).ok()?;
+        let mut base = RigidParameters::new(&swapped, c, overrides)
+            .ok()?
+            .with_exponent(&swapped, overrides)
+            .ok()?;
+        scales.contact.apply(&swapped, c, &mut base);
+        swapped.contacts[c].model.validate().ok()?;
+        Some(Extended {
+            base: Some(base),
+            contact: c,
+            effects: self.effects.clone(),
+            law: Some(LawSwap {
+                model: Arc::new(swapped),
+            }),
+        })
+    }
+
     /// The base's gene count.
     fn base_len(&self) -> usize {
         self.base.as_ref().map_or(0, |b| b.bounds().len())
@@ -345,6 +406,7 @@ impl Parameters for Extended {
 
     /// The base's values, then each effect's neutral ones.
     fn values(&self, model: &Model) -> Vec<f64> {
+        let model = self.start(model);
         let mut all = self
             .base
             .as_ref()
@@ -356,6 +418,7 @@ impl Parameters for Extended {
     }
 
     fn apply(&self, model: &Model, genes: &[f64]) -> Model {
+        let model = self.start(model);
         let split = self.base_len().min(genes.len());
         let (base, mut rest) = genes.split_at(split);
         let mut out = match &self.base {

@@ -22,7 +22,7 @@
 
 pub mod catalogue;
 
-pub use catalogue::{Extended, Family, ForceEffect, Scales};
+pub use catalogue::{law_label, Extended, Family, ForceEffect, LawSwap, Scales};
 
 use super::paired::Paired;
 use super::verdict::{decide_with, Margins, Verdict};
@@ -34,6 +34,7 @@ use crate::identify::rigid::{
 use crate::numerics::optimize::Parameters;
 use crate::progress::{in_stage, Progress, Stage};
 use crate::scenario::Model;
+use hcm_core::law::LawKind;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -155,15 +156,24 @@ pub fn diagnose_rigid(
         base: base_parameters,
         contact: c,
         effects: Vec::new(),
+        law: None,
     };
     let judge = Judge::new(base, &recorded, data.runs.len());
-    let catalogue: Vec<ForceEffect> = (ForceEffect::ALL.iter().copied())
+    let own_law = base.contacts[c].law().kind();
+    let catalogue: Vec<Candidate> = (ForceEffect::ALL.iter().copied())
         .filter(|e| e.applies(base, c, settings.fitted_base))
+        .map(Candidate::Effect)
+        .chain(
+            (LawKind::ALL.iter().copied())
+                .filter(|k| settings.fitted_base && *k != own_law)
+                .map(Candidate::Law),
+        )
         .collect();
     let search = Search {
         judge: &judge,
         scales: &scales,
         catalogue: &catalogue,
+        overrides: &settings.overrides,
     };
     let (rounds, named, ambiguous, first) = search.rounds(&mut model, progress);
     let fit = fit_samples(
@@ -191,11 +201,36 @@ pub fn diagnose_rigid(
     })
 }
 
+/// What a round may add: an effect of the catalogue, or another law in the model's
+/// place (the normal-law family; with a fitted base only, at most one swap).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Candidate {
+    Effect(ForceEffect),
+    Law(LawKind),
+}
+
+impl Candidate {
+    fn name(self) -> &'static str {
+        match self {
+            Candidate::Effect(e) => e.name(),
+            Candidate::Law(k) => law_label(k),
+        }
+    }
+
+    fn family(self) -> Family {
+        match self {
+            Candidate::Effect(e) => e.family(),
+            Candidate::Law(_) => Family::Normal,
+        }
+    }
+}
+
 /// The rounds of one diagnosis.
 struct Search<'a> {
     judge: &'a Judge<'a>,
     scales: &'a Scales,
-    catalogue: &'a [ForceEffect],
+    catalogue: &'a [Candidate],
+    overrides: &'a BoundsOverrides,
 }
 
 /// Rounds, causes named, the last tie, and the first round's reference scores.
@@ -206,11 +241,63 @@ type Rounds = (
     Option<Vec<f64>>,
 );
 
+/// The seed a candidate's fit starts from beside its own starts: the reference's fit
+/// for an effect (its genes a prefix of the candidate's), none for another law (whose
+/// genes mean other parameters).
+fn seed_of(candidate: Candidate, reference: &Folds) -> Option<&Folds> {
+    matches!(candidate, Candidate::Effect(_)).then_some(reference)
+}
+
 impl Search<'_> {
+    /// Whether `candidate` may still join `model`: an effect not in it yet, another law
+    /// than its own when none has been swapped in.
+    fn open(&self, model: &Extended, candidate: Candidate) -> bool {
+        match candidate {
+            Candidate::Effect(e) => !model.effects.iter().any(|(n, _)| *n == e),
+            Candidate::Law(_) => model.law.is_none(),
+        }
+    }
+
+    /// `model` with `candidate` added, or `None` where it cannot join (a law that
+    /// cannot stand in).
+    fn extend(&self, model: &Extended, candidate: Candidate) -> Option<Extended> {
+        match candidate {
+            Candidate::Effect(e) => Some(model.with(e, self.scales)),
+            Candidate::Law(k) => model.with_law(self.judge.base, k, self.overrides, self.scales),
+        }
+    }
+
+    /// Every candidate still open to `model`, extended, and its fit on the folds (the
+    /// reference's fit `fitted` as an effect's seed); `done` (steps so far, steps in
+    /// all) counts on in `progress`. In parallel, collected in catalogue order: the
+    /// same answer whatever the thread count.
+    fn fit_candidates(
+        &self,
+        model: &Extended,
+        fitted: &Folds,
+        (done, steps): (usize, u64),
+        progress: &dyn Progress,
+    ) -> (Vec<(Candidate, Extended)>, Vec<Option<Folds>>) {
+        let left: Vec<(Candidate, Extended)> = (self.catalogue.iter().copied())
+            .filter(|c| self.open(model, *c))
+            .filter_map(|c| Some((c, self.extend(model, c)?)))
+            .collect();
+        let done = std::sync::atomic::AtomicUsize::new(done);
+        let fits = (left.par_iter())
+            .map(|(c, extended)| {
+                let fit = self.judge.fit_folds(extended, seed_of(*c, fitted));
+                let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                progress.advance(k as u64 + 1, steps);
+                fit
+            })
+            .collect();
+        (left, fits)
+    }
+
     /// Up to [`MAX_ROUNDS`] rounds from `model` (its held-out scores `first`), each
     /// named cause added to it.
     fn rounds(&self, model: &mut Extended, progress: &dyn Progress) -> Rounds {
-        let (judge, scales, catalogue) = (self.judge, self.scales, self.catalogue);
+        let (judge, catalogue) = (self.judge, self.catalogue);
         let mut first: Option<Vec<f64>> = None;
         let mut seed: Option<Folds> = None;
         let mut rounds = Vec::new();
@@ -222,45 +309,37 @@ impl Search<'_> {
                 let Some(mut fitted) = judge.fit_folds(model, seed.as_ref()) else {
                     break;
                 };
-                let left: Vec<ForceEffect> = (catalogue.iter().copied())
-                    .filter(|e| !model.effects.iter().any(|(n, _)| n == e))
+                let done = (round * catalogue.len(), steps);
+                let (left, fits) = self.fit_candidates(model, &fitted, done, progress);
+                // Only an effect's fit holds a fit of the reference (the same law).
+                let nested: Vec<Option<Folds>> = (left.iter().zip(&fits))
+                    .map(|((c, _), f)| f.clone().filter(|_| matches!(c, Candidate::Effect(_))))
                     .collect();
-                // Candidates in parallel, collected in catalogue order: the same answer
-                // whatever the thread count.
-                let done = std::sync::atomic::AtomicUsize::new(round * catalogue.len());
-                let fits: Vec<Option<Folds>> = (left.par_iter())
-                    .map(|e| {
-                        let fit = judge.fit_folds(&model.with(*e, scales), Some(&fitted));
-                        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                        progress.advance(k as u64 + 1, steps);
-                        fit
-                    })
-                    .collect();
-                judge.improve(model, &mut fitted, &fits);
+                judge.improve(model, &mut fitted, &nested);
                 let reference = judge.held_out(model, &fitted);
                 if round == 0 {
                     first = Some(reference.clone());
                 }
                 let scored: Vec<Option<Vec<f64>>> = (left.iter().zip(&fits))
-                    .map(|(e, f)| {
-                        f.as_ref()
-                            .map(|f| judge.held_out(&model.with(*e, scales), f))
-                    })
+                    .map(|((_, extended), f)| f.as_ref().map(|f| judge.held_out(extended, f)))
                     .collect();
                 let candidates: Vec<Option<&[f64]>> = scored.iter().map(|s| s.as_deref()).collect();
                 let floor = MIN_GAIN * mean(&reference);
                 let both = |a: usize, b: usize| {
-                    let pair = model.with(left[a], scales).with(left[b], scales);
-                    let fit = judge.fit_folds(&pair, fits[a].as_ref())?;
+                    let pair = self.extend(&left[a].1, left[b].0)?;
+                    let seed = fits[a]
+                        .as_ref()
+                        .filter(|_| matches!(left[b].0, Candidate::Effect(_)));
+                    let fit = judge.fit_folds(&pair, seed)?;
                     Some(judge.held_out(&pair, &fit))
                 };
                 let decision = decide_with(&reference, &candidates, (floor, Margins::RUNS), both);
                 let mut this = RigidRound {
                     score: mean(&reference),
                     candidates: (left.iter().zip(&decision.gains).zip(&decision.helps))
-                        .map(|((e, g), h)| CandidateScore {
-                            name: e.name(),
-                            family: e.family(),
+                        .map(|(((c, _), g), h)| CandidateScore {
+                            name: c.name(),
+                            family: c.family(),
                             gain: *g,
                             helps: *h,
                         })
@@ -271,13 +350,13 @@ impl Search<'_> {
                 match decision.verdict {
                     Verdict::Named(i) => {
                         seed.clone_from(&fits[i]);
-                        this.named = Some(left[i].name());
-                        named.push(left[i].name());
-                        *model = model.with(left[i], scales);
+                        this.named = Some(left[i].0.name());
+                        named.push(left[i].0.name());
+                        *model = left[i].1.clone();
                         rounds.push(this);
                     }
                     Verdict::Ambiguous(tied) => {
-                        this.ambiguous = tied.iter().map(|&i| left[i].name()).collect();
+                        this.ambiguous = tied.iter().map(|&i| left[i].0.name()).collect();
                         ambiguous.clone_from(&this.ambiguous);
                         rounds.push(this);
                         break;
