@@ -25,13 +25,14 @@ fn scene_with(name: &str, contact: &str, experiment: &str) -> Scenario {
     Scenario::load(&file, &[]).unwrap()
 }
 
-/// PM2 identified on 24 runs of `scenario` (without the effects: the scene's law and
-/// friction, fitted), then the diagnosis.
-fn diagnosed(scenario: &Scenario, plain: &Scenario) -> RigidDiagnosis {
-    let data = generate(scenario, 24, 11, &Silent).unwrap();
-    let model = plain.model().unwrap();
-    let bounds = &plain.identify.bounds;
-    let pm2 = identify_from_samples(&model, &data, 0, bounds, true, &Silent)
+/// PM2 fitted from `start` on `data` by least squares, then diagnosed with its base
+/// fitted.
+fn fitted_and_diagnosed(
+    start: &hcm_host::scenario::Model,
+    data: &hcm_host::dataset::Dataset,
+    bounds: &hcm_host::identify::bounds::BoundsOverrides,
+) -> RigidDiagnosis {
+    let pm2 = identify_from_samples(start, data, 0, bounds, true, &Silent)
         .unwrap()
         .fit
         .model;
@@ -40,7 +41,16 @@ fn diagnosed(scenario: &Scenario, plain: &Scenario) -> RigidDiagnosis {
         fitted_base: true,
         overrides: bounds.clone(),
     };
-    let d = diagnose_rigid(&pm2, &data, &settings, &Silent).unwrap();
+    diagnose_rigid(&pm2, data, &settings, &Silent).unwrap()
+}
+
+/// PM2 identified on 24 runs of `scenario` (without the effects: the scene's law and
+/// friction, fitted), then the diagnosis.
+fn diagnosed(scenario: &Scenario, plain: &Scenario) -> RigidDiagnosis {
+    let data = generate(scenario, 24, 11, &Silent).unwrap();
+    let model = plain.model().unwrap();
+    let bounds = &plain.identify.bounds;
+    let d = fitted_and_diagnosed(&model, &data, bounds);
     for (k, round) in d.rounds.iter().enumerate() {
         println!("round {k}: score {:.4e}", round.score);
         for c in &round.candidates {
@@ -135,17 +145,7 @@ fn a_hertz_pm2_on_hunt_crossley_data_lacks_hunt_crossleys_damping() {
     let data = generate(&scenario, 24, 11, &Silent).unwrap();
     let start =
         hcm_host::identify::rigid::with_law(&scenario.model().unwrap(), 0, "hertz", None).unwrap();
-    let bounds = &scenario.identify.bounds;
-    let pm2 = identify_from_samples(&start, &data, 0, bounds, true, &Silent)
-        .unwrap()
-        .fit
-        .model;
-    let settings = RigidDiagnoseSettings {
-        contact: 0,
-        fitted_base: true,
-        overrides: bounds.clone(),
-    };
-    let d = diagnose_rigid(&pm2, &data, &settings, &Silent).unwrap();
+    let d = fitted_and_diagnosed(&start, &data, &scenario.identify.bounds);
     println!("{}", d.answer);
     let right = ["hysteresis_damping", "law: hunt_crossley"];
     let said: Vec<&str> = d.named.iter().chain(&d.ambiguous).copied().collect();

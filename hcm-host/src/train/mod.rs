@@ -212,28 +212,45 @@ pub fn train(
     let mut rng = ChaCha8Rng::seed_from_u64(settings.seed);
     let (training, validation) = split(inputs.len(), settings.validation_fraction, &mut rng)?;
     let data = Normalised::new(inputs, targets, &training, &settings.input_vectors);
-    let layout = Layout::new(
-        n_in,
-        settings.width,
-        settings.hidden_layers,
-        n_out,
-        settings.activation,
-    );
-    let parameters = layout.initial_parameters(&mut rng);
-    let (best, report) = fit(
+    let (layout, best, report) = fit_new(
         &data,
-        &layout,
-        parameters,
+        (n_in, n_out),
         (training, &validation),
         settings,
-        &mut rng,
+        (&mut rng, started),
         &mut progress,
     )?;
-    let report = TrainReport {
-        seconds: started.elapsed().as_secs_f64(),
-        ..report
-    };
     Ok((data.network(&layout, &best, settings, inputs), report))
+}
+
+/// Σ over `rows` of each row's gradient and squared error, as `row` adds the one and
+/// returns the other (row, work space, gradient so far): summed in parallel over fixed
+/// chunks of [`CHUNK_ROWS`] rows, the chunks added in order — bit-identical whatever
+/// rayon's scheduling.
+pub(crate) fn chunked_gradient(
+    layout: &Layout,
+    parameters: usize,
+    rows: &[usize],
+    row: impl Fn(usize, &mut network::Scratch, &mut [f64]) -> f64 + Sync,
+) -> (Vec<f64>, f64) {
+    let chunks: Vec<(Vec<f64>, f64)> = rows
+        .par_chunks(CHUNK_ROWS)
+        .map(|chunk| {
+            let mut gradient = vec![0.0; parameters];
+            let mut scratch = layout.scratch();
+            let error = (chunk.iter())
+                .map(|&r| row(r, &mut scratch, &mut gradient))
+                .sum::<f64>();
+            (gradient, error)
+        })
+        .collect();
+    let mut chunks = chunks.into_iter();
+    let (mut total, mut squared_error) = chunks.next().unwrap_or_default();
+    for (gradient, error) in chunks {
+        total.iter_mut().zip(&gradient).for_each(|(a, b)| *a += b);
+        squared_error += error;
+    }
+    (total, squared_error)
 }
 
 /// What the epoch loop ([`fit`]) minimises: a squared error over rows, each row with
@@ -248,6 +265,35 @@ pub(crate) trait Objective: Sync {
 
     /// Mean squared error over `rows` and columns, raw units².
     fn loss(&self, layout: &Layout, parameters: &[f64], rows: &[usize]) -> f64;
+}
+
+/// A network of `settings`' shape between `sizes` (inputs, outputs), from fresh
+/// weights drawn from `clock.0`, fitted by [`fit`] on `rows` (training, validation):
+/// its layout, best parameters and report (`seconds` since `clock.1`).
+pub(crate) fn fit_new(
+    objective: &impl Objective,
+    (inputs, outputs): (usize, usize),
+    rows: (Vec<usize>, &[usize]),
+    settings: &TrainSettings,
+    (rng, started): (&mut ChaCha8Rng, Instant),
+    progress: &mut impl FnMut(usize, f64, f64),
+) -> Result<(Layout, Vec<f64>, TrainReport), TrainError> {
+    let layout = Layout::new(
+        inputs,
+        settings.width,
+        settings.hidden_layers,
+        outputs,
+        settings.activation,
+    );
+    let parameters = layout.initial_parameters(rng);
+    let (best, report) = fit(
+        objective, &layout, parameters, rows, settings, rng, progress,
+    )?;
+    let report = TrainReport {
+        seconds: started.elapsed().as_secs_f64(),
+        ..report
+    };
+    Ok((layout, best, report))
 }
 
 /// Mini-batch Adam epochs on the `rows.0` (training) from `parameters`, with the
@@ -548,28 +594,11 @@ impl Objective for Normalised {
 
     /// (Σ over `rows` of ∂/∂θ Σ_o (ŷ_o − t̂_o)², raw squared error summed over `rows`).
     fn gradient(&self, layout: &Layout, parameters: &[f64], rows: &[usize]) -> (Vec<f64>, f64) {
-        let chunks: Vec<(Vec<f64>, f64)> = rows
-            .par_chunks(CHUNK_ROWS)
-            .map(|chunk| {
-                let mut gradient = vec![0.0; parameters.len()];
-                let mut scratch = layout.scratch();
-                let mut squared_error = 0.0;
-                for &r in chunk {
-                    let (x, t) = self.row(r);
-                    layout.accumulate_gradient(parameters, x, t, &mut scratch, &mut gradient);
-                    squared_error += self.raw_squared_error(scratch.output(), r);
-                }
-                (gradient, squared_error)
-            })
-            .collect();
-        // Fixed-order reduction: bit-identical whatever rayon's scheduling.
-        let mut chunks = chunks.into_iter();
-        let (mut total, mut squared_error) = chunks.next().unwrap_or_default();
-        for (gradient, error) in chunks {
-            total.iter_mut().zip(&gradient).for_each(|(a, b)| *a += b);
-            squared_error += error;
-        }
-        (total, squared_error)
+        chunked_gradient(layout, parameters.len(), rows, |r, scratch, gradient| {
+            let (x, t) = self.row(r);
+            layout.accumulate_gradient(parameters, x, t, scratch, gradient);
+            self.raw_squared_error(scratch.output(), r)
+        })
     }
 
     /// MSE over `rows` and outputs in raw output units².

@@ -40,8 +40,9 @@ const LEARNING_RATE: f64 = 3e-3;
 /// place) on the samples of the first `events` contact events of `training`, then its
 /// int8 twin, seeded with `settings.seed`. Reports [`Stage::Train`] and
 /// [`Stage::Int8Twin`] to `progress`. The returned [`WrenchTrained`]'s `silenced` lists
-/// the outputs no training sample felt (k_n, r_f, c_t, c_n, c_r: 0 to 4), fixed at 0;
-/// its R² is per component of the body's wrench.
+/// the outputs the fit does not need (k_n, r_f, c_t, c_n, c_r: 0 to 4;
+/// [`super::summed::train_summed`]), fixed at 0; its R² is per component of the body's
+/// wrench.
 pub fn train_point_residual(
     pm2: &Model,
     training: &Dataset,

@@ -21,8 +21,8 @@
 
 use super::network::Layout;
 use super::{
-    check_settings, exportable, fit, normalisation, split, Network, Objective, TrainError,
-    TrainReport, TrainSettings, CHUNK_ROWS,
+    check_settings, chunked_gradient, exportable, fit_new, normalisation, split, Network,
+    Objective, TrainError, TrainReport, TrainSettings, CHUNK_ROWS,
 };
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -67,27 +67,14 @@ pub fn train_summed(
     let mut rng = ChaCha8Rng::seed_from_u64(settings.seed);
     let (training, validation) = split(rows.len(), settings.validation_fraction, &mut rng)?;
     let data = data.normalised(&training, &settings.input_vectors);
-    let layout = Layout::new(
-        data.n_in,
-        settings.width,
-        settings.hidden_layers,
-        outputs,
-        settings.activation,
-    );
-    let parameters = layout.initial_parameters(&mut rng);
-    let (best, report) = fit(
+    let (layout, best, report) = fit_new(
         &data,
-        &layout,
-        parameters,
+        (data.n_in, outputs),
         (training, &validation),
         settings,
-        &mut rng,
+        (&mut rng, started),
         &mut progress,
     )?;
-    let report = TrainReport {
-        seconds: started.elapsed().as_secs_f64(),
-        ..report
-    };
     let scaling = (
         &data.input,
         &(vec![0.0; outputs], data.output_scale.clone()),
@@ -370,25 +357,9 @@ impl Objective for Summed {
     }
 
     fn gradient(&self, layout: &Layout, parameters: &[f64], rows: &[usize]) -> (Vec<f64>, f64) {
-        let chunks: Vec<(Vec<f64>, f64)> = rows
-            .par_chunks(CHUNK_ROWS)
-            .map(|chunk| {
-                let mut gradient = vec![0.0; parameters.len()];
-                let mut scratch = layout.scratch();
-                let error = (chunk.iter())
-                    .map(|&r| self.row_gradient(layout, parameters, r, &mut scratch, &mut gradient))
-                    .sum::<f64>();
-                (gradient, error)
-            })
-            .collect();
-        // Fixed-order reduction: bit-identical whatever rayon's scheduling.
-        let mut chunks = chunks.into_iter();
-        let (mut total, mut squared_error) = chunks.next().unwrap_or_default();
-        for (gradient, error) in chunks {
-            total.iter_mut().zip(&gradient).for_each(|(a, b)| *a += b);
-            squared_error += error;
-        }
-        (total, squared_error)
+        chunked_gradient(layout, parameters.len(), rows, |r, scratch, gradient| {
+            self.row_gradient(layout, parameters, r, scratch, gradient)
+        })
     }
 
     fn loss(&self, layout: &Layout, parameters: &[f64], rows: &[usize]) -> f64 {

@@ -43,7 +43,7 @@ pub struct WrenchTrained {
     pub(crate) explained: Vec<f64>,
     /// Outputs fixed at zero: for the body-state network, wrench components whose R²
     /// is below [`EXPLAINED_MIN`] (see [`super::explained`]); for the contact-frame
-    /// network, the point outputs no training sample felt
+    /// network, the point outputs the fit does not need
     /// ([`super::summed::train_summed`]).
     pub silenced: Vec<usize>,
 }
