@@ -134,21 +134,34 @@ fn hidden_effects_on_a_block_landing_on_a_block_are_named_or_honestly_left() {
     );
 }
 
-/// Data of another law than PM2's (the ball's Hunt–Crossley, PM2 Hertz fitted on it):
-/// what Hertz lacks is Hunt–Crossley's damping c·δⁿ·δ̇ — Hertz plus it *is*
-/// Hunt–Crossley, so the answer is that effect, that law, or the two tied; never
-/// anything else (a constant viscous damping and plasticity were named before the
-/// normal-law family joined the catalogue).
+/// Data of another law than PM2's, PM2 Hertz fitted on them: the ball's Hunt–Crossley
+/// is Hertz plus Hunt–Crossley's damping c·δⁿ·δ̇ (the effect and the law are one model,
+/// and said to be); the block's Lankarani–Nikravesh is one model with Flores (their
+/// damping coefficients two functions of a fitted restitution). Named, never anything
+/// else: a constant viscous damping, plasticity and a rolling resistance were named on
+/// these data before the normal-law family joined the catalogue.
 #[test]
-fn a_hertz_pm2_on_hunt_crossley_data_lacks_hunt_crossleys_damping() {
-    let scenario = hcm_tests::scene("ball_on_plate.toml");
-    let data = generate(&scenario, 24, 11, &Silent).unwrap();
-    let start =
-        hcm_host::identify::rigid::with_law(&scenario.model().unwrap(), 0, "hertz", None).unwrap();
-    let d = fitted_and_diagnosed(&start, &data, &scenario.identify.bounds);
-    println!("{}", d.answer);
-    let right = ["hysteresis_damping", "law: hunt_crossley"];
-    let said: Vec<&str> = d.named.iter().chain(&d.ambiguous).copied().collect();
-    assert!(!said.is_empty(), "{}", d.answer);
-    assert!(said.iter().all(|n| right.contains(n)), "{}", d.answer);
+fn a_hertz_pm2_on_data_of_another_law_finds_that_law() {
+    let cases = [
+        (
+            "ball_on_plate.toml",
+            ["hysteresis_damping", "law: hunt_crossley"],
+        ),
+        (
+            "block_on_block.toml",
+            ["law: lankarani_nikravesh", "law: flores"],
+        ),
+    ];
+    for (name, right) in cases {
+        let scenario = hcm_tests::scene(name);
+        let data = generate(&scenario, 24, 11, &Silent).unwrap();
+        let model = scenario.model().unwrap();
+        let start = hcm_host::identify::rigid::with_law(&model, 0, "hertz", None).unwrap();
+        let d = fitted_and_diagnosed(&start, &data, &scenario.identify.bounds);
+        println!("{name}: {}", d.answer);
+        assert_eq!(d.named.len(), 1, "{name}: {}", d.answer);
+        assert!(right.contains(&d.named[0]), "{name}: {}", d.answer);
+        let same = &d.rounds[0].same_as;
+        assert!(same.iter().all(|n| right.contains(n)), "{name}: {same:?}");
+    }
 }

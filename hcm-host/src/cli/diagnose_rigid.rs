@@ -123,6 +123,10 @@ fn markdown(d: &RigidDiagnosis, name: &str) -> String {
             );
         }
         let verdict = match (&round.named, round.ambiguous.is_empty()) {
+            (Some(n), _) if !round.same_as.is_empty() => format!(
+                "named: {n} (the same model as {}: one is the other written another way)",
+                round.same_as.join(", ")
+            ),
             (Some(n), _) => format!("named: {n}"),
             (None, false) => format!("ambiguous: {}", round.ambiguous.join(", ")),
             (None, true) => "nothing helps".to_owned(),

@@ -44,6 +44,15 @@ use serde::Serialize;
 /// held-out runs) gained 0.4 % of it, and 1 % (the motion diagnosis' floor) left it
 /// unnamed.
 pub const MIN_GAIN: f64 = 0.001;
+/// Largest RMS difference of two fitted models' wrenches over the held-out rows, as a
+/// share of the measured force's RMS, for them to be one model (–): the fits' own
+/// convergence, not a closeness the data cannot resolve. Measured by `hcm diagnose` of
+/// a Hertz PM2 (24 runs, seed 7): Hertz + hysteresis damping against Hunt–Crossley on
+/// the ball, 1.9e-4 (one model: Hunt–Crossley is Hertz plus that damping);
+/// Lankarani–Nikravesh against Flores on the block, 1.9e-10 (their damping
+/// coefficients are two functions of a fitted restitution); the first pair with a
+/// viscous friction hidden as well, 1.4e-3 — left ambiguous.
+pub const SAME_MODEL: f64 = 1e-3;
 /// Causes named one after another, at most.
 pub const MAX_ROUNDS: usize = 2;
 /// Runs with contact each half needs, at least: the paired gain's standard error
@@ -93,6 +102,9 @@ pub struct RigidRound {
     pub named: Option<&'static str>,
     /// Candidates it could not tell apart.
     pub ambiguous: Vec<&'static str>,
+    /// Tied candidates whose fits are one model with the named one (the same wrench at
+    /// every row within [`SAME_MODEL`]): another way to write the cause, not a rival.
+    pub same_as: Vec<&'static str>,
 }
 
 /// What the diagnosis found.
@@ -128,20 +140,7 @@ pub fn diagnose_rigid(
 ) -> Result<RigidDiagnosis, RigidIdentifyError> {
     let c = settings.contact;
     let recorded = RecordedContact::with_rows(base, data, c, true)?;
-    for fold in 0..2 {
-        let runs = (0..data.runs.len())
-            .filter(|r| r % 2 == fold && recorded.samples.iter().any(|s| s.run == *r))
-            .count();
-        if runs < MIN_RUNS_PER_HALF {
-            return Err(RigidIdentifyError::Setup(format!(
-                "the diagnosis fits on half the runs and judges on the other half, run by \
-                 run: it needs at least {} runs with measured contact ({MIN_RUNS_PER_HALF} \
-                 even, {MIN_RUNS_PER_HALF} odd); the data have {} — record more runs",
-                2 * MIN_RUNS_PER_HALF,
-                data.runs.len()
-            )));
-        }
-    }
+    enough_runs(data, &recorded)?;
     let exponent = base.contacts[c].law().get("exponent").unwrap_or(1.5);
     let scales = Scales::of(&recorded, exponent);
     let base_parameters = if settings.fitted_base {
@@ -187,7 +186,15 @@ pub fn diagnose_rigid(
         _ => None,
     };
     let left = leftover(&recorded, &fit.model);
-    let answer = answer(&named, &ambiguous, left);
+    let same: Vec<String> = (rounds.iter())
+        .filter_map(|r| Some((r.named?, &r.same_as)))
+        .filter(|(_, same)| !same.is_empty())
+        .map(|(n, same)| format!("{n} is {}", same.join(", ")))
+        .collect();
+    let mut answer = answer(&named, &ambiguous, left);
+    if !same.is_empty() {
+        answer += &format!(" (one model written another way: {})", same.join("; "));
+    }
     Ok(RigidDiagnosis {
         runs: judge.runs,
         rows: recorded.samples.len(),
@@ -223,6 +230,36 @@ impl Candidate {
             Candidate::Law(_) => Family::Normal,
         }
     }
+
+    /// Its line of a round: its held-out `gain` and whether it `helps`.
+    fn scored(self, gain: Paired, helps: bool) -> CandidateScore {
+        CandidateScore {
+            name: self.name(),
+            family: self.family(),
+            gain,
+            helps,
+        }
+    }
+}
+
+/// An error unless each half of the runs (even, odd) has [`MIN_RUNS_PER_HALF`] runs
+/// with rows of `recorded`.
+fn enough_runs(data: &Dataset, recorded: &RecordedContact) -> Result<(), RigidIdentifyError> {
+    for fold in 0..2 {
+        let runs = (0..data.runs.len())
+            .filter(|r| r % 2 == fold && recorded.samples.iter().any(|s| s.run == *r))
+            .count();
+        if runs < MIN_RUNS_PER_HALF {
+            return Err(RigidIdentifyError::Setup(format!(
+                "the diagnosis fits on half the runs and judges on the other half, run by \
+                     run: it needs at least {} runs with measured contact ({MIN_RUNS_PER_HALF} \
+                     even, {MIN_RUNS_PER_HALF} odd); the data have {} — record more runs",
+                2 * MIN_RUNS_PER_HALF,
+                data.runs.len()
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// The rounds of one diagnosis.
@@ -337,23 +374,20 @@ impl Search<'_> {
                 let mut this = RigidRound {
                     score: mean(&reference),
                     candidates: (left.iter().zip(&decision.gains).zip(&decision.helps))
-                        .map(|(((c, _), g), h)| CandidateScore {
-                            name: c.name(),
-                            family: c.family(),
-                            gain: *g,
-                            helps: *h,
-                        })
+                        .map(|(((c, _), g), h)| c.scored(*g, *h))
                         .collect(),
                     named: None,
                     ambiguous: Vec::new(),
+                    same_as: Vec::new(),
                 };
-                match decision.verdict {
-                    Verdict::Named(i) => {
-                        seed.clone_from(&fits[i]);
-                        this.named = Some(left[i].0.name());
-                        named.push(left[i].0.name());
-                        *model = left[i].1.clone();
-                        rounds.push(this);
+                let (i, same_as) = match decision.verdict {
+                    Verdict::Named(i) => (i, Vec::new()),
+                    // One model written two ways: the first in catalogue order is named,
+                    // the others said to be the same.
+                    Verdict::Ambiguous(tied) if judge.one_model(&left, &fits, &tied) => {
+                        let i = tied.iter().copied().min().unwrap_or(0);
+                        let others = tied.iter().filter(|&&j| j != i);
+                        (i, others.map(|&j| left[j].0.name()).collect())
                     }
                     Verdict::Ambiguous(tied) => {
                         this.ambiguous = tied.iter().map(|&i| left[i].0.name()).collect();
@@ -365,7 +399,13 @@ impl Search<'_> {
                         rounds.push(this);
                         break;
                     }
-                }
+                };
+                seed.clone_from(&fits[i]);
+                this.named = Some(left[i].0.name());
+                this.same_as = same_as;
+                named.push(left[i].0.name());
+                *model = left[i].1.clone();
+                rounds.push(this);
             }
         });
         (rounds, named, ambiguous, first)
@@ -539,6 +579,43 @@ impl Judge<'_> {
             (folds.genes[fold], folds.cost[fold]) = (genes, cost);
         }
         Some(folds)
+    }
+
+    /// Whether the candidates `tied` of `left`, fitted as `fits`, are one model: on
+    /// every fold's held-out rows each predicts the first one's wrench within
+    /// [`SAME_MODEL`] of the measured force's RMS.
+    fn one_model(
+        &self,
+        left: &[(Candidate, Extended)],
+        fits: &[Option<Folds>],
+        tied: &[usize],
+    ) -> bool {
+        let readings = |i: usize| -> Option<Vec<Vec<[f64; 6]>>> {
+            let fit = fits[i].as_ref()?;
+            Some(
+                (self.parts.iter().enumerate())
+                    .map(|(fold, (_, held))| {
+                        held.readings(&left[i].1.apply(self.base, &fit.genes[fold]))
+                    })
+                    .collect(),
+            )
+        };
+        let Some(first) = tied.first().and_then(|&i| readings(i)) else {
+            return false;
+        };
+        let scale = self.parts[0].1.force_scale.max(f64::MIN_POSITIVE);
+        tied[1..].iter().all(|&j| {
+            let Some(other) = readings(j) else {
+                return false;
+            };
+            let (mut sum, mut n) = (0.0, 0usize);
+            for (a, b) in first.iter().flatten().zip(other.iter().flatten()) {
+                sum += (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>();
+                n += 1;
+            }
+            let rms = (sum / n.max(1) as f64).sqrt();
+            n > 0 && rms <= SAME_MODEL * scale
+        })
     }
 
     /// `reference` improved by the candidates' fits: a candidate's genes without its
