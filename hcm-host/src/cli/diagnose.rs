@@ -25,10 +25,11 @@ use std::path::{Path, PathBuf};
 /// held-out runs (and a held-out condition) beside the base model and the HCM. Writes
 /// OUT/report.md, OUT/diagnosis.json and figures.
 ///
-/// On a 3D (rigid) scenario: the 3D catalogue (friction, resistance, normal-law and
-/// sensor effects) fitted with the base's own parameters on the wrench at the recorded
-/// poses, judged on held-out runs (even against odd); OUT/report.md, diagnosis.json,
-/// extended.toml (`--seed` and `--holdout` are not used there).
+/// On a 3D (rigid) scenario: the 3D catalogue (friction, resistance, normal and sensor
+/// effects, and every other law in the base's place) fitted with the base's own
+/// parameters on the wrench at the recorded poses, judged on held-out runs (even
+/// against odd); OUT/report.md, diagnosis.json, extended.toml (`--seed` and `--holdout`
+/// are not used there).
 ///
 /// Terms:
 ///   base model      the physics file given with `--physics` (e.g. from `hcm identify`)
