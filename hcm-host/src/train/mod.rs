@@ -253,6 +253,24 @@ pub(crate) fn chunked_gradient(
     (total, squared_error)
 }
 
+/// Σ over `rows` of what `row` returns (row, work space): summed in parallel over fixed
+/// chunks of 16 × [`CHUNK_ROWS`] rows, the chunks added in order — bit-identical
+/// whatever rayon's scheduling.
+pub(crate) fn chunked_sum(
+    layout: &Layout,
+    rows: &[usize],
+    row: impl Fn(usize, &mut network::Scratch) -> f64 + Sync,
+) -> f64 {
+    let sums: Vec<f64> = rows
+        .par_chunks(16 * CHUNK_ROWS)
+        .map(|chunk| {
+            let mut scratch = layout.scratch();
+            chunk.iter().map(|&r| row(r, &mut scratch)).sum::<f64>()
+        })
+        .collect();
+    sums.iter().sum::<f64>()
+}
+
 /// What the epoch loop ([`fit`]) minimises: a squared error over rows, each row with
 /// `columns` target values.
 pub(crate) trait Objective: Sync {
@@ -603,20 +621,11 @@ impl Objective for Normalised {
 
     /// MSE over `rows` and outputs in raw output units².
     fn loss(&self, layout: &Layout, parameters: &[f64], rows: &[usize]) -> f64 {
-        let sums: Vec<f64> = rows
-            .par_chunks(16 * CHUNK_ROWS)
-            .map(|chunk| {
-                let mut scratch = layout.scratch();
-                chunk
-                    .iter()
-                    .map(|&r| {
-                        let y_hat = layout.forward(parameters, self.row(r).0, &mut scratch);
-                        self.raw_squared_error(y_hat, r)
-                    })
-                    .sum::<f64>()
-            })
-            .collect();
-        sums.iter().sum::<f64>() / (rows.len() * self.n_out) as f64
+        let sum = chunked_sum(layout, rows, |r, scratch| {
+            let y_hat = layout.forward(parameters, self.row(r).0, scratch);
+            self.raw_squared_error(y_hat, r)
+        });
+        sum / (rows.len() * self.n_out) as f64
     }
 }
 

@@ -99,10 +99,11 @@ fn lever(
     };
     let mut columns = [[0.0; 6]; POINT_OUTPUTS];
     // k_n: δ × (the wrench of one more newton of normal force, friction following).
-    let physics = pm2.point_force(point).normal_force;
+    let law = pm2.point_force(point);
+    let physics = law.normal_force;
     let (more, now) = (
         on_mover(&pm2.point_force_with(point, physics + 1.0)),
-        on_mover(&pm2.point_force_with(point, physics)),
+        on_mover(&law),
     );
     for (column, (more, now)) in columns[0].iter_mut().zip(more.iter().zip(&now)) {
         *column = (more - now) * point.indentation.depth;

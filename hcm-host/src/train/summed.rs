@@ -21,12 +21,11 @@
 
 use super::network::Layout;
 use super::{
-    check_settings, chunked_gradient, exportable, fit_new, normalisation, split, Network,
-    Objective, TrainError, TrainReport, TrainSettings, CHUNK_ROWS,
+    check_settings, chunked_gradient, chunked_sum, exportable, fit_new, normalisation, split,
+    Network, Objective, TrainError, TrainReport, TrainSettings,
 };
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use rayon::prelude::*;
 use std::ops::Range;
 use std::time::Instant;
 
@@ -320,19 +319,10 @@ impl Summed {
         rows: &[usize],
         scale: &[f64],
     ) -> f64 {
-        let sums: Vec<f64> = rows
-            .par_chunks(16 * CHUNK_ROWS)
-            .map(|chunk| {
-                let mut scratch = layout.scratch();
-                (chunk.iter())
-                    .map(|&r| {
-                        let y = self.predict_scaled(layout, parameters, r, &mut scratch, scale);
-                        self.raw_squared_error(&y, r)
-                    })
-                    .sum::<f64>()
-            })
-            .collect();
-        sums.iter().sum()
+        chunked_sum(layout, rows, |r, scratch| {
+            let y = self.predict_scaled(layout, parameters, r, scratch, scale);
+            self.raw_squared_error(&y, r)
+        })
     }
 
     /// The outputs the fit on `rows` does not need (see [`train_summed`]).
