@@ -57,7 +57,11 @@ fn the_window_and_initial_state_of_a_simulated_toss_are_its_truth() {
     let track = run.body("cube").unwrap();
     let window = find_window(&setup, &run.id, track).unwrap();
     let height = |i: usize| track.samples[i].position[2];
-    assert!(height(window.near) < setup.radius, "{window:?}");
+    // The near frame is within the circumscribed radius, or the cube bounced off a
+    // corner between it and the next one (both frames beyond the radius).
+    let bounced = height(window.near - 1) >= height(window.near)
+        && height(window.near + 1) > height(window.near);
+    assert!(height(window.near) < setup.radius || bounced, "{window:?}");
     assert!(
         (0..window.near).all(|i| height(i) >= setup.radius),
         "{window:?}"
@@ -293,7 +297,7 @@ fn predict_refuses_data_without_poses() {
         "{error}"
     );
     assert!(!hcm.path("predicted.csv").exists());
-    // A scenario without a box: named.
+    // A scenario of another body: the data's body and the scenario's named.
     let error = hcm
         .run("predict")
         .opt("--scenario", hcm_tests::scenario("bouncing_ball.toml"))
@@ -301,7 +305,7 @@ fn predict_refuses_data_without_poses() {
         .opt("--out", "predicted.csv")
         .fails();
     assert!(
-        error.contains("bouncing_ball") && error.contains("must be a box"),
+        error.contains("bouncing_ball") && error.contains("`cube`") && error.contains("`ball`"),
         "{error}"
     );
 }

@@ -470,10 +470,14 @@ fn rolling_resistance_is_named_through_tracker_noise() {
 #[test]
 fn hcm_diagnose_motion_writes_its_answer_and_refuses_too_few_tosses() {
     let hcm = hcm_tests::cli::Hcm::new();
+    // The data set of `rolling_resistance_is_named_from_tosses`: the command must write
+    // what the library found. (Seed 9's set, used before issue 28's windows, now starts
+    // one toss's window before a corner bounce the frames straddle, and its 5 held-out
+    // tosses no longer carry rolling past t = 3: 12.5 ± 5.5, t 2.3, nothing named.)
     let data = recorded(
         &with_hidden(&cube_toss(&[]), Hidden::Rolling(5e-3)),
         Start::Toss,
-        9,
+        7,
     );
     let csv = hcm.path("tosses.csv");
     data.write(&csv).unwrap();

@@ -15,14 +15,18 @@ use hcm_host::scenario::{Assignment, Model};
 use hcm_host::toss::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};
 use std::path::PathBuf;
 
-/// Fit a tossed body's contact to filmed tosses (motion only) and judge it on held-out ones.
+/// Fit a thrown body's contact to filmed throws (motion only) and judge it on held-out ones.
 ///
 /// Example: `hcm identify-motion --scenario scenarios/cube_toss.toml --data data/contactnets-cube/tosses.csv --out fitted.toml`
 ///
-/// Splits the runs of --data by toss number (the digits ending a run id): even numbers
-/// are the training part, odd numbers the held-out part, which the fit never sees. On
-/// the training part, fits the contact law's stiffness and damping, the friction's μ_s
-/// and μ_d, the table offset and the body's inertia (a scale on the scenario's) by
+/// The scenario has one moving body (a box or a sphere) and its contacts with fixed
+/// bodies (planes, boxes, spheres, compounds); its first contact is fitted. Splits the
+/// runs of --data by toss number (the digits ending a run id): even numbers are the
+/// training part, odd numbers the held-out part, which the fit never sees. On the
+/// training part, fits the contact law's stiffness and damping (or restitution), the
+/// friction's μ_s and μ_d, the table offset and the body's inertia (a scale on the
+/// scenario's) — in the scenario's [identify.bounds.<law>] box where it gives one, else
+/// in one scaled from the scenario's own values — by
 /// replaying every toss from its window start (as `hcm predict` does) and minimising
 /// the mean position error (%) plus the mean rotation error (°): the genetic
 /// algorithm, then a Nelder–Mead polish, each candidate's tosses simulated in
@@ -30,15 +34,18 @@ use std::path::PathBuf;
 /// inertia, which a physics file cannot carry, are printed as the `--set`s that apply
 /// them, and kept in the file's notes; --scenario-out writes a scenario with all of
 /// them in), and prints the scores of the scenario's parameters, the fitted ones and
-/// the frozen pose on both parts.
+/// the frozen pose on both parts, and which parameters the training tosses leave
+/// loose (moving one ×/÷ 1.25, or by 10 % of its box, costs under 1 % of the fitness).
 ///
 /// Terms:
 ///   window         a toss's frames from 3 frames before the body's centre first comes
-///                  within its circumscribed radius of the plane to its last frame
+///                  within its circumscribed radius of a fixed body (or bounces off it
+///                  between two frames) to its last frame
 ///   position error mean over the window's frames of |p_pred − p| / the body's width, %
 ///   rotation error mean over the window's frames of the angle of R_predᵀ·R, degrees
 ///   fitness        mean position error + mean rotation error over the training tosses
-///   table offset   the plane's surface along its normal (m): the tracker's table height
+///   table offset   the fixed partner's surface moved (m): a plane along its normal,
+///                  another shape along the up direction; the tracker's table height
 ///   inertia scale  the factor (–) on the scenario's inertia tensor of the tossed body
 ///   frozen pose    the baseline: the body held at its recorded window-start pose
 ///   physics file   the fitted law with its parameters and friction, which
@@ -106,7 +113,24 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         fit.fitness
     );
     for (name, value) in &fit.parameters {
-        println!("  {name:<14} {value:.6e}");
+        let probe = fit.sensitivity.iter().find(|s| &s.name == name);
+        let note = match probe {
+            Some(s) if s.loose => "  not fixed by the data (moving it costs < 1 % of the fitness)",
+            _ => "",
+        };
+        println!("  {name:<14} {value:.6e}{note}");
+    }
+    let loose: Vec<&str> = (fit.sensitivity.iter())
+        .filter(|s| s.loose)
+        .map(|s| s.name.as_str())
+        .collect();
+    if !loose.is_empty() {
+        println!(
+            "warning: the training tosses do not fix {}: their value is one of many that \
+             replay the tosses as well; tosses that exercise them (sliding for friction, \
+             bouncing for the damping) would",
+            loose.join(", ")
+        );
     }
     let assignments = fitted_assignments(&model, &parameters, &fit.parameters);
     let sets = beside_physics(&model, &parameters, &fit.parameters);

@@ -24,8 +24,9 @@ use std::time::Instant;
 ///
 /// Terms:
 ///   window         a toss's frames from 3 frames before the body's centre first comes
-///                  within its circumscribed radius of the plane (the ContactNets cube:
-///                  0.0524·√3 m; nearer, a corner can touch) to its last frame
+///                  within its circumscribed radius of a fixed body it can touch (the
+///                  ContactNets cube: 0.0524·√3 m of the table; nearer, a corner can
+///                  touch), or bounces off it between two frames, to its last frame
 ///   initial state  the body's state at the window start: position and velocity fitted
 ///                  to the last 8 frames up to it (a parabola under the scenario's
 ///                  gravity, a straight line across), orientation and angular velocity

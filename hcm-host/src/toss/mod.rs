@@ -1,10 +1,11 @@
-//! Predicting measured tosses (issue 17): a body filmed while it is tossed onto a fixed
-//! plane — position and orientation per camera frame, no force — replayed in the 3D
+//! Predicting measured tosses (issue 17): a body filmed while it is tossed onto fixed
+//! bodies (a table, a ramp, a bin; issue 28 lifted the one plane) — position and
+//! orientation per camera frame, no force — replayed in the 3D
 //! simulator from each toss's *window* start, and the prediction scored against the
 //! recorded poses.
 //!
 //! - [`window`]: where a toss's window starts — [`LEAD_FRAMES`] frames before the
-//!   body's centre first comes within its circumscribed radius of the plane (below
+//!   body's centre first comes within its circumscribed radius of a partner (below
 //!   that a corner can touch; 0.0524·√3 m for the ContactNets cube).
 //! - [`initial_state`]: the state the replay starts from, re-estimated from the
 //!   free-flight frames up to the window start (a parabola under gravity for the
@@ -14,11 +15,14 @@
 //! - [`score`]: position error (% of the body's width) and rotation error (degrees),
 //!   per toss and over tosses; [`baseline`]: the frozen-pose baseline scored the same
 //!   way; [`evaluation`]: every toss of a file predicted and scored.
-//! - [`setup`]: what of a scenario the tosses need (the one moving body, its plane).
+//! - [`setup`]: what of a scenario the tosses need (the one moving body, the fixed
+//!   bodies it touches); [`partner`]: a fixed body's clearance and the shift and tilt a
+//!   tracker's calibration error makes to it.
 
 pub mod baseline;
 pub mod evaluation;
 pub mod initial_state;
+pub mod partner;
 pub mod predict;
 pub mod score;
 pub mod setup;
@@ -42,7 +46,7 @@ use crate::simulate::SimulationError;
 /// data's or the scenario's terms.
 #[derive(Debug, thiserror::Error)]
 pub enum TossError {
-    /// The scenario does not describe one body tossed onto a plane.
+    /// The scenario does not describe one body tossed onto fixed bodies.
     #[error("scenario `{scenario}`: {problem}")]
     Setup { scenario: String, problem: String },
     /// The data lack what the prediction needs.
@@ -54,11 +58,11 @@ pub enum TossError {
     /// A run has no track of the tossed body.
     #[error("run `{run}` has no samples of body `{body}` (the scenario's moving body); the data's `body` column must name it")]
     MissingBody { run: String, body: String },
-    /// The body's centre never comes near enough to the plane for a corner to touch.
+    /// The body's centre never comes near enough to a fixed body to touch it.
     #[error(
-        "run `{run}`: the centre of `{body}` never comes within {threshold} m of the plane \
+        "run `{run}`: the centre of `{body}` never comes within {threshold} m of a fixed body \
          (its lowest is {lowest} m at t = {lowest_time} s), so no contact and no window; \
-         leave the run out or check the plane's position (the table height)"
+         leave the run out or check the fixed bodies' positions (the table height)"
     )]
     NoContact {
         run: String,

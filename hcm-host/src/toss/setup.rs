@@ -1,6 +1,8 @@
-//! What of a scenario the tosses use: its one moving body (a box), the fixed plane it
-//! lands on, and the lengths the window and the scores are measured in.
+//! What of a scenario the tosses use: its one moving body (a box or a sphere), the
+//! fixed bodies it can touch, and the lengths the window and the scores are measured
+//! in.
 
+use super::partner::Partner;
 use super::TossError;
 use crate::dataset::{Channel, Dataset, Need, Requirement};
 use crate::scenario::{Model, Shape};
@@ -19,33 +21,30 @@ pub const TOSSES: Requirement = Requirement {
               poses, frame by frame",
 };
 
-/// The tossed body and its plane, read from a model.
+/// The replayed body and the fixed bodies it can touch, read from a model.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TossSetup {
     /// Index of the moving body in the model.
     pub(crate) body: usize,
     /// Its name (the data's `body` column).
     pub name: String,
-    /// The plane body's reference point (m, world frame): the table as the data's frame
-    /// has it. The contact's surface lies `offset` from it along the normal; the windows
-    /// are measured from this point, not from the surface, so that fitting the table's
-    /// height (the offset) leaves every toss's window, and the frames scored, as they are.
-    pub(crate) plane_point: Vector3<f64>,
-    /// The plane's unit outward normal (world frame).
-    pub(crate) plane_normal: Vector3<f64>,
-    /// Circumscribed radius: the largest distance from the centre to a corner (m);
-    /// 0.0524·√3 m for the ContactNets cube. Farther from the plane, nothing touches.
+    /// The fixed bodies it has a contact with, as the scenario places them (the window
+    /// is measured from these, whatever a fit later moves).
+    pub(crate) partners: Vec<Partner>,
+    /// Circumscribed radius: the largest distance from the centre to a point of the
+    /// body (m); 0.0524·√3 m for the ContactNets cube, the radius for a sphere. Farther
+    /// from every partner, nothing touches.
     pub radius: f64,
-    /// Width the position error is divided by: twice the largest half extent (m); the
-    /// cube's side, 0.1048 m.
+    /// Width the position error is divided by: twice the largest half extent, or the
+    /// diameter (m); the cube's side, 0.1048 m.
     pub width: f64,
     /// Gravity (m/s², world frame).
     pub(crate) gravity: Vector3<f64>,
 }
 
 impl TossSetup {
-    /// The setup of `model`: exactly one moving body, a box, in contact with a fixed
-    /// plane.
+    /// The setup of `model`: exactly one moving body, a box or a sphere, in contact
+    /// with at least one fixed body (a plane, a box, a sphere or a compound).
     pub fn new(model: &Model) -> Result<TossSetup, TossError> {
         let fail = |problem: String| TossError::Setup {
             scenario: model.scenario.name.clone(),
@@ -56,43 +55,39 @@ impl TossSetup {
             .collect();
         let [body] = moving[..] else {
             return Err(fail(format!(
-                "a toss has one moving body, and this scenario has {}",
+                "a replay from motion follows one moving body, and this scenario has {}",
                 moving.len()
             )));
         };
         let tossed = &model.bodies[body];
-        let Shape::Box { half_extents } = tossed.shape else {
-            return Err(fail(format!(
-                "body `{}` must be a box (shape = {{ box = {{ half_extents = [a, b, c] }} }}) \
-                 to be tossed",
-                tossed.name
-            )));
+        let (radius, width) = match tossed.shape {
+            Shape::Box { half_extents } => (half_extents.norm(), 2.0 * half_extents.max()),
+            Shape::Sphere { radius } => (radius, 2.0 * radius),
+            _ => {
+                return Err(fail(format!(
+                    "body `{}` must be a box or a sphere to be replayed from its poses",
+                    tossed.name
+                )))
+            }
         };
-        let plane = model
-            .contacts
-            .iter()
+        let partners: Vec<Partner> = (model.contacts.iter())
             .filter(|c| c.body_1 == body || c.body_2 == body)
             .map(|c| c.body_1 + c.body_2 - body)
-            .find_map(|other| match model.bodies[other].shape {
-                Shape::Plane { normal, .. } => {
-                    let fixed = &model.bodies[other];
-                    Some((fixed.position, fixed.orientation * normal))
-                }
-                _ => None,
-            })
-            .ok_or_else(|| {
-                fail(format!(
-                    "body `{}` has no contact with a fixed plane (the table) to land on",
-                    tossed.name
-                ))
-            })?;
+            .map(|other| Partner::of(model, other))
+            .collect();
+        if partners.is_empty() {
+            return Err(fail(format!(
+                "body `{}` has no contact with a fixed body to land on; add a \
+                 [[contact]] with its bodies",
+                tossed.name
+            )));
+        }
         Ok(TossSetup {
             body,
             name: tossed.name.clone(),
-            plane_point: plane.0,
-            plane_normal: plane.1,
-            radius: half_extents.norm(),
-            width: 2.0 * half_extents.max(),
+            partners,
+            radius,
+            width,
             gravity: model.gravity,
         })
     }
@@ -105,9 +100,12 @@ impl TossSetup {
         Ok(data.require(file, model, &contacts, &TOSSES)?)
     }
 
-    /// Height of a centre at `position` (m) above the plane's reference point, along
-    /// its normal (m).
-    pub fn height(&self, position: &Vector3<f64>) -> f64 {
-        self.plane_normal.dot(&(position - self.plane_point))
+    /// Clearance of a centre at `position` (m) from the nearest partner (m): a plane's
+    /// height above its reference point along its normal, another shape's distance
+    /// to its surface ([`Partner::clearance`]).
+    pub fn clearance(&self, position: &Vector3<f64>) -> f64 {
+        (self.partners.iter())
+            .map(|p| p.clearance(position))
+            .fold(f64::INFINITY, f64::min)
     }
 }

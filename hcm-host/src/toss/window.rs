@@ -1,17 +1,18 @@
 //! A toss's window: the frames a prediction is judged on. Issue 17 defines it to start
 //! [`LEAD_FRAMES`] frames before the body's centre first comes within its circumscribed
-//! radius of the plane (0.0524·√3 m for the ContactNets cube) — before that frame no
-//! corner can touch, so the motion is free flight, which the simulator predicts exactly
-//! and which would flatter any score — and to run to the toss's last frame. The height
-//! is measured from the plane body's reference point (the table of the data's frame,
-//! z = 0 for the tosses), not from its contact surface, which a fitted offset moves: the
-//! frames scored are the data's, whatever the model.
+//! radius of a fixed body it can touch (0.0524·√3 m of the table for the ContactNets
+//! cube) — before that frame no corner can touch, so the motion is free flight, which
+//! the simulator predicts exactly and which would flatter any score — and to run to the
+//! toss's last frame. A plane's clearance is measured from its reference point (the
+//! table of the data's frame, z = 0 for the tosses), not from its contact surface, which
+//! a fitted offset moves: the frames scored are the data's, whatever the model
+//! ([`super::partner`]).
 
 use super::{TossError, TossSetup};
 use crate::dataset::{BodyTrack, Channel};
 use nalgebra::Vector3;
 
-/// Frames the window starts before the first frame within reach of the plane (–).
+/// Frames the window starts before the first frame within reach of a fixed body (–).
 pub const LEAD_FRAMES: usize = 3;
 
 /// One toss's window, as indices into its body track's samples.
@@ -20,7 +21,7 @@ pub struct Window {
     /// First frame of the window: [`LEAD_FRAMES`] before `near`, or the toss's first
     /// frame if it has fewer before `near`.
     pub start: usize,
-    /// First frame whose centre lies within the circumscribed radius of the plane.
+    /// First frame whose centre lies within the circumscribed radius of a fixed body.
     pub near: usize,
     /// Frames in the toss (the window runs from `start` to the last).
     pub frames: usize,
@@ -39,11 +40,14 @@ impl Window {
 }
 
 /// The window of `run`'s track of the tossed body. Every frame must hold a position
-/// (the camera's); a toss whose centre never comes within reach of the plane has no
-/// window and is an error naming the run and its lowest height.
+/// (the camera's). The window's `near` frame is the first within the circumscribed
+/// radius of a partner, or the first where the body turned away from one within a
+/// frame's travel of touching it (a bounce between two frames); a toss with neither
+/// has no window and is an error naming the run and its lowest clearance.
 pub fn find_window(setup: &TossSetup, run: &str, track: &BodyTrack) -> Result<Window, TossError> {
     let mut lowest = (f64::INFINITY, f64::NAN);
-    for (index, sample) in track.samples.iter().enumerate() {
+    let mut clearances = Vec::with_capacity(track.samples.len());
+    for sample in &track.samples {
         if !sample.has(Channel::Position) {
             return Err(TossError::Frame {
                 run: run.to_owned(),
@@ -55,23 +59,37 @@ pub fn find_window(setup: &TossSetup, run: &str, track: &BodyTrack) -> Result<Wi
                 ),
             });
         }
-        let height = setup.height(&Vector3::from(sample.position));
-        if height < setup.radius {
-            return Ok(Window {
-                start: index.saturating_sub(LEAD_FRAMES),
-                near: index,
-                frames: track.samples.len(),
-            });
-        }
+        let height = setup.clearance(&Vector3::from(sample.position));
         if height < lowest.0 {
             lowest = (height, sample.time);
         }
+        clearances.push(height);
     }
-    Err(TossError::NoContact {
-        run: run.to_owned(),
-        body: setup.name.clone(),
-        threshold: setup.radius,
-        lowest: lowest.0,
-        lowest_time: lowest.1,
-    })
+    let position = |k: usize| Vector3::from(track.samples[k].position);
+    let near = (0..clearances.len()).find(|&k| {
+        let c = clearances[k];
+        // A contact shorter than a frame (a ball's bounce) may fall between two frames
+        // that both lie beyond reach: the frame where the body turned away from its
+        // partner within one frame's travel of touching it counts too.
+        let turned = k > 0
+            && k + 1 < clearances.len()
+            && clearances[k - 1] >= c
+            && c < clearances[k + 1]
+            && c < setup.radius + (position(k + 1) - position(k)).norm();
+        c < setup.radius || turned
+    });
+    match near {
+        Some(index) => Ok(Window {
+            start: index.saturating_sub(LEAD_FRAMES),
+            near: index,
+            frames: track.samples.len(),
+        }),
+        None => Err(TossError::NoContact {
+            run: run.to_owned(),
+            body: setup.name.clone(),
+            threshold: setup.radius,
+            lowest: lowest.0,
+            lowest_time: lowest.1,
+        }),
+    }
 }

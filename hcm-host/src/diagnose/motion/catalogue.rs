@@ -8,10 +8,10 @@
 
 use crate::dataset::Dataset;
 use crate::numerics::optimize::Bound;
-use crate::scenario::{Model, Shape};
+use crate::scenario::Model;
+use crate::toss::partner::{shift_surface, tilt_surface};
 use hcm_core::effect::{ContactEffect, HysteresisDamping};
 use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};
-use nalgebra::{UnitQuaternion, Vector3};
 
 /// Rotation rate (rad/s) below which the resistance couples fade: slow against a
 /// tumbling cube (rad/s to tens of rad/s), fast against a body at rest.
@@ -197,9 +197,9 @@ impl MotionEffect {
         }
     }
 
-    /// `model` with the change `values` stand for at `contact` against `plane` (data
+    /// `model` with the change `values` stand for at `contact` against fixed body `partner` (data
     /// transforms leave the model as it is).
-    pub fn apply(self, model: &Model, contact: usize, plane: usize, values: &[f64]) -> Model {
+    pub fn apply(self, model: &Model, contact: usize, partner: usize, values: &[f64]) -> Model {
         let mut out = model.clone();
         let first = values.first().copied().unwrap_or(0.0);
         let physics = &mut out.contacts[contact].model;
@@ -244,21 +244,14 @@ impl MotionEffect {
                         .push(ContactEffect::HysteresisDamping(damping));
                 }
             }
-            MotionEffect::TableOffset => {
-                if let Shape::Plane { offset, .. } = &mut out.bodies[plane].shape {
-                    *offset += first;
-                }
-            }
+            MotionEffect::TableOffset => shift_surface(&mut out, partner, first),
             MotionEffect::TableTilt => {
                 let second = values.get(1).copied().unwrap_or(0.0);
-                let tilt = UnitQuaternion::from_scaled_axis(Vector3::new(first, second, 0.0));
-                if let Shape::Plane { normal, .. } = &mut out.bodies[plane].shape {
-                    *normal = tilt * *normal;
-                }
+                tilt_surface(&mut out, partner, first, second);
             }
             MotionEffect::InertiaScale => {
                 let c = &out.contacts[contact];
-                let body = c.body_1 + c.body_2 - plane;
+                let body = c.body_1 + c.body_2 - partner;
                 out.bodies[body].inertia *= first;
             }
             MotionEffect::LengthScale => {}

@@ -26,16 +26,16 @@ const FRACTION_TOLERANCE: f64 = 1e-6;
 /// Polish evaluations of a two-parameter candidate (–).
 const POLISH_2D: usize = 40;
 
-/// Where a candidate is evaluated: the user's model, the contact and plane it
-/// changes, and the data.
+/// Where a candidate is evaluated: the user's model, the contact and the fixed
+/// partner (a table, a ramp…) it changes, and the data.
 #[derive(Clone, Copy, Debug)]
 pub struct Subject<'a> {
     /// The model the candidates change.
     pub(crate) model: &'a Model,
-    /// Index of the body's contact with the plane.
+    /// Index of the body's contact with the partner.
     pub(crate) contact: usize,
-    /// Index of the plane's body.
-    pub(crate) plane: usize,
+    /// Index of the partner's body.
+    pub(crate) partner: usize,
 }
 
 /// One part of the tosses (training or held out) as every candidate of a round reads
@@ -76,7 +76,7 @@ impl Subject<'_> {
         values: &[f64],
         part: &Part<'_>,
     ) -> Option<Vec<f64>> {
-        let model = effect.apply(self.model, self.contact, self.plane, values);
+        let model = effect.apply(self.model, self.contact, self.partner, values);
         match effect.transform(part.data, values) {
             Some(read) => scores_of(&MotionTarget::new(self.model, &read).ok()?, &model),
             None => scores_of(&part.target, &model),

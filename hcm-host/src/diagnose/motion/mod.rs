@@ -128,7 +128,7 @@ type Fit = (MotionEffect, Fitted, Option<Vec<f64>>);
 /// What a round's candidates are fitted and judged on: the round's model and the
 /// tosses read through it.
 struct Stage<'a> {
-    /// The round's model, its contact and plane.
+    /// The round's model, its contact and fixed partner.
     subject: Subject<'a>,
     /// The training tosses, prepared from the round's model.
     training: Part<'a>,
@@ -177,7 +177,7 @@ struct Search {
     training: Dataset,
     /// The held-out tosses (likewise).
     held_out: Dataset,
-    /// The body's contact with the plane, and the plane.
+    /// The body's contact with its fixed partner, and the partner.
     indices: MotionParameters,
     /// The body's mass (kg).
     mass: f64,
@@ -203,11 +203,11 @@ impl Search {
         round: usize,
         progress: &dyn Progress,
     ) -> Result<bool, MotionDiagnoseError> {
-        let (contact, plane) = (self.indices.contact, self.indices.plane);
+        let (contact, partner) = (self.indices.contact, self.indices.partner);
         let subject = Subject {
             model: &self.current,
             contact,
-            plane,
+            partner,
         };
         let (training_part, held_part) = (
             Part::new(&self.current, &self.training)?,
@@ -259,9 +259,9 @@ impl Search {
     /// candidate (`second`) adds beyond a rival (`first`). None where `second` cannot change that model or a
     /// replay fails.
     fn stacked(&self, first: &Fit, second: MotionEffect) -> Option<Vec<f64>> {
-        let (contact, plane) = (self.indices.contact, self.indices.plane);
+        let (contact, partner) = (self.indices.contact, self.indices.partner);
         let (effect, fitted, _) = first;
-        let model = effect.apply(&self.current, contact, plane, &fitted.values);
+        let model = effect.apply(&self.current, contact, partner, &fitted.values);
         if !second.changes(&model, contact) {
             return None;
         }
@@ -275,7 +275,7 @@ impl Search {
         let subject = Subject {
             model: &model,
             contact,
-            plane,
+            partner,
         };
         let bounds = second.bounds(self.mass, self.size);
         let neutral = second.neutral(&model, contact);
@@ -286,14 +286,14 @@ impl Search {
     /// Names candidate `index` of the round `this`: adds it to the model, reads the
     /// tosses through it where it is a measurement effect, and records the round.
     fn name(&mut self, mut this: Round, mut held_scores: Vec<Fit>, index: usize) {
-        let (contact, plane) = (self.indices.contact, self.indices.plane);
+        let (contact, partner) = (self.indices.contact, self.indices.partner);
         let (effect, fitted, held) = held_scores.swap_remove(index);
         this.named = Some(effect.name());
         self.named.push((
             effect.name().to_owned(),
             this.candidates[index].parameters.clone(),
         ));
-        self.current = effect.apply(&self.current, contact, plane, &fitted.values);
+        self.current = effect.apply(&self.current, contact, partner, &fitted.values);
         if let Some(read) = effect.transform(&self.training, &fitted.values) {
             self.training = read;
         }
@@ -324,7 +324,7 @@ impl Search {
     }
 }
 
-/// Diagnoses `model` against `data` (poses of one body tossed or sliding on a plane),
+/// Diagnoses `model` against `data` (poses of one body tossed onto or sliding on fixed bodies),
 /// reporting [`ProgressStage::Diagnose`] to `progress`: its steps are each round's
 /// candidates, advanced before each candidate's fit, its status the round.
 pub fn diagnose_motion(

@@ -15,7 +15,7 @@ use rayon::prelude::*;
 /// candidate is judged on the same frames.
 #[derive(Clone, Debug)]
 pub struct MotionTarget<'a> {
-    /// The tossed body and its plane as the scenario has them.
+    /// The thrown body and the fixed bodies it touches as the scenario has them.
     pub(crate) setup: TossSetup,
     /// The tosses.
     pub(crate) tosses: Vec<PreparedToss<'a>>,

@@ -7,12 +7,14 @@
 //! split by [`split`]: the fit never sees the held-out part.
 
 pub mod fitness;
+pub mod identifiability;
 pub mod parameters;
 pub mod physics_file;
 pub mod scenario_file;
 pub mod split;
 
 pub use fitness::{fitness, toss_scores, MotionTarget};
+pub use identifiability::Sensitivity;
 pub use parameters::MotionParameters;
 pub use physics_file::{fitted_physics, set_options};
 pub use scenario_file::{beside_physics, fitted_assignments, fitted_scenario_text};
@@ -37,8 +39,12 @@ pub struct MotionFit {
     pub genetic_fitness: f64,
     /// The fitness after the polish.
     pub fitness: f64,
-    /// Replays of the training set simulated.
+    /// Replays of the training set simulated (the search and the polish; the probes
+    /// add two per parameter).
     pub evaluations: usize,
+    /// Which parameters the training tosses fix ([`identifiability`]), in
+    /// `parameters`' gene order (μ_d/μ_s for `mu_dynamic`).
+    pub sensitivity: Vec<Sensitivity>,
     /// Wall-clock time (s).
     pub seconds: f64,
 }
@@ -91,8 +97,17 @@ pub fn identify_motion(
             nelder_mead::polish(&bounds, from, from_fitness, polish_budget, score, observer)
         },
     );
+    let names: Vec<String> = (bounds.iter())
+        .map(|b| match b.name.as_str() {
+            "mu_ratio" => "mu_dynamic".to_owned(),
+            name => name.to_owned(),
+        })
+        .collect();
+    let sensitivity =
+        identifiability::probe(&bounds, &names, &polished.best, polished.fitness, score);
     Ok(MotionFit {
         model: parameters.apply(model, &polished.best),
+        sensitivity,
         parameters: parameters.named(&polished.best),
         start_fitness,
         genetic_fitness: genetic.fitness,

@@ -1,39 +1,46 @@
 //! What the fit from motion frees, and the box it searches: the contact law's
 //! stiffness and its damping (how hard and how bouncy the landing is), the STEP
-//! friction's μ_s and μ_d (how far the body slides), the table's height (the
-//! tracker puts the resting cube 1 mm lower than its half width) and the tossed body's
-//! inertia, as a scale k on the scenario's tensor (how far its mass sits from the
-//! centre: how long a tumble lasts for the spin it starts with — the ContactNets
-//! cube's own inertia was itself identified by its authors). The law's exponent,
-//! its full-damping depth and the friction's transition speeds stay the scenario's:
-//! poses at 148 Hz cannot tell them apart from the rest.
+//! friction's μ_s and μ_d (how far the body slides), the fixed partner's height (the
+//! tracker puts the resting ContactNets cube 1 mm lower than its half width) and the
+//! replayed body's inertia, as a scale k on the scenario's tensor (how far its mass
+//! sits from the centre: how long a tumble lasts for the spin it starts with — the
+//! ContactNets cube's own inertia was itself identified by its authors). The law's
+//! exponent, its full-damping depth and the friction's transition speeds stay the
+//! scenario's: poses at a camera's rate cannot tell them apart from the rest.
+//!
+//! The law's box is the scenario's `[identify.bounds.<law>]` where it gives one, else
+//! scaled from the scenario itself (issue 28: no fixed numbers that fit one example):
+//! a stiffness or a damping from the scenario's own value ÷/× [`SPAN`]; a damping the
+//! scenario sets to zero from the body's critical damping on its static indentation;
+//! a restitution over 0.05…1.
 //!
 //! Friction is searched as μ_s and μ_d/μ_s ∈ [0.3, 1], so every candidate is a valid law.
 
 use crate::numerics::optimize::{Bound, Parameters};
-use crate::scenario::{Model, Shape};
+use crate::scenario::Model;
+use crate::toss::partner::shift_surface;
 use crate::toss::{TossError, TossSetup};
 
-/// The law parameters freed per law: (name, lower, upper, log scale), SI units.
-fn law_genes(law: &str) -> Option<[(&'static str, f64, f64, bool); 2]> {
-    match law {
-        "impact" => Some([
-            ("stiffness", 1e6, 1e8, true),
-            ("max_damping", 30.0, 3e3, true),
-        ]),
-        "hunt_crossley" => Some([("stiffness", 1e6, 1e8, true), ("damping", 0.1, 50.0, true)]),
-        "lankarani_nikravesh" | "flores" => Some([
-            ("stiffness", 1e6, 1e8, true),
-            ("restitution", 0.05, 1.0, false),
-        ]),
-        _ => None,
-    }
-}
+/// Factor on each side of the scenario's stiffness or damping its box spans (–).
+pub const SPAN: f64 = 30.0;
 
-/// The friction, table and body genes: name, lower, upper (–, –, m, –), log scale.
-/// The inertia scale's box spans a body with its mass at the centre to one with it
-/// at its surface: a uniform cube's 6.8e-4 kg·m² is 0.84 of the ContactNets data
-/// set's value, a hollow shell's 1.13e-3 is 1.4 of it.
+/// Law parameters the fit from motion frees, where the law has them: what sets how
+/// hard (a stiffness, a modulus) and how bouncy (a damping, a restitution) a landing is.
+const FREED: [&str; 5] = [
+    "stiffness",
+    "effective_modulus",
+    "max_damping",
+    "damping",
+    "restitution",
+];
+
+/// The friction, partner and body genes: name, lower, upper (–, –, m, –), log scale.
+/// μ_s reaches past 0.6 when the scenario's own is higher (see [`other_genes`]). The
+/// partner's shift is a tracker's calibration error, −3 … +1 mm whatever the body
+/// (the ContactNets table sits 1 mm lower than the cube's half width). The inertia
+/// scale's box spans a body with its mass at the centre to one with it at its
+/// surface: a uniform cube's 6.8e-4 kg·m² is 0.84 of the ContactNets data set's
+/// value, a hollow shell's 1.13e-3 is 1.4 of it.
 const OTHER_GENES: [(&str, f64, f64, bool); 4] = [
     ("mu_static", 0.05, 0.6, false),
     ("mu_ratio", 0.3, 1.0, false),
@@ -41,65 +48,142 @@ const OTHER_GENES: [(&str, f64, f64, bool); 4] = [
     ("inertia_scale", 0.5, 2.0, true),
 ];
 
-/// The free parameters of the tossed body's contact with its plane.
+/// The free parameters of the replayed body's contact with a fixed partner.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MotionParameters {
     /// Index of the contact.
     pub contact: usize,
-    /// Index of the plane's body.
-    pub(crate) plane: usize,
-    /// Index of the tossed body.
+    /// Index of the partner's body (a table, a ramp…).
+    pub(crate) partner: usize,
+    /// Index of the replayed body.
     pub(crate) body: usize,
-    /// The law's two genes.
-    law: [(&'static str, f64, f64, bool); 2],
+    /// The law's genes (one or two), then the other four.
+    genes: Vec<Bound>,
 }
 
 impl MotionParameters {
-    /// The parameters of `model`'s contact between its tossed body and the plane; the
-    /// contact needs STEP friction and a law with a stiffness and a damping to fit.
+    /// The parameters of `model`'s first contact between its replayed body and a fixed
+    /// body; the contact needs STEP friction and a law with a stiffness to fit.
     pub fn new(model: &Model, setup: &TossSetup) -> Result<MotionParameters, TossError> {
         let fail = |problem: String| TossError::Setup {
             scenario: model.scenario.name.clone(),
             problem,
         };
-        let (contact, plane) = (model.contacts.iter().enumerate())
+        let (contact, partner) = (model.contacts.iter().enumerate())
             .filter(|(_, c)| c.body_1 == setup.body || c.body_2 == setup.body)
             .map(|(i, c)| (i, c.body_1 + c.body_2 - setup.body))
-            .find(|&(_, other)| matches!(model.bodies[other].shape, Shape::Plane { .. }))
-            .ok_or_else(|| fail(format!("body `{}` has no contact with a plane", setup.name)))?;
+            .next()
+            .ok_or_else(|| fail(format!("body `{}` has no contact to fit", setup.name)))?;
         let found = &model.contacts[contact];
-        if found.model.friction.is_none() {
+        let Some(friction) = found.model.friction else {
             return Err(fail(format!(
                 "contact {contact} has no friction to fit; give it \
                  `friction = {{ mu_static, mu_dynamic, v_static, v_dynamic }}`"
             )));
-        }
-        let name = found.law().name();
-        let law = law_genes(name).ok_or_else(|| {
-            fail(format!(
-                "contact {contact}: the fit from motion frees a stiffness and a damping of \
-                 `impact`, `hunt_crossley`, `lankarani_nikravesh` or `flores`, not of `{name}`"
-            ))
-        })?;
+        };
+        let mut genes = law_genes(model, contact, setup).map_err(fail)?;
+        genes.extend(other_genes(friction.static_coefficient));
         Ok(MotionParameters {
             contact,
-            plane,
+            partner,
             body: setup.body,
-            law,
+            genes,
         })
+    }
+
+    /// Genes of the law (one or two).
+    fn law_len(&self) -> usize {
+        self.genes.len() - OTHER_GENES.len()
     }
 }
 
-/// The genes, in order: the law's two, `mu_static`, `mu_ratio` (μ_d/μ_s),
-/// `table_offset` (m, the plane's surface along its normal), `inertia_scale` (–, on
-/// the scenario's inertia tensor of the tossed body).
+/// The friction, partner and body bounds, μ_s's upper bound raised to twice the
+/// scenario's μ_s (–) where that is higher.
+fn other_genes(mu_static: f64) -> impl Iterator<Item = Bound> {
+    OTHER_GENES.iter().map(move |row| {
+        let mut bound = Bound::of_row(row);
+        if row.0 == "mu_static" && mu_static.is_finite() {
+            bound.upper = bound.upper.max(2.0 * mu_static);
+        }
+        bound
+    })
+}
+
+/// The law's freed parameters of `contact` and their box (see the module
+/// documentation), or why the law has none to fit.
+fn law_genes(model: &Model, contact: usize, setup: &TossSetup) -> Result<Vec<Bound>, String> {
+    let law = model.contacts[contact].law();
+    let name = law.name();
+    let given = model.scenario.identify.bounds.get(name);
+    let genes: Vec<Bound> = (law.kind().parameters().iter())
+        .filter(|p| FREED.contains(&p.name))
+        .map(|p| {
+            let value = law.get(p.name).unwrap_or(f64::NAN);
+            let (lower, upper, log) = match given.and_then(|g| g.get(p.name)) {
+                Some(&[lower, upper]) => (lower, upper, lower > 0.0),
+                None if p.name == "restitution" => (0.05, 1.0, false),
+                None if value > 0.0 && value.is_finite() => (value / SPAN, value * SPAN, true),
+                None => {
+                    let scale = zero_damping_scale(model, contact, setup, p.name);
+                    (scale / 1e3, scale * 10.0, true)
+                }
+            };
+            Bound {
+                name: p.name.to_owned(),
+                lower,
+                upper,
+                log_scale: log,
+            }
+        })
+        .collect();
+    if genes
+        .iter()
+        .any(|g| g.name == "stiffness" || g.name == "effective_modulus")
+    {
+        Ok(genes)
+    } else {
+        Err(format!(
+            "contact {contact}: the fit from motion frees a law's stiffness and damping \
+             ({}), and `{name}` has none of them",
+            FREED.join(", ")
+        ))
+    }
+}
+
+/// The scale of a damping the scenario sets to zero: for IMPACT's `max_damping` the
+/// critical damping 2·√(k_lin·m) (N·s/m) of the body's mass on the linearised law at
+/// its static indentation, δ_s = (m·g/k)^(1/e), k_lin = e·k·δ_s^(e−1); for any other
+/// damping 1 in its own unit (Hunt–Crossley's χ: 1 s/m, the restitution of a 1 m/s
+/// landing near 0.3).
+fn zero_damping_scale(model: &Model, contact: usize, setup: &TossSetup, name: &str) -> f64 {
+    let law = model.contacts[contact].law();
+    let (Ok(k), Ok(e)) = (law.get("stiffness"), law.get("exponent")) else {
+        return 1.0;
+    };
+    if name != "max_damping" || !(k > 0.0 && e > 0.0) {
+        return 1.0;
+    }
+    let m = model.bodies[setup.body].mass;
+    let weight = m * setup.gravity.norm();
+    let depth = (weight / k).powf(1.0 / e);
+    let linear = e * k * depth.powf(e - 1.0);
+    let critical = 2.0 * (linear * m).sqrt();
+    if critical.is_finite() && critical > 0.0 {
+        critical
+    } else {
+        1.0
+    }
+}
+
+/// The genes, in order: the law's (one or two), `mu_static`, `mu_ratio` (μ_d/μ_s),
+/// `table_offset` (m, the partner's surface moved from the scenario's: a plane along
+/// its normal, another shape along the up direction), `inertia_scale` (–, on the
+/// scenario's inertia tensor of the replayed body).
 impl Parameters for MotionParameters {
     type Target = Model;
 
     fn bounds(&self) -> Vec<Bound> {
-        (self.law.iter().chain(&OTHER_GENES))
-            .map(Bound::of_row)
-            .collect()
+        self.genes.clone()
     }
 
     /// The genes of `model` as it is (the scenario's values), clamped into the box.
@@ -113,54 +197,47 @@ impl Parameters for MotionParameters {
             ),
             _ => (0.0, 1.0),
         };
-        let offset = match model.bodies[self.plane].shape {
-            Shape::Plane { offset, .. } => offset,
-            _ => 0.0,
-        };
-        let mut genes: Vec<f64> = self
-            .law
-            .iter()
-            .map(|g| law.get(g.0).unwrap_or(g.1))
+        let mut genes: Vec<f64> = (self.genes[..self.law_len()].iter())
+            .map(|g| law.get(&g.name).unwrap_or(g.lower))
             .collect();
-        // The scenario's own inertia: scale 1.
-        genes.extend([mu_static, mu_ratio, offset, 1.0]);
-        genes
-            .iter()
-            .zip(self.bounds())
+        // The scenario's own partner and inertia: shift 0, scale 1.
+        genes.extend([mu_static, mu_ratio, 0.0, 1.0]);
+        (genes.iter().zip(&self.genes))
             .map(|(g, b)| g.clamp(b.lower, b.upper))
             .collect()
     }
 
-    /// `model` with the parameters `genes` stand for (the inertia scale on `model`'s
-    /// own tensor: give it the scenario's model, not a fitted one).
+    /// `model` with the parameters `genes` stand for (the shift and the inertia scale
+    /// on `model`'s own partner and tensor: give it the scenario's model, not a fitted
+    /// one).
     fn apply(&self, model: &Model, genes: &[f64]) -> Model {
         let mut out = model.clone();
+        let (law, other) = genes.split_at(self.law_len().min(genes.len()));
         let contact = &mut out.contacts[self.contact];
-        for (gene, value) in self.law.iter().zip(genes) {
-            // The names come from the law's own table above: set cannot fail.
-            let _ = contact.model.normal.base.set(gene.0, *value);
+        for (gene, value) in self.genes.iter().zip(law) {
+            // The names come from the law's own parameter list: set cannot fail.
+            let _ = contact.model.normal.base.set(&gene.name, *value);
         }
-        if let (Some(friction), [_, _, mu_static, mu_ratio, offset, inertia_scale]) =
-            (contact.model.friction.as_mut(), genes)
+        if let (Some(friction), [mu_static, mu_ratio, shift, inertia_scale]) =
+            (contact.model.friction.as_mut(), other)
         {
             friction.static_coefficient = *mu_static;
             friction.dynamic_coefficient = mu_static * mu_ratio;
-            if let Shape::Plane { offset: slot, .. } = &mut out.bodies[self.plane].shape {
-                *slot = *offset;
-            }
+            shift_surface(&mut out, self.partner, *shift);
             out.bodies[self.body].inertia *= *inertia_scale;
         }
         out
     }
 
-    /// The named values (SI units) `genes` stand for: the law's two, `mu_static`,
+    /// The named values (SI units) `genes` stand for: the law's, `mu_static`,
     /// `mu_dynamic`, `table_offset` (m), `inertia_scale` (–).
     fn named(&self, genes: &[f64]) -> Vec<(String, f64)> {
-        let mut out: Vec<(String, f64)> = (self.law.iter())
-            .zip(genes)
-            .map(|(g, v)| (g.0.to_owned(), *v))
+        let (law, other) = genes.split_at(self.law_len().min(genes.len()));
+        let mut out: Vec<(String, f64)> = (self.genes.iter())
+            .zip(law)
+            .map(|(g, v)| (g.name.clone(), *v))
             .collect();
-        if let [_, _, mu_static, mu_ratio, offset, inertia_scale] = genes {
+        if let [mu_static, mu_ratio, offset, inertia_scale] = other {
             out.extend([
                 ("mu_static".to_owned(), *mu_static),
                 ("mu_dynamic".to_owned(), mu_static * mu_ratio),

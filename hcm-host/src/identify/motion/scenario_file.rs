@@ -5,7 +5,8 @@
 //! table's height; this file carries all three (the original's comments are not kept).
 
 use super::MotionParameters;
-use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
+use crate::scenario::{Assignment, Model, Scenario, ScenarioError, Shape};
+use crate::toss::partner::up;
 
 /// The assignments that turn `model`'s scenario into the fitted one, from the
 /// fit's [`MotionParameters::named`] values: the law's two parameters, `mu_static`,
@@ -40,8 +41,9 @@ pub fn beside_physics(
         .collect()
 }
 
-/// The assignment of one body gene: `table_offset` puts the plane's surface at `value`
-/// (m); `inertia_scale` sets the tossed body's inertia to `value` times `model`'s,
+/// The assignment of one body gene: `table_offset` moves the partner's surface by
+/// `value` (m) from `model`'s (a plane's offset, another shape's position along the up
+/// direction); `inertia_scale` sets the tossed body's inertia to `value` times `model`'s,
 /// as principal moments when the tensor is diagonal (kg·m²).
 fn body_assignment(
     model: &Model,
@@ -50,8 +52,17 @@ fn body_assignment(
     value: f64,
 ) -> Assignment {
     if name == "table_offset" {
-        let table = &model.bodies[parameters.plane].name;
-        return Assignment::body(table, &["shape", "plane", "offset"], value);
+        let partner = &model.bodies[parameters.partner];
+        return match partner.shape {
+            Shape::Plane { offset, .. } => {
+                Assignment::body(&partner.name, &["shape", "plane", "offset"], offset + value)
+            }
+            _ => {
+                let moved = partner.position + up(model) * value;
+                let row = toml::Value::Array(moved.iter().map(|&x| x.into()).collect());
+                Assignment::body(&partner.name, &["position"], row)
+            }
+        };
     }
     let body = &model.bodies[parameters.body];
     let inertia = body.inertia * value;
@@ -129,7 +140,7 @@ mod tests {
                     .max()
                     < 1e-18
             );
-            match replayed.bodies[parameters.plane].shape {
+            match replayed.bodies[parameters.partner].shape {
                 crate::scenario::Shape::Plane { offset, .. } => assert_eq!(offset, -1.5e-3),
                 _ => panic!("the table is a plane"),
             }

@@ -2,7 +2,7 @@
 //! prediction, so that every model is judged on the same frames):
 //!
 //! - **flight**: the window's frames before the centre first comes within the body's
-//!   circumscribed radius of the plane (no corner can touch yet);
+//!   circumscribed radius of the table (no corner can touch yet);
 //! - **first impact**: from that frame to [`IMPACT_AFTER`] frames after the recorded
 //!   centre stops falling (its first frame whose height the next frame does not go
 //!   below): the landing and the rebound that follows it;
@@ -77,7 +77,7 @@ pub fn phases(
 ) -> Result<Vec<Phase>, TossError> {
     let n = measured.len();
     let near = (window.near - window.start).min(n);
-    let height = |k: usize| setup.height(&Vector3::from(measured[k].position));
+    let height = |k: usize| setup.clearance(&Vector3::from(measured[k].position));
     let mut low = near;
     while low + 1 < n && height(low + 1) < height(low) {
         low += 1;
