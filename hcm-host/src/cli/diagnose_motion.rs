@@ -3,7 +3,9 @@
 
 use super::progress::Bars;
 use anyhow::Context;
-use hcm_host::diagnose::motion::{diagnose_motion, MotionDiagnosis, GAIN_T, MIN_GAIN, RIVAL_T};
+use hcm_host::diagnose::motion::{
+    diagnose_motion_with, MotionBase, MotionDiagnosis, GAIN_T, MIN_GAIN, RIVAL_T,
+};
 use hcm_host::output::write_bytes;
 use std::path::PathBuf;
 
@@ -44,12 +46,37 @@ pub struct Args {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (model, _, data) = args.tosses.load()?;
+    let out = args.out.parent().unwrap_or(std::path::Path::new(""));
+    diagnose_into(
+        &model,
+        &data,
+        MotionBase::Given,
+        &args.tosses.data,
+        out,
+        &args.out,
+    )
+}
+
+/// Diagnoses `model` on `data` (read from `path`), writes the diagnosis as JSON to
+/// `json` (creating the directory `dir` it is in, once there is something to write)
+/// and prints it. `hcm diagnose` on a camera's poses comes here too, with a `base`
+/// fitted when its physics file says so.
+pub fn diagnose_into(
+    model: &hcm_host::scenario::Model,
+    data: &hcm_host::dataset::Dataset,
+    base: MotionBase,
+    path: &std::path::Path,
+    dir: &std::path::Path,
+    json: &std::path::Path,
+) -> anyhow::Result<()> {
     let bars = Bars::with_status(|_| "candidates");
-    let diagnosis = diagnose_motion(&model, &data, &bars)
-        .with_context(|| format!("diagnosing the tosses of {}", args.tosses.data.display()))?;
-    let json = serde_json::to_string_pretty(&diagnosis)?;
-    write_bytes(&args.out, json.as_bytes())
-        .with_context(|| format!("writing {}", args.out.display()))?;
+    let diagnosis = diagnose_motion_with(model, data, base, &bars)
+        .with_context(|| format!("diagnosing the runs of {} from their poses", path.display()))?;
+    let text = serde_json::to_string_pretty(&diagnosis)?;
+    if !dir.as_os_str().is_empty() {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    }
+    write_bytes(json, text.as_bytes()).with_context(|| format!("writing {}", json.display()))?;
     print_diagnosis(&diagnosis);
     Ok(())
 }

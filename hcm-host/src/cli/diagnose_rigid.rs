@@ -5,6 +5,7 @@
 
 use super::progress::Bars;
 use hcm_host::dataset::{inventory, needs, Dataset};
+use hcm_host::diagnose::motion::MotionBase;
 use hcm_host::diagnose::rigid::{diagnose_rigid, RigidDiagnoseSettings, RigidDiagnosis};
 use hcm_host::identify::{FitRecord, Physics};
 use hcm_host::output::write_bytes;
@@ -23,6 +24,17 @@ pub struct RigidArgs<'a> {
 pub fn run(args: &RigidArgs<'_>, scenario: &Scenario, base: &Model) -> anyhow::Result<()> {
     let data = Dataset::read(args.data)?;
     println!("{}", inventory::summary(&data, base, args.contact));
+    if inventory::motion_only(&data, base, args.contact) {
+        // A camera's poses: the diagnosis from motion, its answer in OUT/diagnosis.json.
+        let json = args.out.join("diagnosis.json");
+        let freedom = if args.fitted {
+            MotionBase::Fitted
+        } else {
+            MotionBase::Given
+        };
+        let (path, out) = (args.data, args.out);
+        return super::diagnose_motion::diagnose_into(base, &data, freedom, path, out, &json);
+    }
     data.require(
         &args.data.display().to_string(),
         base,

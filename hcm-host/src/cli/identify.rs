@@ -97,6 +97,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let data = Dataset::read(&args.data)?;
     if model.is_rigid() {
         println!("{}", inventory::summary(&data, &model, args.contact));
+        if inventory::motion_only(&data, &model, args.contact) {
+            println!(
+                "fitting from the poses, as `hcm identify-motion` does (GA 20 × 10, polish 40)"
+            );
+            let motion = super::identify_motion::Args::from_identify(
+                args.scenario,
+                args.data,
+                args.out,
+                args.seed,
+                args.law,
+            );
+            return super::identify_motion::run(motion);
+        }
     }
     let needs = if model.is_rigid() && args.method == "ga" {
         &needs::IDENTIFY_RIGID

@@ -8,6 +8,7 @@ use hcm_host::identify::motion::{
     beside_physics, fitted_assignments, fitted_physics, fitted_scenario_text, identify_motion,
     set_options, split_tosses, MotionFit, MotionParameters, MotionTarget,
 };
+use hcm_host::identify::rigid::with_law;
 use hcm_host::numerics::optimize::genetic::GeneticSettings;
 use hcm_host::output::write_bytes;
 use hcm_host::progress::{Fold, Stage};
@@ -86,15 +87,49 @@ pub struct Args {
     /// Fitness evaluations of the Nelder–Mead polish after the GA (0: none).
     #[arg(long, default_value_t = 40)]
     polish: usize,
+    /// Law to fit in place of the scenario's (see `hcm laws`); its parameters start
+    /// from the scenario's where they share names.
+    #[arg(long)]
+    law: Option<String>,
+}
+
+impl Args {
+    /// `hcm identify` on a camera's poses: this fit with its own defaults (GA 20 × 10,
+    /// polish 40), the given seed and law.
+    pub fn from_identify(
+        scenario: super::ScenarioArgs,
+        data: PathBuf,
+        out: PathBuf,
+        seed: u64,
+        law: String,
+    ) -> Args {
+        Args {
+            scenario,
+            data,
+            out,
+            first: None,
+            held_out: None,
+            scenario_out: None,
+            seed,
+            population: 20,
+            generations: 10,
+            polish: 40,
+            law: Some(law),
+        }
+    }
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
-    let model = scenario.model()?;
+    let mut model = scenario.model()?;
     let setup = TossSetup::new(&model)?;
+    let mut parameters = MotionParameters::new(&model, &setup)?;
+    if let Some(law) = &args.law {
+        model = with_law(&model, parameters.contact, law, None)?;
+        parameters = MotionParameters::new(&model, &setup)?;
+    }
     let (training, held_out) = read_split(&args, &model, &setup)?;
     let target = MotionTarget::new(&model, &training)?;
-    let parameters = MotionParameters::new(&model, &setup)?;
     let settings = GeneticSettings {
         seed: args.seed,
         population: args.population,
@@ -112,30 +147,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         fit.genetic_fitness,
         fit.fitness
     );
-    for (name, value) in &fit.parameters {
-        let probe = fit.sensitivity.iter().find(|s| &s.name == name);
-        let note = match probe {
-            Some(s) if s.loose => "  not fixed by the data (moving it costs < 1 % of the fitness)",
-            _ => "",
-        };
-        println!("  {name:<14} {value:.6e}{note}");
-    }
-    let loose: Vec<&str> = (fit.sensitivity.iter())
-        .filter(|s| s.loose)
-        .map(|s| s.name.as_str())
-        .collect();
-    if !loose.is_empty() {
-        println!(
-            "warning: the training tosses do not fix {}: their value is one of many that \
-             replay the tosses as well; tosses that exercise them (sliding for friction, \
-             bouncing for the damping) would",
-            loose.join(", ")
-        );
-    }
+    print_parameters(&fit);
     let assignments = fitted_assignments(&model, &parameters, &fit.parameters);
     let sets = beside_physics(&model, &parameters, &fit.parameters);
     println!(
-        "table offset and inertia: give `{}` with the physics file",
+        "table offset and inertia: kept in the physics file's `sets` (`hcm predict \
+         --physics` applies them): {}",
         set_options(&sets)
     );
     print!("{}", score_table(&model, &fit.model, &training, &held_out)?);
@@ -264,4 +281,42 @@ fn score_table(
         }
     }
     Ok(out)
+}
+
+/// The fitted parameters, each said at its bound or not fixed by the data where so,
+/// and a warning naming those.
+fn print_parameters(fit: &MotionFit) {
+    for (name, value) in &fit.parameters {
+        let probe = fit.sensitivity.iter().find(|s| &s.name == name);
+        let note = match probe {
+            Some(s) if s.at_bound => "  at the bound of its box: the data may want it beyond",
+            Some(s) if s.loose => "  not fixed by the data (moving it costs < 1 % of the fitness)",
+            _ => "",
+        };
+        println!("  {name:<14} {value:.6e}{note}");
+    }
+    let loose: Vec<&str> = (fit.sensitivity.iter())
+        .filter(|s| s.loose)
+        .map(|s| s.name.as_str())
+        .collect();
+    let bounded: Vec<&str> = (fit.sensitivity.iter())
+        .filter(|s| s.at_bound)
+        .map(|s| s.name.as_str())
+        .collect();
+    if !bounded.is_empty() {
+        println!(
+            "warning: {} ended at the bound of the search box: widen it with \
+             [identify.bounds.<law>] in the scenario for a law parameter, or look for an \
+             effect the model lacks (`hcm diagnose`)",
+            bounded.join(", ")
+        );
+    }
+    if !loose.is_empty() {
+        println!(
+            "warning: the training tosses do not fix {}: their value is one of many that \
+             replay the tosses as well; tosses that exercise them (sliding for friction, \
+             bouncing for the damping) would",
+            loose.join(", ")
+        );
+    }
 }

@@ -60,31 +60,54 @@ pub fn summary(data: &Dataset, model: &Model, c: usize) -> String {
     let Some(contact) = model.contacts.get(c) else {
         return out;
     };
-    let pair = [contact.body_1, contact.body_2];
-    let filled = |channel: Channel, moving_only: bool| {
-        pair.iter().any(|&b| {
-            let body = &model.bodies[b];
-            (!moving_only || !body.fixed)
-                && counts
-                    .iter()
-                    .any(|(n, f, _)| *n == body.name && f[channel as usize] > 0)
-        })
-    };
-    let states = [
-        Channel::Position,
-        Channel::Orientation,
-        Channel::Velocity,
-        Channel::AngularVelocity,
-    ]
-    .iter()
-    .all(|&ch| filled(ch, true));
-    let force = filled(Channel::Force, false);
-    let can = match (states, force) {
+    let (poses, states, force) = what_is_filled(&counts, model, contact);
+    let can = match (states || poses, force) {
+        (true, true) if !states => "force and poses without velocities: identify (lsq) reads the state from the frames",
         (true, true) => "force and motion: identify (lsq, ga), train, evaluate, diagnose",
-        (true, false) => "motion only: no force to fit a law to — a tossed body's fit is `hcm identify-motion`, its diagnosis `hcm diagnose-motion`",
+        (true, false) => "motion only: identify and diagnose replay the runs from their poses (as `hcm identify-motion` and `hcm diagnose-motion`); train and evaluate need force",
         (false, true) => "force without the moving body's poses (position and orientation): nothing a rigid contact can be fitted on",
         (false, false) => "neither force nor the moving body's state",
     };
     let _ = write!(out, "\n  → {can}");
     out
+}
+
+/// Whether the moving bodies of `contact` have their poses (position and orientation),
+/// their full state (and velocities), and whether either body has force or torque
+/// samples.
+fn what_is_filled(
+    counts: &[(String, [usize; 6], usize)],
+    model: &Model,
+    contact: &crate::scenario::Contact,
+) -> (bool, bool, bool) {
+    let pair = [contact.body_1, contact.body_2];
+    let filled = |channel: Channel, moving_only: bool| {
+        pair.iter().any(|&b| {
+            let body = &model.bodies[b];
+            (!moving_only || !body.fixed)
+                && (counts.iter()).any(|(n, f, _)| *n == body.name && f[channel as usize] > 0)
+        })
+    };
+    let poses = [Channel::Position, Channel::Orientation]
+        .iter()
+        .all(|&ch| filled(ch, true));
+    let states = poses
+        && [Channel::Velocity, Channel::AngularVelocity]
+            .iter()
+            .all(|&ch| filled(ch, true));
+    // A torque without its force still marks a sensor's data (missing a channel).
+    let wrench = filled(Channel::Force, false) || filled(Channel::Torque, false);
+    (poses, states, wrench)
+}
+
+/// Whether `data` hold contact `c`'s moving body's poses and no force or torque on
+/// either body:
+/// what a camera records, which `hcm identify` and `hcm diagnose` answer by replaying
+/// the runs from their poses ([`crate::identify::motion`]).
+pub fn motion_only(data: &Dataset, model: &Model, c: usize) -> bool {
+    let Some(contact) = model.contacts.get(c) else {
+        return false;
+    };
+    let (poses, _, wrench) = what_is_filled(&channel_counts(data), model, contact);
+    poses && !wrench
 }

@@ -181,6 +181,25 @@ impl MotionEffect {
         }
     }
 
+    /// Whether the fit from motion ([`crate::identify::motion`]) already frees this
+    /// change: the friction's coefficients (so also Coulomb's law, μ_s = μ_d), the
+    /// partner's shift, the inertia's scale, and on a Hunt–Crossley law its damping χ,
+    /// which a restitution falling with the impact speed (c·δⁿ·δ̇) only adds to. On a
+    /// base that fit made, such a candidate is a better optimum of the base's own
+    /// parameters, not a cause.
+    pub fn within_motion_fit(self, model: &Model, contact: usize) -> bool {
+        match self {
+            MotionEffect::FrictionCoefficient
+            | MotionEffect::CoulombFriction
+            | MotionEffect::TableOffset
+            | MotionEffect::InertiaScale => true,
+            MotionEffect::SpeedDependentRestitution => {
+                model.contacts[contact].law().name() == "hunt_crossley"
+            }
+            _ => false,
+        }
+    }
+
     /// The parameters that change nothing (for Coulomb's law, which has none, the
     /// model's μ_d: the nearest Coulomb law).
     pub fn neutral(self, model: &Model, contact: usize) -> Vec<f64> {

@@ -171,6 +171,8 @@ fn fit_candidates(
 /// The search under way: the model with every cause named so far, the tosses as read
 /// through it, and what the rounds found.
 struct Search {
+    /// What the user's model is: given, or fitted from these poses.
+    base: MotionBase,
     /// The user's model with the causes named so far.
     current: Model,
     /// The training tosses (transformed by any measurement cause named).
@@ -224,6 +226,9 @@ impl Search {
         let open: Vec<MotionEffect> = (MotionEffect::ALL.iter().copied())
             .filter(|e| !self.named.iter().any(|(n, _)| n == e.name()))
             .filter(|e| e.changes(&self.current, contact))
+            .filter(|e| {
+                self.base == MotionBase::Given || !e.within_motion_fit(&self.current, contact)
+            })
             .collect();
         let stage = Stage {
             subject,
@@ -324,6 +329,23 @@ impl Search {
     }
 }
 
+/// What the user's model is to the diagnosis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum MotionBase {
+    /// As the user wrote it: every candidate is a possible cause.
+    #[default]
+    Given,
+    /// Fitted from these poses ([`crate::identify::motion`], a physics file with a fit
+    /// record): its own parameters are first polished on the training tosses (a
+    /// Nelder–Mead of [`BASE_POLISH`] replays, kept where it trains better), and the
+    /// candidates that fit frees ([`MotionEffect::within_motion_fit`]) are left out —
+    /// their gain would be a better optimum of the base, not a missing effect.
+    Fitted,
+}
+
+/// Replays of the training tosses the polish of a fitted base may spend (–).
+pub const BASE_POLISH: usize = 40;
+
 /// Diagnoses `model` against `data` (poses of one body tossed onto or sliding on fixed bodies),
 /// reporting [`ProgressStage::Diagnose`] to `progress`: its steps are each round's
 /// candidates, advanced before each candidate's fit, its status the round.
@@ -332,8 +354,20 @@ pub fn diagnose_motion(
     data: &Dataset,
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
+    diagnose_motion_with(model, data, MotionBase::Given, progress)
+}
+
+/// [`diagnose_motion`] of a base that is `base` (given, or fitted from these poses).
+pub fn diagnose_motion_with(
+    model: &Model,
+    data: &Dataset,
+    base: MotionBase,
+    progress: &dyn Progress,
+) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     let (training, held_out) = split_tosses(data);
-    diagnose_motion_split(model, training, held_out, progress)
+    in_stage(progress, ProgressStage::Diagnose, 0, || {
+        search(model, training, held_out, base, progress)
+    })
 }
 
 /// [`diagnose_motion`] on tosses already split into a `training` part (the candidates
@@ -345,7 +379,7 @@ pub fn diagnose_motion_split(
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     in_stage(progress, ProgressStage::Diagnose, 0, || {
-        search(model, training, held_out, progress)
+        search(model, training, held_out, MotionBase::Given, progress)
     })
 }
 
@@ -354,6 +388,7 @@ fn search(
     model: &Model,
     training: Dataset,
     held_out: Dataset,
+    base: MotionBase,
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     let setup = TossSetup::new(model)?;
@@ -362,8 +397,13 @@ fn search(
     if found < MIN_HELD_OUT {
         return Err(MotionDiagnoseError::TooFewTosses { found });
     }
+    let current = match base {
+        MotionBase::Given => model.clone(),
+        MotionBase::Fitted => polished_base(model, &indices, &training)?,
+    };
     let mut search = Search {
-        current: model.clone(),
+        base,
+        current,
         training,
         held_out,
         indices,
@@ -466,4 +506,36 @@ fn answer(
         text.push_str(": no candidate improves the held-out prediction significantly");
     }
     text
+}
+
+/// A fitted base polished over its own parameters on the `training` tosses: the better
+/// of it and the polish's best.
+fn polished_base(
+    model: &Model,
+    parameters: &MotionParameters,
+    training: &Dataset,
+) -> Result<Model, MotionDiagnoseError> {
+    use crate::numerics::optimize::{nelder_mead, Parameters};
+    let target = crate::identify::motion::MotionTarget::new(model, training)?;
+    let score =
+        |genes: &[f64]| crate::identify::motion::fitness(&target, &parameters.apply(model, genes));
+    let start = parameters.values(model);
+    let start_fitness = score(&start);
+    if !start_fitness.is_finite() {
+        return Err(MotionDiagnoseError::Replay { part: "training" });
+    }
+    let bounds = parameters.bounds();
+    let polished = nelder_mead::polish(
+        &bounds,
+        &start,
+        start_fitness,
+        BASE_POLISH,
+        score,
+        |_, _| {},
+    );
+    Ok(if polished.fitness < start_fitness {
+        parameters.apply(model, &polished.best)
+    } else {
+        model.clone()
+    })
 }

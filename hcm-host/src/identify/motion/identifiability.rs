@@ -25,6 +25,23 @@ pub struct Sensitivity {
     pub rise: f64,
     /// Whether the data leave it loose: `rise` < [`LOOSE`] × the fitness.
     pub loose: bool,
+    /// Whether the fit ended within [`AT_BOUND`] of its box's width (log width on a log
+    /// scale) from a bound: the data may want it beyond.
+    pub at_bound: bool,
+}
+
+/// Share of the box's width within which a value counts as at its bound (–).
+pub const AT_BOUND: f64 = 1e-3;
+
+/// Whether `value` lies within [`AT_BOUND`] of the box's width from one of its ends.
+fn at_bound(bound: &Bound, value: f64) -> bool {
+    let (lower, upper, x) = if bound.log_scale {
+        (bound.lower.ln(), bound.upper.ln(), value.ln())
+    } else {
+        (bound.lower, bound.upper, value)
+    };
+    let margin = AT_BOUND * (upper - lower);
+    x <= lower + margin || x >= upper - margin
 }
 
 /// The probes of every gene of `best` (fitness `fitness`) in `bounds`, `score` being
@@ -58,6 +75,7 @@ pub fn probe(
                 name: names.get(i).cloned().unwrap_or_else(|| bound.name.clone()),
                 rise,
                 loose: rise < LOOSE * fitness.abs(),
+                at_bound: at_bound(bound, best[i]),
             }
         })
         .collect()
@@ -81,5 +99,8 @@ mod tests {
             "{found:?}"
         );
         assert!(found[1].loose && found[1].rise == 0.0, "{found:?}");
+        assert!(!found[0].at_bound && !found[1].at_bound);
+        let ends = probe(&bounds, &names, &[10.0, 1e3], 1.0, score);
+        assert!(ends[0].at_bound && ends[1].at_bound, "{ends:?}");
     }
 }

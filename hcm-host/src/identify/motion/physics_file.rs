@@ -1,7 +1,7 @@
-//! The physics file of a fit from motion: the fitted law and friction of the tossed
-//! body's contact, with the fit's fitness and the `--set`s of the table offset and the
-//! body's inertia (which a physics file has no place for) in its notes — what `hcm identify-motion` and `hcm
-//! reproduce cube-toss` write.
+//! The physics file of a fit from motion: the fitted law and friction of the thrown
+//! body's contact, with the fit's fitness in its notes and the table offset and the
+//! body's inertia as its `sets` (applied with the file) — what `hcm identify-motion`
+//! and `hcm reproduce cube-toss` write.
 
 use super::MotionFit;
 use crate::identify::{FitRecord, Physics};
@@ -31,12 +31,17 @@ pub fn fitted_physics(
                  (degrees) over the training tosses (even toss numbers)",
                 fit.fitness
             ),
-            format!("table offset and inertia: apply with {}", set_options(sets)),
+            format!(
+                "table offset and inertia (in `sets`): {}",
+                set_options(sets)
+            ),
         ],
         ..FitRecord::default()
     };
     let law = fit.model.contacts[contact].law();
-    Physics::for_contact(&fit.model, contact, law, record)
+    let mut physics = Physics::for_contact(&fit.model, contact, law, record);
+    physics.sets = sets.iter().map(ToString::to_string).collect();
+    physics
 }
 
 /// `sets` as command-line options: `--set a --set b`.

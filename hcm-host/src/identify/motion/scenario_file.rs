@@ -1,8 +1,8 @@
 //! The fitted model as a scenario file: the scenario as read (its `--set` overrides
 //! applied) with the fitted law parameters, friction coefficients and table offset
 //! written in, so that `hcm predict --scenario FILE` replays the fit with nothing else
-//! to give. A physics file carries the law and the friction but has no place for the
-//! table's height; this file carries all three (the original's comments are not kept).
+//! to give; the physics file carries the same as its law, friction and `sets` (the
+//! original's comments are not kept).
 
 use super::MotionParameters;
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError, Shape};

@@ -100,9 +100,10 @@ impl CubeResults {
         }
         writeln!(
             out,
-            "\n`physics.toml` holds the law and the friction; the table offset and the inertia \
-             are applied by `{sets}`:\n\n```\nhcm predict --scenario scenarios/cube_toss.toml \
-             --physics physics.toml {sets} --data held_out.csv --out predicted.csv\n```\n",
+            "\n`physics.toml` holds the law and the friction, and as its `sets` the table offset \
+             and the inertia (`{sets}`), which `--physics` applies:\n\n```\nhcm predict \
+             --scenario scenarios/cube_toss.toml --physics physics.toml --data held_out.csv \
+             --out predicted.csv\n```\n",
             sets = set_options(&self.sets)
         )
     }
