@@ -184,8 +184,8 @@ fn camera_file(hcm: &hcm_tests::cli::Hcm, file: &str, truth: &[String]) {
     data.write(&hcm.path(file)).unwrap();
 }
 
-/// `hcm identify` then `hcm diagnose` on the ball scene filmed at 200 Hz (`file`, poses
-/// only); the diagnosis's JSON and what the two commands printed.
+/// `hcm identify`, `hcm evaluate` and `hcm diagnose` on the ball scene filmed at 200 Hz
+/// (`file`, poses only); the diagnosis's JSON and what the three commands printed.
 fn identify_then_diagnose(hcm: &hcm_tests::cli::Hcm, file: &str) -> (serde_json::Value, String) {
     let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/common/scenes/ball_on_plate.toml");
@@ -205,6 +205,9 @@ fn identify_then_diagnose(hcm: &hcm_tests::cli::Hcm, file: &str) -> (serde_json:
         .opt("--law", "hunt_crossley")
         .opt("--out", "pm2.toml")
         .ok();
+    let evaluated = with_camera(hcm.run("evaluate"))
+        .opt("--physics", "pm2.toml")
+        .ok();
     let diagnosed = with_camera(hcm.run("diagnose"))
         .opt("--physics", "pm2.toml")
         .opt("--out", "diagnosis")
@@ -212,7 +215,7 @@ fn identify_then_diagnose(hcm: &hcm_tests::cli::Hcm, file: &str) -> (serde_json:
     let json = std::fs::read_to_string(hcm.path("diagnosis/diagnosis.json")).unwrap();
     (
         serde_json::from_str(&json).unwrap(),
-        identified + &diagnosed,
+        identified + &evaluated + &diagnosed,
     )
 }
 
@@ -233,6 +236,22 @@ fn identify_and_diagnose_on_poses_alone_replay_the_throws() {
     let (json, printed) = identify_then_diagnose(&hcm, "camera.csv");
     println!("{printed}");
     assert!(printed.contains("motion only") && printed.contains("fitting from the poses"));
+    // evaluate: the fitted PM2's trajectory scores beside the frozen pose's, well below.
+    let score = |label: &str| -> f64 {
+        let line = printed
+            .lines()
+            .find(|l| l.starts_with(label))
+            .unwrap_or_default();
+        line.split('|')
+            .nth(2)
+            .and_then(|c| c.split('±').next()?.trim().parse().ok())
+            .unwrap_or(f64::NAN)
+    };
+    let (pm2, frozen) = (score("| PM2 |"), score("| frozen pose |"));
+    assert!(
+        pm2 < 0.05 * frozen,
+        "PM2 {pm2} % vs frozen {frozen} %\n{printed}"
+    );
     let physics = std::fs::read_to_string(hcm.path("pm2.toml")).unwrap();
     let damping: f64 = (physics.lines())
         .find_map(|l| l.trim().strip_prefix("damping = "))

@@ -52,6 +52,12 @@ fn the_shipped_pipeline_makes_an_hcm_that_beats_pm2_on_both_wall_contacts() {
         assert_eq!(r.evaluation.models[3], "PM1 nominal");
         assert_eq!(row.verdict(3) == "neither", floor, "PM1 nominal: {row:?}");
     }
+    // The same models as `hcm evaluate` judges them, every S2 run's events replayed
+    // from the state before each: the HCM (f32 and int8) better than PM2 run by run.
+    for m in [1, 2] {
+        let (d, se) = r.events.paired[m];
+        assert!(d + 2.0 * se < 0.0, "{}: {d} ± {se}", r.events.models[m]);
+    }
     // Both blobs decode in the core and give the host's wrench within 1e-6.
     assert!(
         r.blobs.f32.round_trip_error < 1e-6,

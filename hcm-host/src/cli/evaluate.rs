@@ -2,7 +2,9 @@
 
 use anyhow::Context;
 use hcm_host::dataset::{inventory, needs, reconstruct, Dataset};
-use hcm_host::evaluate::{evaluate, evaluate_rigid, markdown, rigid_markdown};
+use hcm_host::evaluate::{
+    evaluate, evaluate_motion, evaluate_rigid, markdown, motion_markdown, rigid_markdown,
+};
 use hcm_host::identify::Physics;
 use hcm_host::residual::ContactResidual;
 use std::path::PathBuf;
@@ -15,7 +17,9 @@ use std::path::PathBuf;
 /// model, simulated from the runs' mean state just before touch-down, and each model's
 /// error. On a 3D (rigid) scenario: every contact event of every run replayed from the
 /// recorded state before it (maximum force and torque, linear and angular impulse,
-/// duration), the moving body's path from the run's start, and HCM − PM2 run by run.
+/// duration), the moving body's path from the run's start, and HCM − PM2 run by run;
+/// on a camera's data (poses, no force), every run replayed from its window start as
+/// `hcm predict` does, its position and rotation errors beside the frozen pose's.
 ///
 /// Terms:
 ///   S2          the validation set written by `hcm generate` (OUT.s2.csv)
@@ -119,6 +123,9 @@ fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> an
     if !args.json {
         println!("{}", inventory::summary(data, pm2, args.contact));
     }
+    if inventory::motion_only(data, pm2, args.contact) {
+        return run_motion(args, pm2, data);
+    }
     data.require(
         &args.data.display().to_string(),
         pm2,
@@ -144,5 +151,28 @@ fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> an
     for why in &evaluation.left_out {
         eprintln!("warning: left out: {why}");
     }
+    Ok(())
+}
+
+/// A camera's data: every run replayed from its window start by PM2 (and the HCM) and
+/// scored against the recorded poses, beside the frozen pose.
+fn run_motion(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> anyhow::Result<()> {
+    let models = with_hcm(args, pm2)?;
+    let columns: Vec<(&str, &hcm_host::scenario::Model)> =
+        models.iter().map(|(l, m)| (*l, m)).collect();
+    let evaluation = evaluate_motion(&columns, data)
+        .with_context(|| format!("replaying the runs of {}", args.data.display()))?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&evaluation)?);
+        return Ok(());
+    }
+    println!(
+        "{} — {} runs replayed from their window starts (as `hcm predict`), scored on the \
+         recorded poses; PM2 = {}\n",
+        pm2.scenario.name,
+        evaluation.runs,
+        pm2.contacts[args.contact].law().name()
+    );
+    print!("{}", motion_markdown(&evaluation));
     Ok(())
 }

@@ -6,8 +6,8 @@
 use super::progress::Bars;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::rigid::{
-    identify_from_samples, identify_rigid, with_law, ContactScales, RecordedContact,
-    RigidIdentification, RigidParameters, SampleFit, WrenchTarget,
+    identify_events, identify_from_samples, with_law, ContactScales, RigidIdentification,
+    SampleFit, WrenchTarget,
 };
 use hcm_host::identify::{FitRecord, Physics};
 use hcm_host::numerics::optimize::genetic::GeneticSettings;
@@ -37,33 +37,18 @@ pub fn run(
     if args.method == "lsq" {
         return run_samples(args, scenario, &start, data);
     }
-    let mut parameters = RigidParameters::new(&start, c, &scenario.identify.bounds)?;
-    // The GA replays events; its box is scaled from the force samples where the data
-    // have them, else it keeps the defaults.
-    if let Ok(recorded) = RecordedContact::from_data(&start, data, c) {
-        scale_box(&start, c, &recorded, &mut parameters);
-    }
     let law = start.contacts[c].law().name();
-    let target = WrenchTarget::from_data(&start, data, c, args.events)?;
     let bars = Bars::with_status(|_| "GA generations");
-    let found = identify_rigid(&start, &target, &parameters, &settings, &bars)?;
+    let fit = identify_events(&start, data, c, args.events, &settings, &bars)?;
+    if let Some(scales) = &fit.scales {
+        let exponent = start.contacts[c].law().get("exponent").unwrap_or(1.5);
+        print_scaled(scales, exponent, &fit.scaled);
+    }
+    let (target, found) = (fit.target, fit.found);
     print_found(law, &start.contacts[c], &target, &found);
     let fit = fit_record(args, &target, &found);
     let physics = Physics::for_contact(&found.model, c, found.model.contacts[c].law(), fit);
     super::identify::write_physics(&physics, &scenario.name, &args.out)
-}
-
-/// Scales `parameters`' box from `recorded` and says which bounds moved.
-fn scale_box(
-    start: &Model,
-    c: usize,
-    recorded: &RecordedContact,
-    parameters: &mut RigidParameters,
-) {
-    let exponent = start.contacts[c].law().get("exponent").unwrap_or(1.5);
-    let scales = ContactScales::of(recorded, exponent);
-    let changed = scales.apply(start, c, parameters);
-    print_scaled(&scales, exponent, &changed);
 }
 
 /// Says which bounds were scaled from the data, and from what.

@@ -4,8 +4,10 @@
 //! [`ModelRow`], the shape every judged model takes (`evaluate --json`,
 //! `results.json`, `diagnosis.json`).
 
+pub mod motion;
 pub mod rigid;
 
+pub use motion::{evaluate_motion, motion_markdown, MotionEvaluation};
 pub use rigid::{evaluate_rigid, rigid_markdown, RigidEvaluation};
 
 use crate::dataset::Dataset;

@@ -243,7 +243,7 @@ fn rotation_between(a: &[f64; 4], b: &[f64; 4]) -> f64 {
 }
 
 /// Mean and standard error of the mean of `values` (NaN ones left out).
-fn mean_se(values: impl Iterator<Item = f64>) -> (f64, f64) {
+pub(super) fn mean_se(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let v: Vec<f64> = values.filter(|x| x.is_finite()).collect();
     let n = v.len() as f64;
     if v.is_empty() {

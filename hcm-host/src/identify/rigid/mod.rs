@@ -3,6 +3,7 @@
 //! replay from S1's mean pre-contact state makes S1's contact events — peak force and
 //! torque, linear and angular impulse, timing — event by event.
 
+pub mod events;
 pub mod fitness;
 pub mod parameters;
 pub mod quality;
@@ -12,6 +13,7 @@ pub mod scaled;
 pub mod start;
 pub mod target;
 
+pub use events::{identify_events, EventFit};
 pub use fitness::{event_errors, fitness, replay};
 pub use parameters::RigidParameters;
 pub use recorded::RecordedContact;

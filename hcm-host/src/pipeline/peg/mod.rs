@@ -14,11 +14,10 @@ use super::{
     Artifact, PipelineError, Progress, Reproduced, ScenarioChoice, Shipped, Stage, StageClock,
     StageTiming,
 };
+use crate::evaluate::{evaluate_rigid, RigidEvaluation};
 use crate::experiment::{generate_split, Split};
 use crate::export::{export_blobs, Blobs};
-use crate::identify::rigid::{
-    identify_rigid, RigidIdentification, RigidIdentifyError, RigidParameters, WrenchTarget,
-};
+use crate::identify::rigid::{identify_events, with_law, RigidIdentification};
 use crate::identify::{FitRecord, Physics};
 use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::progress::in_stage;
@@ -87,8 +86,12 @@ pub struct PegReproduction {
     pub trained: WrenchTrained,
     /// Their blobs, decoded back by the core.
     pub blobs: Blobs,
-    /// The comparison on S2.
+    /// The comparison on S2: the paper's Table 15, every model replayed from S2's mean
+    /// pre-contact state.
     pub evaluation: PegEvaluation,
+    /// The same models on every S2 run as `hcm evaluate` judges them: each event
+    /// replayed from the recorded state before it, HCM − PM2 run by run.
+    pub events: RigidEvaluation,
     /// Wall clock per stage (s).
     pub(crate) timings: Vec<StageTiming>,
     /// The seed and the number of runs it was made with (for `results.json`).
@@ -135,34 +138,33 @@ impl Reproduced for PegReproduction {
 }
 
 /// Stage 2: PM2 — the scenario's law with its exponent fixed at `settings.exponent`,
-/// the rest (and friction) identified on S1's wall contacts by the genetic algorithm.
+/// the rest (and friction) fitted on S1's wall contacts by the genetic algorithm: the
+/// stage `hcm identify --method ga --exponent E --events N` runs.
 fn identify_pm2(
     settings: &PegSettings,
-    scenario: &Scenario,
     model: &crate::scenario::Model,
     sets: &Split,
     progress: &dyn Progress,
 ) -> Result<RigidIdentification, PipelineError> {
-    let mut start = model.clone();
-    start.contacts[CONTACT]
-        .model
-        .normal
-        .base
-        .set("exponent", settings.exponent)
-        .map_err(|e| RigidIdentifyError::Setup(format!("PM2's exponent: {e}")))?;
-    let target = WrenchTarget::from_data(&start, &sets.training, CONTACT, Some(settings.events))?;
-    let parameters = RigidParameters::new(&start, CONTACT, &scenario.identify.bounds)?;
+    let start = with_law(
+        model,
+        CONTACT,
+        model.contacts[CONTACT].law().name(),
+        Some(settings.exponent),
+    )?;
     let genetic = GeneticSettings {
         seed: settings.seed,
         ..settings.genetic.clone()
     };
-    Ok(identify_rigid(
+    let fit = identify_events(
         &start,
-        &target,
-        &parameters,
+        &sets.training,
+        CONTACT,
+        Some(settings.events),
         &genetic,
         progress,
-    )?)
+    )?;
+    Ok(fit.found)
 }
 
 /// Runs the peg-in-hole's stages. Bit-identical results (but for the timings) for
@@ -179,7 +181,7 @@ pub fn reproduce_peg(
         generate_split(&scenario, settings.runs, settings.seed, progress)
     })?;
     let pm2 = clock.time("identify PM2", || {
-        identify_pm2(settings, &scenario, &model, &sets, progress)
+        identify_pm2(settings, &model, &sets, progress)
     })?;
     let trained = clock.time("train (+ int8 twin)", || {
         let training = ResidualSettings {
@@ -208,9 +210,12 @@ pub fn reproduce_peg(
                 ("HCM int8", &hcm_int8),
                 ("PM1 nominal", &model),
             ];
-            evaluate_peg(&models, &sets.validation, CONTACT, settings.events)
+            let table = evaluate_peg(&models, &sets.validation, CONTACT, settings.events)?;
+            let events = evaluate_rigid(&models[..3], &sets.validation, CONTACT)?;
+            Ok::<_, PipelineError>((table, events))
         })
     })?;
+    let (evaluation, events) = evaluation;
     let timings = clock.0;
 
     Ok(PegReproduction {
@@ -220,6 +225,7 @@ pub fn reproduce_peg(
         trained,
         blobs,
         evaluation,
+        events,
         timings,
         seed: settings.seed,
         runs: settings.runs,

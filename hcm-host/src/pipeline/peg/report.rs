@@ -17,6 +17,8 @@ struct Results<'a> {
     models: &'a [String],
     table: &'a [PegRow],
     checks: Vec<Check>,
+    /// Every S2 run as `hcm evaluate` judges it.
+    events: &'a crate::evaluate::RigidEvaluation,
     residual: Residual,
     blobs: Vec<BlobSummary>,
     timings: &'a [super::StageTiming],
@@ -88,6 +90,7 @@ impl PegReproduction {
                     verdict: r.verdict(1),
                 })
                 .collect(),
+            events: &self.events,
             residual: Residual {
                 training_rows: self.trained.rows,
                 epochs: self.trained.report.epochs,
@@ -123,9 +126,24 @@ impl PegReproduction {
         self.introduction(&mut md);
         self.pm2_section(&mut md);
         self.table_15(&mut md);
+        self.every_run(&mut md);
         self.error_model(&mut md);
         self.figures_and_timings(&mut md);
         md
+    }
+
+    /// Every S2 run judged as `hcm evaluate` judges a user's rig.
+    fn every_run(&self, md: &mut String) {
+        let _ = writeln!(
+            md,
+            "## Every S2 run, event by event (`hcm evaluate`)\n\nThe same models as `hcm \
+             evaluate --physics pm2.toml --residual residual.bin --data s2.csv` judges them: \
+             each of the {} runs' contact events replayed from the recorded state before it, \
+             the path from the run's pre-contact state, and the HCM − PM2 difference run by \
+             run.\n",
+            self.events.runs
+        );
+        let _ = writeln!(md, "{}", crate::evaluate::rigid_markdown(&self.events));
     }
 
     /// The title and what was run: the scenario and S2's runs (all, averaged).
