@@ -14,7 +14,7 @@
 //! a lever row: nothing is learned from it.
 
 use super::summed::SummedRow;
-use super::wrench_samples::{moving_body, WrenchSampleError};
+use super::wrench_samples::WrenchSampleError;
 use crate::dataset::Dataset;
 use crate::identify::rigid::recorded::{RecordedContact, RecordedSample};
 use crate::residual::HostContactModel;
@@ -32,7 +32,11 @@ pub fn point_rows(
     data: &Dataset,
     c: usize,
 ) -> Result<(Vec<SummedRow>, RowTimes), WrenchSampleError> {
-    moving_body(physics, c)?;
+    // Per point, the correction acts on both bodies alike: any pair the rows can be
+    // read for (one moving body against a fixed one, or two moving bodies) trains.
+    if c >= physics.contacts.len() {
+        return Err(WrenchSampleError::NoSuchContact(c));
+    }
     let mut model = physics.clone();
     model.contacts[c].model.residual = None;
     let recorded = RecordedContact::from_data(&model, data, c)

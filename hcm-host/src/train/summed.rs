@@ -272,11 +272,19 @@ impl Summed {
         &self.targets[r * self.n_target..(r + 1) * self.n_target]
     }
 
-    /// Raw squared error of row `r`'s `prediction`, summed over target columns.
-    fn raw_squared_error(&self, prediction: &[f64], r: usize) -> f64 {
-        (prediction.iter().zip(self.target(r)))
-            .map(|(y, t)| (y - t).powi(2))
-            .sum()
+    /// Squared error of row `r`'s `prediction` in units of each target column's RMS,
+    /// summed over the columns.
+    fn squared_error(&self, prediction: &[f64], r: usize) -> f64 {
+        // In units of each target column's RMS, as the gradient descends it: a raw sum
+        // let a wall's hundreds of newtons hide a friction component's or a torque's
+        // error, and a silenced friction scale made those ten times PM2's (R² −12 on
+        // two moving bodies, tests/two_bodies.rs).
+        (prediction
+            .iter()
+            .zip(self.target(r))
+            .zip(&self.target_scale))
+        .map(|((y, t), s)| ((y - t) / s).powi(2))
+        .sum()
     }
 
     /// Adds row `r`'s ∂L/∂θ to `gradient` and returns its raw squared error.
@@ -306,12 +314,12 @@ impl Summed {
             }));
             layout.backpropagate(parameters, scratch, gradient);
         }
-        self.raw_squared_error(&prediction, r)
+        self.squared_error(&prediction, r)
     }
 }
 
 impl Summed {
-    /// Σ over `rows` of the raw squared error with the outputs scaled by `scale`.
+    /// Σ over `rows` of the squared error with the outputs scaled by `scale`.
     fn squared_error_scaled(
         &self,
         layout: &Layout,
@@ -321,7 +329,7 @@ impl Summed {
     ) -> f64 {
         chunked_sum(layout, rows, |r, scratch| {
             let y = self.predict_scaled(layout, parameters, r, scratch, scale);
-            self.raw_squared_error(&y, r)
+            self.squared_error(&y, r)
         })
     }
 

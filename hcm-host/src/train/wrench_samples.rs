@@ -59,7 +59,9 @@ pub enum WrenchSampleError {
     NoSuchContact(usize),
     /// The contact is not one moving body against a fixed one.
     #[error(
-        "contact `{0}`: the wrench residual is trained for one moving body against a fixed one"
+        "contact `{0}`: the body-state residual (Eq 12, `--inputs state`) is trained for one \
+         moving body against a fixed one; between two moving bodies use the contact-frame \
+         residual (`--inputs contact`)"
     )]
     NotOneMover(String),
     /// The touching samples could not be read (see the message).

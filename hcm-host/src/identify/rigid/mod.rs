@@ -37,8 +37,8 @@ pub enum RigidIdentifyError {
     /// The model has no such contact.
     #[error("the scenario has no contact number {0}")]
     NoSuchContact(usize),
-    /// Both bodies move, or neither does.
-    #[error("contact `{0}`: identification replays one moving body against a fixed one")]
+    /// Neither body moves.
+    #[error("contact `{0}`: both bodies are fixed; a contact to identify has a moving body")]
     NotOneMover(String),
     /// The runs do not usually make the events asked for.
     #[error("{wanted} contact events asked for, but the runs usually make {usual}; ask for at most {usual} or check the data against the scenario")]
@@ -116,7 +116,8 @@ pub fn identify_rigid(
     })
 }
 
-/// The name of the one moving body of contact `c` (the other must be fixed).
+/// The name of contact `c`'s moving body: the one against a fixed body, or body 1 of
+/// two moving bodies (the one whose path a replay is scored on).
 pub(crate) fn mover_name(model: &Model, c: usize) -> Result<String, RigidIdentifyError> {
     let contact = model
         .contacts
@@ -124,7 +125,7 @@ pub(crate) fn mover_name(model: &Model, c: usize) -> Result<String, RigidIdentif
         .ok_or(RigidIdentifyError::NoSuchContact(c))?;
     let (b1, b2) = (&model.bodies[contact.body_1], &model.bodies[contact.body_2]);
     match (b1.fixed, b2.fixed) {
-        (false, true) => Ok(b1.name.clone()),
+        (false, _) => Ok(b1.name.clone()),
         (true, false) => Ok(b2.name.clone()),
         _ => Err(RigidIdentifyError::NotOneMover(format!(
             "{}–{}",

@@ -102,18 +102,8 @@ impl RecordedContact {
         c: usize,
         flight: bool,
     ) -> Result<RecordedContact, RigidIdentifyError> {
-        let mover_name = super::mover_name(model, c)?;
-        let contact = &model.contacts[c];
-        let mover = if model.bodies[contact.body_1].fixed {
-            contact.body_2
-        } else {
-            contact.body_1
-        };
-        let plate = if mover == contact.body_1 {
-            contact.body_2
-        } else {
-            contact.body_1
-        };
+        let (mover, plate) = sensor_body(model, data, c)?;
+        let mover_name = model.bodies[mover].name.clone();
         let plate_name = &model.bodies[plate].name;
         let mut physics = model.clone();
         physics.contacts[c].model.residual = None;
@@ -125,13 +115,22 @@ impl RecordedContact {
                 let track = run
                     .body(&mover_name)
                     .ok_or_else(|| missing_body(run, &mover_name))?;
+                let others = (0..physics.bodies.len())
+                    .filter(|&b| b != mover && !physics.bodies[b].fixed)
+                    .map(|b| {
+                        let name = &physics.bodies[b].name;
+                        let track = run.body(name).ok_or_else(|| missing_body(run, name))?;
+                        Ok((b, Frames::of(&track.samples)))
+                    })
+                    .collect::<Result<Vec<_>, RigidIdentifyError>>()?;
                 let rig = Rig {
                     model: &physics,
                     layout: &layout,
                     c,
                     mover,
                     plate: run.body(plate_name),
-                    plate_position: model.bodies[plate].position,
+                    plate_body: plate,
+                    others,
                     flight,
                 };
                 Ok(rig.rows(r, track))
@@ -157,7 +156,7 @@ impl RecordedContact {
         let (force_scale, torque_scale) = (rms(&samples, 0..3), rms(&samples, 3..6));
         Ok(RecordedContact {
             contact: c,
-            mover_is_1: mover == contact.body_1,
+            mover_is_1: mover == model.contacts[c].body_1,
             samples,
             runs: data.runs.len(),
             force_scale,
@@ -283,10 +282,13 @@ struct Rig<'a> {
     layout: &'a RigidLayout,
     c: usize,
     mover: usize,
-    /// The other body's track (a force plate), if the run has one.
+    /// The other body's track (a force plate, or a moving partner), if the run has one.
     plate: Option<&'a BodyTrack>,
-    /// The other body's centre (m), where the scenario fixes it.
-    plate_position: Vector3<f64>,
+    /// The other body's index.
+    plate_body: usize,
+    /// Every other moving body with its frames: their states at each row are read
+    /// from them (a moving partner's, and those of the mover's other contacts).
+    others: Vec<(usize, Frames)>,
     /// Whether samples out of contact are rows too.
     flight: bool,
 }
@@ -317,17 +319,23 @@ impl Rig<'_> {
             };
             let state = state_input(&state_sample);
             y[slot..slot + state.len()].copy_from_slice(&state);
+            if !self.place_others(&mut y, time) {
+                continue;
+            }
             let manifold = system.manifold(&y, self.c);
             system.latch(&y);
             if manifold.points.is_empty() && !self.flight {
                 continue;
             }
+            let plate_position = self.position_of(&y, self.plate_body);
+            let mut measured = self.measured(&reading, &state_sample, plate_position);
+            self.subtract_other_contacts(&system, &y, &mut measured);
             rows.push(RecordedSample {
                 run,
                 time,
                 points: manifold.points,
                 references: [manifold.pose_1.position, manifold.pose_2.position],
-                measured: self.measured(&reading, &state_sample),
+                measured,
                 state,
                 between_frames,
             });
@@ -361,9 +369,63 @@ impl Rig<'_> {
         out
     }
 
+    /// Puts every other moving body at its state at `time`, read from its frames;
+    /// false where one has no frame around `time` (the row is skipped).
+    fn place_others(&self, y: &mut [f64], time: f64) -> bool {
+        for (body, frames) in &self.others {
+            let (Some(slot), Some(sample)) = (self.layout.slot(*body), frames.at(time)) else {
+                return false;
+            };
+            let state = state_input(&sample);
+            y[slot..slot + state.len()].copy_from_slice(&state);
+        }
+        true
+    }
+
+    /// Centre (m) of body `b` in state `y`: its slot's position, or the scenario's
+    /// where it is fixed.
+    fn position_of(&self, y: &[f64], b: usize) -> Vector3<f64> {
+        match self.layout.slot(b) {
+            Some(slot) => Vector3::new(y[slot], y[slot + 1], y[slot + 2]),
+            None => self.model.bodies[b].position,
+        }
+    }
+
+    /// Removes from `measured` (the wrench on the mover) what the mover's other
+    /// contacts exert at `y` with the scenario's physics: a body touching two others
+    /// feels both, and the fitted contact is the rest.
+    fn subtract_other_contacts(
+        &self,
+        system: &RigidSystem<'_>,
+        y: &[f64],
+        measured: &mut [f64; 6],
+    ) {
+        for (oc, contact) in self.model.contacts.iter().enumerate() {
+            let on_mover_1 = contact.body_1 == self.mover;
+            if oc == self.c || !(on_mover_1 || contact.body_2 == self.mover) {
+                continue;
+            }
+            let load = system.contact_load(y, oc);
+            let w = &load.load.wrench;
+            let (f, t) = if on_mover_1 {
+                (w.force_1, w.torque_1)
+            } else {
+                (w.force_2, w.torque_2)
+            };
+            for (k, v) in [f.x, f.y, f.z, t.x, t.y, t.z].into_iter().enumerate() {
+                measured[k] -= v;
+            }
+        }
+    }
+
     /// The wrench measured on the mover by `reading`, the mover at `state`: its own
-    /// channels, or the plate's turned onto the mover.
-    fn measured(&self, reading: &Reading<'_>, state: &Sample) -> [f64; 6] {
+    /// channels, or the plate's (at `plate_position`, m) turned onto the mover.
+    fn measured(
+        &self,
+        reading: &Reading<'_>,
+        state: &Sample,
+        plate_position: Vector3<f64>,
+    ) -> [f64; 6] {
         match reading {
             Reading::Own(sample) => {
                 let [fx, fy, fz] = sample.force;
@@ -372,11 +434,43 @@ impl Rig<'_> {
             }
             Reading::Plate(reading) => {
                 let force = Vector3::from(reading.force);
-                let arm = Vector3::from(state.position) - self.plate_position;
+                let arm = Vector3::from(state.position) - plate_position;
                 let torque = -Vector3::from(reading.torque) + arm.cross(&force);
                 [-force.x, -force.y, -force.z, torque.x, torque.y, torque.z]
             }
         }
+    }
+}
+
+/// The body of contact `c` whose wrench the rows hold (the *mover*) and the other: the
+/// moving one against a fixed body; of two moving bodies, the first whose track in
+/// `data` has a force channel (body 1 first), the other's sensor read as a force plate
+/// on the partner otherwise.
+fn sensor_body(
+    model: &Model,
+    data: &Dataset,
+    c: usize,
+) -> Result<(usize, usize), RigidIdentifyError> {
+    let contact = model
+        .contacts
+        .get(c)
+        .ok_or(RigidIdentifyError::NoSuchContact(c))?;
+    let (b1, b2) = (contact.body_1, contact.body_2);
+    let has_force = |b: usize| {
+        let name = &model.bodies[b].name;
+        (data.runs.iter())
+            .filter_map(|r| r.body(name))
+            .any(|t| t.samples.iter().any(|s| s.has(Channel::Force)))
+    };
+    match (model.bodies[b1].fixed, model.bodies[b2].fixed) {
+        (false, true) => Ok((b1, b2)),
+        (true, false) => Ok((b2, b1)),
+        (false, false) if has_force(b1) || !has_force(b2) => Ok((b1, b2)),
+        (false, false) => Ok((b2, b1)),
+        (true, true) => Err(RigidIdentifyError::NotOneMover(format!(
+            "{}–{}",
+            model.bodies[b1].name, model.bodies[b2].name
+        ))),
     }
 }
 
