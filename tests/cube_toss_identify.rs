@@ -7,12 +7,9 @@
 //! README's.
 
 use hcm_host::dataset::{Dataset, Run};
-use hcm_host::identify::motion::{
-    identify_motion, split_tosses, MotionFit, MotionParameters, MotionTarget,
-};
-use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::identify::motion::{split_tosses, MotionFit};
 use hcm_host::scenario::{Model, Scenario};
-use hcm_host::toss::{evaluate_tosses, summarize, TossSetup};
+use hcm_host::toss::{evaluate_tosses, summarize};
 
 /// The shipped cube-toss scenario with `sets` applied.
 fn cube_toss(sets: &[String]) -> Model {
@@ -54,31 +51,11 @@ fn hidden_tosses() -> Dataset {
 
 /// The fit of the shipped scenario to the training tosses, on `threads` threads.
 fn fit(model: &Model, training: &Dataset, threads: usize) -> MotionFit {
-    let setup = TossSetup::new(model).unwrap();
-    let target = MotionTarget::new(model, training).unwrap();
-    let parameters = MotionParameters::new(model, &setup).unwrap();
-    let settings = GeneticSettings {
-        population: 24,
-        generations: 12,
-        seed: 3,
-        ..GeneticSettings::default()
-    };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap();
-    pool.install(|| {
-        identify_motion(
-            model,
-            &target,
-            &parameters,
-            &settings,
-            60,
-            hcm_host::progress::Fold::First,
-            &hcm_host::progress::Silent,
-        )
-    })
-    .unwrap()
+    pool.install(|| hcm_tests::motion_fit(model, training, 3))
 }
 
 #[test]

@@ -8,12 +8,9 @@
 //! friction towards the truth, from a box scaled from the scene (no `[identify]` table).
 
 use hcm_host::dataset::{Dataset, Run};
-use hcm_host::identify::motion::{
-    identify_motion, split_tosses, MotionFit, MotionParameters, MotionTarget,
-};
-use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::identify::motion::{split_tosses, MotionFit};
 use hcm_host::scenario::{Model, Scenario};
-use hcm_host::toss::{evaluate_tosses, summarize, TossSetup};
+use hcm_host::toss::{evaluate_tosses, summarize};
 
 /// A test scene (`tests/common/scenes/`) filmed at 200 Hz, with `sets` applied.
 fn filmed(file: &str, sets: &[String]) -> Model {
@@ -65,26 +62,7 @@ fn throws(file: &str, body: &str, height: f64, truth: &[String]) -> Dataset {
 
 /// The fit of `model` to `training`: a short GA and a polish.
 fn fit(model: &Model, training: &Dataset) -> MotionFit {
-    let setup = TossSetup::new(model).unwrap();
-    let target = MotionTarget::new(model, training).unwrap();
-    let parameters = MotionParameters::new(model, &setup).unwrap();
-    let settings = GeneticSettings {
-        population: 24,
-        generations: 12,
-        seed: 5,
-        ..GeneticSettings::default()
-    };
-    let progress = hcm_host::progress::Silent;
-    identify_motion(
-        model,
-        &target,
-        &parameters,
-        &settings,
-        60,
-        hcm_host::progress::Fold::First,
-        &progress,
-    )
-    .unwrap()
+    hcm_tests::motion_fit(model, training, 5)
 }
 
 /// Held-out mean position error + rotation error (% + °) of `model`.

@@ -45,3 +45,25 @@ pub fn scenario(name: &str) -> PathBuf {
         .join("scenarios")
         .join(name)
 }
+
+/// The fit from motion the tests run: `model`'s first contact fitted to `training` by a
+/// short GA (24 × 12, `seed`) and a 60-replay polish.
+pub fn motion_fit(
+    model: &hcm_host::scenario::Model,
+    training: &hcm_host::dataset::Dataset,
+    seed: u64,
+) -> hcm_host::identify::motion::MotionFit {
+    use hcm_host::identify::motion::{identify_motion, MotionParameters, MotionTarget};
+    let setup = hcm_host::toss::TossSetup::new(model).unwrap();
+    let target = MotionTarget::new(model, training).unwrap();
+    let parameters = MotionParameters::new(model, &setup).unwrap();
+    let settings = hcm_host::numerics::optimize::genetic::GeneticSettings {
+        population: 24,
+        generations: 12,
+        seed,
+        ..Default::default()
+    };
+    let progress = hcm_host::progress::Silent;
+    let fold = hcm_host::progress::Fold::First;
+    identify_motion(model, &target, &parameters, &settings, 60, fold, &progress).unwrap()
+}

@@ -4,7 +4,7 @@
 //! (% of the body's width) and rotation error (°) — beside the frozen pose, with each
 //! model's per-run difference from the first (HCM − PM2).
 
-use super::rigid::mean_se;
+use super::rigid::{mean_se, verdict};
 use crate::dataset::Dataset;
 use crate::scenario::Model;
 use crate::toss::{evaluate_tosses, summarize, EvaluationSummary, TossError};
@@ -89,13 +89,7 @@ pub fn motion_markdown(e: &MotionEvaluation) -> String {
     }
     for c in e.columns.iter().skip(1) {
         let (d, se) = c.paired;
-        let verdict = if d + 2.0 * se < 0.0 {
-            "better"
-        } else if d - 2.0 * se > 0.0 {
-            "worse"
-        } else {
-            "no different at 2 SE"
-        };
+        let verdict = verdict(d, se);
         let _ = writeln!(
             out,
             "\n{} − {}: {d:+.3} ± {se:.3} % + ° per run over {} runs ({verdict})",

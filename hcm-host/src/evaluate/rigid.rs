@@ -242,6 +242,18 @@ fn rotation_between(a: &[f64; 4], b: &[f64; 4]) -> f64 {
     q(a).angle_to(&q(b))
 }
 
+/// A difference `d` (lower is better) with standard error `se` at two standard errors:
+/// `better`, `worse` or `no different at 2 SE`.
+pub(super) fn verdict(d: f64, se: f64) -> &'static str {
+    if d + 2.0 * se < 0.0 {
+        "better"
+    } else if d - 2.0 * se > 0.0 {
+        "worse"
+    } else {
+        "no different at 2 SE"
+    }
+}
+
 /// Mean and standard error of the mean of `values` (NaN ones left out).
 pub(super) fn mean_se(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let v: Vec<f64> = values.filter(|x| x.is_finite()).collect();
@@ -363,13 +375,7 @@ pub fn rigid_markdown(e: &RigidEvaluation) -> String {
             );
             continue;
         }
-        let verdict = if d + 2.0 * se < 0.0 {
-            "better"
-        } else if d - 2.0 * se > 0.0 {
-            "worse"
-        } else {
-            "no different at 2 SE"
-        };
+        let verdict = verdict(d, se);
         let _ = writeln!(
             out,
             "{label} − {}: mean event error {:+.2} ± {:.2} points per run ({verdict})",
