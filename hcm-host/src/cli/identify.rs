@@ -107,6 +107,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 args.out,
                 args.seed,
                 args.law,
+                args.contact,
             );
             return super::identify_motion::run(motion);
         }

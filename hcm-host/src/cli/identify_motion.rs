@@ -91,6 +91,11 @@ pub struct Args {
     /// from the scenario's where they share names.
     #[arg(long)]
     law: Option<String>,
+    /// Which contact to fit (index of its `[[contact]]`; one of the moving body's).
+    /// Default: its first.
+    #[arg(long)]
+    #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
+    contact: Option<usize>,
 }
 
 impl Args {
@@ -102,6 +107,7 @@ impl Args {
         out: PathBuf,
         seed: u64,
         law: String,
+        contact: usize,
     ) -> Args {
         Args {
             scenario,
@@ -115,6 +121,7 @@ impl Args {
             generations: 10,
             polish: 40,
             law: Some(law),
+            contact: Some(contact),
         }
     }
 }
@@ -123,10 +130,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let mut model = scenario.model()?;
     let setup = TossSetup::new(&model)?;
-    let mut parameters = MotionParameters::new(&model, &setup)?;
+    let mut parameters = MotionParameters::for_contact(&model, &setup, args.contact)?;
     if let Some(law) = &args.law {
         model = with_law(&model, parameters.contact, law, None)?;
-        parameters = MotionParameters::new(&model, &setup)?;
+        parameters = MotionParameters::for_contact(&model, &setup, args.contact)?;
     }
     let (training, held_out) = read_split(&args, &model, &setup)?;
     let target = MotionTarget::new(&model, &training)?;

@@ -65,6 +65,16 @@ impl MotionParameters {
     /// The parameters of `model`'s first contact between its replayed body and a fixed
     /// body; the contact needs STEP friction and a law with a stiffness to fit.
     pub fn new(model: &Model, setup: &TossSetup) -> Result<MotionParameters, TossError> {
+        Self::for_contact(model, setup, None)
+    }
+
+    /// The parameters of contact `chosen` of `model` (one of the replayed body's), or
+    /// of its first contact with a fixed body when `None`.
+    pub fn for_contact(
+        model: &Model,
+        setup: &TossSetup,
+        chosen: Option<usize>,
+    ) -> Result<MotionParameters, TossError> {
         let fail = |problem: String| TossError::Setup {
             scenario: model.scenario.name.clone(),
             problem,
@@ -72,8 +82,11 @@ impl MotionParameters {
         let (contact, partner) = (model.contacts.iter().enumerate())
             .filter(|(_, c)| c.body_1 == setup.body || c.body_2 == setup.body)
             .map(|(i, c)| (i, c.body_1 + c.body_2 - setup.body))
-            .next()
-            .ok_or_else(|| fail(format!("body `{}` has no contact to fit", setup.name)))?;
+            .find(|(i, _)| chosen.is_none_or(|c| c == *i))
+            .ok_or_else(|| match chosen {
+                Some(c) => fail(format!("contact {c} is not one of body `{}`'s", setup.name)),
+                None => fail(format!("body `{}` has no contact to fit", setup.name)),
+            })?;
         let found = &model.contacts[contact];
         let Some(friction) = found.model.friction else {
             return Err(fail(format!(
