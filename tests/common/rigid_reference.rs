@@ -140,6 +140,9 @@ pub struct Sample {
     pub velocity: Vector3<f64>,
     /// Angular velocity, world frame (rad/s).
     pub angular_velocity: Vector3<f64>,
+    /// Contact force on the box (N) and torque about its centre (N·m), world frame,
+    /// summed over the vertices below the plane: what a sensor in the box reads.
+    pub wrench: (Vector3<f64>, Vector3<f64>),
 }
 
 impl Sample {
@@ -338,12 +341,14 @@ impl Solver<'_> {
     }
 
     fn sample(&self, time: f64, state: &State) -> Sample {
+        let omega = self.angular_velocity(state);
         Sample {
             time,
             position: state.position,
             rotation: state.rotation,
             velocity: state.velocity,
-            angular_velocity: self.angular_velocity(state),
+            angular_velocity: omega,
+            wrench: self.contact_wrench(state, &omega),
         }
     }
 }
