@@ -40,7 +40,9 @@ pub struct Args {
     /// Marquardt; 3D: Levenberg–Marquardt on the wrench at the recorded poses, from
     /// several starts). `ga`: the paper's genetic algorithm on simulated vs measured
     /// data (3D: replayed contact events).
-    #[arg(long, value_parser = ["lsq", "ga"], default_value = "lsq")]
+    /// `both` (rigid, force and poses): the fit from motion (`hcm identify-motion`'s
+    /// replays) with the force at the recorded poses in the same objective.
+    #[arg(long, value_parser = ["lsq", "ga", "both"], default_value = "lsq")]
     method: String,
     /// GA fitness: `curve` (force curves, default) or `indicators`.
     #[arg(long, value_parser = ["curve", "indicators"], default_value = "curve")]
@@ -97,10 +99,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let data = Dataset::read(&args.data)?;
     if model.is_rigid() {
         println!("{}", inventory::summary(&data, &model, args.contact));
-        if inventory::motion_only(&data, &model, args.contact) {
+        let motion_only = inventory::motion_only(&data, &model, args.contact);
+        anyhow::ensure!(
+            !(motion_only && args.method == "both"),
+            "{}: --method both fits the force with the motion, and the data hold no force \
+             (fx, fy, fz); drop --method to fit from the poses alone",
+            args.data.display()
+        );
+        if motion_only || args.method == "both" {
             println!(
-                "fitting from the poses, as `hcm identify-motion` does (GA 20 × 10, polish 40)"
+                "fitting from the poses{}, as `hcm identify-motion` does (GA 20 × 10, polish 40)",
+                if motion_only {
+                    ""
+                } else {
+                    " and the force at them"
+                }
             );
+            let with_force = args.method == "both";
             let motion = super::identify_motion::Args::from_identify(
                 args.scenario,
                 args.data,
@@ -108,6 +123,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 args.seed,
                 args.law,
                 args.contact,
+                with_force,
             );
             return super::identify_motion::run(motion);
         }

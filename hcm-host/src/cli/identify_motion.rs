@@ -4,10 +4,12 @@
 use super::progress::Bars;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
+use hcm_host::identify::motion::combined::ForceData;
 use hcm_host::identify::motion::{
     beside_physics, fitted_assignments, fitted_physics, fitted_scenario_text, identify_motion,
     set_options, split_tosses, MotionFit, MotionParameters, MotionTarget,
 };
+use hcm_host::identify::motion::{identify_motion_and_force, Search as MotionSearch};
 use hcm_host::identify::rigid::with_law;
 use hcm_host::numerics::optimize::genetic::GeneticSettings;
 use hcm_host::output::write_bytes;
@@ -45,6 +47,9 @@ use std::path::PathBuf;
 ///   position error mean over the window's frames of |p_pred − p| / the body's width, %
 ///   rotation error mean over the window's frames of the angle of R_predᵀ·R, degrees
 ///   fitness        mean position error + mean rotation error over the training tosses
+///   force error    with --with-force: the mean square, over the instants with a
+///                  measured force, of the law's wrench at the recorded poses minus the
+///                  measured one, each component over its RMS
 ///   table offset   the fixed partner's surface moved (m): a plane along its normal,
 ///                  another shape along the up direction; the tracker's table height
 ///   inertia scale  the factor (–) on the scenario's inertia tensor of the tossed body
@@ -96,6 +101,11 @@ pub struct Args {
     #[arg(long)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
     contact: Option<usize>,
+    /// Fit the force measured at the recorded poses too, in one objective with the
+    /// motion: (motion fitness / its value at the scenario's parameters) + (force
+    /// error / its value there), so each starts at 1 (`hcm identify --method both`).
+    #[arg(long)]
+    with_force: bool,
 }
 
 impl Args {
@@ -108,6 +118,7 @@ impl Args {
         seed: u64,
         law: String,
         contact: usize,
+        with_force: bool,
     ) -> Args {
         Args {
             scenario,
@@ -122,6 +133,7 @@ impl Args {
             polish: 40,
             law: Some(law),
             contact: Some(contact),
+            with_force,
         }
     }
 }
@@ -143,7 +155,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         generations: args.generations,
         ..GeneticSettings::default()
     };
-    let fit = run_fit(&model, &target, &parameters, &settings, args.polish)?;
+    let force = force_term(&args, &model, &training, parameters.contact)?;
+    let fit = run_fit(
+        &model,
+        &target,
+        &parameters,
+        &settings,
+        args.polish,
+        force.as_ref(),
+    )?;
     println!(
         "fitted on {} training tosses in {:.1} s ({} replays of them): fitness {:.3} with \
          the scenario's parameters, {:.3} after the GA, {:.3} after the polish",
@@ -244,13 +264,24 @@ fn run_fit(
     parameters: &MotionParameters,
     settings: &GeneticSettings,
     polish: usize,
+    force: Option<&ForceData<'_>>,
 ) -> anyhow::Result<MotionFit> {
     let bars = Bars::with_status(|stage| match stage {
         Stage::MotionPolish(_) => "polish",
         _ => "GA generations",
     });
     let fold = Fold::First;
-    let fit = identify_motion(model, target, parameters, settings, polish, fold, &bars)?;
+    let fit = match force {
+        Some(force) => {
+            let search = MotionSearch {
+                settings,
+                polish_budget: polish,
+                fold,
+            };
+            identify_motion_and_force(model, (target, force), parameters, &search, &bars)?
+        }
+        None => identify_motion(model, target, parameters, settings, polish, fold, &bars)?,
+    };
     Ok(fit)
 }
 
@@ -326,4 +357,32 @@ fn print_parameters(fit: &MotionFit) {
             loose.join(", ")
         );
     }
+}
+
+/// With `--with-force`, the force term of the objective on the `training` runs'
+/// contact `contact` (an error where they hold no force), said.
+fn force_term<'a>(
+    args: &Args,
+    model: &Model,
+    training: &'a Dataset,
+    contact: usize,
+) -> anyhow::Result<Option<ForceData<'a>>> {
+    if !args.with_force {
+        return Ok(None);
+    }
+    let force = ForceData {
+        data: training,
+        contact,
+    };
+    anyhow::ensure!(
+        force.cost(model).is_finite(),
+        "{}: --with-force (--method both) needs the contact's force at the recorded poses, \
+         and the training runs give none (fx, fy, fz of either body)",
+        args.data.display()
+    );
+    println!(
+        "objective: motion fitness / its value at the scenario's parameters + force residual \
+         at the recorded poses / its value there (each 1 at the start)"
+    );
+    Ok(Some(force))
 }

@@ -6,6 +6,7 @@
 //! the box of [`parameters`]; Nelder–Mead ([`crate::numerics::optimize::nelder_mead`]) refines its best. The tosses are
 //! split by [`split`]: the fit never sees the held-out part.
 
+pub mod combined;
 pub mod fitness;
 pub mod identifiability;
 pub mod parameters;
@@ -64,55 +65,102 @@ pub fn identify_motion(
     fold: Fold,
     progress: &dyn Progress,
 ) -> Result<MotionFit, GeneticError> {
-    let started = Instant::now();
-    let bounds = parameters.bounds();
-    let score = |genes: &[f64]| fitness(target, &parameters.apply(model, genes));
-    let start = parameters.values(model);
-    let start_fitness = score(&start);
-    let observer = |steps: usize| {
-        move |done: usize, best: f64| {
-            progress.advance(done as u64, steps as u64);
-            progress.status(&format!("best {best:.3}"));
-        }
+    let score = |candidate: &Model| fitness(target, candidate);
+    let search = Search {
+        settings,
+        polish_budget,
+        fold,
     };
-    let generations = settings.generations;
-    let genetic = in_stage(
-        progress,
-        Stage::MotionGenetic(fold),
-        generations as u64,
-        || minimize(&bounds, settings, score, observer(generations)),
-    )?;
-    // A short search may end above the scenario's own parameters: polish the better.
-    let (from, from_fitness) = if start_fitness < genetic.fitness {
-        (&start, start_fitness)
-    } else {
-        (&genetic.best, genetic.fitness)
+    search.run(model, parameters, score, progress)
+}
+
+/// The force measured at the recorded poses as a second term of the motion fit's
+/// objective (issue 28: "both → both in one objective"): the score of a candidate is
+/// its trajectory fitness over the scenario's own plus its force cost
+/// ([`combined::force_cost`]) over the scenario's own — each 1 at the start, so that
+/// neither dominates by its unit. `MotionFit`'s fitnesses are in those units.
+pub fn identify_motion_and_force(
+    model: &Model,
+    (target, force): (&MotionTarget<'_>, &combined::ForceData<'_>),
+    parameters: &MotionParameters,
+    search: &Search<'_>,
+    progress: &dyn Progress,
+) -> Result<MotionFit, GeneticError> {
+    let (motion_start, force_start) = (fitness(target, model), force.cost(model));
+    let score = |candidate: &Model| {
+        fitness(target, candidate) / motion_start + force.cost(candidate) / force_start
     };
-    let polished = in_stage(
-        progress,
-        Stage::MotionPolish(fold),
-        polish_budget as u64,
-        || {
-            let observer = observer(polish_budget);
-            nelder_mead::polish(&bounds, from, from_fitness, polish_budget, score, observer)
-        },
-    );
-    let names: Vec<String> = (bounds.iter())
-        .map(|b| match b.name.as_str() {
-            "mu_ratio" => "mu_dynamic".to_owned(),
-            name => name.to_owned(),
+    search.run(model, parameters, score, progress)
+}
+
+/// The GA and the polish of a fit from motion: the GA's settings, the polish's budget
+/// (replays of the training tosses) and the fold its progress is reported under.
+pub struct Search<'a> {
+    pub settings: &'a GeneticSettings,
+    pub polish_budget: usize,
+    pub fold: Fold,
+}
+
+impl Search<'_> {
+    /// Fits `parameters` of `model` minimising `objective` of the candidate model.
+    fn run(
+        &self,
+        model: &Model,
+        parameters: &MotionParameters,
+        objective: impl Fn(&Model) -> f64 + Sync,
+        progress: &dyn Progress,
+    ) -> Result<MotionFit, GeneticError> {
+        let (settings, polish_budget, fold) = (self.settings, self.polish_budget, self.fold);
+        let started = Instant::now();
+        let bounds = parameters.bounds();
+        let score = |genes: &[f64]| objective(&parameters.apply(model, genes));
+        let start = parameters.values(model);
+        let start_fitness = score(&start);
+        let observer = |steps: usize| {
+            move |done: usize, best: f64| {
+                progress.advance(done as u64, steps as u64);
+                progress.status(&format!("best {best:.3}"));
+            }
+        };
+        let generations = settings.generations;
+        let genetic = in_stage(
+            progress,
+            Stage::MotionGenetic(fold),
+            generations as u64,
+            || minimize(&bounds, settings, score, observer(generations)),
+        )?;
+        // A short search may end above the scenario's own parameters: polish the better.
+        let (from, from_fitness) = if start_fitness < genetic.fitness {
+            (&start, start_fitness)
+        } else {
+            (&genetic.best, genetic.fitness)
+        };
+        let polished = in_stage(
+            progress,
+            Stage::MotionPolish(fold),
+            polish_budget as u64,
+            || {
+                let observer = observer(polish_budget);
+                nelder_mead::polish(&bounds, from, from_fitness, polish_budget, score, observer)
+            },
+        );
+        let names: Vec<String> = (bounds.iter())
+            .map(|b| match b.name.as_str() {
+                "mu_ratio" => "mu_dynamic".to_owned(),
+                name => name.to_owned(),
+            })
+            .collect();
+        let sensitivity =
+            identifiability::probe(&bounds, &names, &polished.best, polished.fitness, score);
+        Ok(MotionFit {
+            model: parameters.apply(model, &polished.best),
+            sensitivity,
+            parameters: parameters.named(&polished.best),
+            start_fitness,
+            genetic_fitness: genetic.fitness,
+            fitness: polished.fitness,
+            evaluations: 1 + genetic.evaluations + polished.evaluations,
+            seconds: started.elapsed().as_secs_f64(),
         })
-        .collect();
-    let sensitivity =
-        identifiability::probe(&bounds, &names, &polished.best, polished.fitness, score);
-    Ok(MotionFit {
-        model: parameters.apply(model, &polished.best),
-        sensitivity,
-        parameters: parameters.named(&polished.best),
-        start_fitness,
-        genetic_fitness: genetic.fitness,
-        fitness: polished.fitness,
-        evaluations: 1 + genetic.evaluations + polished.evaluations,
-        seconds: started.elapsed().as_secs_f64(),
-    })
+    }
 }
