@@ -59,3 +59,17 @@ fn a_hertz_pm2_between_two_moving_bodies_is_corrected_by_the_contact_frame_hcm()
     let (d, se) = e.paired[1];
     assert!(d + 2.0 * se < 0.0, "HCM − PM2 {d} ± {se}");
 }
+
+/// Poses alone of two moving bodies: the replay from motion follows one body, and says
+/// so, pointing to the force data that fit such a contact.
+#[test]
+fn poses_alone_of_two_moving_bodies_are_refused_with_what_to_do() {
+    let model = hcm_tests::scene("ball_hits_block.toml").model().unwrap();
+    let error = hcm_host::toss::TossSetup::new(&model)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("one moving body") && error.contains("has 2") && error.contains("force"),
+        "{error}"
+    );
+}

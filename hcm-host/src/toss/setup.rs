@@ -55,7 +55,9 @@ impl TossSetup {
             .collect();
         let [body] = moving[..] else {
             return Err(fail(format!(
-                "a replay from motion follows one moving body, and this scenario has {}",
+                "a replay from motion follows one moving body, and this scenario has {}; \
+                 with force data (fx, fy, fz of a body), `hcm identify` fits a contact \
+                 between moving bodies at their recorded poses instead",
                 moving.len()
             )));
         };
