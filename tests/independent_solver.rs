@@ -10,9 +10,10 @@
 
 use hcm_host::dataset::{BodyTrack, Dataset, Run, Sample};
 use hcm_host::diagnose::rigid::{diagnose_rigid, RigidDiagnoseSettings};
-use hcm_host::identify::rigid::{identify_from_samples, with_law};
+use hcm_host::identify::rigid::identify_from_samples;
 use hcm_host::progress::Silent;
 use hcm_host::scenario::Scenario;
+use hcm_tests::rigid_pipeline::pm2_of;
 use hcm_tests::rigid_reference::{cube_drop, simulate};
 use nalgebra::{Rotation3, Vector3};
 use rand::{RngExt, SeedableRng};
@@ -103,30 +104,17 @@ fn the_fit_recovers_another_solvers_parameters_and_the_diagnosis_names_its_law()
         .unwrap()
         .fit;
     println!("{} rows; {:?}", fit.rows, fit.parameters);
-    for (name, truth, tolerance) in [
-        ("stiffness", 1e7, 0.05),
-        ("exponent", 1.5, 0.005),
-        ("max_damping", 50.0, 0.05),
-        ("mu_dynamic", 0.2, 0.03),
-    ] {
-        let i = fit.parameters.iter().position(|p| p.0 == name).unwrap();
-        let (got, se) = (fit.parameters[i].1, fit.standard_errors[i]);
-        println!("{name}: {got:.5e} ± {se:.2e} (truth {truth})");
-        assert!(
-            (got - truth).abs() <= tolerance * truth,
-            "{name} {got} vs {truth}"
-        );
-        assert!(
-            (got - truth).abs() <= 4.0 * se,
-            "{name} {got} ± {se} vs {truth}"
-        );
-    }
+    hcm_tests::assert_recovered(
+        &fit,
+        &[
+            ("stiffness", 1e7, 0.05),
+            ("exponent", 1.5, 0.005),
+            ("max_damping", 50.0, 0.05),
+            ("mu_dynamic", 0.2, 0.03),
+        ],
+    );
     // A PM2 of another law: the diagnosis names IMPACT (or nothing), never another cause.
-    let start = with_law(&model, 0, "hunt_crossley", None).unwrap();
-    let pm2 = identify_from_samples(&start, &data, 0, bounds, true, &Silent)
-        .unwrap()
-        .fit
-        .model;
+    let pm2 = pm2_of(&scenario, "hunt_crossley", &data);
     let settings = RigidDiagnoseSettings {
         contact: 0,
         fitted_base: true,
@@ -143,17 +131,11 @@ fn the_hcm_over_another_law_beats_it_on_another_solvers_held_out_throws() {
     use hcm_host::export::export_blobs;
     use hcm_host::train::{train_point_residual, ResidualSettings};
     let scenario = Scenario::load(&hcm_tests::scenario("cube_drop.toml"), &[]).unwrap();
-    let model = scenario.model().unwrap();
     let mut training = recorded(24);
     let held_out = Dataset {
         runs: training.runs.split_off(18),
     };
-    let start = with_law(&model, 0, "hunt_crossley", None).unwrap();
-    let bounds = &scenario.identify.bounds;
-    let pm2 = identify_from_samples(&start, &training, 0, bounds, true, &Silent)
-        .unwrap()
-        .fit
-        .model;
+    let pm2 = pm2_of(&scenario, "hunt_crossley", &training);
     let settings = ResidualSettings {
         epochs: 200,
         int8_epochs: 10,

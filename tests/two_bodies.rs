@@ -28,28 +28,16 @@ fn the_ball_block_contact_is_fitted_at_both_bodies_recorded_poses() {
     let bounds = &scenario.identify.bounds;
     let found = identify_from_samples(&start, &sets.training, 0, bounds, true, &Silent).unwrap();
     let fit = &found.fit;
-    let value = |name: &str| {
-        let i = fit.parameters.iter().position(|p| p.0 == name).unwrap();
-        (fit.parameters[i].1, fit.standard_errors[i])
-    };
     println!("{} rows; {:?}", fit.rows, fit.parameters);
-    for (name, truth, tolerance) in [
-        ("stiffness", 1e9, 0.15),
-        ("exponent", 1.5, 0.01),
-        ("damping", 0.3, 0.03),
-        ("mu_dynamic", 0.15, 0.03),
-    ] {
-        let (got, se) = value(name);
-        println!("{name}: {got:.6e} ± {se:.2e} (truth {truth})");
-        assert!(
-            (got - truth).abs() <= tolerance * truth,
-            "{name} {got} vs {truth}"
-        );
-        assert!(
-            (got - truth).abs() <= 4.0 * se,
-            "{name} {got} ± {se} vs {truth}"
-        );
-    }
+    hcm_tests::assert_recovered(
+        fit,
+        &[
+            ("stiffness", 1e9, 0.15),
+            ("exponent", 1.5, 0.01),
+            ("damping", 0.3, 0.03),
+            ("mu_dynamic", 0.15, 0.03),
+        ],
+    );
 }
 
 #[test]

@@ -67,3 +67,23 @@ pub fn motion_fit(
     let fold = hcm_host::progress::Fold::First;
     identify_motion(model, &target, &parameters, &settings, 60, fold, &progress).unwrap()
 }
+
+/// Asserts that each `(parameter, true value, relative tolerance)` of `expected` was
+/// found by `fit` within the tolerance and within 4 of its standard errors, printing
+/// each.
+pub fn assert_recovered(fit: &hcm_host::identify::rigid::SampleFit, expected: &[(&str, f64, f64)]) {
+    for &(name, truth, tolerance) in expected {
+        let i = (fit.parameters.iter().position(|p| p.0 == name))
+            .unwrap_or_else(|| panic!("no parameter {name}"));
+        let (got, se) = (fit.parameters[i].1, fit.standard_errors[i]);
+        println!("{name}: {got:.6e} ± {se:.2e} (truth {truth})");
+        assert!(
+            (got - truth).abs() <= tolerance * truth,
+            "{name} {got} vs {truth}"
+        );
+        assert!(
+            (got - truth).abs() <= 4.0 * se,
+            "{name} {got} ± {se} vs {truth}"
+        );
+    }
+}

@@ -19,19 +19,29 @@ pub enum Inputs {
     Contact,
 }
 
+/// PM2: `law` (its exponent free) in place of `scenario`'s contact 0, fitted by least
+/// squares on `data` (`hcm identify`'s default).
+pub fn pm2_of(
+    scenario: &Scenario,
+    law: &str,
+    data: &hcm_host::dataset::Dataset,
+) -> hcm_host::scenario::Model {
+    let model = scenario.model().unwrap();
+    let start = with_law(&model, 0, law, None).unwrap();
+    let bounds = &scenario.identify.bounds;
+    identify_from_samples(&start, data, 0, bounds, true, &Silent)
+        .unwrap()
+        .fit
+        .model
+}
+
 /// PM2 (`law` fitted by least squares on S1), then for each of `inputs` the HCM (PM2
 /// plus that residual trained on S1, its f32 blob), all evaluated on S2 of `runs`
 /// generated runs (seed 3): one evaluation with PM2 first, then the HCMs in order
 /// ("HCM" alone, or "HCM (state)" and "HCM (contact)").
 pub fn pipeline(scenario: &Scenario, law: &str, runs: usize, inputs: &[Inputs]) -> RigidEvaluation {
     let sets = generate_split(scenario, runs, 3, &Silent).unwrap();
-    let model = scenario.model().unwrap();
-    let start = with_law(&model, 0, law, None).unwrap();
-    let bounds = &scenario.identify.bounds;
-    let pm2 = identify_from_samples(&start, &sets.training, 0, bounds, true, &Silent)
-        .unwrap()
-        .fit
-        .model;
+    let pm2 = pm2_of(scenario, law, &sets.training);
     let settings = ResidualSettings {
         epochs: 200,
         int8_epochs: 10,
