@@ -94,16 +94,6 @@ pub fn tilt_surface(model: &mut Model, body: usize, x: f64, y: f64) {
     }
 }
 
-/// The shift (m) `shift_surface` made to fixed body `body` of `fitted` relative to
-/// `scenario`: a plane's offset difference, any other shape's move along the up
-/// direction.
-pub fn surface_shift(scenario: &Model, fitted: &Model, body: usize) -> f64 {
-    match (&scenario.bodies[body].shape, &fitted.bodies[body].shape) {
-        (Shape::Plane { offset: a, .. }, Shape::Plane { offset: b, .. }) => b - a,
-        _ => up(scenario).dot(&(fitted.bodies[body].position - scenario.bodies[body].position)),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,7 +6,7 @@
 
 use super::MotionParameters;
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError, Shape};
-use crate::toss::partner::up;
+use crate::toss::partner::shift_surface;
 
 /// The assignments that turn `model`'s scenario into the fitted one, from the
 /// fit's [`MotionParameters::named`] values: the law's two parameters, `mu_static`,
@@ -52,15 +52,17 @@ fn body_assignment(
     value: f64,
 ) -> Assignment {
     if name == "table_offset" {
-        let partner = &model.bodies[parameters.partner];
+        // The fit's own move ([`shift_surface`]), written as the keys it changed.
+        let mut moved = model.clone();
+        shift_surface(&mut moved, parameters.partner, value);
+        let partner = &moved.bodies[parameters.partner];
         return match partner.shape {
             Shape::Plane { offset, .. } => {
-                Assignment::body(&partner.name, &["shape", "plane", "offset"], offset + value)
+                Assignment::body(&partner.name, &["shape", "plane", "offset"], offset)
             }
             _ => {
-                let moved = partner.position + up(model) * value;
-                let row = toml::Value::Array(moved.iter().map(|&x| x.into()).collect());
-                Assignment::body(&partner.name, &["position"], row)
+                let row = (partner.position.iter()).map(|&x| x.into()).collect();
+                Assignment::body(&partner.name, &["position"], toml::Value::Array(row))
             }
         };
     }
