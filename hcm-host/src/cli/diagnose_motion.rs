@@ -46,19 +46,17 @@ pub struct Args {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (model, _, data) = args.tosses.load()?;
-    let out = args.out.parent().unwrap_or(std::path::Path::new(""));
     diagnose_into(
         &model,
         &data,
         MotionBase::Given,
         &args.tosses.data,
-        out,
         &args.out,
     )
 }
 
 /// Diagnoses `model` on `data` (read from `path`), writes the diagnosis as JSON to
-/// `json` (creating the directory `dir` it is in, once there is something to write)
+/// `json` (creating the directory it is in, once there is something to write)
 /// and prints it. `hcm diagnose` on a camera's poses comes here too, with a `base`
 /// fitted when its physics file says so.
 pub fn diagnose_into(
@@ -66,14 +64,13 @@ pub fn diagnose_into(
     data: &hcm_host::dataset::Dataset,
     base: MotionBase,
     path: &std::path::Path,
-    dir: &std::path::Path,
     json: &std::path::Path,
 ) -> anyhow::Result<()> {
     let bars = Bars::with_status(|_| "candidates");
     let diagnosis = diagnose_motion_with(model, data, base, &bars)
         .with_context(|| format!("diagnosing the runs of {} from their poses", path.display()))?;
     let text = serde_json::to_string_pretty(&diagnosis)?;
-    if !dir.as_os_str().is_empty() {
+    if let Some(dir) = json.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     }
     write_bytes(json, text.as_bytes()).with_context(|| format!("writing {}", json.display()))?;

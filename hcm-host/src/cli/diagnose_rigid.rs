@@ -32,8 +32,7 @@ pub fn run(args: &RigidArgs<'_>, scenario: &Scenario, base: &Model) -> anyhow::R
         } else {
             MotionBase::Given
         };
-        let (path, out) = (args.data, args.out);
-        return super::diagnose_motion::diagnose_into(base, &data, freedom, path, out, &json);
+        return super::diagnose_motion::diagnose_into(base, &data, freedom, args.data, &json);
     }
     data.require(
         &args.data.display().to_string(),
