@@ -178,8 +178,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let assignments = fitted_assignments(&model, &parameters, &fit.parameters);
     let sets = beside_physics(&model, &parameters, &fit.parameters);
     println!(
-        "table offset and inertia: kept in the physics file's `sets` (`hcm predict \
-         --physics` applies them): {}",
+        "{}: kept in the physics file's `sets` (`hcm predict --physics` applies them): {}",
+        if fit.parameters.iter().any(|p| p.0 == "table_offset") {
+            "table offset and inertia"
+        } else {
+            "inertia"
+        },
         set_options(&sets)
     );
     print!("{}", score_table(&model, &fit.model, &training, &held_out)?);

@@ -1,9 +1,10 @@
 //! Every toss of a data file predicted and scored, beside the frozen-pose baseline: what
 //! `hcm predict` prints and writes, and what the identification from motion minimises.
 
-use super::{frozen_pose, predict_tosses, score_toss, TossError, TossPrediction, TossScore};
+use super::score::score_movers;
+use super::{frozen_pose, predict_tosses, TossError, TossPrediction, TossScore};
 use super::{Summary, TossSetup};
-use crate::dataset::{BodyTrack, Dataset, Run};
+use crate::dataset::{BodyTrack, Dataset, Run, Sample};
 use crate::scenario::Model;
 
 /// One toss predicted and scored.
@@ -43,16 +44,21 @@ pub fn evaluate_tosses(
         .into_iter()
         .zip(&data.runs)
         .map(|(prediction, run)| {
-            let track = run
-                .body(&setup.name)
-                .ok_or_else(|| TossError::MissingBody {
-                    run: run.id.clone(),
-                    body: setup.name.clone(),
-                })?;
-            let measured = &track.samples[prediction.window.start..];
-            let score = score_toss(&setup, &run.id, measured, &prediction.samples)?;
-            let frozen = frozen_pose(track, &prediction.window);
-            let baseline = score_toss(&setup, &run.id, measured, &frozen)?;
+            let mut measured = Vec::with_capacity(setup.movers.len());
+            let mut frozen = Vec::with_capacity(setup.movers.len());
+            for (mover, window) in setup.movers.iter().zip(prediction.windows()) {
+                let track = run
+                    .body(&mover.name)
+                    .ok_or_else(|| TossError::MissingBody {
+                        run: run.id.clone(),
+                        body: mover.name.clone(),
+                    })?;
+                measured.push(&track.samples[window.start..]);
+                frozen.push(frozen_pose(track, &window));
+            }
+            let score = score_movers(&setup, &run.id, &measured, &prediction.tracks())?;
+            let frozen: Vec<&[Sample]> = frozen.iter().map(Vec::as_slice).collect();
+            let baseline = score_movers(&setup, &run.id, &measured, &frozen)?;
             Ok(TossEvaluation {
                 prediction,
                 score,
@@ -76,18 +82,25 @@ pub fn summarize(evaluations: &[TossEvaluation]) -> EvaluationSummary {
     }
 }
 
-/// The predicted trajectories as a data file: one run per toss, its id and body kept,
-/// the window's frames at their recorded times.
+/// The predicted trajectories as a data file: one run per toss, its id and bodies kept
+/// (`body` the primary's name), the window's frames at their recorded times.
 pub fn predicted_dataset(evaluations: &[TossEvaluation], body: &str) -> Dataset {
     Dataset {
         runs: evaluations
             .iter()
-            .map(|e| Run {
-                id: e.prediction.run.clone(),
-                bodies: vec![BodyTrack {
+            .map(|e| {
+                let primary = BodyTrack {
                     body: body.to_owned(),
                     samples: e.prediction.samples.clone(),
-                }],
+                };
+                let companions = e.prediction.companions.iter().map(|c| BodyTrack {
+                    body: c.name.clone(),
+                    samples: c.samples.clone(),
+                });
+                Run {
+                    id: e.prediction.run.clone(),
+                    bodies: std::iter::once(primary).chain(companions).collect(),
+                }
             })
             .collect(),
     }

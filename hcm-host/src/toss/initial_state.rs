@@ -61,9 +61,23 @@ pub struct InitialState {
     pub source: StateSource,
 }
 
-/// The initial state of `run`'s toss at `window.start` (see the module documentation).
+/// The initial state of `run`'s toss of the primary body at `window.start` (see the
+/// module documentation).
 pub fn estimate_initial_state(
     setup: &TossSetup,
+    run: &str,
+    track: &BodyTrack,
+    window: &Window,
+) -> Result<InitialState, TossError> {
+    estimate_state(&setup.name, setup.gravity, run, track, window)
+}
+
+/// The state of body `name` (its `track` of `run`) at `window.start`, its free-flight
+/// fit under the acceleration `gravity` (m/s²): the scenario's for a body in flight,
+/// zero for one resting or sliding on another (a supported body).
+pub(crate) fn estimate_state(
+    name: &str,
+    gravity: Vector3<f64>,
     run: &str,
     track: &BodyTrack,
     window: &Window,
@@ -71,9 +85,9 @@ pub fn estimate_initial_state(
     let start = &track.samples[window.start];
     let first = (window.start + 1).saturating_sub(FIT_FRAMES);
     let frames = &track.samples[first..=window.start];
-    let start_orientation = orientation(setup, run, start)?;
+    let start_orientation = orientation(name, run, start)?;
     if frames.len() < MIN_FIT_FRAMES {
-        return recorded(setup, run, start, start_orientation);
+        return recorded(name, run, start, start_orientation);
     }
     // The data's free-flight fit (`dataset::FlightFit`, the rig reconstruction's),
     // referred to the window start: under gravity for the position, at zero
@@ -86,11 +100,11 @@ pub fn estimate_initial_state(
         })
     };
     let positions: Vec<(f64, [f64; 3])> = frames.iter().map(|s| (s.time, s.position)).collect();
-    let flight = track_fit(&positions, setup.gravity.into())?;
+    let flight = track_fit(&positions, gravity.into())?;
     let inverse = start_orientation.inverse();
     let mut turns = Vec::with_capacity(frames.len());
     for sample in frames {
-        let turn = (orientation(setup, run, sample)? * inverse).scaled_axis();
+        let turn = (orientation(name, run, sample)? * inverse).scaled_axis();
         turns.push((sample.time, turn.into()));
     }
     let turning = track_fit(&turns, [0.0; 3])?;
@@ -109,7 +123,7 @@ pub fn estimate_initial_state(
 
 /// The recorded state at the window start, when too few frames precede it to fit.
 fn recorded(
-    setup: &TossSetup,
+    name: &str,
     run: &str,
     start: &Sample,
     orientation: UnitQuaternion<f64>,
@@ -122,7 +136,7 @@ fn recorded(
                 problem: format!(
                     "fewer than {MIN_FIT_FRAMES} frames up to the window start to estimate \
                      the velocity of `{}` from, and its recorded {} ({}) is empty there",
-                    setup.name,
+                    name,
                     channel.name(),
                     channel.column_list()
                 ),
@@ -139,9 +153,10 @@ fn recorded(
     })
 }
 
-/// A frame's recorded orientation, refused when empty or not a unit quaternion.
+/// A frame's recorded orientation of body `name`, refused when empty or not a unit
+/// quaternion.
 pub fn orientation(
-    setup: &TossSetup,
+    name: &str,
     run: &str,
     sample: &Sample,
 ) -> Result<UnitQuaternion<f64>, TossError> {
@@ -154,15 +169,13 @@ pub fn orientation(
     }
     let problem = if sample.lacks(Channel::Orientation) {
         format!(
-            "body `{}` has no orientation (qw, qx, qy, qz empty): a toss needs the camera's \
-             pose in every frame",
-            setup.name
+            "body `{name}` has no orientation (qw, qx, qy, qz empty): a toss needs the camera's \
+             pose in every frame"
         )
     } else {
         format!(
-            "body `{}`: columns `qw`, `qx`, `qy`, `qz` hold a quaternion of norm {norm}; a \
-             pose needs a unit quaternion (within {UNIT_TOLERANCE})",
-            setup.name
+            "body `{name}`: columns `qw`, `qx`, `qy`, `qz` hold a quaternion of norm {norm}; \
+             a pose needs a unit quaternion (within {UNIT_TOLERANCE})"
         )
     };
     Err(TossError::Frame {

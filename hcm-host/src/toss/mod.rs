@@ -15,8 +15,9 @@
 //! - [`score`]: position error (% of the body's width) and rotation error (degrees),
 //!   per toss and over tosses; [`baseline`]: the frozen-pose baseline scored the same
 //!   way; [`evaluation`]: every toss of a file predicted and scored.
-//! - [`setup`]: what of a scenario the tosses need (the one moving body, the fixed
-//!   bodies it touches); [`partner`]: a fixed body's clearance and the shift and tilt a
+//! - [`setup`]: what of a scenario the tosses need (its moving bodies, the bodies each
+//!   touches; several moving bodies are replayed together, each from its own frames,
+//!   and scored each on its own width); [`partner`]: a fixed body's clearance and the shift and tilt a
 //!   tracker's calibration error makes to it.
 
 pub mod baseline;
@@ -33,10 +34,10 @@ pub use evaluation::{
     evaluate_tosses, predicted_dataset, summarize, EvaluationSummary, TossEvaluation,
 };
 pub use initial_state::{estimate_initial_state, InitialState, StateSource};
-pub use predict::{predict_toss, predict_tosses, TossPrediction};
-pub use score::{score_toss, Summary, TossScore};
-pub use setup::TossSetup;
-pub use window::{find_window, Window, LEAD_FRAMES};
+pub use predict::{predict_toss, predict_tosses, BodyPrediction, TossPrediction};
+pub use score::{score_movers, score_toss, Summary, TossScore};
+pub use setup::{Mover, TossSetup};
+pub use window::{find_window, find_windows, Window, LEAD_FRAMES};
 
 use crate::dataset::DataError;
 use crate::scenario::ScenarioError;
@@ -46,7 +47,7 @@ use crate::simulate::SimulationError;
 /// data's or the scenario's terms.
 #[derive(Debug, thiserror::Error)]
 pub enum TossError {
-    /// The scenario does not describe one body tossed onto fixed bodies.
+    /// The scenario does not describe bodies tossed onto others.
     #[error("scenario `{scenario}`: {problem}")]
     Setup { scenario: String, problem: String },
     /// The data lack what the prediction needs.

@@ -36,6 +36,22 @@ impl Partner {
         }
     }
 
+    /// A body of `shape` at `position` (m) and `orientation`: a moving body where a
+    /// frame records it.
+    pub(crate) fn at(
+        body: usize,
+        shape: Shape,
+        position: Vector3<f64>,
+        orientation: UnitQuaternion<f64>,
+    ) -> Partner {
+        Partner {
+            body,
+            shape,
+            position,
+            orientation,
+        }
+    }
+
     /// Clearance of a point `p` (m, world frame) from this body (m): for a plane its
     /// height above the reference point along the normal, otherwise the distance to
     /// the surface (negative inside).

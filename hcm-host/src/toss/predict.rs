@@ -1,5 +1,5 @@
-//! The prediction of a toss: the scenario's body started at the window start in the
-//! state [`estimate_initial_state`] gives, simulated to the toss's last frame, and
+//! The prediction of a toss: the scenario's moving bodies started at the window start
+//! in the states [`super::estimate_initial_state`] gives (from each body's own frames), simulated to the toss's last frame, and
 //! sampled at the toss's own frame times — the simulator's recorder samples on a grid
 //! of one frame period from the start, and every frame of the window must lie on it
 //! (frames may be missing, not shifted).
@@ -9,10 +9,13 @@
 //! parallel with rayon and returns them in the data's order — the same numbers whatever
 //! the thread count.
 
-use super::{estimate_initial_state, find_window, InitialState, TossError, TossSetup, Window};
+use super::initial_state::estimate_state;
+use super::window::windows;
+use super::{InitialState, TossError, TossSetup, Window};
 use crate::dataset::{BodyTrack, Dataset, Run, Sample};
 use crate::scenario::Model;
 use crate::simulate::simulate;
+use nalgebra::Vector3;
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -25,18 +28,68 @@ const CLOCK_TOLERANCE: f64 = 1e-3;
 pub struct TossPrediction {
     /// Run id.
     pub(crate) run: String,
-    /// The window, as indices into the run's frames of the body.
+    /// The primary body's window, as indices into the run's frames of the body.
     pub window: Window,
-    /// The state the replay started from.
+    /// The state the primary's replay started from.
     pub initial: InitialState,
     /// The frame period the replay was sampled at (s): the median of the toss's.
     pub frame_period: f64,
-    /// The predicted samples, one per frame of the window, at the frames' times.
+    /// The primary's predicted samples, one per frame of the window, at the frames'
+    /// times.
     pub samples: Vec<Sample>,
+    /// Every other moving body's, in the setup's order.
+    pub companions: Vec<BodyPrediction>,
     /// Accepted solver steps.
     pub steps: u64,
     /// Wall-clock time of the simulation (s); not part of the prediction proper.
     pub seconds: f64,
+}
+
+impl TossPrediction {
+    /// The predicted samples of every moving body, the primary first.
+    pub fn tracks(&self) -> Vec<&[Sample]> {
+        let companions = self.companions.iter().map(|c| c.samples.as_slice());
+        std::iter::once(self.samples.as_slice())
+            .chain(companions)
+            .collect()
+    }
+
+    /// Every moving body's window, the primary's first.
+    pub fn windows(&self) -> Vec<Window> {
+        let companions = self.companions.iter().map(|c| c.window);
+        std::iter::once(self.window).chain(companions).collect()
+    }
+}
+
+/// One companion body's prediction.
+#[derive(Clone, Debug)]
+pub struct BodyPrediction {
+    /// The body's name.
+    pub name: String,
+    /// Its window, as indices into the run's frames of the body.
+    pub window: Window,
+    /// The predicted samples, one per frame of the window, at the frames' times.
+    pub samples: Vec<Sample>,
+}
+
+/// One moving body of a toss checked and ready to simulate.
+#[derive(Clone, Debug)]
+pub struct PreparedBody<'a> {
+    /// Its recorded track.
+    pub(crate) track: &'a BodyTrack,
+    /// Its window.
+    pub(crate) window: Window,
+    /// Its state at the window start.
+    pub(crate) initial: InitialState,
+    /// Each window frame's index on the grid of frame periods from the window start.
+    pub(crate) ticks: Vec<u64>,
+}
+
+impl PreparedBody<'_> {
+    /// The window's recorded frames.
+    pub(crate) fn measured(&self) -> &[Sample] {
+        &self.track.samples[self.window.start..]
+    }
 }
 
 /// A toss checked and ready to simulate.
@@ -44,54 +97,98 @@ pub struct TossPrediction {
 pub struct PreparedToss<'a> {
     /// Run id.
     pub(crate) run: &'a str,
-    /// The recorded track of the tossed body.
-    pub(crate) track: &'a BodyTrack,
-    /// Its window.
-    pub(crate) window: Window,
-    /// The state at the window start.
-    pub(crate) initial: InitialState,
+    /// Every moving body (the setup's movers, in order; the primary first).
+    pub(crate) bodies: Vec<PreparedBody<'a>>,
     /// Frame period (s).
     pub(crate) frame_period: f64,
-    /// Each window frame's index on the grid of frame periods from the window start.
-    pub(crate) ticks: Vec<u64>,
 }
 
-/// Checks `run` and finds its window, initial state and frame grid.
+impl<'a> PreparedToss<'a> {
+    /// The primary body.
+    pub(crate) fn primary(&self) -> &PreparedBody<'a> {
+        &self.bodies[0]
+    }
+
+    /// Every body's recorded window frames, the primary's first.
+    pub(crate) fn measured(&self) -> Vec<&[Sample]> {
+        self.bodies.iter().map(PreparedBody::measured).collect()
+    }
+
+    /// The scores of `prediction` of this toss ([`super::score::score_movers`]).
+    pub(crate) fn score(
+        &self,
+        setup: &TossSetup,
+        prediction: &TossPrediction,
+    ) -> Result<super::TossScore, TossError> {
+        super::score::score_movers(setup, self.run, &self.measured(), &prediction.tracks())
+    }
+}
+
+/// Checks `run` and finds its window, initial states and frame grid.
 pub(crate) fn prepare<'a>(setup: &TossSetup, run: &'a Run) -> Result<PreparedToss<'a>, TossError> {
-    let track = run
-        .body(&setup.name)
-        .ok_or_else(|| TossError::MissingBody {
-            run: run.id.clone(),
-            body: setup.name.clone(),
-        })?;
-    let window = find_window(setup, &run.id, track)?;
-    let initial = estimate_initial_state(setup, &run.id, track, &window)?;
-    let frame_period = median_period(track);
-    let mut ticks = Vec::with_capacity(window.len());
-    for sample in &track.samples[window.start..] {
-        let periods = (sample.time - initial.time) / frame_period;
-        let tick = periods.round();
-        if (periods - tick).abs() > CLOCK_TOLERANCE {
-            return Err(TossError::Frame {
+    let tracks = (setup.movers.iter())
+        .map(|mover| {
+            run.body(&mover.name).ok_or_else(|| TossError::MissingBody {
                 run: run.id.clone(),
-                time: sample.time,
-                problem: format!(
-                    "the frame lies {periods:.4} frame periods ({frame_period} s, the toss's \
-                     median) after the window start, not a whole number: a toss's frames \
-                     must come on one clock"
-                ),
-            });
-        }
-        ticks.push(tick as u64);
+                body: mover.name.clone(),
+            })
+        })
+        .collect::<Result<Vec<&BodyTrack>, TossError>>()?;
+    let windows = windows(setup, &run.id, &tracks)?;
+    let frame_period = median_period(tracks[0]);
+    let mut bodies: Vec<PreparedBody<'a>> = Vec::with_capacity(tracks.len());
+    for ((track, (window, supported)), mover) in tracks.iter().zip(windows).zip(&setup.movers) {
+        // A body resting or sliding on another at the window start is not in free
+        // flight: its frames are fitted without gravity.
+        let gravity = if supported {
+            Vector3::zeros()
+        } else {
+            setup.gravity
+        };
+        let initial = estimate_state(&mover.name, gravity, &run.id, track, &window)?;
+        let clock = bodies.first().map_or(initial.time, |b| b.initial.time);
+        let ticks = ticks(&run.id, &track.samples[window.start..], clock, frame_period)?;
+        bodies.push(PreparedBody {
+            track,
+            window,
+            initial,
+            ticks,
+        });
     }
     Ok(PreparedToss {
         run: &run.id,
-        track,
-        window,
-        initial,
+        bodies,
         frame_period,
-        ticks,
     })
+}
+
+/// Each frame's index on the grid of `frame_period` (s) from `clock` (s, the window
+/// start), refused where a frame lies off the grid.
+fn ticks(
+    run: &str,
+    frames: &[Sample],
+    clock: f64,
+    frame_period: f64,
+) -> Result<Vec<u64>, TossError> {
+    frames
+        .iter()
+        .map(|sample| {
+            let periods = (sample.time - clock) / frame_period;
+            let tick = periods.round();
+            if (periods - tick).abs() > CLOCK_TOLERANCE || tick < 0.0 {
+                return Err(TossError::Frame {
+                    run: run.to_owned(),
+                    time: sample.time,
+                    problem: format!(
+                        "the frame lies {periods:.4} frame periods ({frame_period} s, the \
+                         toss's median) after the window start, not a whole number: a toss's \
+                         frames, of every moving body, must come on one clock"
+                    ),
+                });
+            }
+            Ok(tick as u64)
+        })
+        .collect()
 }
 
 /// Median time between consecutive frames (s); one frame has none, and then any
@@ -107,23 +204,30 @@ fn median_period(track: &BodyTrack) -> f64 {
     gaps[gaps.len() / 2]
 }
 
-/// `model` started at `toss`'s initial state, ending half a period after its last
-/// frame and recording only the tossed body, once per frame period.
+/// `model` with every moving body started at `toss`'s initial state, ending half a
+/// period after the last frame and recording only the moving bodies, once per frame
+/// period.
 pub fn replay_model(model: &Model, setup: &TossSetup, toss: &PreparedToss<'_>) -> Model {
     let mut replay = model.clone();
-    let body = &mut replay.bodies[setup.body];
-    body.position = toss.initial.position;
-    body.orientation = toss.initial.orientation;
-    body.velocity = toss.initial.velocity;
-    body.angular_velocity = toss.initial.angular_velocity;
-    let last = toss.ticks.last().copied().unwrap_or(0) as f64;
+    for (mover, prepared) in setup.movers.iter().zip(&toss.bodies) {
+        let body = &mut replay.bodies[mover.body];
+        let initial = &prepared.initial;
+        body.position = initial.position;
+        body.orientation = initial.orientation;
+        body.velocity = initial.velocity;
+        body.angular_velocity = initial.angular_velocity;
+    }
+    let last = (toss.bodies.iter())
+        .filter_map(|b| b.ticks.last().copied())
+        .max()
+        .unwrap_or(0) as f64;
     let scenario = &mut replay.scenario;
     scenario.simulation.end_time = (last + 0.5) * toss.frame_period;
     scenario.simulation.stop_after_contacts = 0;
     scenario.record.contact_sample_period = toss.frame_period;
     scenario.record.flight_sample_period = toss.frame_period;
     scenario.record.contact_margin = 0.0;
-    scenario.record.bodies = vec![setup.name.clone()];
+    scenario.record.bodies = setup.movers.iter().map(|m| m.name.clone()).collect();
     replay
 }
 
@@ -140,11 +244,39 @@ pub(crate) fn simulate_toss(
         error,
     })?;
     let seconds = started.elapsed().as_secs_f64();
-    let simulated = &simulation.run.bodies[0].samples;
-    let frames = &toss.track.samples[toss.window.start..];
+    let mut predicted = Vec::with_capacity(toss.bodies.len());
+    for (mover, prepared) in setup.movers.iter().zip(&toss.bodies) {
+        let simulated = (simulation.run.body(&mover.name)).map_or(&[][..], |t| &t.samples[..]);
+        predicted.push(BodyPrediction {
+            name: mover.name.clone(),
+            window: prepared.window,
+            samples: on_frames(toss, prepared, simulated)?,
+        });
+    }
+    let mut bodies = predicted.into_iter();
+    let primary = bodies.next().map(|b| b.samples).unwrap_or_default();
+    Ok(TossPrediction {
+        run: toss.run.to_owned(),
+        window: toss.primary().window,
+        initial: toss.primary().initial.clone(),
+        frame_period: toss.frame_period,
+        samples: primary,
+        companions: bodies.collect(),
+        steps: simulation.steps.0,
+        seconds,
+    })
+}
+
+/// The `simulated` samples of one body at `prepared`'s window frames (their times).
+fn on_frames(
+    toss: &PreparedToss<'_>,
+    prepared: &PreparedBody<'_>,
+    simulated: &[Sample],
+) -> Result<Vec<Sample>, TossError> {
+    let frames = prepared.measured();
     let mut samples = Vec::with_capacity(frames.len());
     let mut next = simulated.iter().peekable();
-    for (frame, &tick) in frames.iter().zip(&toss.ticks) {
+    for (frame, &tick) in frames.iter().zip(&prepared.ticks) {
         let wanted = tick as f64 * toss.frame_period;
         while next
             .next_if(|s| s.time < wanted - 0.5 * toss.frame_period)
@@ -162,15 +294,7 @@ pub(crate) fn simulate_toss(
             ..sample.clone()
         });
     }
-    Ok(TossPrediction {
-        run: toss.run.to_owned(),
-        window: toss.window,
-        initial: toss.initial.clone(),
-        frame_period: toss.frame_period,
-        samples,
-        steps: simulation.steps.0,
-        seconds,
-    })
+    Ok(samples)
 }
 
 /// Predicts one run.

@@ -6,7 +6,8 @@
 //! - rotation error: the mean over the window's frames of the angle of R_predᵀ·R, in
 //!   degrees;
 //!
-//! and over tosses, the mean, the standard deviation and the median of each.
+//! for several moving bodies, each body's means averaged over the bodies; and over
+//! tosses, the mean, the standard deviation and the median of each.
 
 use super::initial_state::orientation;
 use super::{TossError, TossSetup};
@@ -38,30 +39,52 @@ pub fn rotation_angle(predicted: &UnitQuaternion<f64>, measured: &UnitQuaternion
     2.0 * q.imag().norm().atan2(q.w.abs())
 }
 
-/// Scores `predicted` against `measured`, frame by frame (the same frames, in order).
+/// Scores `predicted` against `measured` of the primary body, frame by frame (the same
+/// frames, in order).
 pub fn score_toss(
     setup: &TossSetup,
     run: &str,
     measured: &[Sample],
     predicted: &[Sample],
 ) -> Result<TossScore, TossError> {
-    let mut position = 0.0;
-    let mut rotation = 0.0;
-    for (recorded, model) in measured.iter().zip(predicted) {
-        let miss = Vector3::from(model.position) - Vector3::from(recorded.position);
-        position += miss.norm();
-        rotation += rotation_angle(
-            &orientation(setup, run, model)?,
-            &orientation(setup, run, recorded)?,
-        );
+    score_movers(setup, run, &[measured], &[predicted])
+}
+
+/// Scores a toss of every moving body: `measured[m]` and `predicted[m]` are the
+/// window's frames of `setup.movers[m]` (a mover past the end of either is left out).
+/// Each body's errors are its means over its frames, the position error in % of its
+/// own width; the toss's are their means over the bodies (one body: its own).
+pub fn score_movers(
+    setup: &TossSetup,
+    run: &str,
+    measured: &[&[Sample]],
+    predicted: &[&[Sample]],
+) -> Result<TossScore, TossError> {
+    let (mut position, mut rotation, mut frames) = (0.0, 0.0, 0);
+    let bodies = measured.len().min(predicted.len()).min(setup.movers.len());
+    for m in 0..bodies {
+        let mover = &setup.movers[m];
+        let (mut p, mut r) = (0.0, 0.0);
+        for (recorded, model) in measured[m].iter().zip(predicted[m]) {
+            let miss = Vector3::from(model.position) - Vector3::from(recorded.position);
+            p += miss.norm();
+            r += rotation_angle(
+                &orientation(&mover.name, run, model)?,
+                &orientation(&mover.name, run, recorded)?,
+            );
+        }
+        let n = measured[m].len().min(predicted[m].len());
+        frames += n;
+        let n = n.max(1) as f64;
+        position += 100.0 * p / n / mover.width;
+        rotation += r.to_degrees() / n;
     }
-    let frames = measured.len().min(predicted.len());
-    let n = frames.max(1) as f64;
+    let count = bodies.max(1) as f64;
     Ok(TossScore {
         run: run.to_owned(),
         frames,
-        position_error: 100.0 * position / n / setup.width,
-        rotation_error: rotation.to_degrees() / n,
+        position_error: position / count,
+        rotation_error: rotation / count,
     })
 }
 

@@ -1,6 +1,10 @@
-//! What of a scenario the tosses use: its one moving body (a box or a sphere), the
-//! fixed bodies it can touch, and the lengths the window and the scores are measured
-//! in.
+//! What of a scenario the tosses use: its moving bodies (boxes or spheres), the bodies
+//! each can touch, and the lengths the window and the scores are measured in.
+//!
+//! The first moving body is the *primary*: its name is the one a single-body command
+//! prints and its frames index the window. Every other moving body is a *companion*:
+//! replayed from its own frames beside the primary and scored the same way (issue 28:
+//! "several moving bodies" from a camera's poses alone).
 
 use super::partner::Partner;
 use super::TossError;
@@ -21,30 +25,52 @@ pub const TOSSES: Requirement = Requirement {
               poses, frame by frame",
 };
 
-/// The replayed body and the fixed bodies it can touch, read from a model.
+/// One moving body of a toss.
 #[derive(Clone, Debug, PartialEq)]
-pub struct TossSetup {
-    /// Index of the moving body in the model.
+pub struct Mover {
+    /// Index of the body in the model.
     pub(crate) body: usize,
     /// Its name (the data's `body` column).
     pub name: String,
-    /// The fixed bodies it has a contact with, as the scenario places them (the window
-    /// is measured from these, whatever a fit later moves).
-    pub(crate) partners: Vec<Partner>,
+    /// Its shape (body frame), for the other movers' clearance from it.
+    pub(crate) shape: Shape,
     /// Circumscribed radius: the largest distance from the centre to a point of the
-    /// body (m); 0.0524·√3 m for the ContactNets cube, the radius for a sphere. Farther
-    /// from every partner, nothing touches.
+    /// body (m); 0.0524·√3 m for the ContactNets cube, the radius for a sphere.
     pub radius: f64,
-    /// Width the position error is divided by: twice the largest half extent, or the
+    /// Width its position error is divided by: twice the largest half extent, or the
     /// diameter (m); the cube's side, 0.1048 m.
     pub width: f64,
+    /// The fixed bodies it has a contact with, as the scenario places them.
+    pub(crate) partners: Vec<Partner>,
+    /// The other movers (indices into [`TossSetup::movers`]) it has a contact with.
+    pub(crate) touches: Vec<usize>,
+}
+
+/// The replayed bodies and the bodies they can touch, read from a model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TossSetup {
+    /// Index of the primary moving body in the model.
+    pub(crate) body: usize,
+    /// The primary's name (the data's `body` column).
+    pub name: String,
+    /// The fixed bodies the primary has a contact with, as the scenario places them
+    /// (the window is measured from these, whatever a fit later moves).
+    pub(crate) partners: Vec<Partner>,
+    /// The primary's circumscribed radius (m): farther from every partner, nothing
+    /// touches.
+    pub radius: f64,
+    /// The primary's width (m), what its position error is divided by.
+    pub width: f64,
+    /// Every moving body, the primary first.
+    pub movers: Vec<Mover>,
     /// Gravity (m/s², world frame).
     pub(crate) gravity: Vector3<f64>,
 }
 
 impl TossSetup {
-    /// The setup of `model`: exactly one moving body, a box or a sphere, in contact
-    /// with at least one fixed body (a plane, a box, a sphere or a compound).
+    /// The setup of `model`: its moving bodies, each a box or a sphere, and each in
+    /// contact with at least one other body (a fixed plane, box, sphere or compound, or
+    /// another moving body).
     pub fn new(model: &Model) -> Result<TossSetup, TossError> {
         let fail = |problem: String| TossError::Setup {
             scenario: model.scenario.name.clone(),
@@ -53,61 +79,95 @@ impl TossSetup {
         let moving: Vec<usize> = (0..model.bodies.len())
             .filter(|&b| !model.bodies[b].fixed)
             .collect();
-        let [body] = moving[..] else {
-            return Err(fail(format!(
-                "a replay from motion follows one moving body, and this scenario has {}; \
-                 with force data (fx, fy, fz of a body), `hcm identify` fits a contact \
-                 between moving bodies at their recorded poses instead",
-                moving.len()
-            )));
-        };
-        let tossed = &model.bodies[body];
-        let (radius, width) = match tossed.shape {
-            Shape::Box { half_extents } => (half_extents.norm(), 2.0 * half_extents.max()),
-            Shape::Sphere { radius } => (radius, 2.0 * radius),
-            _ => {
-                return Err(fail(format!(
-                    "body `{}` must be a box or a sphere to be replayed from its poses",
-                    tossed.name
-                )))
-            }
-        };
-        let partners: Vec<Partner> = (model.contacts.iter())
-            .filter(|c| c.body_1 == body || c.body_2 == body)
-            .map(|c| c.body_1 + c.body_2 - body)
-            .map(|other| Partner::of(model, other))
-            .collect();
-        if partners.is_empty() {
-            return Err(fail(format!(
-                "body `{}` has no contact with a fixed body to land on; add a \
-                 [[contact]] with its bodies",
-                tossed.name
-            )));
+        if moving.is_empty() {
+            return Err(fail(
+                "a replay from motion follows a moving body, and every body of this \
+                 scenario is fixed"
+                    .into(),
+            ));
         }
+        let movers = (moving.iter())
+            .map(|&body| mover(model, body, &moving).map_err(&fail))
+            .collect::<Result<Vec<Mover>, TossError>>()?;
+        let primary = &movers[0];
         Ok(TossSetup {
-            body,
-            name: tossed.name.clone(),
-            partners,
-            radius,
-            width,
+            body: primary.body,
+            name: primary.name.clone(),
+            partners: primary.partners.clone(),
+            radius: primary.radius,
+            width: primary.width,
+            movers,
             gravity: model.gravity,
         })
     }
 
-    /// Checks that `data` (read from `file`) holds the tossed body's pose in every frame.
+    /// Checks that `data` (read from `file`) holds every moving body's pose in every
+    /// frame.
     pub fn check_data(&self, file: &str, model: &Model, data: &Dataset) -> Result<(), TossError> {
+        let moving: Vec<usize> = self.movers.iter().map(|m| m.body).collect();
         let contacts: Vec<usize> = (0..model.contacts.len())
-            .filter(|&c| [model.contacts[c].body_1, model.contacts[c].body_2].contains(&self.body))
+            .filter(|&c| {
+                let contact = &model.contacts[c];
+                moving.contains(&contact.body_1) || moving.contains(&contact.body_2)
+            })
             .collect();
         Ok(data.require(file, model, &contacts, &TOSSES)?)
     }
 
-    /// Clearance of a centre at `position` (m) from the nearest partner (m): a plane's
-    /// height above its reference point along its normal, another shape's distance
-    /// to its surface ([`Partner::clearance`]).
+    /// Clearance of the primary's centre at `position` (m) from its nearest fixed
+    /// partner (m): a plane's height above its reference point along its normal,
+    /// another shape's distance to its surface ([`Partner::clearance`]).
     pub fn clearance(&self, position: &Vector3<f64>) -> f64 {
+        self.movers[0].fixed_clearance(position)
+    }
+}
+
+impl Mover {
+    /// Clearance of this body's centre at `position` (m) from its nearest fixed partner
+    /// (m); +∞ without one.
+    pub fn fixed_clearance(&self, position: &Vector3<f64>) -> f64 {
         (self.partners.iter())
             .map(|p| p.clearance(position))
             .fold(f64::INFINITY, f64::min)
     }
+}
+
+/// Moving body `body` of `model` as a [`Mover`]; `moving` lists every moving body.
+fn mover(model: &Model, body: usize, moving: &[usize]) -> Result<Mover, String> {
+    let tossed = &model.bodies[body];
+    let (radius, width) = match tossed.shape {
+        Shape::Box { half_extents } => (half_extents.norm(), 2.0 * half_extents.max()),
+        Shape::Sphere { radius } => (radius, 2.0 * radius),
+        _ => {
+            return Err(format!(
+                "body `{}` must be a box or a sphere to be replayed from its poses",
+                tossed.name
+            ))
+        }
+    };
+    let others: Vec<usize> = (model.contacts.iter())
+        .filter(|c| c.body_1 == body || c.body_2 == body)
+        .map(|c| c.body_1 + c.body_2 - body)
+        .collect();
+    if others.is_empty() {
+        return Err(format!(
+            "body `{}` has no contact with another body to land on; add a [[contact]] with \
+             its bodies",
+            tossed.name
+        ));
+    }
+    Ok(Mover {
+        body,
+        name: tossed.name.clone(),
+        shape: tossed.shape.clone(),
+        radius,
+        width,
+        partners: (others.iter())
+            .filter(|&&o| model.bodies[o].fixed)
+            .map(|&o| Partner::of(model, o))
+            .collect(),
+        touches: (others.iter())
+            .filter_map(|o| moving.iter().position(|m| m == o))
+            .collect(),
+    })
 }

@@ -165,10 +165,16 @@ impl MotionEffect {
     /// Whether it can change `model`'s `contact` at all: a coefficient or a shape needs
     /// a friction law, and Coulomb's law is no change of shape for a law whose μ_s = μ_d
     /// already (it would only repeat the coefficient's candidate); the restitution's
-    /// damping needs a law with a stiffness and an exponent, and room for an effect.
+    /// damping needs a law with a stiffness and an exponent, and room for an effect; a
+    /// surface's shift or tilt needs a fixed body in the contact (a moving one starts
+    /// where its own frames put it).
     pub fn changes(self, model: &Model, contact: usize) -> bool {
         let friction = model.contacts[contact].model.friction;
+        let c = &model.contacts[contact];
         match self {
+            MotionEffect::TableOffset | MotionEffect::TableTilt => {
+                model.bodies[c.body_1].fixed || model.bodies[c.body_2].fixed
+            }
             MotionEffect::FrictionCoefficient => friction.is_some(),
             MotionEffect::CoulombFriction => {
                 friction.is_some_and(|f| f.static_coefficient != f.dynamic_coefficient)

@@ -13,7 +13,7 @@ use crate::numerics::optimize::nelder_mead::polish;
 use crate::numerics::optimize::Bound;
 use crate::scenario::Model;
 use crate::toss::predict::{simulate_toss, PreparedToss};
-use crate::toss::{score_toss, TossError};
+use crate::toss::TossError;
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
@@ -124,8 +124,8 @@ fn toss_score(
     weight: f64,
 ) -> Option<f64> {
     let prediction = simulate_toss(model, &target.setup, toss).ok()?;
-    let measured = &toss.track.samples[toss.window.start..];
-    let score = score_toss(&target.setup, toss.run, measured, &prediction.samples).ok()?;
+    let measured = toss.primary().measured();
+    let score = toss.score(&target.setup, &prediction).ok()?;
     let (mut force, mut frames) = (0.0, 0);
     for (recorded, predicted) in measured.iter().zip(&prediction.samples) {
         let f = Vector3::from(recorded.force);

@@ -7,7 +7,7 @@
 use crate::dataset::Dataset;
 use crate::scenario::Model;
 use crate::toss::predict::{prepare, simulate_toss, PreparedToss};
-use crate::toss::{score_toss, TossError, TossScore, TossSetup};
+use crate::toss::{TossError, TossScore, TossSetup};
 use rayon::prelude::*;
 
 /// The tosses a fit replays, each checked once: window, initial state and frame grid
@@ -38,8 +38,7 @@ pub fn toss_scores(target: &MotionTarget<'_>, candidate: &Model) -> Option<Vec<T
     let scores: Vec<Option<TossScore>> = (target.tosses.par_iter())
         .map(|toss| {
             let prediction = simulate_toss(candidate, &target.setup, toss).ok()?;
-            let measured = &toss.track.samples[toss.window.start..];
-            score_toss(&target.setup, toss.run, measured, &prediction.samples).ok()
+            toss.score(&target.setup, &prediction).ok()
         })
         .collect();
     scores.into_iter().collect()

@@ -68,8 +68,10 @@ impl MotionParameters {
         Self::for_contact(model, setup, None)
     }
 
-    /// The parameters of contact `chosen` of `model` (one of the replayed body's), or
-    /// of its first contact with a fixed body when `None`.
+    /// The parameters of contact `chosen` of `model` (one of a moving body's), or when
+    /// `None` of the primary body's first contact with a fixed body (else any moving
+    /// body's first with a fixed body, else the primary's first). The contact needs STEP
+    /// friction and a law with a stiffness to fit.
     pub fn for_contact(
         model: &Model,
         setup: &TossSetup,
@@ -79,14 +81,19 @@ impl MotionParameters {
             scenario: model.scenario.name.clone(),
             problem,
         };
-        let (contact, partner) = (model.contacts.iter().enumerate())
-            .filter(|(_, c)| c.body_1 == setup.body || c.body_2 == setup.body)
-            .map(|(i, c)| (i, c.body_1 + c.body_2 - setup.body))
-            .find(|(i, _)| chosen.is_none_or(|c| c == *i))
-            .ok_or_else(|| match chosen {
-                Some(c) => fail(format!("contact {c} is not one of body `{}`'s", setup.name)),
-                None => fail(format!("body `{}` has no contact to fit", setup.name)),
-            })?;
+        let contact = match chosen {
+            Some(c) => Some(c).filter(|&c| {
+                let found = model.contacts.get(c);
+                found.is_some_and(|f| {
+                    !(model.bodies[f.body_1].fixed && model.bodies[f.body_2].fixed)
+                })
+            }),
+            None => default_contact(model, setup),
+        }
+        .ok_or_else(|| match chosen {
+            Some(c) => fail(format!("contact {c} is not one of a moving body's")),
+            None => fail(format!("body `{}` has no contact to fit", setup.name)),
+        })?;
         let found = &model.contacts[contact];
         let Some(friction) = found.model.friction else {
             return Err(fail(format!(
@@ -94,26 +101,60 @@ impl MotionParameters {
                  `friction = {{ mu_static, mu_dynamic, v_static, v_dynamic }}`"
             )));
         };
-        let mut genes = law_genes(model, contact, setup).map_err(fail)?;
-        genes.extend(other_genes(friction.static_coefficient));
+        // The replayed body of the contact: the primary where it is one of them, else
+        // its moving body (the first where both move); the partner is the other.
+        let (a, b) = (found.body_1, found.body_2);
+        let body = if b == setup.body || model.bodies[a].fixed {
+            b
+        } else {
+            a
+        };
+        let partner = a + b - body;
+        let mut genes = law_genes(model, contact, body).map_err(fail)?;
+        genes.extend(other_genes(
+            friction.static_coefficient,
+            model.bodies[partner].fixed,
+        ));
         Ok(MotionParameters {
             contact,
             partner,
-            body: setup.body,
+            body,
             genes,
         })
     }
 
-    /// Genes of the law (one or two).
+    /// Genes of the law (one or two): those before `mu_static`.
     fn law_len(&self) -> usize {
-        self.genes.len() - OTHER_GENES.len()
+        (self.genes.iter())
+            .position(|g| g.name == "mu_static")
+            .unwrap_or(self.genes.len())
     }
 }
 
+/// The primary's first contact with a fixed body, else any moving body's first with a
+/// fixed body, else the primary's first contact.
+fn default_contact(model: &Model, setup: &TossSetup) -> Option<usize> {
+    let of = |c: &crate::scenario::Contact, body: usize| c.body_1 == body || c.body_2 == body;
+    let fixed =
+        |c: &crate::scenario::Contact| model.bodies[c.body_1].fixed || model.bodies[c.body_2].fixed;
+    let contacts = &model.contacts;
+    (contacts.iter().position(|c| of(c, setup.body) && fixed(c)))
+        .or_else(|| {
+            contacts
+                .iter()
+                .position(|c| fixed(c) && setup.movers.iter().any(|m| of(c, m.body)))
+        })
+        .or_else(|| contacts.iter().position(|c| of(c, setup.body)))
+}
+
 /// The friction, partner and body bounds, μ_s's upper bound raised to twice the
-/// scenario's μ_s (–) where that is higher.
-fn other_genes(mu_static: f64) -> impl Iterator<Item = Bound> {
-    OTHER_GENES.iter().map(move |row| {
+/// scenario's μ_s (–) where that is higher; the partner's shift only when it is fixed
+/// (a moving partner starts where its own frames put it).
+fn other_genes(mu_static: f64, fixed_partner: bool) -> impl Iterator<Item = Bound> {
+    let rows = OTHER_GENES
+        .iter()
+        .filter(move |row| fixed_partner || row.0 != "table_offset");
+    rows.map(move |row| {
         let mut bound = Bound::of_row(row);
         if row.0 == "mu_static" && mu_static.is_finite() {
             bound.upper = bound.upper.max(2.0 * mu_static);
@@ -124,7 +165,7 @@ fn other_genes(mu_static: f64) -> impl Iterator<Item = Bound> {
 
 /// The law's freed parameters of `contact` and their box (see the module
 /// documentation), or why the law has none to fit.
-fn law_genes(model: &Model, contact: usize, setup: &TossSetup) -> Result<Vec<Bound>, String> {
+fn law_genes(model: &Model, contact: usize, body: usize) -> Result<Vec<Bound>, String> {
     let law = model.contacts[contact].law();
     let name = law.name();
     let given = model.scenario.identify.bounds.get(name);
@@ -137,7 +178,7 @@ fn law_genes(model: &Model, contact: usize, setup: &TossSetup) -> Result<Vec<Bou
                 None if p.name == "restitution" => (0.05, 1.0, false),
                 None if value > 0.0 && value.is_finite() => (value / SPAN, value * SPAN, true),
                 None => {
-                    let scale = zero_damping_scale(model, contact, setup, p.name);
+                    let scale = zero_damping_scale(model, contact, body, p.name);
                     (scale / 1e3, scale * 10.0, true)
                 }
             };
@@ -168,7 +209,7 @@ fn law_genes(model: &Model, contact: usize, setup: &TossSetup) -> Result<Vec<Bou
 /// its static indentation, δ_s = (m·g/k)^(1/e), k_lin = e·k·δ_s^(e−1); for any other
 /// damping 1 in its own unit (Hunt–Crossley's χ: 1 s/m, the restitution of a 1 m/s
 /// landing near 0.3).
-fn zero_damping_scale(model: &Model, contact: usize, setup: &TossSetup, name: &str) -> f64 {
+fn zero_damping_scale(model: &Model, contact: usize, body: usize, name: &str) -> f64 {
     let law = model.contacts[contact].law();
     let (Ok(k), Ok(e)) = (law.get("stiffness"), law.get("exponent")) else {
         return 1.0;
@@ -176,8 +217,8 @@ fn zero_damping_scale(model: &Model, contact: usize, setup: &TossSetup, name: &s
     if name != "max_damping" || !(k > 0.0 && e > 0.0) {
         return 1.0;
     }
-    let m = model.bodies[setup.body].mass;
-    let weight = m * setup.gravity.norm();
+    let m = model.bodies[body].mass;
+    let weight = m * model.gravity.norm();
     let depth = (weight / k).powf(1.0 / e);
     let linear = e * k * depth.powf(e - 1.0);
     let critical = 2.0 * (linear * m).sqrt();
@@ -214,7 +255,16 @@ impl Parameters for MotionParameters {
             .map(|g| law.get(&g.name).unwrap_or(g.lower))
             .collect();
         // The scenario's own partner and inertia: shift 0, scale 1.
-        genes.extend([mu_static, mu_ratio, 0.0, 1.0]);
+        genes.extend(
+            self.genes[self.law_len()..]
+                .iter()
+                .map(|g| match g.name.as_str() {
+                    "mu_static" => mu_static,
+                    "mu_ratio" => mu_ratio,
+                    "table_offset" => 0.0,
+                    _ => 1.0,
+                }),
+        );
         (genes.iter().zip(&self.genes))
             .map(|(g, b)| g.clamp(b.lower, b.upper))
             .collect()
@@ -231,13 +281,25 @@ impl Parameters for MotionParameters {
             // The names come from the law's own parameter list: set cannot fail.
             let _ = contact.model.normal.base.set(&gene.name, *value);
         }
-        if let (Some(friction), [mu_static, mu_ratio, shift, inertia_scale]) =
-            (contact.model.friction.as_mut(), other)
-        {
-            friction.static_coefficient = *mu_static;
+        let named = |name: &str| {
+            let at = self.genes[self.law_len()..]
+                .iter()
+                .position(|g| g.name == name);
+            at.and_then(|i| other.get(i).copied())
+        };
+        if let (Some(friction), Some(mu_static), Some(mu_ratio)) = (
+            contact.model.friction.as_mut(),
+            named("mu_static"),
+            named("mu_ratio"),
+        ) {
+            friction.static_coefficient = mu_static;
             friction.dynamic_coefficient = mu_static * mu_ratio;
-            shift_surface(&mut out, self.partner, *shift);
-            out.bodies[self.body].inertia *= *inertia_scale;
+        }
+        if let Some(shift) = named("table_offset") {
+            shift_surface(&mut out, self.partner, shift);
+        }
+        if let Some(scale) = named("inertia_scale") {
+            out.bodies[self.body].inertia *= scale;
         }
         out
     }
@@ -250,13 +312,12 @@ impl Parameters for MotionParameters {
             .zip(law)
             .map(|(g, v)| (g.name.clone(), *v))
             .collect();
-        if let [mu_static, mu_ratio, offset, inertia_scale] = other {
-            out.extend([
-                ("mu_static".to_owned(), *mu_static),
-                ("mu_dynamic".to_owned(), mu_static * mu_ratio),
-                ("table_offset".to_owned(), *offset),
-                ("inertia_scale".to_owned(), *inertia_scale),
-            ]);
+        let mu_static = (self.genes.iter().zip(genes)).find(|(g, _)| g.name == "mu_static");
+        for (gene, &value) in self.genes[self.law_len()..].iter().zip(other) {
+            match (gene.name.as_str(), mu_static) {
+                ("mu_ratio", Some((_, &mu))) => out.push(("mu_dynamic".to_owned(), mu * value)),
+                (name, _) => out.push((name.to_owned(), value)),
+            }
         }
         out
     }

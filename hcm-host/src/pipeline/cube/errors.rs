@@ -61,8 +61,8 @@ pub(crate) fn frame_errors(
             for (real, model) in measured.iter().zip(&e.prediction.samples) {
                 let miss = Vector3::from(model.position) - Vector3::from(real.position);
                 let turn = rotation_angle(
-                    &orientation(setup, run, model)?,
-                    &orientation(setup, run, real)?,
+                    &orientation(&setup.name, run, model)?,
+                    &orientation(&setup.name, run, real)?,
                 );
                 errors.time.push(real.time - start);
                 errors.position.push(100.0 * miss.norm() / setup.width);

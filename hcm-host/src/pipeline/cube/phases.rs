@@ -104,11 +104,11 @@ fn settling_start(setup: &TossSetup, run: &str, measured: &[Sample]) -> Result<u
     let still = |j: usize| -> Result<bool, TossError> {
         let (p, q) = (
             Vector3::from(measured[j].position),
-            orientation(setup, run, &measured[j])?,
+            orientation(&setup.name, run, &measured[j])?,
         );
         for later in &measured[j + 1..=j + REST_SPAN] {
             let moved = (Vector3::from(later.position) - p).norm();
-            let turned = rotation_angle(&q, &orientation(setup, run, later)?).to_degrees();
+            let turned = rotation_angle(&q, &orientation(&setup.name, run, later)?).to_degrees();
             if moved > REST_DISTANCE * setup.width || turned > REST_ANGLE {
                 return Ok(false);
             }
