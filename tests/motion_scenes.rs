@@ -12,21 +12,10 @@ use hcm_host::identify::motion::{split_tosses, MotionFit};
 use hcm_host::scenario::{Model, Scenario};
 use hcm_host::toss::{evaluate_tosses, summarize};
 
-/// A test scene (`tests/common/scenes/`) filmed at 200 Hz, with `sets` applied.
+/// A test scene (`tests/common/scenes/`) filmed at 200 Hz for 0.45 s, with `sets`
+/// applied.
 fn filmed(file: &str, sets: &[String]) -> Model {
-    let camera = [
-        "record.contact_sample_period=0.005",
-        "record.flight_sample_period=0.005",
-        "record.contact_margin=0.0",
-        "simulation.end_time=0.45",
-    ];
-    let all: Vec<String> = (camera.iter().map(|s| s.to_string()))
-        .chain(sets.iter().cloned())
-        .collect();
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/common/scenes")
-        .join(file);
-    Scenario::load(&path, &all).unwrap().model().unwrap()
+    hcm_tests::filmed(file, 0.45, sets)
 }
 
 /// Eight throws of `body` under the hidden `truth` sets, each from `height` (m) with

@@ -51,21 +51,7 @@ fn a_hertz_pm2_between_two_moving_bodies_is_corrected_by_the_contact_frame_hcm()
 
 /// The ball-and-block scene filmed at 200 Hz for 0.3 s, with `sets` applied.
 fn filmed(sets: &[String]) -> hcm_host::scenario::Model {
-    let camera = [
-        "record.contact_sample_period=0.005",
-        "record.flight_sample_period=0.005",
-        "record.contact_margin=0.0",
-        "simulation.end_time=0.3",
-    ];
-    let all: Vec<String> = (camera.iter().map(|s| s.to_string()))
-        .chain(sets.iter().cloned())
-        .collect();
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/common/scenes/ball_hits_block.toml");
-    hcm_host::scenario::Scenario::load(&path, &all)
-        .unwrap()
-        .model()
-        .unwrap()
+    hcm_tests::filmed("ball_hits_block.toml", 0.3, sets)
 }
 
 /// The scene under the hidden `truth`, the ball where the throws start it.

@@ -39,6 +39,23 @@ pub fn scene(name: &str) -> hcm_host::scenario::Scenario {
     hcm_host::scenario::Scenario::load(&path, &[]).expect("the test scene reads")
 }
 
+/// A test scene (`tests/common/scenes/`) filmed by a camera at 200 Hz for `seconds` (s):
+/// every body sampled once per 5 ms, in contact or not; `sets` applied after.
+pub fn filmed(name: &str, seconds: f64, sets: &[String]) -> hcm_host::scenario::Model {
+    let camera = [
+        "record.contact_sample_period=0.005".to_owned(),
+        "record.flight_sample_period=0.005".to_owned(),
+        "record.contact_margin=0.0".to_owned(),
+        format!("simulation.end_time={seconds}"),
+    ];
+    let all: Vec<String> = camera.into_iter().chain(sets.iter().cloned()).collect();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/common/scenes")
+        .join(name);
+    let scenario = hcm_host::scenario::Scenario::load(&path, &all).expect("the test scene reads");
+    scenario.model().expect("the test scene resolves")
+}
+
 /// The path of a scenario file in the workspace's `scenarios/`.
 pub fn scenario(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
