@@ -74,19 +74,7 @@ fn check(file: &str, body: &str, truth: &[String], fixed: &[(&str, f64, f64)]) -
         held_out_score(&found.model, &held_out),
         held_out_score(&filmed(file, truth), &held_out),
     );
-    println!(
-        "{file}: {:?}\n  training {:.3} → {:.3}; held out: scene {scene:.3}, fitted \
-         {fitted:.3}, truth {exact:.3} (% + °)",
-        found.parameters, found.start_fitness, found.fitness,
-    );
-    for s in &found.sensitivity {
-        println!(
-            "  {:<14} rise {:.4} {}",
-            s.name,
-            s.rise,
-            if s.loose { "loose" } else { "" }
-        );
-    }
+    hcm_tests::print_motion_fit(file, &found, (scene, fitted, exact));
     assert!(
         fitted < 0.5 * scene,
         "{file}: held out {fitted} vs scene {scene}"

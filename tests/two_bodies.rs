@@ -139,19 +139,7 @@ fn poses_alone_of_two_moving_bodies_fit_the_contact_between_them() {
         score(&found.model),
         score(&truth_model(&truth)),
     );
-    println!(
-        "{:?}\ntraining {:.3} → {:.3}; held out: scene {scene:.3}, fitted {fitted:.3}, truth \
-         {exact:.3} (% + °)",
-        found.parameters, found.start_fitness, found.fitness
-    );
-    for s in &found.sensitivity {
-        println!(
-            "  {:<14} rise {:.4} {}",
-            s.name,
-            s.rise,
-            if s.loose { "loose" } else { "" }
-        );
-    }
+    hcm_tests::print_motion_fit("ball_hits_block.toml", &found, (scene, fitted, exact));
     assert!(fitted < 0.5 * scene, "held out {fitted} vs scene {scene}");
     let damping = (found.parameters.iter())
         .find(|p| p.0 == "damping")

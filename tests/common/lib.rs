@@ -85,6 +85,24 @@ pub fn motion_fit(
     identify_motion(model, &target, &parameters, &settings, 60, fold, &progress).unwrap()
 }
 
+/// Prints a fit from motion: its parameters, its training fitness before and after,
+/// the held-out scores `(scene, fitted, truth)` (% + °) and each parameter's probe.
+pub fn print_motion_fit(
+    label: &str,
+    found: &hcm_host::identify::motion::MotionFit,
+    (scene, fitted, truth): (f64, f64, f64),
+) {
+    println!(
+        "{label}: {:?}\n  training {:.3} → {:.3}; held out: scene {scene:.3}, fitted \
+         {fitted:.3}, truth {truth:.3} (% + °)",
+        found.parameters, found.start_fitness, found.fitness,
+    );
+    for s in &found.sensitivity {
+        let loose = if s.loose { "loose" } else { "" };
+        println!("  {:<14} rise {:.4} {loose}", s.name, s.rise);
+    }
+}
+
 /// Asserts that each `(parameter, true value, relative tolerance)` of `expected` was
 /// found by `fit` within the tolerance and within 4 of its standard errors, printing
 /// each.
