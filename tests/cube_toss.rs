@@ -267,6 +267,22 @@ fn predict_writes_the_window_frames_and_scores_tosses() {
     let scores = std::fs::read_to_string(hcm.path("scores.csv")).unwrap();
     assert_eq!(scores.lines().count(), 3, "{scores}");
     assert!(scores.starts_with("run,frames,window_start"), "{scores}");
+    // The initial state's columns: the replay's first frame is the window start, where
+    // it stands at the state written (p0x, p0y, p0z; q0w…q0z).
+    let header: Vec<&str> = scores.lines().next().unwrap().split(',').collect();
+    let row: Vec<&str> = scores.lines().nth(1).unwrap().split(',').collect();
+    let cell = |name: &str| -> f64 {
+        let at = header.iter().position(|h| *h == name).unwrap();
+        row[at].parse().unwrap()
+    };
+    let first = &predicted.runs[0].bodies[0].samples[0];
+    assert_eq!(header.len(), 21, "{scores}");
+    for (k, axis) in ["p0x", "p0y", "p0z"].iter().enumerate() {
+        assert!((cell(axis) - first.position[k]).abs() < 1e-12, "{axis}");
+    }
+    for (k, part) in ["q0w", "q0x", "q0y", "q0z"].iter().enumerate() {
+        assert!((cell(part) - first.orientation[k]).abs() < 1e-9, "{part}");
+    }
 }
 
 #[test]

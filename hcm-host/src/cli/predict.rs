@@ -48,8 +48,10 @@ pub struct Args {
     /// Where to write the predicted trajectories (measured-data CSV, one run per toss).
     #[arg(long)]
     out: PathBuf,
-    /// Also write each toss's scores (CSV: run, frames, window start, initial state,
-    /// position and rotation error of the prediction and of the frozen pose).
+    /// Also write each toss's scores (CSV: run, frames, window start, how the initial
+    /// state was found, position and rotation error of the prediction and of the frozen
+    /// pose, then the initial state itself: p0x…p0z (m), q0w…q0z, v0x…v0z (m/s),
+    /// w0x…w0z (rad/s), world frame).
     #[arg(long, value_name = "FILE")]
     scores: Option<PathBuf>,
 }
@@ -125,35 +127,59 @@ fn print_summary(name: &str, setup: &TossSetup, evaluations: &[TossEvaluation], 
     );
 }
 
+/// The initial state's columns of the scores CSV: the primary body's state at the
+/// window start the replay started from — centre of mass (m), orientation quaternion
+/// (body → world), velocity (m/s) and angular velocity (rad/s), world frame — so that
+/// another simulator can start from the very same state (`benches/peers/`).
+const INITIAL_STATE_COLUMNS: [&str; 13] = [
+    "p0x", "p0y", "p0z", "q0w", "q0x", "q0y", "q0z", "v0x", "v0y", "v0z", "w0x", "w0y", "w0z",
+];
+
 /// Writes each toss's scores as CSV, atomically.
 fn write_scores(path: &Path, evaluations: &[TossEvaluation]) -> anyhow::Result<()> {
     write_atomically(path, |out| -> anyhow::Result<()> {
         let mut csv = csv::Writer::from_writer(out);
-        csv.write_record([
-            "run",
-            "frames",
-            "window_start",
-            "initial_state",
-            "position_error",
-            "rotation_error",
-            "frozen_position_error",
-            "frozen_rotation_error",
-        ])?;
+        csv.write_record(
+            [
+                "run",
+                "frames",
+                "window_start",
+                "initial_state",
+                "position_error",
+                "rotation_error",
+                "frozen_position_error",
+                "frozen_rotation_error",
+            ]
+            .into_iter()
+            .chain(INITIAL_STATE_COLUMNS),
+        )?;
         for e in evaluations {
             let source = match e.prediction.initial.source {
                 StateSource::FreeFlightFit { frames } => format!("fit {frames} frames"),
                 StateSource::Recorded => "recorded".to_owned(),
             };
-            csv.write_record([
-                e.score.run.clone(),
-                e.score.frames.to_string(),
-                e.prediction.initial.time.to_string(),
-                source,
-                e.score.position_error.to_string(),
-                e.score.rotation_error.to_string(),
-                e.baseline.position_error.to_string(),
-                e.baseline.rotation_error.to_string(),
-            ])?;
+            let initial = &e.prediction.initial;
+            let q = initial.orientation.quaternion();
+            let quaternion = [q.w, q.i, q.j, q.k];
+            let state = (initial.position.iter())
+                .chain(&quaternion)
+                .chain(initial.velocity.iter())
+                .chain(initial.angular_velocity.iter())
+                .map(f64::to_string);
+            csv.write_record(
+                [
+                    e.score.run.clone(),
+                    e.score.frames.to_string(),
+                    initial.time.to_string(),
+                    source,
+                    e.score.position_error.to_string(),
+                    e.score.rotation_error.to_string(),
+                    e.baseline.position_error.to_string(),
+                    e.baseline.rotation_error.to_string(),
+                ]
+                .into_iter()
+                .chain(state),
+            )?;
         }
         csv.flush()?;
         Ok(())
