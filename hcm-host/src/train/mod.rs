@@ -3,7 +3,10 @@
 //! misses — for the 1D examples the normal-force error f_measured − f_PM2 from the
 //! contact's motion state [δ, δ̇, δ̇0] ([`residual_pairs`]); for a rigid body the
 //! force and torque error from its 13 state components ([`wrench_pairs`], trained
-//! with [`wrench_settings`]).
+//! with [`wrench_settings`]). The contact-frame residual ([`point_residual`]) learns
+//! from a force sensor's wrench ([`point_samples`]) or, from a camera's poses alone,
+//! from the poses the physics misses a few frames on ([`motion_samples`],
+//! [`motion_residual`]).
 //!
 //! [`train`] minimises the mean squared error on normalised inputs and outputs
 //! (x̂ = (x − mean)/std, ŷ likewise, mean and std over the training rows) by
@@ -28,6 +31,8 @@ pub mod envelope;
 pub mod explained;
 mod force_residual;
 mod int8;
+pub mod motion_residual;
+pub mod motion_samples;
 pub mod network;
 pub mod per_output;
 pub mod point_residual;

@@ -57,6 +57,19 @@ pub fn train_point_residual(
         .filter(|(_, (run, time))| *time < ends[*run])
         .map(|(row, _)| row)
         .collect();
+    train_point_rows(&rows, c, settings, WRENCH_UNITS, progress)
+}
+
+/// The contact-frame residual of contact `c` trained on `rows` (targets in `units`, as
+/// a status names them), then its int8 twin: [`train_point_residual`]'s stages on rows
+/// built elsewhere (from motion: [`super::motion_samples`]).
+pub fn train_point_rows(
+    rows: &[SummedRow],
+    c: usize,
+    settings: &ResidualSettings,
+    units: &str,
+    progress: &dyn Progress,
+) -> Result<WrenchTrained, WrenchResidualError> {
     let train_settings = TrainSettings {
         hidden_layers: HIDDEN,
         width: POINT_WIDTH,
@@ -70,26 +83,26 @@ pub fn train_point_residual(
     let steps = settings.epochs as u64;
     let (network, report, unfelt) = in_stage(progress, Stage::Train, steps, || {
         train_summed(
-            &rows,
+            rows,
             POINT_OUTPUTS,
             &train_settings,
             |epoch, _, validation| {
                 progress.advance(epoch as u64, steps);
-                progress.status(&format!("val RMS {:.3} {WRENCH_UNITS}", validation.sqrt()));
+                progress.status(&format!("val RMS {:.3} {units}", validation.sqrt()));
             },
         )
     })?;
     let network = from_rest(network);
-    let inputs = point_inputs(&rows);
+    let inputs = point_inputs(rows);
     let (int8, tuned) = int8_twin_in_stage(
         &network,
         &inputs,
         settings.int8_epochs,
         settings.seed,
-        WRENCH_UNITS,
+        units,
         progress,
     )?;
-    let explained = summed_explained(&network, &rows);
+    let explained = summed_explained(&network, rows);
     Ok(WrenchTrained {
         residual: TrainedResidual::new(c, network, int8),
         rows: rows.len(),

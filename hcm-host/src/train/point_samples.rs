@@ -70,17 +70,26 @@ fn row(
             }
         })
         .collect();
-    let points = (sample.points.iter())
-        .filter(|p| p.indentation.depth > 0.0)
-        .map(|p| {
-            let mut lever = lever(pm2, recorded, sample, p);
-            for (k, _) in measured.iter().enumerate().filter(|(_, m)| !**m) {
-                lever[k * POINT_OUTPUTS..(k + 1) * POINT_OUTPUTS].fill(0.0);
-            }
-            (point_features(p).to_vec(), lever)
-        })
-        .collect();
+    let mut points = touching_points(pm2, recorded, sample);
+    for (_, lever) in &mut points {
+        for (k, _) in measured.iter().enumerate().filter(|(_, m)| !**m) {
+            lever[k * POINT_OUTPUTS..(k + 1) * POINT_OUTPUTS].fill(0.0);
+        }
+    }
     SummedRow { points, target }
+}
+
+/// Each touching point of `sample`: its five features and its lever under `pm2` (the
+/// wrench on the mover of each unit output, row-major [wrench component][output]).
+pub(crate) fn touching_points(
+    pm2: &HostContactModel,
+    recorded: &RecordedContact,
+    sample: &RecordedSample,
+) -> Vec<(Vec<f64>, Vec<f64>)> {
+    (sample.points.iter())
+        .filter(|p| p.indentation.depth > 0.0)
+        .map(|p| (point_features(p).to_vec(), lever(pm2, recorded, sample, p)))
+        .collect()
 }
 
 /// The wrench on the mover (force x, y, z, torque x, y, z) of each unit output at

@@ -72,6 +72,9 @@ pub enum WrenchResidualError {
     /// The network or its twin could not be trained.
     #[error(transparent)]
     Train(#[from] TrainError),
+    /// The tosses could not be replayed frame by frame (a residual from motion).
+    #[error(transparent)]
+    Toss(#[from] crate::toss::TossError),
 }
 
 /// The wrench residual of contact `c` of `pm2` (the scenario with PM2 in place) on the

@@ -1,0 +1,91 @@
+//! The residual learned from motion alone (issue 29, `hcm_host::train::motion_residual`):
+//! no force, only the poses a tracker records. Simulated cube tosses hide a friction
+//! 1.5 times the shipped scenario's; the contact-frame residual trained on what the
+//! scenario's physics misses two frames after each recorded state must replay
+//! held-out tosses better than the physics alone.
+//!
+//! What it does not do yet, measured on the real tosses (the session note of stop 40):
+//! with the tracker's noise the residual made the held-out replays worse; a synthetic
+//! check with 0.5 mm and 0.6° of pose noise gave the position's gain but lost the
+//! rotation's.
+
+use hcm_host::dataset::Dataset;
+use hcm_host::identify::motion::split_tosses;
+use hcm_host::residual::ContactResidual;
+use hcm_host::scenario::{Model, Scenario};
+use hcm_host::toss::{evaluate_tosses, summarize};
+use rand::{RngExt, SeedableRng};
+
+/// `count` tosses of `truth` from seeded random throws, recorded at the scenario's
+/// 148 Hz with poses and velocities; run ids `toss_000`….
+fn tosses(truth: &Model, count: usize, seed: u64) -> Dataset {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let mut data = Dataset::default();
+    for k in 0..count {
+        let mut model = truth.clone();
+        let body = &mut model.bodies[0];
+        let angle = rng.random_range(0.0..std::f64::consts::TAU);
+        let speed = rng.random_range(0.8..1.6);
+        body.position = [0.0, 0.0, rng.random_range(0.15..0.25)].into();
+        body.velocity = [speed * angle.cos(), speed * angle.sin(), -0.5].into();
+        body.angular_velocity = [
+            rng.random_range(-6.0..6.0),
+            rng.random_range(-6.0..6.0),
+            rng.random_range(-3.0..3.0),
+        ]
+        .into();
+        body.orientation = nalgebra::UnitQuaternion::from_euler_angles(
+            rng.random_range(-0.6..0.6),
+            rng.random_range(-0.6..0.6),
+            rng.random_range(0.0..1.5),
+        );
+        let mut run = hcm_host::simulate::simulate(&model).unwrap().run;
+        run.id = format!("toss_{k:03}");
+        data.runs.push(run);
+    }
+    data
+}
+
+/// Mean position error (%) + mean rotation error (°) of `model` over `data`'s tosses.
+fn score(model: &Model, data: &Dataset) -> f64 {
+    let summary = summarize(&evaluate_tosses(model, data, || {}).unwrap());
+    summary.position.mean + summary.rotation.mean
+}
+
+#[test]
+fn a_hidden_friction_is_learned_from_poses_alone() {
+    let physics = Scenario::load(&hcm_tests::scenario("cube_toss.toml"), &[])
+        .unwrap()
+        .model()
+        .unwrap();
+    let mut truth = physics.clone();
+    let friction = truth.contacts[0].model.friction.as_mut().unwrap();
+    friction.static_coefficient *= 1.5;
+    friction.dynamic_coefficient *= 1.5;
+    let (training, held_out) = split_tosses(&tosses(&truth, 40, 3));
+    let settings = hcm_host::train::ResidualSettings {
+        epochs: 200,
+        int8_epochs: 5,
+        seed: 1,
+    };
+    let trained = hcm_host::train::motion_residual::train_motion_residual(
+        &physics,
+        &training,
+        0,
+        hcm_host::train::motion_residual::HORIZON,
+        &settings,
+        &hcm_host::progress::Silent,
+    )
+    .unwrap();
+    let blob =
+        hcm_host::export::blob(trained.residual(), hcm_core::residual::Quantisation::F32).unwrap();
+    let mut hcm = physics.clone();
+    hcm.contacts[0].model.residual = Some(ContactResidual::decode(&blob.bytes).unwrap());
+    let (alone, hybrid) = (score(&physics, &held_out), score(&hcm, &held_out));
+    println!(
+        "{} rows, R² {:?}; held out (% + °): physics {alone:.3}, HCM {hybrid:.3}",
+        trained.rows,
+        trained.explained()
+    );
+    assert!(hybrid < 0.75 * alone, "HCM {hybrid} vs physics {alone}");
+}
