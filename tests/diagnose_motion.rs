@@ -133,25 +133,12 @@ fn runs_of(truth: &Model, start: Start, seed: u64, count: usize) -> Dataset {
     for k in 0..count {
         let mut model = truth.clone();
         let body = &mut model.bodies[0];
-        let angle = rng.random_range(0.0..std::f64::consts::TAU);
-        let speed = rng.random_range(0.8..1.6);
         match start {
-            Start::Toss => {
-                body.position = [0.0, 0.0, rng.random_range(0.15..0.25)].into();
-                body.velocity = [speed * angle.cos(), speed * angle.sin(), -0.5].into();
-                body.angular_velocity = [
-                    rng.random_range(-6.0..6.0),
-                    rng.random_range(-6.0..6.0),
-                    rng.random_range(-3.0..3.0),
-                ]
-                .into();
-                body.orientation = nalgebra::UnitQuaternion::from_euler_angles(
-                    rng.random_range(-0.6..0.6),
-                    rng.random_range(-0.6..0.6),
-                    rng.random_range(0.0..1.5),
-                );
-            }
+            // The same draws in the same order as before the throw was shared.
+            Start::Toss => hcm_tests::throw_cube(body, &mut rng),
             Start::Slide => {
+                let angle = rng.random_range(0.0..std::f64::consts::TAU);
+                let speed = rng.random_range(0.8..1.6);
                 // Resting flat (1 µm above the table), sliding and spinning.
                 body.position = [0.0, 0.0, 0.0524 + 1e-6].into();
                 body.orientation = nalgebra::UnitQuaternion::from_euler_angles(

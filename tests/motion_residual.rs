@@ -14,7 +14,7 @@ use hcm_host::identify::motion::split_tosses;
 use hcm_host::residual::ContactResidual;
 use hcm_host::scenario::{Model, Scenario};
 use hcm_host::toss::{evaluate_tosses, summarize};
-use rand::{RngExt, SeedableRng};
+use rand::SeedableRng;
 
 /// `count` tosses of `truth` from seeded random throws, recorded at the scenario's
 /// 148 Hz with poses and velocities; run ids `toss_000`….
@@ -23,22 +23,7 @@ fn tosses(truth: &Model, count: usize, seed: u64) -> Dataset {
     let mut data = Dataset::default();
     for k in 0..count {
         let mut model = truth.clone();
-        let body = &mut model.bodies[0];
-        let angle = rng.random_range(0.0..std::f64::consts::TAU);
-        let speed = rng.random_range(0.8..1.6);
-        body.position = [0.0, 0.0, rng.random_range(0.15..0.25)].into();
-        body.velocity = [speed * angle.cos(), speed * angle.sin(), -0.5].into();
-        body.angular_velocity = [
-            rng.random_range(-6.0..6.0),
-            rng.random_range(-6.0..6.0),
-            rng.random_range(-3.0..3.0),
-        ]
-        .into();
-        body.orientation = nalgebra::UnitQuaternion::from_euler_angles(
-            rng.random_range(-0.6..0.6),
-            rng.random_range(-0.6..0.6),
-            rng.random_range(0.0..1.5),
-        );
+        hcm_tests::throw_cube(&mut model.bodies[0], &mut rng);
         let mut run = hcm_host::simulate::simulate(&model).unwrap().run;
         run.id = format!("toss_{k:03}");
         data.runs.push(run);

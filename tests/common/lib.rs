@@ -56,6 +56,28 @@ pub fn filmed(name: &str, seconds: f64, sets: &[String]) -> hcm_host::scenario::
     scenario.model().expect("the test scene resolves")
 }
 
+/// A seeded random throw of the cube onto the table: 0.15–0.25 m up, 0.8–1.6 m/s sideways
+/// in any direction and 0.5 m/s down, spinning up to 6 rad/s about the horizontal axes
+/// and 3 about the vertical, tilted up to 0.6 rad (the diagnosis's and the residual's
+/// simulated tosses).
+pub fn throw_cube(body: &mut hcm_host::scenario::Body, rng: &mut impl rand::RngExt) {
+    let angle = rng.random_range(0.0..std::f64::consts::TAU);
+    let speed = rng.random_range(0.8..1.6);
+    body.position = [0.0, 0.0, rng.random_range(0.15..0.25)].into();
+    body.velocity = [speed * angle.cos(), speed * angle.sin(), -0.5].into();
+    body.angular_velocity = [
+        rng.random_range(-6.0..6.0),
+        rng.random_range(-6.0..6.0),
+        rng.random_range(-3.0..3.0),
+    ]
+    .into();
+    body.orientation = nalgebra::UnitQuaternion::from_euler_angles(
+        rng.random_range(-0.6..0.6),
+        rng.random_range(-0.6..0.6),
+        rng.random_range(0.0..1.5),
+    );
+}
+
 /// The path of a scenario file in the workspace's `scenarios/`.
 pub fn scenario(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
