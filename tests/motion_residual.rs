@@ -74,3 +74,19 @@ fn a_hidden_friction_is_learned_from_poses_alone() {
     );
     assert!(hybrid < 0.75 * alone, "HCM {hybrid} vs physics {alone}");
 }
+
+/// A contact the scenario lacks is refused, naming it, before any replay.
+#[test]
+fn a_contact_the_scenario_lacks_is_refused() {
+    let physics = Scenario::load(&hcm_tests::scenario("cube_toss.toml"), &[])
+        .unwrap()
+        .model()
+        .unwrap();
+    let error = hcm_host::train::motion_samples::motion_rows(&physics, &Dataset::default(), 3, 2)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("contact 3") && error.contains("1 contact"),
+        "{error}"
+    );
+}

@@ -48,9 +48,16 @@ pub fn motion_rows(
     horizon: usize,
 ) -> Result<(Vec<SummedRow>, RowTimes), TossError> {
     let mut model = physics.clone();
-    if let Some(contact) = model.contacts.get_mut(c) {
-        contact.model.residual = None;
-    }
+    let Some(contact) = model.contacts.get_mut(c) else {
+        return Err(TossError::Setup {
+            scenario: physics.scenario.name.clone(),
+            problem: format!(
+                "it has {} contact(s), and contact {c} was asked for",
+                physics.contacts.len()
+            ),
+        });
+    };
+    contact.model.residual = None;
     let setup = TossSetup::new(&model)?;
     let per_run: Vec<Result<Vec<(SummedRow, f64)>, TossError>> = (data.runs.par_iter())
         .map(|run| toss_rows(&model, &setup, run, c, horizon.max(1)))
@@ -122,6 +129,7 @@ fn sustained_rows(
     let single = Dataset {
         runs: vec![simulation.run],
     };
+    // As in `frame_row`: refused only when the replay never touches.
     let Ok(recorded) = RecordedContact::from_data(&replay, &single, c) else {
         return Ok(Vec::new());
     };
@@ -219,6 +227,8 @@ fn frame_row(
         orientation(&setup.name, run, &last)?,
     );
     let single = Dataset { runs: vec![path] };
+    // The path's samples hold the simulator's own force, and the bodies are the
+    // scenario's: the only refusal left is a path that never touches — no row.
     let Ok(recorded) = RecordedContact::from_data(&path_model, &single, c) else {
         return Ok(None);
     };
