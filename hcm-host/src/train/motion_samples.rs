@@ -16,7 +16,11 @@
 //!
 //! The state at frame k is the recorded pose with the recorded velocities; a camera's
 //! data without them take the backward difference from frame k − 1 (a first frame
-//! without velocities gives no row).
+//! without velocities gives no row). A frame whose start already touches gives no row:
+//! a tracker's resting pose lies a millimetre into the table, and the law's push out of
+//! it would be the whole target. Where the physics' own replay of the toss has touched
+//! for a frame period or longer (resting, sliding, rolling), rows of zero target say
+//! that the residual adds nothing there.
 
 use super::point_samples::{touching_points, RowTimes};
 use super::summed::SummedRow;
