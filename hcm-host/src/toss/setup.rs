@@ -53,9 +53,6 @@ pub struct TossSetup {
     pub(crate) body: usize,
     /// The primary's name (the data's `body` column).
     pub name: String,
-    /// The fixed bodies the primary has a contact with, as the scenario places them
-    /// (the window is measured from these, whatever a fit later moves).
-    pub(crate) partners: Vec<Partner>,
     /// The primary's circumscribed radius (m): farther from every partner, nothing
     /// touches.
     pub radius: f64,
@@ -93,7 +90,6 @@ impl TossSetup {
         Ok(TossSetup {
             body: primary.body,
             name: primary.name.clone(),
-            partners: primary.partners.clone(),
             radius: primary.radius,
             width: primary.width,
             movers,

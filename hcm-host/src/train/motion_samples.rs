@@ -166,10 +166,8 @@ fn sustained_rows(
         }
         let weight = (row_start + span - sample.time) * step;
         let row = &mut rows.last_mut().expect("a row was pushed").0;
-        for (features, mut lever) in touching_points(contact, &recorded, sample) {
-            lever.iter_mut().for_each(|l| *l *= weight);
-            row.points.push((features, lever));
-        }
+        row.points
+            .extend(weighted_points(contact, &recorded, sample, weight));
     }
     Ok(rows)
 }
@@ -250,16 +248,28 @@ fn frame_row(
     let mut points = Vec::new();
     for sample in &recorded.samples {
         let weight = (last.time - sample.time) * step;
-        for (features, mut lever) in touching_points(contact, &recorded, sample) {
-            lever.iter_mut().for_each(|l| *l *= weight);
-            points.push((features, lever));
-        }
+        points.extend(weighted_points(contact, &recorded, sample, weight));
     }
     if points.is_empty() {
         return Ok(None);
     }
     let target = missed_moment(model, setup, predicted, measured);
     Ok(Some(SummedRow { points, target }))
+}
+
+/// `sample`'s touching points with their levers times `weight` (s²): (T − τ)·dτ, what
+/// a wrench at τ moves the free body's pose at T by.
+fn weighted_points(
+    contact: &crate::residual::HostContactModel,
+    recorded: &RecordedContact,
+    sample: &crate::identify::rigid::recorded::RecordedSample,
+    weight: f64,
+) -> Vec<(Vec<f64>, Vec<f64>)> {
+    let mut points = touching_points(contact, recorded, sample);
+    for (_, lever) in &mut points {
+        lever.iter_mut().for_each(|l| *l *= weight);
+    }
+    points
 }
 
 /// `model` started at `state`, run for `span` (s) and recording the body every `step`
