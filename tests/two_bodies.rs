@@ -148,3 +148,26 @@ fn poses_alone_of_two_moving_bodies_fit_the_contact_between_them() {
     assert!((damping - 1.2).abs() < 0.25, "χ {damping}");
     assert!(found.parameters.iter().all(|p| p.0 != "table_offset"));
 }
+
+/// A moving body without a frame at the window start (its track begins later) is
+/// refused, naming the frame: it cannot be started at another instant's state.
+#[test]
+fn a_body_without_a_frame_at_the_window_start_is_refused() {
+    let sets = [
+        "body.ball.position=[-0.12, 0.0, 0.01505]".to_owned(),
+        "body.ball.velocity=[0.5, 0.0, 0.0]".to_owned(),
+        "body.ball.angular_velocity=[0.0, 33.3, 0.0]".to_owned(),
+    ];
+    let mut run = hcm_host::simulate::simulate(&filmed(&sets)).unwrap().run;
+    run.id = "toss_000".into();
+    let block = run.bodies.iter_mut().find(|b| b.body == "block").unwrap();
+    block.samples.retain(|s| s.time > 0.25);
+    let data = hcm_host::dataset::Dataset { runs: vec![run] };
+    let error = hcm_host::toss::evaluate_tosses(&filmed(&sets[..1]), &data, || {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("every moving body needs a frame there"),
+        "{error}"
+    );
+}

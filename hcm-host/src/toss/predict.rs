@@ -188,7 +188,20 @@ fn ticks(
             }
             Ok(tick as u64)
         })
-        .collect()
+        .collect::<Result<Vec<u64>, TossError>>()
+        .and_then(|ticks| match (ticks.first(), frames.first()) {
+            // A body whose first window frame comes later than the window start would
+            // be started there from a state of another instant.
+            (Some(&first), Some(frame)) if first > 0 => Err(TossError::Frame {
+                run: run.to_owned(),
+                time: frame.time,
+                problem: format!(
+                    "the body's first frame in the window comes {first} frame period(s) \
+                     after the window start; every moving body needs a frame there"
+                ),
+            }),
+            _ => Ok(ticks),
+        })
 }
 
 /// Median time between consecutive frames (s); one frame has none, and then any
