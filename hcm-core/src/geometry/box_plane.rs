@@ -19,16 +19,39 @@ pub fn contacts<T: Real>(
     plane_point: &Vector3<T>,
     plane_normal: &Vector3<T>,
 ) -> Contacts<T> {
+    rounded_contacts(cuboid, T::zero(), plane_point, plane_normal)
+}
+
+/// [`contacts`] of a box whose edges and corners are rounded to `rounding` (m, ≥ 0):
+/// the box `core` (its half extents the outer box's less the rounding) swept by a
+/// sphere of that radius. Against a plane its deepest points are always on the corner
+/// spheres (a face flat on the plane lies between four of them), so each corner of
+/// `core` is a contact where its sphere reaches behind the plane: depth
+/// δ = `rounding` − (the corner's signed distance from the plane) (m), its point on
+/// the sphere's surface, `rounding` behind the corner along −`plane_normal`. As the
+/// box rolls over an edge, the point travels round it instead of pivoting on a
+/// knife-edge. `rounding` = 0 is the sharp box of [`contacts`], bit for bit.
+pub fn rounded_contacts<T: Real>(
+    core: &Cuboid<T>,
+    rounding: T,
+    plane_point: &Vector3<T>,
+    plane_normal: &Vector3<T>,
+) -> Contacts<T> {
     let mut found = Contacts::new();
     for index in 0..MAX_POINTS {
-        let vertex = cuboid.vertex(index);
-        let depth = -(vertex - plane_point).dot(plane_normal);
+        let vertex = core.vertex(index);
+        let depth = rounding - (vertex - plane_point).dot(plane_normal);
         if depth > T::zero() {
+            let point = if rounding > T::zero() {
+                vertex - plane_normal * rounding
+            } else {
+                vertex
+            };
             // At most eight vertices into a capacity of eight: the push cannot fail.
             let _ = found.push(ContactGeometry {
                 depth,
                 normal: *plane_normal,
-                point: vertex,
+                point,
                 // `index` < 8: the cast is exact.
                 feature: index as u32,
             });
@@ -41,7 +64,8 @@ pub fn contacts<T: Real>(
 /// `plane_point` (m) with outward `plane_normal` (unit): > 0 when the box is clear of
 /// the plane, < 0 (minus the deepest indentation δ) when it penetrates. Continuous in
 /// the pose, so a simulator can locate touch-down and lift-off by root finding. NaN in
-/// any input gives NaN.
+/// any input gives NaN. For a box rounded to r (m), the separation of its `core`
+/// less r.
 pub fn separation<T: Real>(
     cuboid: &Cuboid<T>,
     plane_point: &Vector3<T>,
@@ -185,5 +209,40 @@ mod tests {
         let cuboid = cube(0.0, UnitQuaternion::identity());
         assert!(contacts(&cuboid, &nan, &Vector3::z()).is_empty());
         assert!(contacts(&cuboid, &Vector3::zeros(), &nan).is_empty());
+    }
+
+    #[test]
+    fn a_rounded_box_on_an_edge_touches_round_the_edge() {
+        // Tilted 0.5 rad about x, the core's lowest edge 5.7 mm above the plane, within
+        // reach of its 10 mm spheres: each point on a sphere, straight below its centre.
+        let r = 0.01;
+        let tilt = UnitQuaternion::from_euler_angles(0.5, 0.0, 0.0);
+        let core = Cuboid {
+            half_extents: Vector3::repeat(CUBE - r),
+            center: Vector3::new(0.0, 0.0, 0.06),
+            orientation: tilt,
+        };
+        let found = rounded_contacts(&core, r, &Vector3::zeros(), &Vector3::z());
+        let lowest = (0..8)
+            .map(|i| core.vertex(i).z)
+            .fold(f64::INFINITY, f64::min);
+        assert!(!found.is_empty());
+        for c in &found {
+            assert!((c.depth - (r - lowest)).abs() < 1e-12, "{c:?}");
+            assert!((c.point.z - (lowest - r)).abs() < 1e-12, "{c:?}");
+        }
+        let sharp = contacts(&core, &Vector3::zeros(), &Vector3::z());
+        assert!(sharp.is_empty(), "the core alone is clear: {sharp:?}");
+    }
+
+    #[test]
+    fn rounding_zero_is_the_sharp_box() {
+        let tilt = UnitQuaternion::from_euler_angles(0.3, -0.2, 0.9);
+        let b = cube(0.05, tilt);
+        let (a, z) = (
+            on_ground(&b),
+            rounded_contacts(&b, 0.0, &Vector3::zeros(), &Vector3::z()),
+        );
+        assert_eq!(a, z);
     }
 }

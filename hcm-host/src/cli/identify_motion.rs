@@ -179,11 +179,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let sets = beside_physics(&model, &parameters, &fit.parameters);
     println!(
         "{}: kept in the physics file's `sets` (`hcm predict --physics` applies them): {}",
-        if fit.parameters.iter().any(|p| p.0 == "table_offset") {
-            "table offset and inertia"
-        } else {
-            "inertia"
-        },
+        body_genes(&fit.parameters),
         set_options(&sets)
     );
     print!("{}", score_table(&model, &fit.model, &training, &held_out)?);
@@ -389,4 +385,24 @@ fn force_term<'a>(
          at the recorded poses / its value there (each 1 at the start)"
     );
     Ok(Some(force))
+}
+
+/// The fitted values a physics file keeps as `--set`s, named: the table offset (where
+/// fitted), the inertia and the rounding (where fitted).
+fn body_genes(parameters: &[(String, f64)]) -> String {
+    let fitted = |name: &str| parameters.iter().any(|p| p.0 == name);
+    let names: Vec<&str> = [
+        ("table_offset", "table offset"),
+        ("inertia_scale", "inertia"),
+        ("rounding", "rounding"),
+    ]
+    .into_iter()
+    .filter(|(gene, _)| fitted(gene))
+    .map(|(_, name)| name)
+    .collect();
+    match names.as_slice() {
+        [] => "nothing".to_owned(),
+        [one] => (*one).to_owned(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
 }

@@ -5,6 +5,7 @@ mod diagnose_motion;
 mod diagnose_rigid;
 mod evaluate;
 mod export;
+mod faces;
 mod force;
 mod generate;
 mod identify;

@@ -54,6 +54,8 @@ pub struct Args {
     /// w0x…w0z (rad/s), world frame).
     #[arg(long, value_name = "FILE")]
     scores: Option<PathBuf>,
+    #[command(flatten)]
+    faces: super::faces::FaceArgs,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -64,6 +66,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .with_context(|| format!("predicting the tosses of {}", args.tosses.data.display()))?;
     bar.finish_and_clear();
     let seconds = started.elapsed().as_secs_f64();
+    // Every forecast made before anything is written: a failure leaves no output.
+    let faces = super::faces::forecast(&args.faces, &model, &data)?;
     predicted_dataset(&evaluations, &setup.name)
         .write(&args.out)
         .with_context(|| format!("writing {}", args.out.display()))?;
@@ -75,7 +79,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(path) = &args.scores {
         println!("wrote each toss's scores to {}", path.display());
     }
-    Ok(())
+    match faces {
+        Some(faces) => faces.write(&data),
+        None => Ok(()),
+    }
 }
 
 /// Prints what was predicted, how long it took and the scores over tosses.

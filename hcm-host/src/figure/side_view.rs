@@ -58,7 +58,9 @@ pub(crate) fn shape_outlines(
 ) -> Vec<Outline> {
     match shape {
         Shape::Sphere { radius } => vec![sphere_silhouette(position, *radius)],
-        Shape::Box { half_extents } => vec![box_silhouette(position, orientation, half_extents)],
+        Shape::Box { half_extents, .. } => {
+            vec![box_silhouette(position, orientation, half_extents)]
+        }
         Shape::Compound { parts } => parts
             .iter()
             .map(|part| part_silhouette(part, position, orientation))

@@ -153,10 +153,19 @@ fn body_phrase(body: &Body, material: Option<&str>) -> String {
         ),
         Shape::Plane { .. } if body.fixed => format!("a fixed {material}plane"),
         Shape::Plane { .. } => format!("a flat-faced {material}body{mass}"),
-        Shape::Box { half_extents: h } => {
+        Shape::Box {
+            half_extents: h,
+            rounding,
+        } => {
             let side = |x: f64| Scale::prefixed(2.0 * x, "m").brief(2.0 * x, 4);
             let sides = format!("{} × {} × {}", side(h.x), side(h.y), side(h.z));
-            format!("a {fixed}{material}box {sides}{mass}")
+            let rounded = if *rounding > 0.0 {
+                let r = Scale::prefixed(*rounding, "m").brief(*rounding, 3);
+                format!(", edges rounded to {r}")
+            } else {
+                String::new()
+            };
+            format!("a {fixed}{material}box {sides}{rounded}{mass}")
         }
         Shape::Compound { parts } => {
             format!("a {fixed}{material}body of {} boxes", parts.len())

@@ -129,6 +129,12 @@ pub enum ShapeSpec {
     Box {
         /// Half extents along the body's x, y and z axes (m).
         half_extents: [f64; 3],
+        /// Radius of its rounded edges and corners (m, 0 ≤ r < the smallest half
+        /// extent; 0, sharp, by default): real boxes are not knife-edged, and the
+        /// radius moves the point a box pivots on as it rolls over an edge. Against a
+        /// plane or a sphere only.
+        #[serde(default)]
+        rounding: f64,
     },
     /// Several boxes fixed together (a block with a hole = walls + bottom); only a
     /// fixed body may be compound.

@@ -30,8 +30,10 @@ pub enum Shape {
     },
     /// A box centred on the reference point, edges along the body axes.
     Box {
-        /// Half extents (m).
+        /// Half extents (m), of the outer box.
         half_extents: Vector3<f64>,
+        /// Radius of the rounded edges and corners (m, 0 for a sharp box).
+        rounding: f64,
     },
     /// Boxes fixed together (fixed bodies only).
     Compound {
@@ -481,7 +483,7 @@ fn body_inertia(spec: &super::BodySpec, shape: &Shape, mass: f64) -> Result<Matr
     }
     let default = match shape {
         Shape::Sphere { radius } => Some(Matrix3::identity() * (0.4 * mass * radius * radius)),
-        Shape::Box { half_extents } => Some(rigid::box_inertia(mass, half_extents)),
+        Shape::Box { half_extents, .. } => Some(rigid::box_inertia(mass, half_extents)),
         _ => None,
     };
     match (spec.inertia.as_ref(), default) {
@@ -525,10 +527,18 @@ fn body_shape(spec: &ShapeSpec) -> Result<Shape, (String, String)> {
                 offset: *offset,
             })
         }
-        ShapeSpec::Box { half_extents } => Ok(Shape::Box {
-            half_extents: rigid::half_extents(half_extents)
-                .map_err(|m| ("shape.box.half_extents".to_owned(), m))?,
-        }),
+        ShapeSpec::Box {
+            half_extents,
+            rounding,
+        } => {
+            let half_extents = rigid::half_extents(half_extents)
+                .map_err(|m| ("shape.box.half_extents".to_owned(), m))?;
+            Ok(Shape::Box {
+                rounding: rigid::rounding(*rounding, &half_extents)
+                    .map_err(|m| ("shape.box.rounding".to_owned(), m))?,
+                half_extents,
+            })
+        }
         ShapeSpec::Compound { parts } => Ok(Shape::Compound {
             parts: rigid::parts(parts)?,
         }),
@@ -552,6 +562,21 @@ fn contact_pair(
         return Err("a body cannot touch itself".into());
     }
     let (b1, b2) = (&bodies[body_1], &bodies[body_2]);
+    let rounded = |shape: &Shape| matches!(shape, Shape::Box { rounding, .. } if *rounding > 0.0);
+    if let (
+        Shape::Box { .. } | Shape::Compound { .. },
+        Shape::Box { .. } | Shape::Compound { .. },
+    ) = (&b1.shape, &b2.shape)
+    {
+        if let Some(b) = [b1, b2].into_iter().find(|b| rounded(&b.shape)) {
+            return Err(format!(
+                "`{}` has rounded edges (`rounding`), which hcm models against a plane or a \
+                 sphere, not against another box: give it `rounding = 0` for this contact's \
+                 scene",
+                b.name
+            ));
+        }
+    }
     let radius_1 = match (&b1.shape, &b2.shape) {
         (Shape::Sphere { radius }, _) => Some(*radius),
         (Shape::Box { .. }, Shape::Plane { .. } | Shape::Box { .. } | Shape::Compound { .. }) => {

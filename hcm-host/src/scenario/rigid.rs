@@ -211,6 +211,20 @@ pub(super) fn half_extents(h: &[f64; 3]) -> Result<Vector3<f64>, String> {
     }
 }
 
+/// A checked rounding radius (m) of a box of `half_extents` (m): finite, ≥ 0 and
+/// below the smallest half extent (the box's core keeps a positive size).
+pub(super) fn rounding(r: f64, half_extents: &Vector3<f64>) -> Result<f64, String> {
+    let smallest = half_extents.min();
+    if (0.0..smallest).contains(&r) {
+        Ok(r)
+    } else {
+        Err(format!(
+            "{r} must be a radius of m from 0 (a sharp box) up to, not including, the \
+             smallest half extent {smallest}"
+        ))
+    }
+}
+
 /// The checked parts of a compound body.
 pub(super) fn parts(specs: &[PartSpec]) -> Result<Vec<Part>, (String, String)> {
     if specs.is_empty() {

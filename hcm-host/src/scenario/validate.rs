@@ -127,7 +127,7 @@ fn box_starts_apart(model: &Model, index: usize, path: &Path) -> Result<(), Scen
     let size = [&body_1.shape, &body_2.shape]
         .into_iter()
         .filter_map(|shape| match shape {
-            Shape::Box { half_extents } => Some(half_extents.min()),
+            Shape::Box { half_extents, .. } => Some(half_extents.min()),
             Shape::Sphere { radius } => Some(*radius),
             _ => None,
         })

@@ -59,6 +59,11 @@ pub struct InitialState {
     pub angular_velocity: Vector3<f64>,
     /// How it was obtained.
     pub source: StateSource,
+    /// The free-flight fits it came from — of the position, and of the rotation vector
+    /// relative to the recorded window-start orientation — with their covariances: how
+    /// far the tracker's noise leaves the state uncertain (`super::ensemble`). None
+    /// for a recorded state.
+    pub(crate) fits: Option<[FlightFit; 2]>,
 }
 
 /// The initial state of `run`'s toss of the primary body at `window.start` (see the
@@ -118,6 +123,7 @@ pub(crate) fn estimate_state(
         source: StateSource::FreeFlightFit {
             frames: frames.len(),
         },
+        fits: Some([flight, turning]),
     })
 }
 
@@ -150,6 +156,7 @@ fn recorded(
         velocity: Vector3::from(start.velocity),
         angular_velocity: Vector3::from(start.angular_velocity),
         source: StateSource::Recorded,
+        fits: None,
     })
 }
 

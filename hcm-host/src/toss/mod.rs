@@ -21,7 +21,9 @@
 //!   tracker's calibration error makes to it.
 
 pub mod baseline;
+pub mod ensemble;
 pub mod evaluation;
+pub mod face;
 pub mod initial_state;
 pub mod partner;
 pub mod predict;
@@ -30,9 +32,13 @@ pub mod setup;
 pub mod window;
 
 pub use baseline::frozen_pose;
+pub use ensemble::{
+    calibrate_scatter, forecast_faces, summarize_faces, FaceForecast, FaceSummary, Spread, SCATTERS,
+};
 pub use evaluation::{
     evaluate_tosses, predicted_dataset, summarize, EvaluationSummary, TossEvaluation,
 };
+pub use face::{Face, FACES};
 pub use initial_state::{estimate_initial_state, InitialState, StateSource};
 pub use predict::{predict_toss, predict_tosses, BodyPrediction, TossPrediction};
 pub use score::{score_movers, score_toss, Summary, TossScore};

@@ -60,7 +60,7 @@ impl Partner {
         match &self.shape {
             Shape::Plane { normal, .. } => normal.dot(&local),
             Shape::Sphere { radius } => local.norm() - radius,
-            Shape::Box { half_extents } => box_clearance(&local, half_extents),
+            Shape::Box { half_extents, .. } => box_clearance(&local, half_extents),
             Shape::Compound { parts } => (parts.iter())
                 .map(|part| {
                     let inside = part.orientation.inverse() * (local - part.position);

@@ -132,7 +132,7 @@ impl Mover {
 fn mover(model: &Model, body: usize, moving: &[usize]) -> Result<Mover, String> {
     let tossed = &model.bodies[body];
     let (radius, width) = match tossed.shape {
-        Shape::Box { half_extents } => (half_extents.norm(), 2.0 * half_extents.max()),
+        Shape::Box { half_extents, .. } => (half_extents.norm(), 2.0 * half_extents.max()),
         Shape::Sphere { radius } => (radius, 2.0 * radius),
         _ => {
             return Err(format!(

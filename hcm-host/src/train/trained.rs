@@ -63,6 +63,11 @@ impl TrainedResidual {
         }
     }
 
+    /// The trained network (f64; exported as f32).
+    pub fn network(&self) -> &Network {
+        &self.network
+    }
+
     /// Reads and checks a file written by [`TrainedResidual::write`].
     pub fn read(path: &Path) -> Result<TrainedResidual, TrainedError> {
         let file = |message: String| TrainedError::File {

@@ -17,7 +17,7 @@
 //! Friction is searched as μ_s and μ_d/μ_s ∈ [0.3, 1], so every candidate is a valid law.
 
 use crate::numerics::optimize::{Bound, Parameters};
-use crate::scenario::Model;
+use crate::scenario::{Model, Shape};
 use crate::toss::partner::shift_surface;
 use crate::toss::{TossError, TossSetup};
 
@@ -115,6 +115,7 @@ impl MotionParameters {
             friction.static_coefficient,
             model.bodies[partner].fixed,
         ));
+        genes.extend(rounding_gene(&model.bodies[body].shape));
         Ok(MotionParameters {
             contact,
             partner,
@@ -163,6 +164,32 @@ fn other_genes(mu_static: f64, fixed_partner: bool) -> impl Iterator<Item = Boun
     })
 }
 
+/// Upper bound of a box's rounding gene, as a multiple of the rounding the scenario
+/// gives (–): from a sharp box to three times the guess.
+const ROUNDING_SPAN: f64 = 3.0;
+
+/// Most a rounding may reach, as a fraction of the box's smallest half extent (–).
+const ROUNDING_MAX: f64 = 0.9;
+
+/// The `rounding` gene (m) of a replayed box whose scenario gives its edges a radius
+/// above 0 (a user's guess: a sharp box keeps its edges sharp, and the fits of the
+/// scenarios that give none are unchanged): 0 … [`ROUNDING_SPAN`] × the guess, below
+/// [`ROUNDING_MAX`] of the smallest half extent.
+fn rounding_gene(shape: &Shape) -> Option<Bound> {
+    match shape {
+        Shape::Box {
+            half_extents,
+            rounding,
+        } if *rounding > 0.0 => Some(Bound {
+            name: "rounding".to_owned(),
+            lower: 0.0,
+            upper: (ROUNDING_SPAN * rounding).min(ROUNDING_MAX * half_extents.min()),
+            log_scale: false,
+        }),
+        _ => None,
+    }
+}
+
 /// The law's freed parameters of `contact` and their box (see the module
 /// documentation), or why the law has none to fit.
 fn law_genes(model: &Model, contact: usize, body: usize) -> Result<Vec<Bound>, String> {
@@ -204,6 +231,14 @@ fn law_genes(model: &Model, contact: usize, body: usize) -> Result<Vec<Bound>, S
     }
 }
 
+/// The rounding of a box (m); 0 for any other shape.
+fn box_rounding(shape: &Shape) -> f64 {
+    match shape {
+        Shape::Box { rounding, .. } => *rounding,
+        _ => 0.0,
+    }
+}
+
 /// The scale of a damping the scenario sets to zero: for IMPACT's `max_damping` the
 /// critical damping 2·√(k_lin·m) (N·s/m) of the body's mass on the linearised law at
 /// its static indentation, δ_s = (m·g/k)^(1/e), k_lin = e·k·δ_s^(e−1); for any other
@@ -232,7 +267,8 @@ fn zero_damping_scale(model: &Model, contact: usize, body: usize, name: &str) ->
 /// The genes, in order: the law's (one or two), `mu_static`, `mu_ratio` (μ_d/μ_s),
 /// `table_offset` (m, the partner's surface moved from the scenario's: a plane along
 /// its normal, another shape along the up direction), `inertia_scale` (–, on the
-/// scenario's inertia tensor of the replayed body).
+/// scenario's inertia tensor of the replayed body), and for a box given rounded edges
+/// `rounding` (m, their radius).
 impl Parameters for MotionParameters {
     type Target = Model;
 
@@ -262,6 +298,7 @@ impl Parameters for MotionParameters {
                     "mu_static" => mu_static,
                     "mu_ratio" => mu_ratio,
                     "table_offset" => 0.0,
+                    "rounding" => box_rounding(&model.bodies[self.body].shape),
                     _ => 1.0,
                 }),
         );
@@ -301,11 +338,16 @@ impl Parameters for MotionParameters {
         if let Some(scale) = named("inertia_scale") {
             out.bodies[self.body].inertia *= scale;
         }
+        if let (Some(r), Shape::Box { rounding, .. }) =
+            (named("rounding"), &mut out.bodies[self.body].shape)
+        {
+            *rounding = r;
+        }
         out
     }
 
     /// The named values (SI units) `genes` stand for: the law's, `mu_static`,
-    /// `mu_dynamic`, `table_offset` (m), `inertia_scale` (–).
+    /// `mu_dynamic`, `table_offset` (m), `inertia_scale` (–), `rounding` (m).
     fn named(&self, genes: &[f64]) -> Vec<(String, f64)> {
         let (law, other) = genes.split_at(self.law_len().min(genes.len()));
         let mut out: Vec<(String, f64)> = (self.genes.iter())

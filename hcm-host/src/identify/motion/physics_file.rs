@@ -32,7 +32,7 @@ pub fn fitted_physics(
                 fit.fitness
             ),
             format!(
-                "table offset and inertia (in `sets`): {}",
+                "the body and table values (in `sets`): {}",
                 set_options(sets)
             ),
         ],

@@ -10,7 +10,7 @@ use crate::toss::partner::shift_surface;
 
 /// The assignments that turn `model`'s scenario into the fitted one, from the
 /// fit's [`MotionParameters::named`] values: the law's two parameters, `mu_static`,
-/// `mu_dynamic`, `table_offset` (m) and `inertia_scale` (–).
+/// `mu_dynamic`, `table_offset` (m), `inertia_scale` (–) and a box's `rounding` (m).
 pub fn fitted_assignments(
     model: &Model,
     parameters: &MotionParameters,
@@ -20,7 +20,9 @@ pub fn fitted_assignments(
     named
         .iter()
         .map(|(name, value)| match name.as_str() {
-            "table_offset" | "inertia_scale" => body_assignment(model, parameters, name, *value),
+            "table_offset" | "inertia_scale" | "rounding" => {
+                body_assignment(model, parameters, name, *value)
+            }
             "mu_static" | "mu_dynamic" => Assignment::contact(contact, &["friction", name], *value),
             _ => Assignment::contact(contact, &["parameters", name], *value),
         })
@@ -28,15 +30,16 @@ pub fn fitted_assignments(
 }
 
 /// The assignments (`--set`s) a physics file — which holds the law and the friction, not the bodies —
-/// needs beside it to replay the fit: the table's surface at the fitted offset (m) and
-/// the tossed body's inertia at the fitted scale of `model`'s (the scenario's) tensor.
+/// needs beside it to replay the fit: the table's surface at the fitted offset (m),
+/// the tossed body's inertia at the fitted scale of `model`'s (the scenario's) tensor
+/// and a box's fitted rounding (m).
 pub fn beside_physics(
     model: &Model,
     parameters: &MotionParameters,
     named: &[(String, f64)],
 ) -> Vec<Assignment> {
     (named.iter())
-        .filter(|(name, _)| matches!(name.as_str(), "table_offset" | "inertia_scale"))
+        .filter(|(name, _)| matches!(name.as_str(), "table_offset" | "inertia_scale" | "rounding"))
         .map(|(name, value)| body_assignment(model, parameters, name, *value))
         .collect()
 }
@@ -67,6 +70,9 @@ fn body_assignment(
         };
     }
     let body = &model.bodies[parameters.body];
+    if name == "rounding" {
+        return Assignment::body(&body.name, &["shape", "box", "rounding"], value);
+    }
     let inertia = body.inertia * value;
     let diagonal = (0..3).all(|i| (0..3).all(|j| i == j || inertia[(i, j)] == 0.0));
     let row = |values: [f64; 3]| toml::Value::Array(values.map(toml::Value::from).to_vec());

@@ -21,7 +21,8 @@ const MAX_PARTS: usize = 16;
 enum Placed {
     Sphere(Vector3<f64>, f64),
     Plane(Vector3<f64>, Vector3<f64>),
-    Box(Cuboid<f64>),
+    /// The box's core (its half extents less the rounding) and the rounding (m).
+    Box(Cuboid<f64>, f64),
     Compound(heapless::Vec<Cuboid<f64>, MAX_PARTS>),
 }
 
@@ -33,11 +34,17 @@ fn place(shape: &Shape, pose: &Pose) -> Placed {
             let normal = pose.orientation * normal;
             Placed::Plane(pose.position + normal * *offset, normal)
         }
-        Shape::Box { half_extents } => Placed::Box(Cuboid {
-            half_extents: *half_extents,
-            center: pose.position,
-            orientation: pose.orientation,
-        }),
+        Shape::Box {
+            half_extents,
+            rounding,
+        } => Placed::Box(
+            Cuboid {
+                half_extents: half_extents.add_scalar(-rounding),
+                center: pose.position,
+                orientation: pose.orientation,
+            },
+            *rounding,
+        ),
         Shape::Compound { parts } => Placed::Compound(
             parts
                 .iter()
@@ -54,6 +61,23 @@ fn place_part(part: &Part, pose: &Pose) -> Cuboid<f64> {
         center: pose.position + pose.orientation * part.position,
         orientation: pose.orientation * part.orientation,
     }
+}
+
+/// A sphere (`center` (m), `radius` (m)) against a box rounded to `rounding` (m) of
+/// core `core`: the box is its core swept by a sphere of that radius, so the contact is
+/// the core's with a sphere `rounding` larger, its point moved out to the rounded
+/// surface along the normal. Exact for any rounding; 0 is the sharp box.
+fn sphere_rounded_box(
+    center: &Vector3<f64>,
+    radius: f64,
+    core: &Cuboid<f64>,
+    rounding: f64,
+) -> ContactGeometry<f64> {
+    let mut g = sphere_box::contact(center, radius + rounding, core);
+    if rounding > 0.0 {
+        g.point += g.normal * rounding;
+    }
+    g
 }
 
 /// The contact points of `contact` with its bodies at `pose_1`, `pose_2`: each with
@@ -80,11 +104,17 @@ pub fn pair_contacts(
         (Placed::Sphere(c1, r1), Placed::Sphere(c2, r2)) => {
             single(sphere_sphere::contact(c1, *r1, c2, *r2))
         }
-        (Placed::Sphere(c, r), Placed::Box(b)) => single(sphere_box::contact(c, *r, b)),
+        (Placed::Sphere(c, r), Placed::Box(b, rounding)) => {
+            single(sphere_rounded_box(c, *r, b, *rounding))
+        }
         (Placed::Sphere(c, r), Placed::Compound(parts)) => compound::sphere_contacts(c, *r, parts),
-        (Placed::Box(b), Placed::Plane(p, n)) => box_plane::contacts(b, p, n),
-        (Placed::Box(b1), Placed::Box(b2)) => box_box::contacts(b1, b2),
-        (Placed::Box(b), Placed::Compound(parts)) => compound::contacts(b, parts),
+        (Placed::Box(b, rounding), Placed::Plane(p, n)) => {
+            box_plane::rounded_contacts(b, *rounding, p, n)
+        }
+        // resolve() refuses a rounded box against a box or a compound: both cores are
+        // the boxes themselves.
+        (Placed::Box(b1, _), Placed::Box(b2, _)) => box_box::contacts(b1, b2),
+        (Placed::Box(b, _), Placed::Compound(parts)) => compound::contacts(b, parts),
         // resolve() accepts no other pair.
         _ => Contacts::new(),
     }
@@ -102,7 +132,9 @@ pub fn pair_separation(model: &Model, contact: &Contact, pose_1: &Pose, pose_2: 
         (Placed::Sphere(c1, r1), Placed::Sphere(c2, r2)) => {
             -sphere_sphere::contact(c1, *r1, c2, *r2).depth
         }
-        (Placed::Sphere(c, r), Placed::Box(b)) => -sphere_box::contact(c, *r, b).depth,
+        (Placed::Sphere(c, r), Placed::Box(b, rounding)) => {
+            -sphere_rounded_box(c, *r, b, *rounding).depth
+        }
         (Placed::Sphere(c, r), Placed::Compound(parts)) => parts
             .iter()
             .map(|part| -sphere_box::contact(c, *r, part).depth)
@@ -114,9 +146,11 @@ pub fn pair_separation(model: &Model, contact: &Contact, pose_1: &Pose, pose_2: 
                     least
                 }
             }),
-        (Placed::Box(b), Placed::Plane(p, n)) => box_plane::separation(b, p, n),
-        (Placed::Box(b1), Placed::Box(b2)) => box_box::separation(b1, b2),
-        (Placed::Box(b), Placed::Compound(parts)) => compound::separation(b, parts),
+        (Placed::Box(b, rounding), Placed::Plane(p, n)) => {
+            box_plane::separation(b, p, n) - rounding
+        }
+        (Placed::Box(b1, _), Placed::Box(b2, _)) => box_box::separation(b1, b2),
+        (Placed::Box(b, _), Placed::Compound(parts)) => compound::separation(b, parts),
         _ => f64::NAN,
     }
 }
@@ -136,4 +170,43 @@ pub fn pair_rate(model: &Model, contact: &Contact, pose_1: &Pose, pose_2: &Pose)
         _ => return f64::NAN,
     };
     -(pose_1.point_velocity(&g.point) - pose_2.point_velocity(&g.point)).dot(&g.normal)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 0.1 m cube rounded to 10 mm, axis-aligned at the origin.
+    fn rounded_cube() -> Cuboid<f64> {
+        Cuboid {
+            half_extents: Vector3::repeat(0.04),
+            center: Vector3::zeros(),
+            orientation: nalgebra::UnitQuaternion::identity(),
+        }
+    }
+
+    #[test]
+    fn a_sphere_meets_a_rounded_box_on_its_face_and_round_its_corner() {
+        // Above the face's middle: the face is where the sharp box's was.
+        let above = Vector3::new(0.0, 0.0, 0.059);
+        let g = sphere_rounded_box(&above, 0.01, &rounded_cube(), 0.01);
+        assert!((g.depth - 1e-3).abs() < 1e-12, "{g:?}");
+        assert!((g.point.z - 0.0495).abs() < 1e-12, "{g:?}");
+        // Off the corner along the diagonal: the corner sphere is √3·0.04 from the
+        // centre, 0.01 + 0.01 of reach, where a sharp corner would already touch.
+        let reach = 3f64.sqrt() * 0.04 + 0.02;
+        let diagonal = Vector3::repeat(1.0).normalize();
+        let g = sphere_rounded_box(&(diagonal * (reach - 1e-3)), 0.01, &rounded_cube(), 0.01);
+        assert!((g.depth - 1e-3).abs() < 1e-12, "{g:?}");
+        assert!((g.normal - diagonal).norm() < 1e-12, "{g:?}");
+        let sharp = Cuboid {
+            half_extents: Vector3::repeat(0.05),
+            ..rounded_cube()
+        };
+        let clear = sphere_box::contact(&(diagonal * (reach + 5e-3)), 0.01, &sharp);
+        assert!(
+            clear.depth > 0.0,
+            "the sharp corner reaches further: {clear:?}"
+        );
+    }
 }

@@ -1,0 +1,356 @@
+//! What decides the final face: the initial state's uncertainty propagated as an
+//! ensemble (issue 29). A replay starts from the state its free-flight fit gives
+//! ([`super::initial_state`]); that fit has a covariance, σ_k²·(AᵀA)⁻¹ per axis for
+//! the position and velocity, and the same for the rotation vector and the angular
+//! velocity, σ_k² its own residual variance (`crate::dataset::FlightFit`): the
+//! tracker's noise left in the state. A tumbling cube amplifies such a difference
+//! until it ends on another face, so one replay says which face, where an ensemble
+//! of replays from states drawn with that covariance says how likely each face is.
+//!
+//! Each member draws, for every moving body with a fitted state, its position and
+//! velocity offsets per axis jointly from that axis's covariance, and its rotation
+//! vector and angular-velocity offsets likewise (the rotation applied on the left:
+//! R' = exp([δa]ₓ)·R). Draws come from ChaCha8 seeded with the seed, one stream per
+//! toss: the same seed gives the same forecast on any number of threads.
+//!
+//! A member also scatters the contact's stiffness, damping and friction coefficients
+//! by a relative σ (`Spread::scatter`): a real table and cube are not the same at
+//! every spot and every landing, and with the fitted ContactNets physics the start
+//! state's own covariance, even ×30, moved no toss to another face
+//! ([`calibrate_scatter`] chooses the scatter on training tosses).
+//!
+//! Scores (held out, toss by toss): whether the most probable face is the recorded
+//! one; the Brier score Σ_f (p_f − y_f)² (0 perfect, 2 all on a wrong face; a single
+//! replay's is 0 or 2); and the log-likelihood ln p of the recorded face, with the
+//! add-½ estimate p_f = (n_f + ½)/(N + 3) so a face no member reached keeps a finite
+//! score (one replay, N = 1: ln 0.375 right, ln 0.125 wrong).
+
+use super::face::{Face, FACES};
+use super::initial_state::{orientation, InitialState};
+use super::predict::{prepare, simulate_toss, PreparedToss};
+use super::{TossError, TossSetup};
+use crate::dataset::{Dataset, FlightFit};
+use crate::scenario::{Model, Shape};
+use nalgebra::{UnitQuaternion, Vector3};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
+use rayon::prelude::*;
+
+/// How an ensemble is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spread {
+    /// Members per toss (–).
+    pub members: usize,
+    /// Factor on the fits' standard deviations (–): 1 draws from their covariance as
+    /// it is.
+    pub inflation: f64,
+    /// Relative standard deviation (–) of every contact's stiffness, damping and
+    /// friction coefficients, drawn once per member (0: the model's own).
+    pub scatter: f64,
+    /// Seed of the draws.
+    pub seed: u64,
+}
+
+/// One toss's final faces: recorded, replayed, and the ensemble's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceForecast {
+    /// Run id.
+    pub run: String,
+    /// The face the body lies on in the window's last recorded frame.
+    pub measured: Face,
+    /// The face of the replay from the fitted initial state, at that frame.
+    pub replay: Face,
+    /// How many members ended on each face.
+    pub counts: [usize; FACES],
+    /// Members whose replay failed (left out of the counts).
+    pub failed: usize,
+}
+
+impl FaceForecast {
+    /// Members that ended on a face (–).
+    pub fn members(&self) -> usize {
+        self.counts.iter().sum()
+    }
+
+    /// The ensemble's probability of each face, n_f / N (–); all 0 without members.
+    pub fn probabilities(&self) -> [f64; FACES] {
+        let n = self.members().max(1) as f64;
+        self.counts.map(|c| c as f64 / n)
+    }
+
+    /// The most probable face (the first of a tie); the replay's without members.
+    pub fn most_probable(&self) -> Face {
+        match (0..FACES).max_by_key(|&f| (self.counts[f], FACES - f)) {
+            Some(f) if self.members() > 0 => Face(f),
+            _ => self.replay,
+        }
+    }
+
+    /// The ensemble's Brier score Σ_f (p_f − y_f)² (–, 0…2).
+    pub fn brier(&self) -> f64 {
+        brier(&self.probabilities(), self.measured)
+    }
+
+    /// The single replay's Brier score: 0 on the recorded face, 2 off it (–).
+    pub fn replay_brier(&self) -> f64 {
+        let mut one_hot = [0.0; FACES];
+        one_hot[self.replay.0] = 1.0;
+        brier(&one_hot, self.measured)
+    }
+
+    /// ln p of the recorded face under the ensemble, add-½ estimate (–, ≤ 0).
+    pub fn log_likelihood(&self) -> f64 {
+        add_half(self.counts[self.measured.0], self.members())
+    }
+
+    /// ln p of the recorded face under the single replay as a one-member ensemble,
+    /// add-½ estimate (–): ln 0.375 or ln 0.125.
+    pub fn replay_log_likelihood(&self) -> f64 {
+        add_half(usize::from(self.replay == self.measured), 1)
+    }
+}
+
+/// Σ_f (p_f − y_f)² for the recorded face `measured` (–).
+fn brier(p: &[f64; FACES], measured: Face) -> f64 {
+    (0..FACES)
+        .map(|f| (p[f] - f64::from(u8::from(f == measured.0))).powi(2))
+        .sum()
+}
+
+/// ln((n + ½)/(N + 3)): the add-½ estimate of a face reached `n` times of `members`.
+fn add_half(n: usize, members: usize) -> f64 {
+    ((n as f64 + 0.5) / (members as f64 + 0.5 * FACES as f64)).ln()
+}
+
+/// The face scores over tosses.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceSummary {
+    /// Tosses (–).
+    pub tosses: usize,
+    /// Members per toss (–).
+    pub members: usize,
+    /// Tosses whose replay ends on the recorded face (–).
+    pub replay_right: usize,
+    /// Tosses whose ensemble's most probable face is the recorded one (–).
+    pub ensemble_right: usize,
+    /// Mean Brier score of the single replays and of the ensembles (–).
+    pub brier: (f64, f64),
+    /// Mean log-likelihood of the recorded faces, single replays and ensembles (–).
+    pub log_likelihood: (f64, f64),
+    /// Members whose replay failed, over all tosses (–).
+    pub failed: usize,
+}
+
+/// The face scores of `forecasts` of `members` members each.
+pub fn summarize_faces(forecasts: &[FaceForecast], members: usize) -> FaceSummary {
+    let n = forecasts.len().max(1) as f64;
+    let mean = |f: fn(&FaceForecast) -> f64| forecasts.iter().map(f).sum::<f64>() / n;
+    let right = |f: fn(&FaceForecast) -> Face| {
+        (forecasts.iter())
+            .filter(|forecast| f(forecast) == forecast.measured)
+            .count()
+    };
+    FaceSummary {
+        tosses: forecasts.len(),
+        members,
+        replay_right: right(|f| f.replay),
+        ensemble_right: right(FaceForecast::most_probable),
+        brier: (mean(FaceForecast::replay_brier), mean(FaceForecast::brier)),
+        log_likelihood: (
+            mean(FaceForecast::replay_log_likelihood),
+            mean(FaceForecast::log_likelihood),
+        ),
+        failed: forecasts.iter().map(|f| f.failed).sum(),
+    }
+}
+
+/// The final-face forecast of every toss of `data` under `model`, `members` replays
+/// each from initial states drawn with `seed` (see the module documentation), in the
+/// data's order; tosses run in parallel, `done` called as each finishes. The scenario's
+/// primary moving body must be a box.
+pub fn forecast_faces(
+    model: &Model,
+    data: &Dataset,
+    spread: Spread,
+    done: impl Fn() + Sync,
+) -> Result<Vec<FaceForecast>, TossError> {
+    let setup = TossSetup::new(model)?;
+    if !matches!(model.bodies[setup.body].shape, Shape::Box { .. }) {
+        return Err(TossError::Setup {
+            scenario: model.scenario.name.clone(),
+            problem: format!(
+                "body `{}` is not a box: only a box has faces to land on",
+                setup.name
+            ),
+        });
+    }
+    let tosses = (data.runs.iter())
+        .map(|run| prepare(&setup, run))
+        .collect::<Result<Vec<_>, _>>()?;
+    (tosses.par_iter().enumerate())
+        .map(|(index, toss)| {
+            let forecast = forecast_toss(model, &setup, toss, &spread, index as u64);
+            done();
+            forecast
+        })
+        .collect()
+}
+
+/// The contact-parameter scatters (–) [`calibrate_scatter`] tries by default.
+pub const SCATTERS: [f64; 5] = [0.0, 0.1, 0.2, 0.3, 0.5];
+
+/// The scatter of `scatters` whose ensembles (`spread`'s members, inflation and seed)
+/// give `training`'s tosses the lowest mean Brier score (the first of a tie), with
+/// each scatter's score: the per-toss variability of the contact, chosen on tosses the
+/// judged ones are not. `done` is called as each toss of each scatter finishes.
+pub fn calibrate_scatter(
+    model: &Model,
+    training: &Dataset,
+    spread: Spread,
+    scatters: &[f64],
+    done: impl Fn() + Sync,
+) -> Result<(f64, Vec<(f64, f64)>), TossError> {
+    let mut scores = Vec::with_capacity(scatters.len());
+    for &scatter in scatters {
+        let forecasts = forecast_faces(model, training, Spread { scatter, ..spread }, &done)?;
+        scores.push((scatter, summarize_faces(&forecasts, spread.members).brier.1));
+    }
+    let best = (scores.iter())
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(0.0, |b| b.0);
+    Ok((best, scores))
+}
+
+/// One toss's forecast, the members' draws from stream `stream` of `seed`.
+fn forecast_toss(
+    model: &Model,
+    setup: &TossSetup,
+    toss: &PreparedToss<'_>,
+    spread: &Spread,
+    stream: u64,
+) -> Result<FaceForecast, TossError> {
+    let down = setup.gravity;
+    let last = toss.primary().measured().last();
+    let measured = last
+        .map(|frame| orientation(&setup.name, toss.run, frame))
+        .transpose()?
+        .and_then(|q| Face::facing(&q, &down));
+    let final_face = |model: &Model, toss: &PreparedToss<'_>| -> Result<Option<Face>, TossError> {
+        let prediction = simulate_toss(model, setup, toss)?;
+        Ok(prediction.samples.last().and_then(|s| {
+            let [w, x, y, z] = s.orientation;
+            let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+            Face::facing(&q, &down)
+        }))
+    };
+    let undefined = || TossError::Frame {
+        run: toss.run.to_owned(),
+        time: last.map_or(f64::NAN, |s| s.time),
+        problem: "no face points down in the window's last frame (no gravity?)".into(),
+    };
+    let measured = measured.ok_or_else(undefined)?;
+    let replay = final_face(model, toss)?.ok_or_else(undefined)?;
+    let mut rng = ChaCha8Rng::seed_from_u64(spread.seed);
+    rng.set_stream(stream);
+    let (mut counts, mut failed) = ([0; FACES], 0);
+    for _ in 0..spread.members {
+        let mut member = toss.clone();
+        for body in &mut member.bodies {
+            body.initial = drawn(&body.initial, spread.inflation, &mut rng);
+        }
+        let scattered = scattered(model, spread.scatter, &mut rng);
+        match final_face(&scattered, &member) {
+            Ok(Some(face)) => counts[face.0] += 1,
+            _ => failed += 1,
+        }
+    }
+    Ok(FaceForecast {
+        run: toss.run.to_owned(),
+        measured,
+        replay,
+        counts,
+        failed,
+    })
+}
+
+/// Law parameters a member scatters, where the law has them.
+const SCATTERED: [&str; 5] = [
+    "stiffness",
+    "effective_modulus",
+    "max_damping",
+    "damping",
+    "restitution",
+];
+
+/// `model` with every contact's law parameters of [`SCATTERED`] and friction
+/// coefficients each × (1 + `scatter`·ζ), ζ ~ N(0, 1) clamped to ±2.5 (μ_s and μ_d
+/// by one ζ, so μ_d ≤ μ_s holds).
+fn scattered(model: &Model, scatter: f64, rng: &mut ChaCha8Rng) -> Model {
+    let mut out = model.clone();
+    if scatter <= 0.0 {
+        return out;
+    }
+    let factor = |rng: &mut ChaCha8Rng| {
+        let z: f64 = StandardNormal.sample(rng);
+        (1.0 + scatter * z.clamp(-2.5, 2.5)).max(0.05)
+    };
+    for contact in &mut out.contacts {
+        for name in SCATTERED {
+            if let Ok(value) = contact.model.normal.base.get(name) {
+                let mut v = value * factor(rng);
+                if name == "restitution" {
+                    v = v.min(1.0);
+                }
+                let _ = contact.model.normal.base.set(name, v);
+            }
+        }
+        if let Some(friction) = contact.model.friction.as_mut() {
+            let k = factor(rng);
+            friction.static_coefficient *= k;
+            friction.dynamic_coefficient *= k;
+        }
+    }
+    out
+}
+
+/// `initial` moved by one draw from its fits' covariance (unchanged without fits).
+fn drawn(initial: &InitialState, inflation: f64, rng: &mut ChaCha8Rng) -> InitialState {
+    let Some([flight, turning]) = &initial.fits else {
+        return initial.clone();
+    };
+    let (dp, dv) = offsets(flight, inflation, rng);
+    let (da, dw) = offsets(turning, inflation, rng);
+    InitialState {
+        position: initial.position + dp,
+        velocity: initial.velocity + dv,
+        orientation: UnitQuaternion::from_scaled_axis(da) * initial.orientation,
+        angular_velocity: initial.angular_velocity + dw,
+        ..initial.clone()
+    }
+}
+
+/// Offsets of the fit's intercept and slope, per axis jointly from σ_k²·(AᵀA)⁻¹ by its
+/// Cholesky factor (units of the fit: m and m/s, or rad and rad/s). A degenerate
+/// covariance (rounding) gives zero offsets rather than NaN.
+fn offsets(fit: &FlightFit, inflation: f64, rng: &mut ChaCha8Rng) -> (Vector3<f64>, Vector3<f64>) {
+    let [[caa, cab], [_, cbb]] = fit.unscaled;
+    let l00 = caa.max(0.0).sqrt();
+    let l10 = if l00 > 0.0 { cab / l00 } else { 0.0 };
+    let l11 = (cbb - l10 * l10).max(0.0).sqrt();
+    let (mut intercept, mut slope) = (Vector3::zeros(), Vector3::zeros());
+    for k in 0..3 {
+        let sigma = inflation * fit.noise[k].max(0.0).sqrt();
+        let (z1, z2): (f64, f64) = (StandardNormal.sample(rng), StandardNormal.sample(rng));
+        intercept[k] = sigma * l00 * z1;
+        slope[k] = sigma * (l10 * z1 + l11 * z2);
+    }
+    let finite = |v: Vector3<f64>| {
+        if v.iter().all(|x| x.is_finite()) {
+            v
+        } else {
+            Vector3::zeros()
+        }
+    };
+    (finite(intercept), finite(slope))
+}
