@@ -115,6 +115,16 @@ fn the_small_reproduction_beats_the_frozen_pose_and_its_physics_file_predicts_th
     let single = serde_json::to_string_pretty(&single.results).unwrap();
     assert!(single.contains("\"diagnosis\": null"), "{single}");
     assert_eq!(before_diagnosis(&text), before_diagnosis(&single));
+    // The final faces: every held-out toss forecast, the scatter chosen among five, and
+    // the same draws on one thread.
+    let faces = &results["faces"];
+    assert_eq!(faces["held_out"]["tosses"], 3);
+    assert_eq!(faces["calibration"].as_array().unwrap().len(), 5);
+    let brier = faces["held_out"]["brier"][1].as_f64().unwrap();
+    assert!((0.0..=2.0).contains(&brier), "Brier {brier}");
+    assert!(report.contains("## Final faces"), "{report}");
+    let single: Value = serde_json::from_str(&single).unwrap();
+    assert_eq!(&single["faces"], faces);
 }
 
 /// The `--set`s physics.toml needs beside it.

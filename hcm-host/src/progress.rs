@@ -24,6 +24,8 @@ pub enum Stage {
     Predict(Fold),
     /// The motion diagnosis; steps are its candidates' fits.
     Diagnose,
+    /// The final faces' ensembles; steps are tosses (each scatter's, then the forecast's).
+    Faces,
 }
 
 /// Which fold of a two-fold split a stage works on.
@@ -51,6 +53,7 @@ impl Stage {
             Stage::MotionPolish(Fold::Second) => "second fold: polish",
             Stage::Predict(Fold::Second) => "second fold: predict",
             Stage::Diagnose => "diagnose",
+            Stage::Faces => "final faces",
         }
     }
 }

@@ -86,6 +86,10 @@ pub struct Args {
     /// Cube-toss: skip the diagnosis of the fitted model (most of the run's time).
     #[arg(long)]
     pub(super) no_diagnosis: bool,
+    /// Cube-toss: replays per toss in the final faces' ensembles (default 16; 0 skips
+    /// the stage).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=1000))]
+    pub(super) face_members: Option<u16>,
     /// Output directory (created): data, pm2.toml, residual blobs, report.md,
     /// results.json, figures.
     #[arg(long)]
@@ -133,6 +137,7 @@ fn preset(args: &Args) -> anyhow::Result<Preset> {
         ("--data", args.data.is_some()),
         ("--first", args.first.is_some()),
         ("--no-diagnosis", args.no_diagnosis),
+        ("--face-members", args.face_members.is_some()),
         ("--runs", args.runs.is_some()),
         ("--method", args.method.is_some()),
     ];
@@ -149,6 +154,7 @@ fn preset(args: &Args) -> anyhow::Result<Preset> {
                 "--data",
                 "--first",
                 "--no-diagnosis",
+                "--face-members",
             ],
         ),
     };
@@ -228,6 +234,7 @@ fn cube(args: &Args) -> anyhow::Result<CubeSettings> {
         generations: args.generations.unwrap_or(shipped.generations),
         polish: args.polish.unwrap_or(shipped.polish),
         diagnose: !args.no_diagnosis,
+        face_members: args.face_members.map_or(shipped.face_members, usize::from),
         ..shipped
     })
 }

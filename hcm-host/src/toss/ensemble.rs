@@ -124,7 +124,7 @@ fn add_half(n: usize, members: usize) -> f64 {
 }
 
 /// The face scores over tosses.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct FaceSummary {
     /// Tosses (–).
     pub tosses: usize,
@@ -138,6 +138,10 @@ pub struct FaceSummary {
     pub brier: (f64, f64),
     /// Mean log-likelihood of the recorded faces, single replays and ensembles (–).
     pub log_likelihood: (f64, f64),
+    /// The ensembles' gain in Brier score over the single replays, toss by toss
+    /// (replay − ensemble): mean and the half-width of its 95 % interval,
+    /// 1.96·sd/√n (–; 0 for fewer than two tosses).
+    pub brier_gain: [f64; 2],
     /// Members whose replay failed, over all tosses (–).
     pub failed: usize,
 }
@@ -161,8 +165,23 @@ pub fn summarize_faces(forecasts: &[FaceForecast], members: usize) -> FaceSummar
             mean(FaceForecast::replay_log_likelihood),
             mean(FaceForecast::log_likelihood),
         ),
+        brier_gain: paired_gain(forecasts),
         failed: forecasts.iter().map(|f| f.failed).sum(),
     }
+}
+
+/// Mean and 95 % half-width of the per-toss Brier gain replay − ensemble (–).
+fn paired_gain(forecasts: &[FaceForecast]) -> [f64; 2] {
+    let gains: Vec<f64> = (forecasts.iter())
+        .map(|f| f.replay_brier() - f.brier())
+        .collect();
+    let n = gains.len() as f64;
+    if gains.len() < 2 {
+        return [gains.first().copied().unwrap_or(0.0), 0.0];
+    }
+    let mean = gains.iter().sum::<f64>() / n;
+    let variance = gains.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    [mean, 1.96 * (variance / n).sqrt()]
 }
 
 /// The final-face forecast of every toss of `data` under `model`, `members` replays

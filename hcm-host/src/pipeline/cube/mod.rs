@@ -10,6 +10,7 @@
 //! caller writes what comes back.
 
 pub mod errors;
+mod faces;
 mod figures;
 pub mod phases;
 mod report;
@@ -55,6 +56,8 @@ pub struct CubeSettings {
     pub polish: usize,
     /// Whether to diagnose the fitted model (most of the run's time).
     pub diagnose: bool,
+    /// Replays per toss of the final faces' ensembles (0: no faces stage).
+    pub face_members: usize,
 }
 
 impl CubeSettings {
@@ -71,6 +74,7 @@ impl CubeSettings {
             generations: 10,
             polish: 40,
             diagnose: true,
+            face_members: 16,
         }
     }
 }
@@ -202,6 +206,12 @@ pub fn reproduce_cube(
         })?),
         false => None,
     };
+    let faces = match settings.face_members {
+        0 => None,
+        members => Some(clock.time("final faces (ensembles)", || {
+            faces::faces(&fit.model, &training, &held_out, members, progress)
+        })?),
+    };
     let figures = clock.time("figures", || {
         toss_figures(&setup, &held_out, &predicted, &timeline)
     })?;
@@ -211,7 +221,8 @@ pub fn reproduce_cube(
         predicted: &predicted,
         second: &second_fold,
     };
-    let results = CubeResults::gather(settings, folds, timeline, diagnosis.as_ref(), clock.0);
+    let results = CubeResults::gather(settings, folds, timeline, diagnosis.as_ref(), clock.0)
+        .with_faces(faces);
     Ok(CubeReproduction {
         scenario,
         training,

@@ -1,5 +1,6 @@
 //! What `results.json` holds: every figure of the report, unrounded.
 
+use super::faces::FaceResults;
 use super::stages::{Predictions, SecondFold, Timeline};
 use super::CubeSettings;
 use crate::diagnose::motion::MotionDiagnosis;
@@ -127,6 +128,8 @@ pub struct CubeResults {
     pub(crate) timeline: Timeline,
     /// The diagnosis of the fitted model (`null`: skipped).
     pub(crate) diagnosis: Option<MotionDiagnosis>,
+    /// The held-out tosses' final faces by ensembles (`null`: skipped).
+    pub(crate) faces: Option<FaceResults>,
     /// Wall clock per stage (s); the only part that differs between runs.
     pub(crate) timings: Vec<StageTiming>,
 }
@@ -170,8 +173,14 @@ impl CubeResults {
             ),
             timeline,
             diagnosis: diagnosis.cloned(),
+            faces: None,
             timings,
         }
+    }
+
+    /// With the final faces' results.
+    pub(crate) fn with_faces(self, faces: Option<FaceResults>) -> CubeResults {
+        CubeResults { faces, ..self }
     }
 
     /// The row of `model` on `part`.
