@@ -306,6 +306,16 @@ fn a_larger_inertia_is_named_from_tosses() {
     assert!((scale / 1.3 - 1.0).abs() < 0.02, "{scale}");
 }
 
+#[test]
+fn rounded_edges_are_named_from_tosses() {
+    let truth = cube_toss(&["body.cube.shape.box.rounding=8e-3"]);
+    let data = without_force(recorded(&truth, Start::Toss, 10));
+    let d = diagnosed_from("tosses, edges rounded to 8 mm", &cube_toss(&[]), &data);
+    assert_eq!(names(&d), ["edge_rounding"], "{}", d.answer);
+    let radius = d.named[0].1[0].1;
+    assert!((radius / 8e-3 - 1.0).abs() < 0.1, "{radius}");
+}
+
 /// A restitution that falls with the impact speed changes which face a toss ends on:
 /// its gain over the user's model is large on some tosses and small on others, so it
 /// takes more tosses than the tangential effects to be sure of (measured: on 10, the

@@ -14,6 +14,7 @@ mod identify_rigid;
 mod indicators;
 mod laws;
 mod numbers;
+mod peers;
 mod predict;
 mod progress;
 mod report;

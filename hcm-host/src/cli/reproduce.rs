@@ -5,7 +5,7 @@
 
 use super::progress::Bars;
 use hcm_host::output::StagedDirectory;
-use hcm_host::pipeline::cube::CubeSettings;
+use hcm_host::pipeline::cube::{reproduce_cube, CubeSettings};
 use hcm_host::pipeline::peg::PegSettings;
 use hcm_host::pipeline::{
     write_reproduction, Example, Pm2Method, Preset, ReproduceSettings, Reproduced, ScenarioChoice,
@@ -90,6 +90,12 @@ pub struct Args {
     /// the stage).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=1000))]
     pub(super) face_members: Option<u16>,
+    /// Cube-toss: also fit and score MuJoCo and PyBullet the same way, side by side
+    /// (benches/peers/peers.py, run from the repository's root with its virtual
+    /// environment: `bash benches/peers/run.sh OUT --quick` installs it; about 12 more
+    /// minutes on the full data).
+    #[arg(long)]
+    pub(super) peers: bool,
     /// Output directory (created): data, pm2.toml, residual blobs, report.md,
     /// results.json, figures.
     #[arg(long)]
@@ -122,7 +128,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // Built as a hidden directory beside --out and renamed into place at the end, so
     // that --out appears complete or not at all; made before the minutes of work, so
     // that an unwritable place or an --out that may not be replaced fails at once.
+    let peers = match (&preset, args.peers) {
+        (Preset::CubeToss(_), true) => Some(super::peers::Peers::locate()?),
+        _ => None,
+    };
     let staged = StagedDirectory::create(&args.out, "results.json")?;
+    if let (Some(peers), Preset::CubeToss(settings)) = (&peers, &preset) {
+        let mut reproduction = reproduce_cube(settings, &Bars::default())?;
+        reproduction.appendix = Some(peers.run(staged.path(), &reproduction, settings)?);
+        return finish(staged, Box::new(reproduction));
+    }
     let reproduction = preset.reproduce(&Bars::default())?;
     finish(staged, reproduction)
 }
@@ -138,6 +153,7 @@ fn preset(args: &Args) -> anyhow::Result<Preset> {
         ("--first", args.first.is_some()),
         ("--no-diagnosis", args.no_diagnosis),
         ("--face-members", args.face_members.is_some()),
+        ("--peers", args.peers),
         ("--runs", args.runs.is_some()),
         ("--method", args.method.is_some()),
     ];
@@ -155,6 +171,7 @@ fn preset(args: &Args) -> anyhow::Result<Preset> {
                 "--first",
                 "--no-diagnosis",
                 "--face-members",
+                "--peers",
             ],
         ),
     };

@@ -8,6 +8,7 @@ use crate::dataset::Dataset;
 use crate::figure::NamedFigure;
 use crate::identify::Physics;
 use crate::output::write_bytes;
+use crate::toss::{write_scores, TossEvaluation};
 use crate::train::TrainedResidual;
 use anyhow::Context;
 use std::borrow::Cow;
@@ -26,6 +27,9 @@ pub enum Artifact<'a> {
     Bytes(&'static str, &'a [u8]),
     /// Each figure as `STEM.svg` and `STEM.png`.
     Figures(&'a [NamedFigure]),
+    /// Each toss's scores and initial state as CSV (`hcm predict --scores`'s file),
+    /// under its file name.
+    Scores(&'static str, Vec<TossEvaluation>),
 }
 
 impl Artifact<'_> {
@@ -37,6 +41,7 @@ impl Artifact<'_> {
             Artifact::Residual(name, residual) => residual.write(&dir.join(name))?,
             Artifact::Bytes(name, bytes) => write_bytes(&dir.join(name), bytes)?,
             Artifact::Figures(figures) => write_figures(figures, dir)?,
+            Artifact::Scores(name, evaluations) => write_scores(&dir.join(name), evaluations)?,
         }
         Ok(())
     }

@@ -28,6 +28,7 @@ pub mod initial_state;
 pub mod partner;
 pub mod predict;
 pub mod score;
+pub mod scores_file;
 pub mod setup;
 pub mod window;
 
@@ -42,6 +43,7 @@ pub use face::{Face, FACES};
 pub use initial_state::{estimate_initial_state, InitialState, StateSource};
 pub use predict::{predict_toss, predict_tosses, BodyPrediction, TossPrediction};
 pub use score::{score_movers, score_toss, Summary, TossScore};
+pub use scores_file::write_scores;
 pub use setup::{Mover, TossSetup};
 pub use window::{find_window, find_windows, Window, LEAD_FRAMES};
 

@@ -1,14 +1,14 @@
 //! What a motion-only diagnosis may find wrong with a tossed or sliding body's contact:
 //! the friction law (its coefficient, its shape, a viscous part), resistance to
 //! rotation (torsional, rolling), the impact's restitution (falling with the impact
-//! speed), and the measurement (the table's height or tilt, the
-//! tracker's length scale). Each candidate is a small change of the user's model (or
+//! speed), the body (its inertia, a box's rounded edges) and the measurement (the
+//! table's height or tilt, the tracker's length scale). Each candidate is a small change of the user's model (or
 //! of how the data are read) with its own parameters, every one of which has a neutral
 //! value that changes nothing.
 
 use crate::dataset::Dataset;
 use crate::numerics::optimize::Bound;
-use crate::scenario::Model;
+use crate::scenario::{Model, Shape};
 use crate::toss::partner::{shift_surface, tilt_surface};
 use hcm_core::effect::{ContactEffect, HysteresisDamping};
 use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};
@@ -21,6 +21,30 @@ const RESISTANCE_RATE: f64 = 0.1;
 fn stiffness_exponent(model: &Model, contact: usize) -> Option<(f64, f64)> {
     let law = model.contacts[contact].law();
     Some((law.get("stiffness").ok()?, law.get("exponent").ok()?))
+}
+
+/// The moving box of `model`'s `contact` that may be rounded: a box (not fixed)
+/// against a plane or a sphere, the pairs a rounded box is modelled in.
+fn rounded_box(model: &Model, contact: usize) -> Option<usize> {
+    let c = &model.contacts[contact];
+    let [one, two] = [c.body_1, c.body_2].map(|b| &model.bodies[b]);
+    let partner_ok =
+        |b: &crate::scenario::Body| matches!(b.shape, Shape::Plane { .. } | Shape::Sphere { .. });
+    if matches!(one.shape, Shape::Box { .. }) && !one.fixed && partner_ok(two) {
+        Some(c.body_1)
+    } else if matches!(two.shape, Shape::Box { .. }) && !two.fixed && partner_ok(one) {
+        Some(c.body_2)
+    } else {
+        None
+    }
+}
+
+/// A body's rounding (m): a box's, 0 for any other shape.
+fn box_rounding(body: &crate::scenario::Body) -> f64 {
+    match body.shape {
+        Shape::Box { rounding, .. } => rounding,
+        _ => 0.0,
+    }
 }
 
 /// What kind of cause a candidate is: a diagnosis calls two candidates of different
@@ -78,11 +102,14 @@ pub enum MotionEffect {
     /// The body's inertia tensor scaled by k (–): its mass further out (or in) than the
     /// model has it.
     InertiaScale,
+    /// A box's edges and corners rounded to a radius r (m): the point it pivots on as
+    /// it rolls over an edge moves round it (`shape.box.rounding`).
+    EdgeRounding,
 }
 
 impl MotionEffect {
     /// The catalogue, in the order a report lists it.
-    pub const ALL: [MotionEffect; 10] = [
+    pub const ALL: [MotionEffect; 11] = [
         MotionEffect::FrictionCoefficient,
         MotionEffect::CoulombFriction,
         MotionEffect::ViscousFriction,
@@ -93,6 +120,7 @@ impl MotionEffect {
         MotionEffect::TableTilt,
         MotionEffect::LengthScale,
         MotionEffect::InertiaScale,
+        MotionEffect::EdgeRounding,
     ];
 
     /// The catalogue name a diagnosis prints.
@@ -109,6 +137,7 @@ impl MotionEffect {
             MotionEffect::TableTilt => "table_tilt",
             MotionEffect::LengthScale => "length_scale",
             MotionEffect::InertiaScale => "inertia_scale",
+            MotionEffect::EdgeRounding => "edge_rounding",
         }
     }
 
@@ -125,7 +154,7 @@ impl MotionEffect {
             MotionEffect::TableOffset | MotionEffect::TableTilt | MotionEffect::LengthScale => {
                 Family::Measurement
             }
-            MotionEffect::InertiaScale => Family::Body,
+            MotionEffect::InertiaScale | MotionEffect::EdgeRounding => Family::Body,
         }
     }
 
@@ -159,6 +188,8 @@ impl MotionEffect {
             ],
             MotionEffect::LengthScale => vec![bound("scale", 0.9, 1.1, false)],
             MotionEffect::InertiaScale => vec![bound("scale", 0.5, 2.0, true)],
+            // Up to a fifth of the half extent: 10 mm on the 105 mm ContactNets cube.
+            MotionEffect::EdgeRounding => vec![bound("radius", 0.0, 0.2 * size, false)],
         }
     }
 
@@ -183,6 +214,7 @@ impl MotionEffect {
                 let normal = &model.contacts[contact].model.normal;
                 stiffness_exponent(model, contact).is_some() && !normal.effects.is_full()
             }
+            MotionEffect::EdgeRounding => rounded_box(model, contact).is_some(),
             _ => true,
         }
     }
@@ -202,6 +234,10 @@ impl MotionEffect {
             MotionEffect::SpeedDependentRestitution => {
                 model.contacts[contact].law().name() == "hunt_crossley"
             }
+            // identify-motion frees a rounding the scenario gives above 0.
+            MotionEffect::EdgeRounding => {
+                rounded_box(model, contact).is_some_and(|b| box_rounding(&model.bodies[b]) > 0.0)
+            }
             _ => false,
         }
     }
@@ -218,6 +254,9 @@ impl MotionEffect {
                 vec![friction.map_or(0.1, |f| f.dynamic_coefficient)]
             }
             MotionEffect::TableTilt => vec![0.0, 0.0],
+            MotionEffect::EdgeRounding => {
+                vec![rounded_box(model, contact).map_or(0.0, |b| box_rounding(&model.bodies[b]))]
+            }
             _ => vec![0.0],
         }
     }
@@ -278,6 +317,18 @@ impl MotionEffect {
                 let c = &out.contacts[contact];
                 let body = c.body_1 + c.body_2 - partner;
                 out.bodies[body].inertia *= first;
+            }
+            MotionEffect::EdgeRounding => {
+                if let Some(b) = rounded_box(model, contact) {
+                    if let Shape::Box {
+                        rounding,
+                        half_extents,
+                    } = &mut out.bodies[b].shape
+                    {
+                        // Below the smallest half extent, as the scenario key must be.
+                        *rounding = first.clamp(0.0, 0.99 * half_extents.min());
+                    }
+                }
             }
             MotionEffect::LengthScale => {}
         }

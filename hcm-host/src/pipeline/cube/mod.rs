@@ -131,6 +131,32 @@ pub struct CubeReproduction {
     pub results: CubeResults,
     /// The figures.
     pub(crate) figures: Vec<NamedFigure>,
+    /// A section the caller adds to the report's end (the peers' table of
+    /// `hcm reproduce cube-toss --peers`).
+    pub appendix: Option<String>,
+}
+
+impl CubeReproduction {
+    /// What `benches/peers/peers.py` reads beside the tosses, for every toss of both
+    /// parts: the scenario's and the fitted model's scores with each toss's window and
+    /// initial state (`scores_scenario.csv`, `scores_fitted.csv`, the fitted model of
+    /// the first fold), and the scenario's predictions (`predicted_scenario.csv`).
+    pub fn peer_inputs(&self) -> anyhow::Result<Vec<Artifact<'_>>> {
+        let p = &self.predicted;
+        let both =
+            |a: &[crate::toss::TossEvaluation], b: &[crate::toss::TossEvaluation]| [a, b].concat();
+        let scenario = both(&p.training_scenario, &p.held_out_scenario);
+        let body = TossSetup::new(&self.fit.model)?.name;
+        let predicted = predicted_dataset(&scenario, &body);
+        Ok(vec![
+            Artifact::Scores("scores_scenario.csv", scenario),
+            Artifact::Scores(
+                "scores_fitted.csv",
+                both(&p.training_fitted, &p.held_out_fitted),
+            ),
+            Artifact::Data("predicted_scenario.csv", Cow::Owned(predicted)),
+        ])
+    }
 }
 
 /// The cube's files: the fit as a physics file, the two parts of the split, the
@@ -171,7 +197,12 @@ impl Reproduced for CubeReproduction {
     }
 
     fn report(&self) -> String {
-        self.results.markdown()
+        let mut report = self.results.markdown();
+        if let Some(appendix) = &self.appendix {
+            report.push('\n');
+            report.push_str(appendix);
+        }
+        report
     }
 }
 
@@ -235,6 +266,7 @@ pub fn reproduce_cube(
         diagnosis,
         results,
         figures,
+        appendix: None,
     })
 }
 
