@@ -6,17 +6,7 @@ use hcm_tests::cli::Hcm;
 
 /// `hcm simulate` on the shipped cube drop with `sets` applied: its error message.
 fn refused(sets: &[&str]) -> String {
-    let hcm = Hcm::new();
-    let mut call = hcm
-        .run("simulate")
-        .opt("--scenario", hcm_tests::scenario("cube_drop.toml"))
-        .opt("--out", hcm.path("out.csv"));
-    for set in sets {
-        call = call.opt("--set", set);
-    }
-    let message = call.fails();
-    assert!(!hcm.path("out.csv").exists(), "nothing written on an error");
-    message
+    Hcm::new().simulate_refused(&hcm_tests::scenario("cube_drop.toml"), sets)
 }
 
 fn assert_says(message: &str, parts: &[&str]) {

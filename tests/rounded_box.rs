@@ -61,16 +61,7 @@ fn a_rounded_cube_touches_down_when_its_corner_sphere_reaches_the_ground() {
 
 /// `hcm simulate` of `scenario` with `sets`: its error message (nothing written).
 fn refused(scenario: &std::path::Path, sets: &[&str]) -> String {
-    let hcm = Hcm::new();
-    let mut call = (hcm.run("simulate"))
-        .opt("--scenario", scenario)
-        .opt("--out", hcm.path("out.csv"));
-    for set in sets {
-        call = call.opt("--set", set);
-    }
-    let message = call.fails();
-    assert!(!hcm.path("out.csv").exists(), "nothing written on an error");
-    message
+    Hcm::new().simulate_refused(scenario, sets)
 }
 
 #[test]

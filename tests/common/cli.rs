@@ -100,6 +100,23 @@ impl Hcm {
         self.dir.path().join(name)
     }
 
+    /// `hcm simulate` of `scenario` with each of `sets` as a `--set`, which must fail:
+    /// its error message, nothing written to its `--out`.
+    pub fn simulate_refused(&self, scenario: &Path, sets: &[&str]) -> String {
+        let mut call = (self.run("simulate"))
+            .opt("--scenario", scenario)
+            .opt("--out", self.path("out.csv"));
+        for set in sets {
+            call = call.opt("--set", set);
+        }
+        let message = call.fails();
+        assert!(
+            !self.path("out.csv").exists(),
+            "nothing written on an error"
+        );
+        message
+    }
+
     /// An `hcm subcommand` call, to be given arguments and run.
     pub fn run(&self, subcommand: &str) -> Call {
         let mut command = Command::new(hcm_exe());
