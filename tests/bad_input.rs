@@ -563,3 +563,60 @@ fn runs_without_contact_are_named_apart_from_their_count() {
         "{stdout}"
     );
 }
+
+/// Every command's outputs are checked against its inputs before any work (issue 30):
+/// an output naming a file the command reads and two outputs naming one file are
+/// refused, naming the options, and the input is left as it was; an output that is a
+/// device is refused too (`tests/outputs.rs` has the pipes and sockets).
+#[test]
+fn an_output_that_is_an_input_or_a_device_is_refused_before_any_work() {
+    let hcm = Hcm::new();
+    let ball = hcm.path("ball.toml");
+    std::fs::copy(scenario("bouncing_ball.toml"), &ball).unwrap();
+    let text = std::fs::read(&ball).unwrap();
+    let message = (hcm.run("simulate"))
+        .opt("--scenario", &ball)
+        .opt("--out", &ball)
+        .fails();
+    says(
+        &message,
+        &["--out", "is the file --scenario reads", "another path"],
+    );
+    assert_eq!(
+        std::fs::read(&ball).unwrap(),
+        text,
+        "the scenario was changed"
+    );
+
+    let (s1, _) = ball_data(&hcm);
+    let data = std::fs::read(&s1).unwrap();
+    let message = (hcm.run("identify"))
+        .opt("--scenario", &ball)
+        .opt("--data", &s1)
+        .opt("--law", "hertz")
+        .opt("--out", &s1)
+        .fails();
+    says(&message, &["--out", "is the file --data reads"]);
+    assert_eq!(std::fs::read(&s1).unwrap(), data, "the data were changed");
+
+    let out = hcm.path("p.csv");
+    let message = refused(
+        &hcm,
+        &out,
+        (hcm.run("predict"))
+            .opt("--scenario", scenario("cube_toss.toml"))
+            .opt(
+                "--data",
+                Path::new(env!("CARGO_MANIFEST_DIR")).join("data/contactnets-cube/tosses.csv"),
+            )
+            .opt("--out", &out)
+            .opt("--scores", &out),
+    );
+    says(&message, &["--out and --scores name the same file"]);
+
+    let message = (hcm.run("simulate"))
+        .opt("--scenario", &ball)
+        .opt("--out", "/dev/null")
+        .fails();
+    says(&message, &["/dev/null", "not a regular file"]);
+}

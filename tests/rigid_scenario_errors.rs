@@ -57,6 +57,28 @@ fn friction_and_orientation_errors_name_the_scenario_keys() {
     );
 }
 
+/// STEP friction falls from μ_s at v_s to μ_d at v_d: the keys in the other order, or
+/// a step of no width, are a user's mistake, named (issue 30).
+#[test]
+fn friction_out_of_step_order_is_refused() {
+    assert_says(
+        &refused(&["contact.0.friction.mu_dynamic=0.5"]),
+        &[
+            "contact #0",
+            "mu_dynamic 0.5 is above mu_static 0.3",
+            "swapped",
+        ],
+    );
+    assert_says(
+        &refused(&["contact.0.friction.v_dynamic=1e-3"]),
+        &[
+            "contact #0",
+            "v_dynamic 0.001 equals v_static",
+            "give v_dynamic above",
+        ],
+    );
+}
+
 #[test]
 fn a_law_that_needs_a_radius_asks_for_its_stiffness_on_a_box() {
     assert_says(

@@ -14,6 +14,7 @@ mod identify_rigid;
 mod indicators;
 mod laws;
 mod numbers;
+mod paths;
 mod peers;
 mod predict;
 mod progress;
@@ -83,7 +84,13 @@ enum Command {
 
 /// Parses the command line, runs the subcommand, and reports errors in plain words.
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let matches = <Cli as clap::CommandFactory>::command().get_matches();
+    let cli = <Cli as clap::FromArgMatches>::from_arg_matches(&matches)
+        .unwrap_or_else(|error| error.exit());
+    if let Err(error) = paths::check(&matches) {
+        eprintln!("error: {error:#}");
+        return ExitCode::FAILURE;
+    }
     let result = match cli.command {
         Command::Laws(args) => laws::run(args),
         Command::Force(args) => force::run(args),

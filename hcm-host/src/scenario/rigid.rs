@@ -97,8 +97,26 @@ impl FrictionSpec {
         }
     }
 
-    /// The core's friction law, checked (coefficients ≥ 0, 0 < v_s < v_d).
+    /// The core's friction law, checked (coefficients ≥ 0, 0 < v_s < v_d) and in STEP's
+    /// order: the coefficient falls (or stays) from μ_s at v_s to μ_d at v_d, so
+    /// μ_d ≤ μ_s, over a transition of some width, v_s < v_d. The core itself accepts
+    /// the reverse (a simulated run's Eq 18 scatter may cross them); a user's scenario
+    /// that gives it has the two keys swapped.
     pub fn law(&self) -> Result<VelocityStepFriction<f64>, String> {
+        if self.mu_dynamic > self.mu_static {
+            return Err(format!(
+                "mu_dynamic {} is above mu_static {}: STEP friction falls from μ_s when \
+                 sticking to μ_d when sliding; give mu_dynamic ≤ mu_static (swapped?)",
+                self.mu_dynamic, self.mu_static
+            ));
+        }
+        if self.v_dynamic == self.v_static {
+            return Err(format!(
+                "v_dynamic {} equals v_static: the STEP from μ_s to μ_d needs a width; give \
+                 v_dynamic above v_static (e.g. 10 × v_static)",
+                self.v_dynamic
+            ));
+        }
         let law = VelocityStepFriction {
             static_coefficient: self.mu_static,
             dynamic_coefficient: self.mu_dynamic,
