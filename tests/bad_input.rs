@@ -620,3 +620,44 @@ fn an_output_that_is_an_input_or_a_device_is_refused_before_any_work() {
         .fails();
     says(&message, &["/dev/null", "not a regular file"]);
 }
+
+/// A record or a number of runs that memory cannot hold is refused before the work,
+/// with the figure and what lowers it — never an allocation failure (issue 30).
+#[test]
+fn what_memory_cannot_hold_is_refused_with_the_figure() {
+    let hcm = Hcm::new();
+    let out = hcm.path("y.csv");
+    let message = refused(
+        &hcm,
+        &out,
+        (hcm.run("simulate"))
+            .opt("--scenario", scenario("bouncing_ball.toml"))
+            .opt("--set", "record.contact_sample_period=1e-15")
+            .opt("--out", &out),
+    );
+    says(
+        &message,
+        &[
+            "record would take up to",
+            "of memory available",
+            "raise record.contact_sample_period",
+        ],
+    );
+    let out = hcm.path("ball");
+    let message = refused(
+        &hcm,
+        &out,
+        (hcm.run("reproduce"))
+            .arg("bouncing-ball")
+            .opt("--runs", "1000000000000")
+            .opt("--out", &out),
+    );
+    says(
+        &message,
+        &[
+            "--runs 1000000000000",
+            "of memory available",
+            "ask for at most",
+        ],
+    );
+}

@@ -72,6 +72,21 @@ pub enum ExperimentError {
          empty; leave at least one condition out of it"
     )]
     AllHeldOut,
+    /// The runs would not fit in memory.
+    #[error(
+        "--runs {runs}: {total} runs of about {} each would take {}, more than the {} of \
+         memory available; ask for at most {most} runs per condition",
+        crate::simulate::footprint::shown(*per_run),
+        crate::simulate::footprint::shown(*per_run * *total as f64),
+        crate::simulate::footprint::shown(*budget)
+    )]
+    TooManyForMemory {
+        runs: usize,
+        total: usize,
+        per_run: f64,
+        budget: f64,
+        most: u64,
+    },
     /// The output would not fit on the disk.
     #[error(
         "{space} ({runs} runs of about {} each, written twice: OUT, then S1 and S2); \
@@ -136,6 +151,34 @@ fn run_rng(seed: u64, index: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(z ^ (z >> 31))
 }
 
+/// How much more than its first run a run may take, on the safe side (–).
+const RUN_SIZE_MARGIN: f64 = 2.0;
+
+/// Refuses an experiment whose runs, all held in memory, would not fit there: the first
+/// run of each condition simulated as a pilot, its record's size
+/// ([`crate::simulate::footprint::record_bytes`]) with a margin of [`RUN_SIZE_MARGIN`]
+/// (the runs differ by their noise only), times the runs.
+fn fits_in_memory(generation: &Generation, runs: usize) -> Result<(), ExperimentError> {
+    use crate::simulate::footprint::{memory_budget, record_bytes};
+    let mut per_run: f64 = 0.0;
+    for condition in 0..generation.conditions() {
+        let pilot = generation.run(condition * generation.runs_per_condition())?;
+        per_run = per_run.max(RUN_SIZE_MARGIN * record_bytes(&pilot));
+    }
+    let (total, budget) = (generation.total_runs(), memory_budget());
+    if per_run * total as f64 <= budget {
+        return Ok(());
+    }
+    let conditions = generation.conditions().max(1) as f64;
+    Err(ExperimentError::TooManyForMemory {
+        runs,
+        total,
+        per_run,
+        budget,
+        most: (budget / per_run / conditions).floor() as u64,
+    })
+}
+
 /// Generates `runs_per_condition` noisy runs of every condition of `scenario`, in
 /// memory, reporting [`Stage::Generate`](crate::progress::Stage::Generate) to
 /// `progress` (a step per finished run).
@@ -146,6 +189,7 @@ pub fn generate(
     progress: &dyn Progress,
 ) -> Result<Dataset, ExperimentError> {
     let generation = Generation::new(scenario, runs_per_condition, seed)?;
+    fits_in_memory(&generation, runs_per_condition)?;
     let mut runs = Vec::with_capacity(generation.total_runs());
     generation.for_each(progress, |_, run| -> Result<(), ExperimentError> {
         runs.push(run);

@@ -18,6 +18,7 @@
 //! sampling only.
 
 mod event;
+pub mod footprint;
 mod jacobian;
 mod layout;
 mod memory;
@@ -70,12 +71,50 @@ pub enum SimulationError {
         /// What else to check for this model (e.g. a friction transition speed).
         hint: String,
     },
+    /// The record would not fit in memory.
+    #[error(
+        "scenario `{scenario}`: its record would take up to {} ({samples:.3e} samples: \
+         simulation.end_time {end_time} s at a record period of {period} s), more than the \
+         {} of memory available; raise record.contact_sample_period and \
+         record.flight_sample_period or shorten simulation.end_time",
+        footprint::shown(*bytes),
+        footprint::shown(*budget)
+    )]
+    TooLarge {
+        scenario: String,
+        bytes: f64,
+        budget: f64,
+        samples: f64,
+        end_time: f64,
+        period: f64,
+    },
     /// A contact's parameter noise names a parameter its law does not have.
     #[error("contact {contact}: parameter noise: {source}")]
     Noise {
         contact: usize,
         source: hcm_core::LawError,
     },
+}
+
+/// Refuses a run whose record would not fit in memory ([`footprint`]).
+fn fits_in_memory(model: &Model) -> Result<(), SimulationError> {
+    let (bytes, budget) = (footprint::run_bytes(model), footprint::memory_budget());
+    if bytes <= budget {
+        return Ok(());
+    }
+    let record = &model.scenario.record;
+    let period = record
+        .contact_sample_period
+        .min(record.flight_sample_period);
+    let end_time = model.scenario.simulation.end_time;
+    Err(SimulationError::TooLarge {
+        scenario: model.scenario.name.clone(),
+        bytes,
+        budget,
+        samples: end_time / period,
+        end_time,
+        period,
+    })
 }
 
 /// The solver settings a scenario's `[simulation]` table asks for.
@@ -111,6 +150,7 @@ fn stiction_hint(model: &Model) -> String {
 
 /// Simulates `model` from t = 0 and samples its trajectory.
 pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
+    fits_in_memory(model)?;
     let spec = &model.scenario.simulation;
     let layout = RigidLayout::new(model);
     let y0 = layout.initial_state(model);
