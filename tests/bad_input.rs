@@ -661,3 +661,28 @@ fn what_memory_cannot_hold_is_refused_with_the_figure() {
         ],
     );
 }
+
+/// A residual blob of the wrong kind for the scenario — the peg's 13-input wrench
+/// network on the 1D ball — is refused naming the blob and what the scenario takes,
+/// where before it was evaluated with its envelope shut (HCM = PM2, no word).
+#[test]
+fn a_blob_of_the_wrong_kind_for_the_scenario_is_refused() {
+    let hcm = Hcm::new();
+    let (_, s2) = ball_data(&hcm);
+    let blobs = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/blobs");
+    let message = (hcm.run("evaluate"))
+        .opt("--scenario", scenario("bouncing_ball.toml"))
+        .opt("--data", &s2)
+        .opt("--physics", blobs.join("bouncing_ball.pm2.toml"))
+        .opt("--residual", blobs.join("peg_in_hole.f32.hcm"))
+        .fails();
+    says(
+        &message,
+        &[
+            "peg_in_hole.f32.hcm",
+            "13-input, 6-output",
+            "a 1D scenario",
+            "3 inputs",
+        ],
+    );
+}

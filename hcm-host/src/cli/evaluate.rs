@@ -110,8 +110,8 @@ fn with_hcm(
         let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
         let residual = ContactResidual::decode(&bytes)
             .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-        let mut hcm = pm2.clone();
-        hcm.contacts[args.contact].model.residual = Some(residual);
+        let hcm = (pm2.with_residual(args.contact, residual, &path.display().to_string()))
+            .map_err(anyhow::Error::msg)?;
         models.push(("HCM", hcm));
     }
     Ok(models)

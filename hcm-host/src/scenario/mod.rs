@@ -9,6 +9,7 @@
 mod assignment;
 pub mod geometry;
 pub mod overrides;
+mod residual_fit;
 mod resolve;
 mod rigid;
 pub mod validate;
