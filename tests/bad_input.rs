@@ -686,3 +686,30 @@ fn a_blob_of_the_wrong_kind_for_the_scenario_is_refused() {
         ],
     );
 }
+
+/// A data set too small for the command: the diagnosis fits on some runs and judges on
+/// others, so one run is refused with what it needs, before any work and with no
+/// report written (issue 30).
+#[test]
+fn a_diagnosis_of_one_run_is_refused_with_what_it_needs() {
+    let hcm = Hcm::new();
+    let (s1, _) = ball_data(&hcm);
+    let data = hcm_host::dataset::Dataset::read(&s1).unwrap();
+    let one = hcm_host::dataset::Dataset {
+        runs: data.runs[..1].to_vec(),
+    };
+    let path = hcm.path("one_run.csv");
+    one.write(&path).unwrap();
+    let out = hcm.path("diagnosis");
+    let blobs = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/blobs");
+    let message = refused(
+        &hcm,
+        &out,
+        (hcm.run("diagnose"))
+            .opt("--scenario", scenario("bouncing_ball.toml"))
+            .opt("--data", &path)
+            .opt("--physics", blobs.join("bouncing_ball.pm2.toml"))
+            .opt("--out", &out),
+    );
+    says(&message, &["--data holds 1 run(s)", "give at least 2"]);
+}

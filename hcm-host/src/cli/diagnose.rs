@@ -2,7 +2,6 @@
 //! with it, and the gain measured on held-out runs.
 
 use super::progress_bar;
-use anyhow::Context;
 use hcm_host::dataset::{needs, Dataset};
 use hcm_host::diagnose::report::{answer, markdown};
 use hcm_host::diagnose::select::BaseFreedom;
@@ -10,7 +9,7 @@ use hcm_host::diagnose::structure::structure_figures;
 use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
 use hcm_host::identify::physics::PhysicsBody;
 use hcm_host::identify::{FitRecord, Physics};
-use hcm_host::output::write_bytes;
+use hcm_host::output::{write_bytes, StagedDirectory};
 use hcm_host::scenario::Model;
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -104,8 +103,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         &[args.contact],
         &needs::DIAGNOSE,
     )?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
+    // Built as a hidden directory beside --out and renamed into place when complete:
+    // a failure (too few runs, a failed fit) leaves no --out behind.
+    let staged = StagedDirectory::create(&args.out, "diagnosis.json")?;
+    let out = staged.path().to_owned();
     let bar = progress_bar(1, "diagnosing (noise, selection, re-fit, HCM, gain)");
     let settings = DiagnoseSettings {
         contact: args.contact,
@@ -122,16 +123,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     bar.finish_and_clear();
 
     extended_physics(&base, &args, &diagnosis).write(
-        &args.out.join("extended.toml"),
+        &out.join("extended.toml"),
         &format!("extended model of `{}` from hcm diagnose", scenario.name),
     )?;
     write_bytes(
-        &args.out.join("diagnosis.json"),
+        &out.join("diagnosis.json"),
         serde_json::to_string_pretty(&json_of(&diagnosis))?.as_bytes(),
     )?;
-    let figures = write_figures(&args.out, &diagnosis)?;
+    let figures = write_figures(&out, &diagnosis)?;
     let report = markdown(&diagnosis, &figures);
-    write_bytes(&args.out.join("report.md"), report.as_bytes())?;
+    write_bytes(&out.join("report.md"), report.as_bytes())?;
+    staged.commit()?;
     print!("{report}");
     Ok(())
 }

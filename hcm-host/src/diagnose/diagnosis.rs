@@ -428,6 +428,15 @@ pub fn diagnose(
 ) -> Result<Diagnosis, IdentifyError> {
     let c = settings.contact;
     let split = holdout(base, data, settings.seed, settings.holdout_fraction);
+    if split.training.is_empty() || split.held_out.is_empty() {
+        // One run cannot be both: a gain judged on the runs fitted is no evidence.
+        return Err(IdentifyError::Setup(format!(
+            "the diagnosis fits its candidates on some runs and judges them on others it \
+             never saw, and --data holds {} run(s): give at least 2 (e.g. `hcm generate \
+             --runs 10`)",
+            data.runs.len()
+        )));
+    }
     // Measurement before physics: the sensor's gain, from the training runs' momentum
     // balance, comes off the force readings before anything else reads them (a gain
     // would otherwise show as motion that disobeys Newton's law, and as physics).
