@@ -1,7 +1,7 @@
 //! The whole diagnosis of one contact: what is wrong, the named causes, the extended
 //! model and its gain — the data behind `DIR/report.md` and `DIR/diagnosis.json`.
 
-use super::gain::{gain, group_table, holdout, GainTable, Judged};
+use super::gain::{gain, group_table, holdout, GainTable, Holdout, Judged};
 use super::momentum::{sensor_gain, with_gain, SensorGain};
 use super::naming::{name_causes_beside_momentum, unnamed, Naming, NotAccepted, Trial};
 use super::noise::{noise_floor, NoiseFloor};
@@ -419,6 +419,20 @@ fn chosen_causes(
     chosen
 }
 
+/// Refuses a hold-out with nothing to fit or nothing to judge: one run cannot be both,
+/// and a gain judged on the runs fitted is no evidence.
+fn both_parts(split: &Holdout, data: &Dataset) -> Result<(), IdentifyError> {
+    if split.training.is_empty() || split.held_out.is_empty() {
+        return Err(IdentifyError::Setup(format!(
+            "the diagnosis fits its candidates on some runs and judges them on others it \
+             never saw, and --data holds {} run(s): give at least 2 (e.g. `hcm generate \
+             --runs 10`)",
+            data.runs.len()
+        )));
+    }
+    Ok(())
+}
+
 /// Diagnoses contact `settings.contact` of `base` (the scenario with the base physics
 /// applied) against `data`.
 pub fn diagnose(
@@ -428,15 +442,7 @@ pub fn diagnose(
 ) -> Result<Diagnosis, IdentifyError> {
     let c = settings.contact;
     let split = holdout(base, data, settings.seed, settings.holdout_fraction);
-    if split.training.is_empty() || split.held_out.is_empty() {
-        // One run cannot be both: a gain judged on the runs fitted is no evidence.
-        return Err(IdentifyError::Setup(format!(
-            "the diagnosis fits its candidates on some runs and judges them on others it \
-             never saw, and --data holds {} run(s): give at least 2 (e.g. `hcm generate \
-             --runs 10`)",
-            data.runs.len()
-        )));
-    }
+    both_parts(&split, data)?;
     // Measurement before physics: the sensor's gain, from the training runs' momentum
     // balance, comes off the force readings before anything else reads them (a gain
     // would otherwise show as motion that disobeys Newton's law, and as physics).
