@@ -28,7 +28,7 @@
 use super::face::{Face, FACES};
 use super::initial_state::{orientation, InitialState};
 use super::predict::{prepare, simulate_toss, PreparedToss};
-use super::{TossError, TossSetup};
+use super::{Summary, TossError, TossSetup};
 use crate::dataset::{Dataset, FlightFit};
 use crate::scenario::{Model, Shape};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -170,18 +170,17 @@ pub fn summarize_faces(forecasts: &[FaceForecast], members: usize) -> FaceSummar
     }
 }
 
-/// Mean and 95 % half-width of the per-toss Brier gain replay − ensemble (–).
+/// Mean and 95 % half-width (1.96·sd/√n) of the per-toss Brier gain replay − ensemble
+/// (–), from the tosses' [`Summary`].
 fn paired_gain(forecasts: &[FaceForecast]) -> [f64; 2] {
     let gains: Vec<f64> = (forecasts.iter())
         .map(|f| f.replay_brier() - f.brier())
         .collect();
-    let n = gains.len() as f64;
     if gains.len() < 2 {
         return [gains.first().copied().unwrap_or(0.0), 0.0];
     }
-    let mean = gains.iter().sum::<f64>() / n;
-    let variance = gains.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    [mean, 1.96 * (variance / n).sqrt()]
+    let s = Summary::of(&gains);
+    [s.mean, 1.96 * s.std / (s.count as f64).sqrt()]
 }
 
 /// The final-face forecast of every toss of `data` under `model`, `members` replays
