@@ -312,7 +312,7 @@ fn a_set_of_the_wrong_kind_names_the_key_and_what_it_expects() {
         (
             "body.ball.velocity=[0,0]",
             &[
-                "`body.ball.velocity` expects an array of length 3",
+                "`body.ball.velocity` expects an array of 3 numbers",
                 "found 2 values",
             ],
         ),
@@ -712,4 +712,198 @@ fn a_diagnosis_of_one_run_is_refused_with_what_it_needs() {
             .opt("--out", &out),
     );
     says(&message, &["--data holds 1 run(s)", "give at least 2"]);
+}
+
+/// `shipped` (a scenario of `scenarios/`) with `from` replaced by `to`, written to the
+/// fixture's directory as `name`.
+fn edited(hcm: &Hcm, shipped: &str, name: &str, from: &str, to: &str) -> PathBuf {
+    let text = std::fs::read_to_string(scenario(shipped)).unwrap();
+    assert!(text.contains(from), "{from}");
+    let path = hcm.path(name);
+    std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+    path
+}
+
+#[test]
+fn every_vector_of_the_wrong_length_is_refused_at_its_line() {
+    let hcm = Hcm::new();
+    let out = hcm.path("trajectory.csv");
+    let q = "quaternion = [0.43199, 0.23028, 0.87130, -0.034527]";
+    // (scenario, from, to, the line, what the message must say)
+    let cases = [
+        (
+            "cube_toss.toml",
+            "-9.81]",
+            "-9.81, 1.0]",
+            "line 24",
+            "invalid length 4, expected an array of 3 numbers",
+        ),
+        (
+            "cube_toss.toml",
+            "velocity = [-1.0452, -0.8475, -0.0259]",
+            "velocity = [-1.0452, -0.8475]",
+            "line 33",
+            "invalid length 2, expected an array of 3 numbers",
+        ),
+        (
+            "cube_toss.toml",
+            "4.2734, -2.9658, 0.0381]",
+            "4.2734, -2.9658, 0.0381, 0.0]",
+            "line 34",
+            "invalid length 4",
+        ),
+        (
+            "cube_toss.toml",
+            "normal = [0.0, 0.0, 1.0]",
+            "normal = [0.0, 0.0, 1.0, 0.0]",
+            "line 39",
+            "invalid length 4",
+        ),
+        (
+            "cube_toss.toml",
+            "0.0524, 0.0524]",
+            "0.0524, 0.0524, 0.1]",
+            "line 29",
+            "invalid length 4",
+        ),
+        (
+            "cube_toss.toml",
+            q,
+            "quaternion = [0.43199, 0.23028, 0.87130, -0.034527, 1.0]",
+            "line 32",
+            "quaternion [w, x, y, z]: expected an array of 4 numbers, found 5 numbers",
+        ),
+        (
+            "cube_toss.toml",
+            q,
+            "quaternion = [1.0, 0.0, 0.0, 0.0], roll_pitch_yaw = [0.0, 0.0, 0.0]",
+            "line 32",
+            "gives both `quaternion` and `roll_pitch_yaw`: keep one",
+        ),
+        (
+            "cube_toss.toml",
+            "8.1e-4, 8.1e-4, 8.1e-4]",
+            "8.1e-4, 8.1e-4]",
+            "line 30",
+            "principal moments [Ixx, Iyy, Izz] or a 3×3 tensor",
+        ),
+        (
+            "cube_toss.toml",
+            "[8.1e-4, 8.1e-4, 8.1e-4]",
+            "[[8.1e-4, 0, 0], [0, 8.1e-4, 0, 0], [0, 0, 8.1e-4]]",
+            "line 30",
+            "a row expected an array of 3 numbers, found 4",
+        ),
+        (
+            "peg_in_hole.toml",
+            "roll_pitch_yaw = [0.0, 0.0087, 0.0]",
+            "roll_pitch_yaw = [0.0, 0.0087]",
+            "line 36",
+            "roll_pitch_yaw [roll, pitch, yaw] (rad): expected an array of 3 numbers, found 2",
+        ),
+        (
+            "peg_in_hole.toml",
+            "position = [0.0, 0.0, -0.005]",
+            "position = [0.0, 0.0, -0.005, 0.0]",
+            "line 48",
+            "invalid length 4",
+        ),
+    ];
+    for (shipped, from, to, line, what) in cases {
+        let path = edited(&hcm, shipped, "edited.toml", from, to);
+        let stderr = refused(
+            &hcm,
+            &out,
+            hcm.run("simulate")
+                .opt("--scenario", &path)
+                .opt("--out", &out),
+        );
+        says(&stderr, &["edited.toml", line, what]);
+    }
+}
+
+#[test]
+fn a_huge_binary_or_cut_file_is_refused_from_its_size_or_its_first_bad_byte() {
+    let hcm = Hcm::new();
+    let out = hcm.path("out.csv");
+    let simulate = |path: &Path| {
+        hcm.run("simulate")
+            .opt("--scenario", path)
+            .opt("--out", &out)
+    };
+    // A gigabyte (sparse: no disk is written) is refused from its size, unread.
+    let huge = hcm.path("huge.toml");
+    std::fs::File::create(&huge)
+        .unwrap()
+        .set_len(1 << 30)
+        .unwrap();
+    let stderr = refused(&hcm, &out, simulate(&huge));
+    says(
+        &stderr,
+        &["huge.toml", "is 1.1 GB", "a scenario is at most 16.8 MB"],
+    );
+    // NUL bytes: a binary file, named by line.
+    let nul = edited(
+        &hcm,
+        "bouncing_ball.toml",
+        "nul.toml",
+        "[[body]]",
+        "[[body]]\0",
+    );
+    says(
+        &refused(&hcm, &out, simulate(&nul)),
+        &["nul.toml", "a NUL byte", "binary"],
+    );
+    // A line of 200 kB: the message quotes an excerpt, not the line.
+    let long = format!("name = \"{}\n", "x".repeat(200_000));
+    let long_toml = hcm.path("long.toml");
+    std::fs::write(&long_toml, long).unwrap();
+    let stderr = refused(&hcm, &out, simulate(&long_toml));
+    says(
+        &stderr,
+        &["long.toml", "line 1, column 200009", "near `xxx"],
+    );
+    assert!(stderr.len() < 600, "{} bytes:\n{stderr}", stderr.len());
+    // A data file whose second line is 200 kB of NUL bytes.
+    let data = hcm.path("nul.csv");
+    let mut bytes = b"run,body,time,px,py,pz\n".to_vec();
+    bytes.extend(std::iter::repeat_n(0u8, 200_000));
+    std::fs::write(&data, bytes).unwrap();
+    let stderr = hcm
+        .run("predict")
+        .opt("--scenario", scenario("cube_toss.toml"))
+        .opt("--data", &data)
+        .opt("--out", &out)
+        .fails();
+    says(&stderr, &["nul.csv", "line 2 is longer than 65536 bytes"]);
+    assert!(stderr.len() < 600 && !out.exists(), "{stderr}");
+}
+
+#[test]
+fn an_empty_or_cut_trained_residual_is_said_to_be_so() {
+    let hcm = Hcm::new();
+    ball_blob(&hcm);
+    let whole = std::fs::read_to_string(hcm.path("residual.json")).unwrap();
+    let blob = hcm.path("cut.hcm");
+    for (text, what) in [
+        (
+            String::new(),
+            "the file is empty; write it again with `hcm train`",
+        ),
+        (
+            whole[..whole.len() / 2].to_owned(),
+            "before its JSON does: it was cut short",
+        ),
+    ] {
+        let cut = hcm.path("cut.json");
+        std::fs::write(&cut, text).unwrap();
+        let stderr = refused(
+            &hcm,
+            &blob,
+            hcm.run("export")
+                .opt("--residual", &cut)
+                .opt("--out", &blob),
+        );
+        says(&stderr, &["cut.json", what]);
+    }
 }

@@ -5,8 +5,9 @@
 //! The modules are layered, each using only those of the layers below it (bottom
 //! first; `tests/layers.rs` checks it):
 //!
-//! 1. [`numerics`], [`output`], [`law_catalogue`], [`progress`] — generic numerics and
-//!    optimisers, atomic file output, laws by name, how a stage reports progress;
+//! 1. [`numerics`], [`input`], [`output`], [`law_catalogue`], [`progress`] — generic
+//!    numerics and optimisers, files read within a size limit, atomic file output,
+//!    laws by name, how a stage reports progress;
 //! 2. [`residual`] — the stored residual network;
 //! 3. [`scenario`] — scenario files, assignments, contact geometry;
 //! 4. [`dataset`] — measured data;
@@ -27,6 +28,7 @@ pub mod export;
 pub mod figure;
 pub mod identify;
 pub mod indicators;
+pub mod input;
 pub mod law_catalogue;
 pub mod numerics;
 pub mod output;

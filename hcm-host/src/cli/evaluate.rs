@@ -107,7 +107,8 @@ fn with_hcm(
 ) -> anyhow::Result<Vec<(&'static str, hcm_host::scenario::Model)>> {
     let mut models = vec![("PM2", pm2.clone())];
     if let Some(path) = &args.residual {
-        let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
+        let bytes = hcm_host::input::read_bytes(path, hcm_host::input::TEXT_LIMIT, "a blob")
+            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
         let residual = ContactResidual::decode(&bytes)
             .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
         let hcm = (pm2.with_residual(args.contact, residual, &path.display().to_string()))

@@ -242,7 +242,8 @@ impl DataError {
             file: file.to_owned(),
             line: None,
             column: None,
-            problem: problem.into(),
+            // Cells and names are quoted in problems: a long one is cut.
+            problem: crate::input::shorten(&problem.into()),
         }
     }
 

@@ -107,7 +107,14 @@ struct LineCounter<R> {
     /// `(offset, line)` of the first byte of each non-blank line read and not yet
     /// passed by [`LineCounter::line_at`].
     starts: VecDeque<(u64, u64)>,
+    /// Offset of the first byte of the line being read.
+    line_start: u64,
 }
+
+/// The longest line read (bytes): a row of measured data is a few hundred bytes; a
+/// file whose line runs past this is not one (a binary file, a file of NUL bytes),
+/// and is refused before the csv reader buffers the line whole.
+const LINE_LIMIT: u64 = 1 << 16;
 
 impl<R> LineCounter<R> {
     fn new(inner: R) -> Self {
@@ -118,6 +125,7 @@ impl<R> LineCounter<R> {
             at_line_start: true,
             after_cr: false,
             starts: VecDeque::new(),
+            line_start: 0,
         }
     }
 
@@ -157,6 +165,7 @@ impl<R: Read> Read for LineCounter<R> {
                 _ => {
                     if self.at_line_start {
                         self.starts.push_back((self.offset, self.line));
+                        self.line_start = self.offset;
                     }
                     self.at_line_start = false;
                     self.after_cr = false;
@@ -168,6 +177,16 @@ impl<R: Read> Read for LineCounter<R> {
                     self.offset += content as u64;
                     rest = &tail[content..];
                     self.offset += 1;
+                    if self.offset - self.line_start > LINE_LIMIT {
+                        return Err(std::io::Error::new(
+                            std::io::ErrorKind::InvalidData,
+                            format!(
+                                "line {} is longer than {LINE_LIMIT} bytes; a row of measured \
+                                 data is a few hundred: is this a measured-data CSV?",
+                                self.line
+                            ),
+                        ));
+                    }
                     continue;
                 }
             }
@@ -494,7 +513,7 @@ fn number(source: &str, line: u64, column: &Column, cell: &str) -> Result<f64, D
     let found = match cell.parse::<f64>() {
         Ok(value) if value.is_finite() => return Ok(value),
         _ if cell.is_empty() => String::from("an empty cell"),
-        _ => format!("`{cell}`"),
+        _ => format!("`{}`", crate::input::excerpt(cell)),
     };
     Err(
         DataError::new(source, format!("expected {expected}, found {found}"))

@@ -1,6 +1,7 @@
 //! The physics file: what `identify` writes and `simulate`, `evaluate` and later
 //! stages read — the identified law of each contact, and how it was fitted.
 
+use crate::input;
 use crate::law_catalogue::{self, LawInputError};
 use crate::output::write_atomically;
 
@@ -167,8 +168,8 @@ impl Physics {
             path: path.display().to_string(),
             message,
         };
-        let text = std::fs::read_to_string(path).map_err(|e| file(e.to_string()))?;
-        toml::from_str(&text).map_err(|e| file(e.to_string()))
+        let text = input::read_text(path, input::TEXT_LIMIT, "a physics file").map_err(file)?;
+        toml::from_str(&text).map_err(|e| file(input::toml_error(&text, &e)))
     }
 
     /// Writes it (atomically), with a comment line on top.

@@ -7,6 +7,7 @@
 //! Every key is documented in the README ("Scenario files").
 
 mod assignment;
+mod exact;
 pub mod geometry;
 pub mod overrides;
 mod residual_fit;
@@ -18,6 +19,7 @@ pub use assignment::{Assignment, IntoAssignment};
 pub use resolve::{Body, Contact, Model, Shape};
 pub use rigid::{FrictionSpec, InertiaSpec, OrientationSpec, Part, PartSpec};
 
+use crate::input;
 use hcm_core::effect::{AirDrag, ContactEffect};
 use hcm_core::friction::TangentialEffects;
 use hcm_core::geometry::Material;
@@ -35,6 +37,7 @@ pub struct Scenario {
     #[serde(default)]
     pub description: String,
     /// Gravitational acceleration **g** (m/s²), world frame.
+    #[serde(deserialize_with = "exact::array")]
     pub(crate) gravity: [f64; 3],
     /// Named materials, referred to by bodies.
     #[serde(default, rename = "material")]
@@ -87,15 +90,18 @@ pub struct BodySpec {
     /// from the materials (variable stiffness, Hertz without `stiffness`).
     pub(crate) material: Option<String>,
     /// Initial position of the body's reference point (its centre of mass) (m).
+    #[serde(deserialize_with = "exact::array")]
     pub(crate) position: [f64; 3],
     /// Initial velocity (m/s).
     #[serde(default)]
+    #[serde(deserialize_with = "exact::array")]
     pub(crate) velocity: [f64; 3],
     /// Initial orientation (body → world); default: the identity.
     #[serde(default)]
     pub(crate) orientation: Option<OrientationSpec>,
     /// Initial angular velocity ω (rad/s, **world frame**).
     #[serde(default)]
+    #[serde(deserialize_with = "exact::array")]
     pub(crate) angular_velocity: [f64; 3],
     /// Inertia tensor about the centre of mass in the body frame (kg·m²): principal
     /// moments `[Ixx, Iyy, Izz]` or a full symmetric 3×3 matrix. Default: the uniform
@@ -120,6 +126,7 @@ pub enum ShapeSpec {
     /// reference point along the normal (e.g. half the thickness of a plate).
     Plane {
         /// Outward normal (normalised on load).
+        #[serde(deserialize_with = "exact::array")]
         normal: [f64; 3],
         /// Distance from the reference point to the surface along the normal (m).
         #[serde(default)]
@@ -129,6 +136,7 @@ pub enum ShapeSpec {
     /// body's axes.
     Box {
         /// Half extents along the body's x, y and z axes (m).
+        #[serde(deserialize_with = "exact::array")]
         half_extents: [f64; 3],
         /// Radius of its rounded edges and corners (m, 0 ≤ r < the smallest half
         /// extent; 0, sharp, by default): real boxes are not knife-edged, and the
@@ -240,6 +248,7 @@ pub struct ExperimentSpec {
     /// Force-sensor bias added to every recorded force sample, in flight too (N, world
     /// components): a measurement effect, for testing `hcm diagnose`.
     #[serde(default)]
+    #[serde(deserialize_with = "exact::array")]
     pub(crate) force_offset: [f64; 3],
     /// Force-sensor lag τ (s, ≥ 0): the force recorded at time t is the true force at
     /// t − τ (linear interpolation between the simulation's samples; the first sample's
@@ -305,7 +314,7 @@ fn unit_gain() -> f64 {
 pub struct IdentifySpec {
     /// Search intervals per law and parameter: `[identify.bounds.lankarani_nikravesh]
     /// stiffness = [1e9, 1e10]`. Parameters not named keep hcm's defaults.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "exact::intervals")]
     pub bounds: BTreeMap<String, BTreeMap<String, [f64; 2]>>,
 }
 
@@ -343,13 +352,8 @@ fn default_holdout_fraction() -> f64 {
 /// Why a scenario could not be loaded.
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
-    /// The file could not be read.
-    #[error("cannot read scenario {}: {source}", path.display())]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
-    /// The TOML is malformed or a key has the wrong type or is missing.
+    /// The file could not be read, is not text or not TOML, or a key has the wrong
+    /// type or is missing.
     #[error("scenario {}: {message}", path.display())]
     Syntax { path: PathBuf, message: String },
     /// A `--set` override could not be applied.
@@ -367,9 +371,11 @@ pub enum ScenarioError {
 impl Scenario {
     /// Reads a scenario file and applies `key=value` overrides (values in TOML syntax).
     pub fn load(path: &Path, assignments: &[String]) -> Result<Scenario, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
-            path: path.to_owned(),
-            source,
+        let text = input::read_text(path, input::TEXT_LIMIT, "a scenario").map_err(|message| {
+            ScenarioError::Syntax {
+                path: path.to_owned(),
+                message,
+            }
         })?;
         Self::parse(path, &text, assignments)
     }
@@ -386,10 +392,11 @@ impl Scenario {
         };
         let mut document: toml::Table = text
             .parse()
-            .map_err(|e: toml::de::Error| syntax(e.to_string()))?;
+            .map_err(|e: toml::de::Error| syntax(input::toml_error(text, &e)))?;
         let mut scenario: Scenario = if assignments.is_empty() {
             // Straight from the text, so that errors carry line and column.
-            toml::from_str(text).map_err(|e: toml::de::Error| syntax(e.to_string()))?
+            toml::from_str(text)
+                .map_err(|e: toml::de::Error| syntax(input::toml_error(text, &e)))?
         } else {
             let base = document.clone();
             apply_all(&mut document, assignments)?;

@@ -2,13 +2,15 @@
 //! bodies, and a contact's friction — as written, and checked into what the
 //! simulator uses.
 
+use super::exact::exactly;
 use hcm_core::friction::VelocityStepFriction;
 use nalgebra::{Matrix3, Quaternion, SymmetricEigen, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
-/// An orientation (body → world) as a scenario writes it.
+/// An orientation (body → world) as a scenario writes it: one of
+/// `{ quaternion = [w, x, y, z] }` or `{ roll_pitch_yaw = [roll, pitch, yaw] }`.
 #[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
+#[serde(try_from = "OrientationTable")]
 pub enum OrientationSpec {
     /// A quaternion `[w, x, y, z]` (–), normalised on load.
     Quaternion([f64; 4]),
@@ -19,7 +21,7 @@ pub enum OrientationSpec {
 
 /// An inertia tensor (kg·m², about the centre of mass, body frame) as written.
 #[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(untagged)]
+#[serde(try_from = "InertiaTable")]
 pub enum InertiaSpec {
     /// Principal moments `[Ixx, Iyy, Izz]` (kg·m²) along the body axes.
     Principal([f64; 3]),
@@ -27,14 +29,74 @@ pub enum InertiaSpec {
     Full([[f64; 3]; 3]),
 }
 
+/// An orientation table as read, before exactly one form is chosen.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct OrientationTable {
+    quaternion: Option<Vec<f64>>,
+    roll_pitch_yaw: Option<Vec<f64>>,
+}
+
+impl TryFrom<OrientationTable> for OrientationSpec {
+    type Error = String;
+
+    fn try_from(table: OrientationTable) -> Result<Self, String> {
+        match (table.quaternion, table.roll_pitch_yaw) {
+            (Some(q), None) => exactly::<4>(&q)
+                .map(OrientationSpec::Quaternion)
+                .map_err(|e| format!("quaternion [w, x, y, z]: {e}")),
+            (None, Some(a)) => exactly::<3>(&a)
+                .map(OrientationSpec::RollPitchYaw)
+                .map_err(|e| format!("roll_pitch_yaw [roll, pitch, yaw] (rad): {e}")),
+            (Some(_), Some(_)) => Err("orientation gives both `quaternion` and `roll_pitch_yaw`: \
+                 keep one of the two forms"
+                .into()),
+            (None, None) => Err("orientation needs one of `quaternion = [w, x, y, z]` or \
+                 `roll_pitch_yaw = [roll, pitch, yaw]` (rad)"
+                .into()),
+        }
+    }
+}
+
+/// An inertia as read: a list of numbers or a list of rows.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum InertiaTable {
+    Principal(Vec<f64>),
+    Full(Vec<Vec<f64>>),
+}
+
+impl TryFrom<InertiaTable> for InertiaSpec {
+    type Error = String;
+
+    fn try_from(table: InertiaTable) -> Result<Self, String> {
+        const WHAT: &str = "inertia: principal moments [Ixx, Iyy, Izz] or a 3×3 tensor \
+            [[Ixx, Ixy, Ixz], [Iyx, Iyy, Iyz], [Izx, Izy, Izz]] (kg·m²)";
+        match table {
+            InertiaTable::Principal(d) => exactly::<3>(&d)
+                .map(InertiaSpec::Principal)
+                .map_err(|e| format!("{WHAT}: {e}")),
+            InertiaTable::Full(rows) => {
+                let checked: Result<Vec<[f64; 3]>, String> =
+                    rows.iter().map(|row| exactly::<3>(row)).collect();
+                let rows = checked.map_err(|e| format!("{WHAT}: a row {e}"))?;
+                <[[f64; 3]; 3]>::try_from(rows.as_slice())
+                    .map(InertiaSpec::Full)
+                    .map_err(|_| format!("{WHAT}: expected 3 rows, found {}", rows.len()))
+            }
+        }
+    }
+}
+
 /// One box of a compound body, placed in the body's frame.
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PartSpec {
     /// Half extents along the part's own axes (m).
+    #[serde(deserialize_with = "super::exact::array")]
     pub(crate) half_extents: [f64; 3],
     /// Centre of the part relative to the body's reference point, body frame (m).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub(crate) position: [f64; 3],
     /// Orientation of the part relative to the body; default: aligned with it.
     #[serde(default)]

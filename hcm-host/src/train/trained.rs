@@ -11,6 +11,7 @@
 //! ([`super::quantise`]), whose weights the int8 blob stores exactly.
 
 use super::Network;
+use crate::input;
 use crate::output::write_atomically;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -74,9 +75,10 @@ impl TrainedResidual {
             path: path.display().to_string(),
             message,
         };
-        let text = std::fs::read_to_string(path).map_err(|e| file(e.to_string()))?;
+        let text = input::read_text(path, input::TEXT_LIMIT, "a trained residual").map_err(file)?;
+        let remedy = "write it again with `hcm train` (or copy it again)";
         let trained: TrainedResidual =
-            serde_json::from_str(&text).map_err(|e| file(e.to_string()))?;
+            serde_json::from_str(&text).map_err(|e| file(input::json_error(&text, &e, remedy)))?;
         if trained.format != FORMAT || trained.version != FILE_VERSION {
             return Err(TrainedError::WrongFormat {
                 path: path.display().to_string(),
