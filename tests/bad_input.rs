@@ -907,3 +907,82 @@ fn an_empty_or_cut_trained_residual_is_said_to_be_so() {
         says(&stderr, &["cut.json", what]);
     }
 }
+
+#[test]
+fn an_existing_output_of_the_other_kind_is_refused_before_any_work() {
+    let hcm = Hcm::new();
+    let cube = scenario("cube_toss.toml");
+    let (file, folder) = (hcm.path("taken.svg"), hcm.path("folder"));
+    std::fs::write(&file, "mine").unwrap();
+    std::fs::create_dir(&folder).unwrap();
+    let out = hcm.path("trajectory.csv");
+    // A directory option given a file: refused before the trajectory is written.
+    let call = hcm
+        .run("simulate")
+        .opt("--scenario", &cube)
+        .opt("--out", &out);
+    let stderr = refused(&hcm, &out, call.opt("--figures", &file));
+    says(
+        &stderr,
+        &["--figures", "taken.svg: is a file", "names a directory"],
+    );
+    let stderr = refused(
+        &hcm,
+        &out,
+        hcm.run("reproduce")
+            .arg("bouncing-ball")
+            .opt("--out", &file),
+    );
+    says(
+        &stderr,
+        &["--out", "taken.svg: is a file", "names a directory"],
+    );
+    // A file option given a directory.
+    let stderr = hcm
+        .run("simulate")
+        .opt("--scenario", &cube)
+        .opt("--out", &folder)
+        .fails();
+    says(
+        &stderr,
+        &["--out", "folder: is a directory", "names a file"],
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
+    assert_eq!(std::fs::read_dir(&folder).unwrap().count(), 0);
+}
+
+#[test]
+fn a_toss_of_one_frame_is_refused_not_scored() {
+    let hcm = Hcm::new();
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("data/contactnets-cube/tosses.csv"),
+    )
+    .unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    // toss_000's first frame below 6 cm: within reach of the table, the last frame kept.
+    let low = lines
+        .find(|l| {
+            l.starts_with("toss_000,")
+                && l.split(',').nth(5).unwrap().parse::<f64>().unwrap() < 0.06
+        })
+        .unwrap();
+    let data = hcm.path("one.csv");
+    std::fs::write(&data, format!("{header}\n{low}\n")).unwrap();
+    let out = hcm.path("predicted.csv");
+    let call = hcm
+        .run("predict")
+        .opt("--scenario", scenario("cube_toss.toml"))
+        .opt("--data", &data)
+        .opt("--out", &out)
+        .opt("--scores", hcm.path("scores.csv"));
+    let stderr = refused(&hcm, &out, call);
+    says(
+        &stderr,
+        &[
+            "run `toss_000`",
+            "has 1 frame from the window start on",
+            "needs at least 2",
+        ],
+    );
+}

@@ -50,7 +50,7 @@ pub struct Args {
     #[arg(long)]
     physics: PathBuf,
     /// Output directory (created): report.md, diagnosis.json, extended.toml, figures.
-    #[arg(long)]
+    #[arg(long, value_hint = clap::ValueHint::DirPath)]
     out: PathBuf,
     /// Which contact of the scenario.
     #[arg(long, default_value_t = 0)]

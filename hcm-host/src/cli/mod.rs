@@ -84,10 +84,11 @@ enum Command {
 
 /// Parses the command line, runs the subcommand, and reports errors in plain words.
 pub fn main() -> ExitCode {
-    let matches = <Cli as clap::CommandFactory>::command().get_matches();
+    let command = <Cli as clap::CommandFactory>::command();
+    let matches = command.clone().get_matches();
     let cli = <Cli as clap::FromArgMatches>::from_arg_matches(&matches)
         .unwrap_or_else(|error| error.exit());
-    if let Err(error) = paths::check(&matches) {
+    if let Err(error) = paths::check(&command, &matches) {
         eprintln!("error: {error:#}");
         return ExitCode::FAILURE;
     }

@@ -1,7 +1,10 @@
 //! The command line's files checked before any work, for every command at once: an
 //! output that is one of the command's inputs (writing it would destroy what is being
 //! read) or two outputs that are one file are refused, naming both options. (An output
-//! that is a device, a pipe or a socket is refused by `hcm_host::output` itself.)
+//! that is a device, a pipe or a socket is refused by `hcm_host::output` itself.) An
+//! existing output of the other kind — a file where a directory is written (the
+//! options marked `ValueHint::DirPath`), a directory where a file is — is refused too,
+//! before a long run finds it at its end.
 
 use clap::ArgMatches;
 use std::path::{Path, PathBuf};
@@ -40,10 +43,42 @@ fn place(path: &Path) -> PathBuf {
         .unwrap_or_else(|| path.to_owned())
 }
 
-/// Checks the subcommand's output arguments against its inputs and each other.
-pub fn check(matches: &ArgMatches) -> anyhow::Result<()> {
-    let Some((_, sub)) = matches.subcommand() else {
+/// Refuses an existing output `path` of option `id` of the other kind than the
+/// option writes (`directory`: whether it writes a directory).
+fn same_kind(id: &str, path: &Path, directory: bool) -> anyhow::Result<()> {
+    let Ok(metadata) = std::fs::metadata(path) else {
         return Ok(());
+    };
+    match (directory, metadata.is_dir()) {
+        (true, false) => anyhow::bail!(
+            "{} {}: is a file; {} names a directory (created if missing): give a \
+             directory's path",
+            option(id),
+            path.display(),
+            option(id)
+        ),
+        (false, true) => anyhow::bail!(
+            "{} {}: is a directory; {} names a file: give a file's path, e.g. {}",
+            option(id),
+            path.display(),
+            option(id),
+            path.join("out").display()
+        ),
+        _ => Ok(()),
+    }
+}
+
+/// Checks the subcommand's output arguments (`command` defines them) against their
+/// kind, its inputs and each other.
+pub fn check(command: &clap::Command, matches: &ArgMatches) -> anyhow::Result<()> {
+    let Some((name, sub)) = matches.subcommand() else {
+        return Ok(());
+    };
+    let writes_directory = |id: &str| {
+        command
+            .find_subcommand(name)
+            .and_then(|c| c.get_arguments().find(|a| a.get_id() == id))
+            .is_some_and(|a| a.get_value_hint() == clap::ValueHint::DirPath)
     };
     let (mut inputs, mut outputs) = (Vec::new(), Vec::new());
     for id in sub.ids() {
@@ -54,6 +89,7 @@ pub fn check(matches: &ArgMatches) -> anyhow::Result<()> {
         for value in values {
             let path = Path::new(value);
             if OUTPUTS.contains(&id) {
+                same_kind(id, path, writes_directory(id))?;
                 outputs.push((id, path));
             } else if path.is_file() {
                 inputs.push((id, path));

@@ -98,7 +98,7 @@ pub struct Args {
     pub(super) peers: bool,
     /// Output directory (created): data, pm2.toml, residual blobs, report.md,
     /// results.json, figures.
-    #[arg(long)]
+    #[arg(long, value_hint = clap::ValueHint::DirPath)]
     pub(super) out: PathBuf,
     /// Seed of the experiment, the GA and the training.
     #[arg(long, default_value_t = 1)]

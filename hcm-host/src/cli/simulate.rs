@@ -45,7 +45,7 @@ pub struct Args {
     out: PathBuf,
     /// Directory (created if missing) for the figures of a 3D scenario: trajectory,
     /// contact_force, contact_torque (.svg and .png).
-    #[arg(long, value_name = "DIR")]
+    #[arg(long, value_name = "DIR", value_hint = clap::ValueHint::DirPath)]
     figures: Option<PathBuf>,
 }
 

@@ -16,6 +16,10 @@ use super::{TossError, TossSetup};
 use crate::dataset::{BodyTrack, Channel, Sample};
 use nalgebra::Vector3;
 
+/// The fewest frames a window holds (–): its start, from which the replay runs, and
+/// one frame to compare the replay with.
+pub const MIN_FRAMES: usize = 2;
+
 /// Frames the window starts before the first frame within reach of a fixed body (–).
 pub const LEAD_FRAMES: usize = 3;
 
@@ -147,9 +151,28 @@ pub(crate) fn windows(
                 near: at(near_time).max(start),
                 frames: track.samples.len(),
             };
+            long_enough(&window, run, start_time, &mover.name)?;
             Ok((window, all[start] < RESTING * mover.radius))
         })
         .collect()
+}
+
+/// Refuses a window of fewer than [`MIN_FRAMES`] frames of `body` in `run`, starting
+/// at `time` (s): a toss of one frame would score a perfect 0.
+fn long_enough(window: &Window, run: &str, time: f64, body: &str) -> Result<(), TossError> {
+    if window.len() >= MIN_FRAMES {
+        return Ok(());
+    }
+    Err(TossError::Frame {
+        run: run.to_owned(),
+        time,
+        problem: format!(
+            "body `{body}` has {} frame from the window start on; a toss is scored on the \
+             frames after its start and needs at least {MIN_FRAMES} there (the start and \
+             one to compare): leave the run out or give it its whole recording",
+            window.len()
+        ),
+    })
 }
 
 /// A pair whose margin in a body's first frame is below this share of the body's
