@@ -92,15 +92,25 @@ impl Canvas {
     }
 
     /// Strokes the polyline through `points` (px) `width` px wide with round joins and
-    /// ends, anti-aliased: each pixel is covered by how far its centre lies inside the
-    /// stroke (a 1 px ramp at the edge), once for the whole line so joins do not darken.
+    /// ends, anti-aliased (see [`Canvas::stroke_pieces`]).
+    #[cfg(test)]
     pub(super) fn stroke(&mut self, points: &[(f64, f64)], width: f64, colour: Colour) {
+        self.stroke_pieces(&[points.to_vec()], width, colour);
+    }
+
+    /// Strokes the polylines through each of `pieces` (px) `width` px wide with round
+    /// joins and ends, anti-aliased: each pixel is covered by how far its centre lies
+    /// inside the stroke (a 1 px ramp at the edge), once for all the pieces so that joins
+    /// and touching dashes do not darken. A piece of one point is a round dot.
+    pub(super) fn stroke_pieces(&mut self, pieces: &[Vec<(f64, f64)>], width: f64, colour: Colour) {
         let mut coverage = vec![0f32; self.width as usize * self.height as usize];
         let mut touched = Vec::new();
-        let segments = points.windows(2).map(|w| (w[0], w[1]));
-        let single = (points.len() == 1).then(|| (points[0], points[0]));
+        let segments = pieces.iter().flat_map(|points| {
+            let single = (points.len() == 1).then(|| (points[0], points[0]));
+            points.windows(2).map(|w| (w[0], w[1])).chain(single)
+        });
         let half = 0.5 * width;
-        for (a, b) in segments.chain(single) {
+        for (a, b) in segments {
             let (a, b) = (clamped(a), clamped(b));
             let reach = half + 1.0;
             let (x0, x1) = (pixel(a.0.min(b.0) - reach), pixel(a.0.max(b.0) + reach));

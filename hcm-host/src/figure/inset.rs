@@ -5,6 +5,7 @@
 
 use super::layout::{fit, spacing, tick_labels, widest, Label, TextSize, GAP, LABEL_SPACING};
 use super::plot::{clip, finite, Plot, Rect};
+use super::style::Stroke;
 use super::ticks::Ticks;
 use super::{font, Series};
 
@@ -43,9 +44,14 @@ pub(super) struct Inset {
 }
 
 /// The inset zooming on the highest point of the first series with a finite point, placed
-/// in `main`'s area; its tick labels go into `labels`. None without finite points, or if
-/// the x range has no width.
-pub(super) fn inset(main: &Plot, series: &[Series], labels: &mut Vec<Label>) -> Option<Inset> {
+/// in `main`'s area, each curve stroked as in `strokes`; its tick labels go into
+/// `labels`. None without finite points, or if the x range has no width.
+pub(super) fn inset(
+    main: &Plot,
+    series: &[Series],
+    strokes: &[Stroke],
+    labels: &mut Vec<Label>,
+) -> Option<Inset> {
     let reference = series.iter().find(|s| finite(&s.points).next().is_some())?;
     let peak = finite(&reference.points).max_by(|a, b| a.1.total_cmp(&b.1))?;
     let (x_low, x_high) =
@@ -90,7 +96,7 @@ pub(super) fn inset(main: &Plot, series: &[Series], labels: &mut Vec<Label>) -> 
         bottom: background.bottom - room.bottom,
     };
     let mut plot = Plot::new(frame, x, y);
-    plot.draw_series_clipped(series);
+    plot.draw_series_clipped(series, strokes);
     tick_labels(&plot, small, labels);
     Some(Inset {
         plot,

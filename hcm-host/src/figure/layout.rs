@@ -3,24 +3,28 @@
 //! axis titles, and the inset if asked for. Margins are measured from the text they hold
 //! (in the figures' font), so no label leaves the image or runs into another.
 
-use super::aspect;
 use super::font;
 use super::inset::{self, Inset};
 use super::legend::{self, LegendEntry};
-use super::plot::{finite, Plot, Rect};
+use super::panels::{self, Look};
+use super::plot::{Plot, Rect};
+use super::style::{self, Stroke};
 use super::ticks::Ticks;
-use super::Figure;
+use super::{Figure, Panel};
 
 /// Width of the image (px).
 pub(super) const WIDTH: f64 = 720.0;
 /// Height of the image (px).
 pub(super) const HEIGHT: f64 = 440.0;
+/// Width and height of each cell of a grid of panels, with its title, tick labels and
+/// axis titles (px).
+pub(super) const CELL: (f64, f64) = (470.0, 300.0);
 /// Space kept free between the image's edge and any text (px).
 pub(super) const PAD: f64 = 8.0;
 /// Gap between a tick label and its axis, or between two blocks of text (px).
 pub(super) const GAP: f64 = 6.0;
 /// Intervals aimed at between the ticks along x and along y.
-const INTERVALS: (usize, usize) = (6, 5);
+pub(super) const INTERVALS: (usize, usize) = (6, 5);
 /// Least free space between neighbouring tick labels along x (px).
 pub(super) const LABEL_SPACING: f64 = 12.0;
 /// Least free space between neighbouring tick labels along y (px).
@@ -134,7 +138,8 @@ impl Label {
 pub(super) struct Layout {
     pub(crate) width: f64,
     pub(crate) height: f64,
-    pub(crate) main: Plot,
+    /// The panels' axes, row by row (at least one).
+    pub(crate) plots: Vec<Plot>,
     pub(crate) inset: Option<Inset>,
     /// Title, tick labels, axis titles, legend texts.
     pub(crate) labels: Vec<Label>,
@@ -142,51 +147,67 @@ pub(super) struct Layout {
 }
 
 impl Layout {
-    /// Lays `figure` out.
+    /// Lays `figure` out: the title, the legend under it, then the panels in a grid.
     pub(super) fn new(figure: &Figure) -> Layout {
+        let single = figure.panels.len() <= 1;
+        let columns = figure.columns.min(figure.panels.len()).max(1);
+        let rows = figure.panels.len().div_ceil(columns).max(1);
+        let width = if single {
+            WIDTH
+        } else {
+            CELL.0 * columns as f64
+        };
         let mut labels = Vec::new();
         let title = TextSize::Title;
         let title_y = PAD + font::ascent(title.px());
         labels.push(Label::new(
             &figure.title,
-            (0.5 * WIDTH, title_y),
+            (0.5 * width, title_y),
             Anchor::Middle,
             title,
         ));
-        let entries = legend::entries(figure);
-        let rows = legend::rows(&entries, WIDTH - 2.0 * PAD);
+        let strokes = style::strokes(figure.all_series().map(|s| s.label), &figure.strokes);
+        let entries = legend::entries(figure, &strokes);
+        let legend_rows = legend::rows(&entries, width - 2.0 * PAD);
         let legend_top = title_y + font::descent(title.px()) + GAP;
         let row = TextSize::Normal.line() + 4.0;
-        let top = legend_top + row * rows.len() as f64 + GAP;
-        let normal = TextSize::Normal.line();
-        let x_ticks = TextSize::Normal.x_tick_gap() + normal;
-        let bottom = HEIGHT - PAD - normal - GAP - x_ticks;
-        let axes = |x, y| axes(x, y, top, bottom);
-        let (area, x, y) = if figure.equal_scales {
-            aspect::equal_scales(axes, x_extent(figure), y_extent(figure))
+        let top = legend_top + row * legend_rows.len() as f64 + GAP;
+        let height = if single {
+            HEIGHT
         } else {
-            axes(x_extent(figure), y_extent(figure))
+            top + CELL.1 * rows as f64
         };
-        let mut main = Plot::new(area, x, y);
-        if let Some(band) = &figure.band {
-            main.draw_band(band);
-        }
-        if figure.zero_line {
-            main.draw_zero_line();
-        }
-        main.draw_series(&figure.series);
-        tick_labels(&main, TextSize::Normal, &mut labels);
-        axis_titles(figure, &main.area, &mut labels);
-        let legend = legend::place(&entries, &rows, &main.area, legend_top, &mut labels);
-        let inset = if figure.peak_inset {
-            inset::inset(&main, &figure.series, &mut labels)
+        let plots = lay_out_panels(figure, &strokes, (width, top, height), &mut labels);
+        let span = if single {
+            plots[0].area
         } else {
-            None
+            Rect {
+                left: 0.0,
+                top,
+                right: width,
+                bottom: height,
+            }
+        };
+        let legend = legend::place(
+            &entries,
+            &legend_rows,
+            (&span, width),
+            legend_top,
+            &mut labels,
+        );
+        let inset = match (figure.peak_inset, figure.panels.first()) {
+            (true, Some(panel)) => inset::inset(
+                &plots[0],
+                &panel.series,
+                &strokes[..panel.series.len()],
+                &mut labels,
+            ),
+            _ => None,
         };
         Layout {
-            width: WIDTH,
-            height: HEIGHT,
-            main,
+            width,
+            height,
+            plots,
             inset,
             labels,
             legend,
@@ -194,39 +215,53 @@ impl Layout {
     }
 }
 
-/// The plot area between `top` and `bottom` (px) and the ticks of the data extents `x`
-/// and `y`: the y tick labels set the left margin, the last x tick label the right one.
-fn axes(x: (f64, f64), (y0, y1): (f64, f64), top: f64, bottom: f64) -> (Rect, Ticks, Ticks) {
-    let normal = TextSize::Normal.line();
-    let y = fit(Ticks::new(y0, y1, INTERVALS.1), |t| {
-        spacing(t, bottom - top) >= normal + LINE_SPACING
-    });
-    let left = PAD + normal + GAP + widest(&y.labels(), TextSize::Normal) + GAP;
-    let (area, x) = x_area(x, left, top, bottom);
-    (area, x, y)
-}
-
-/// The plot area from `left`, `top` and `bottom` and the x ticks of the extent `x`, whose
-/// last label sets the right margin: the area and the ticks.
-fn x_area((x0, x1): (f64, f64), left: f64, top: f64, bottom: f64) -> (Rect, Ticks) {
-    let fits = |right: f64| {
-        move |t: &Ticks| {
-            spacing(t, right - left) >= widest(&t.labels(), TextSize::Normal) + LABEL_SPACING
+/// The panels of `figure` in cells of the image (`width`, from `top` to `height`, px):
+/// one cell for a plain figure, [`CELL`]s in rows of the figure's columns for a grid.
+fn lay_out_panels(
+    figure: &Figure,
+    strokes: &[Stroke],
+    (width, top, height): (f64, f64, f64),
+    labels: &mut Vec<Label>,
+) -> Vec<Plot> {
+    let empty = Panel::new("", "", "", Vec::new());
+    let panels: Vec<&Panel> = if figure.panels.is_empty() {
+        vec![&empty]
+    } else {
+        figure.panels.iter().collect()
+    };
+    let single = panels.len() == 1;
+    let mut plots = Vec::new();
+    let mut first = 0;
+    for (i, panel) in panels.into_iter().enumerate() {
+        let (column, row) = ((i % figure.columns) as f64, (i / figure.columns) as f64);
+        let room = if single {
+            Rect {
+                left: 0.0,
+                top,
+                right: width,
+                bottom: height,
+            }
+        } else {
+            Rect {
+                left: CELL.0 * column,
+                top: top + CELL.1 * row,
+                right: CELL.0 * (column + 1.0),
+                bottom: top + CELL.1 * (row + 1.0),
+            }
+        };
+        let curves = &strokes[first..first + panel.series.len()];
+        first += panel.series.len();
+        if panel.is_blank() && !single {
+            continue;
         }
-    };
-    let provisional = WIDTH - PAD - 16.0;
-    let x = fit(Ticks::new(x0, x1, INTERVALS.0), fits(provisional));
-    let last = x.labels().pop().unwrap_or_default();
-    let half = 0.5 * font::width(&last, TextSize::Normal.px());
-    let right = WIDTH - PAD - half.max(12.0);
-    let x = fit(x, fits(right));
-    let area = Rect {
-        left,
-        top,
-        right,
-        bottom,
-    };
-    (area, x)
+        let look = Look {
+            band: figure.band.as_ref().filter(|_| i == 0),
+            equal_scales: figure.equal_scales,
+            strokes: curves,
+        };
+        plots.push(panels::lay_out(panel, &look, room, labels));
+    }
+    plots
 }
 
 /// `ticks` made coarser until `fits` holds (at most a few times: three steps are a
@@ -254,26 +289,6 @@ pub(super) fn widest(texts: &[String], size: TextSize) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The smallest and largest x of every finite point and band column.
-fn x_extent(figure: &Figure) -> (f64, f64) {
-    let points = figure.series.iter().flat_map(|s| finite(&s.points));
-    let band = figure.band.iter().flat_map(|b| b.finite());
-    extent(points.map(|p| p.0).chain(band.map(|b| b.0)))
-}
-
-/// The smallest and largest y of every finite point and band edge, and 0 with a zero line.
-fn y_extent(figure: &Figure) -> (f64, f64) {
-    let points = figure.series.iter().flat_map(|s| finite(&s.points));
-    let band = figure.band.iter().flat_map(|b| b.finite());
-    let zero = figure.zero_line.then_some(0.0);
-    extent(
-        points
-            .map(|p| p.1)
-            .chain(band.flat_map(|b| [b.1, b.2]))
-            .chain(zero),
-    )
-}
-
 /// The smallest and largest of `values`; (∞, −∞) if there are none.
 pub(super) fn extent(values: impl Iterator<Item = f64>) -> (f64, f64) {
     values.fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), v| {
@@ -292,29 +307,4 @@ pub(super) fn tick_labels(plot: &Plot, size: TextSize, labels: &mut Vec<Label>) 
         let at = (area.left - GAP, plot.py(v) + size.centring());
         labels.push(Label::new(&text, at, Anchor::End, size));
     }
-}
-
-/// Adds the axis titles: x centred under the tick labels, y turned, left of them.
-fn axis_titles(figure: &Figure, area: &Rect, labels: &mut Vec<Label>) {
-    let size = TextSize::Normal;
-    let x_y = HEIGHT - PAD - font::descent(size.px());
-    let centre = 0.5 * (area.left + area.right);
-    labels.push(Label::new(
-        &figure.x_label,
-        (centre, x_y),
-        Anchor::Middle,
-        size,
-    ));
-    labels.push(Label {
-        vertical: true,
-        ..Label::new(
-            &figure.y_label,
-            (
-                PAD + font::ascent(size.px()),
-                0.5 * (area.top + area.bottom),
-            ),
-            Anchor::Middle,
-            size,
-        )
-    })
 }

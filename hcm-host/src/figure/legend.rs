@@ -1,19 +1,23 @@
-//! The legend: one entry per curve (but those of an empty label), then the band, each a colour swatch and its label,
-//! set in rows between the title and the plot area, so that it never hides a curve.
+//! The legend: one entry per label of the curves (each named once, however many curves
+//! and panels carry it; none for an empty label), then the band, each a swatch — a
+//! short line in the curve's colour, width and dashes, or a block of the band's colour —
+//! and its label, set in rows between the title and the plot area, so that it never
+//! hides a curve.
 
 use super::font;
-use super::layout::{Anchor, Label, TextSize, PAD, WIDTH};
+use super::layout::{Anchor, Label, TextSize, PAD};
 use super::plot::Rect;
+use super::style::Stroke;
 use super::{Colour, Figure};
 
 /// Length of a swatch, gap from swatch to text, gap between entries (px).
-const SWATCH: (f64, f64, f64) = (24.0, 6.0, 20.0);
+const SWATCH: (f64, f64, f64) = (32.0, 6.0, 20.0);
 
 /// How a legend entry shows its colour.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) enum Swatch {
-    /// A short line through the middle of the area, for a curve.
-    Line,
+    /// A short line through the middle of the area, stroked as the curve, for a curve.
+    Line(Stroke),
     /// The area filled, for a band.
     Block,
 }
@@ -27,18 +31,26 @@ pub(super) struct LegendEntry {
     pub(crate) area: Rect,
 }
 
-/// The legend's entries: the band (if any) after the curves, each with its label's width.
-pub(super) fn entries<'f>(figure: &'f Figure) -> Vec<(&'f str, Colour, Swatch, f64)> {
-    let curves = figure
-        .series
-        .iter()
-        .filter(|s| !s.label.is_empty())
-        .map(|s| (s.label, s.colour, Swatch::Line));
+/// One entry before it is placed: its label, colour, swatch and width with its swatch
+/// (px).
+pub(super) type Entry<'f> = (&'f str, Colour, Swatch, f64);
+
+/// The legend's entries: each label of the curves of every panel once, in order of
+/// first appearance, stroked as `strokes` (one per curve, in order) says; then the
+/// band (if any); each with its width.
+pub(super) fn entries<'f>(figure: &'f Figure, strokes: &[Stroke]) -> Vec<Entry<'f>> {
+    let mut curves: Vec<(&str, Colour, Swatch)> = Vec::new();
+    for (s, &stroke) in figure.all_series().zip(strokes) {
+        if !s.label.is_empty() && !curves.iter().any(|c| c.0 == s.label) {
+            curves.push((s.label, s.colour, Swatch::Line(stroke)));
+        }
+    }
     let band = figure
         .band
         .iter()
         .map(|b| (b.label, b.colour, Swatch::Block));
     curves
+        .into_iter()
         .chain(band)
         .map(|(label, colour, swatch)| {
             let width = SWATCH.0 + SWATCH.1 + font::width(label, TextSize::Normal.px());
@@ -49,7 +61,7 @@ pub(super) fn entries<'f>(figure: &'f Figure) -> Vec<(&'f str, Colour, Swatch, f
 
 /// The entries split into rows no wider than `room` (px), in order; an entry wider than
 /// the room gets a row of its own.
-pub(super) fn rows(entries: &[(&str, Colour, Swatch, f64)], room: f64) -> Vec<Vec<usize>> {
+pub(super) fn rows(entries: &[Entry], room: f64) -> Vec<Vec<usize>> {
     let mut rows: Vec<Vec<usize>> = Vec::new();
     let mut used = f64::INFINITY;
     for (i, entry) in entries.iter().enumerate() {
@@ -68,12 +80,12 @@ pub(super) fn rows(entries: &[(&str, Colour, Swatch, f64)], room: f64) -> Vec<Ve
     rows
 }
 
-/// Places the legend rows from `top` down, each centred over the plot area (kept inside
-/// the image): the swatches, and their texts into `labels`.
+/// Places the legend rows from `top` down, each centred over `area` (kept inside the
+/// image, `width` px wide): the swatches, and their texts into `labels`.
 pub(super) fn place(
-    entries: &[(&str, Colour, Swatch, f64)],
+    entries: &[Entry],
     rows: &[Vec<usize>],
-    area: &Rect,
+    (area, width): (&Rect, f64),
     top: f64,
     labels: &mut Vec<Label>,
 ) -> Vec<LegendEntry> {
@@ -84,7 +96,7 @@ pub(super) fn place(
         let total: f64 =
             row.iter().map(|&i| entries[i].3).sum::<f64>() + SWATCH.2 * (row.len() - 1) as f64;
         let centre = 0.5 * (area.left + area.right);
-        let mut x = (centre - 0.5 * total).clamp(PAD, (WIDTH - PAD - total).max(PAD));
+        let mut x = (centre - 0.5 * total).clamp(PAD, (width - PAD - total).max(PAD));
         let middle = top + row_height * (r as f64 + 0.5);
         for &i in row {
             let (text, colour, swatch, width) = entries[i];

@@ -12,18 +12,22 @@
 
 mod aspect;
 mod canvas;
+pub mod events;
 mod font;
 mod inset;
 mod layout;
 mod legend;
+mod panels;
 mod plot;
 mod png;
 pub mod rigid_run;
 pub mod side_view;
+mod style;
 mod svg;
 mod ticks;
 
 use layout::Layout;
+pub use style::{Dash, Stroke};
 
 /// A figure and the file stem it is written under (`STEM.svg`, `STEM.png`).
 pub struct NamedFigure {
@@ -82,6 +86,18 @@ pub struct Series<'a> {
     pub(crate) points: Vec<(f64, f64)>,
 }
 
+impl<'a> Series<'a> {
+    /// A curve labelled `label` (empty: no legend entry) in `colour` through `points`
+    /// (x, y in data units).
+    pub fn new(label: &'a str, colour: Colour, points: Vec<(f64, f64)>) -> Self {
+        Series {
+            label,
+            colour,
+            points,
+        }
+    }
+}
+
 /// A shaded band: at each x, the range from `low` to `high` — e.g. ±2 standard errors of
 /// a measured mean, within which a model's deviation cannot be told from noise.
 pub struct Band<'a> {
@@ -103,16 +119,61 @@ impl Band<'_> {
     }
 }
 
-/// A line plot, ready to be written as SVG or PNG.
-pub struct Figure<'a> {
+/// One set of axes of a figure: its curves, its axis titles (naming the units), a
+/// title of its own in a figure of several panels, and the line y = 0 if asked for.
+pub struct Panel<'a> {
+    /// Title over the axes; empty for the one panel of a plain figure.
     title: String,
     x_label: String,
     y_label: String,
     series: Vec<Series<'a>>,
-    band: Option<Band<'a>>,
     zero_line: bool,
+}
+
+impl<'a> Panel<'a> {
+    /// `series` on axes titled `x_label` and `y_label` (units named there), with `title`
+    /// over them. The axes span every finite point, widened to round ticks.
+    pub fn new(title: &str, x_label: &str, y_label: &str, series: Vec<Series<'a>>) -> Self {
+        Panel {
+            title: title.to_owned(),
+            x_label: x_label.to_owned(),
+            y_label: y_label.to_owned(),
+            series,
+            zero_line: false,
+        }
+    }
+
+    /// True for a panel of nothing (no curves, no titles): a gap left in a grid.
+    fn is_blank(&self) -> bool {
+        self.series.is_empty()
+            && self.title.is_empty()
+            && self.x_label.is_empty()
+            && self.y_label.is_empty()
+    }
+
+    /// The panel with a dark line at y = 0 (the y axis includes 0).
+    pub fn with_zero_line(self) -> Self {
+        Panel {
+            zero_line: true,
+            ..self
+        }
+    }
+}
+
+/// A line plot — one set of axes, or several panels in a grid — ready to be written as
+/// SVG or PNG.
+pub struct Figure<'a> {
+    title: String,
+    /// The panels, row by row; one for a plain figure.
+    panels: Vec<Panel<'a>>,
+    /// Panels per row.
+    columns: usize,
+    band: Option<Band<'a>>,
     peak_inset: bool,
     equal_scales: bool,
+    /// Strokes chosen by legend label (the other kinds of curve take the dash patterns
+    /// in turn).
+    strokes: Vec<(String, Stroke)>,
 }
 
 impl<'a> Figure<'a> {
@@ -120,16 +181,34 @@ impl<'a> Figure<'a> {
     /// the axis titles should name the units). The axes span every finite point, widened
     /// to round ticks.
     pub fn new(title: &str, x_label: &str, y_label: &str, series: Vec<Series<'a>>) -> Self {
+        Figure::grid(title, 1, vec![Panel::new("", x_label, y_label, series)])
+    }
+
+    /// `panels` in rows of `columns` (at least 1) under one title and one legend, which
+    /// names each label of every panel's curves once; a label is drawn alike in every
+    /// panel. The image grows with the grid.
+    pub fn grid(title: &str, columns: usize, panels: Vec<Panel<'a>>) -> Self {
         Figure {
             title: title.to_owned(),
-            x_label: x_label.to_owned(),
-            y_label: y_label.to_owned(),
-            series,
+            panels,
+            columns: columns.max(1),
             band: None,
-            zero_line: false,
             peak_inset: false,
             equal_scales: false,
+            strokes: Vec::new(),
         }
+    }
+
+    /// The figure with the curves labelled `label` drawn with `stroke` (e.g. a measured
+    /// mean thick and dotted, over the models' lines).
+    pub fn with_stroke(mut self, label: &str, stroke: Stroke) -> Self {
+        self.strokes.push((label.to_owned(), stroke));
+        self
+    }
+
+    /// Every series of every panel, in drawing order.
+    fn all_series(&self) -> impl Iterator<Item = &Series<'a>> {
+        self.panels.iter().flat_map(|p| &p.series)
     }
 
     /// The figure with `band` shaded under the curves (the y axis spans it too) and
@@ -143,11 +222,11 @@ impl<'a> Figure<'a> {
 
     /// The figure with a dark line at y = 0 (the y axis includes 0): for differences,
     /// where the sign matters.
-    pub(crate) fn with_zero_line(self) -> Self {
-        Figure {
-            zero_line: true,
-            ..self
+    pub(crate) fn with_zero_line(mut self) -> Self {
+        for panel in &mut self.panels {
+            panel.zero_line = true;
         }
+        self
     }
 
     /// The figure with an inset that zooms on the highest point of the first series,
@@ -182,14 +261,15 @@ impl<'a> Figure<'a> {
 
     /// Width and height of the image (px).
     pub fn size(&self) -> (u32, u32) {
-        (layout::WIDTH as u32, layout::HEIGHT as u32)
+        let layout = Layout::new(self);
+        (layout.width as u32, layout.height as u32)
     }
 
     /// The plot area, where the curves are drawn: left, top, right, bottom edges (px from
     /// the image's top-left corner).
     #[cfg(test)]
     pub(crate) fn plot_area(&self) -> (f64, f64, f64, f64) {
-        let p = Layout::new(self).main.area;
+        let p = Layout::new(self).plots[0].area;
         (p.left, p.top, p.right, p.bottom)
     }
 }
@@ -288,7 +368,67 @@ mod tests {
             ),
             Figure::new("none", "x", "y", Vec::new()).with_peak_inset(),
             side_view(),
+            grid(),
         ]
+    }
+
+    /// Three panels in rows of two, with titles, the last row short, a label shared.
+    fn grid() -> Figure<'static> {
+        let panel = |title: &'static str, y: &'static str| {
+            Panel::new(
+                title,
+                "time since the first wall contact (ms)",
+                y,
+                vec![
+                    series("PM2", Colour::hex(0xd62728), pulse(3.0)),
+                    series("S2 mean", Colour::BLACK, pulse(0.0)),
+                ],
+            )
+        };
+        Figure::grid(
+            "Contact force and torque on the peg, each wall contact on its own time scale",
+            2,
+            vec![
+                panel("wall contact 1: from 0.00 ms, 0.96 ms long", "‖F‖ (N)"),
+                panel("wall contact 2", "‖F‖ (N)"),
+                panel("", "‖T‖ about the centre of mass (N·m)").with_zero_line(),
+            ],
+        )
+        .with_stroke(
+            "S2 mean",
+            Stroke {
+                width: 3.0,
+                dash: Dash::Dotted,
+            },
+        )
+    }
+
+    #[test]
+    fn a_grid_lays_its_panels_side_by_side_with_one_legend_entry_per_label() {
+        let layout = Layout::new(&grid());
+        assert_eq!(layout.plots.len(), 3);
+        assert_eq!(
+            (layout.width, layout.plots.len()),
+            (2.0 * layout::CELL.0, 3)
+        );
+        let (a, b, c) = (
+            layout.plots[0].area,
+            layout.plots[1].area,
+            layout.plots[2].area,
+        );
+        assert!(a.right < b.left && (a.top - b.top).abs() < 1e-9);
+        assert!(a.bottom < c.top && (a.left - c.left).abs() < 1e-9);
+        assert_eq!(layout.legend.len(), 2);
+        let dotted = Stroke {
+            width: 3.0,
+            dash: Dash::Dotted,
+        };
+        assert_eq!(layout.legend[1].swatch, legend::Swatch::Line(dotted));
+        for plot in &layout.plots {
+            let strokes: Vec<Stroke> = plot.curves.iter().map(|c| c.stroke).collect();
+            assert_eq!(strokes, [Stroke::dashed(Dash::Solid), dotted]);
+        }
+        assert!(layout.plots[2].zero.is_some() && layout.plots[0].zero.is_none());
     }
 
     /// A side view with equal scales: a tall narrow path over a wide floor, and a curve
@@ -310,7 +450,7 @@ mod tests {
     #[test]
     fn equal_scales_take_as_many_px_per_unit_on_both_axes_and_show_every_point() {
         let layout = Layout::new(&side_view());
-        let plot = &layout.main;
+        let plot = &layout.plots[0];
         let (x0, x1) = plot.x.range();
         let (y0, y1) = plot.y.range();
         let (sx, sy) = (
@@ -321,8 +461,8 @@ mod tests {
         assert!(x0 <= -120.0 && x1 >= 60.0 && y0 <= 0.0 && y1 >= 150.0);
         // Not much of the image is given away: the plot fills one side of the room.
         let full = Layout::new(&Figure::new("side view", "x (mm)", "z (mm)", Vec::new()));
-        let filled = (plot.area.width() / full.main.area.width())
-            .max(plot.area.height() / full.main.area.height());
+        let filled = (plot.area.width() / full.plots[0].area.width())
+            .max(plot.area.height() / full.plots[0].area.height());
         assert!(filled > 0.99, "{filled}");
         // Two legend entries: the unnamed curve has none.
         assert_eq!(layout.legend.len(), 2);
@@ -340,7 +480,7 @@ mod tests {
                 vec![(1.0, -2.0), (3.0, 8.0), (f64::NAN, 100.0)],
             )],
         );
-        let plot = Layout::new(&figure).main;
+        let plot = Layout::new(&figure).plots.remove(0);
         assert_eq!(plot.x.range(), (1.0, 3.0));
         assert_eq!(plot.y.range(), (-2.0, 8.0));
         assert_eq!(plot.px(1.0), plot.area.left);
@@ -353,7 +493,7 @@ mod tests {
 
     #[test]
     fn the_force_figure_has_round_ticks() {
-        let plot = Layout::new(&force_figure()).main;
+        let plot = Layout::new(&force_figure()).plots.remove(0);
         assert_eq!(plot.x.labels(), ["0", "20", "40", "60", "80", "100", "120"]);
         assert_eq!(
             plot.y.labels(),
@@ -386,7 +526,10 @@ mod tests {
                 // Nor does a label run into a plot area: only the inset's labels lie in
                 // the main one, on the inset's background.
                 let inset = layout.inset.as_ref();
-                if ra.overlaps(&layout.main.area) {
+                for other in &layout.plots[1..] {
+                    assert!(!ra.overlaps(&other.area), "{:?} in a panel", a.text);
+                }
+                if ra.overlaps(&layout.plots[0].area) {
                     let inset = inset.unwrap_or_else(|| panic!("{:?} in the plot", a.text));
                     assert!(inset.background.contains(ra), "{:?} off the inset", a.text);
                     assert!(!ra.overlaps(&inset.plot.area), "{:?} in the inset", a.text);
@@ -401,7 +544,7 @@ mod tests {
     #[test]
     fn the_error_figure_has_its_zero_line_and_noise_band() {
         let layout = Layout::new(&error_figure());
-        let plot = &layout.main;
+        let plot = &layout.plots[0];
         assert_eq!(plot.zero, Some(plot.py(0.0)));
         assert!(plot.y.values().any(|v| v == 0.0));
         let band = plot.band.as_ref().expect("a band");
@@ -419,7 +562,7 @@ mod tests {
             "y",
             vec![series("a", Colour::BLACK, vec![(0.0, 5.0), (1.0, 6.0)])],
         );
-        let plot = Layout::new(&away).main;
+        let plot = Layout::new(&away).plots.remove(0);
         assert_eq!(plot.zero, None);
         assert!(plot.y.range().0 > 0.0);
     }
@@ -428,7 +571,7 @@ mod tests {
     fn the_peak_inset_zooms_where_the_curves_differ_and_hides_none_of_the_peak() {
         let layout = Layout::new(&force_figure());
         let inset = layout.inset.as_ref().expect("an inset");
-        let (main, zoom) = (&layout.main, &inset.plot);
+        let (main, zoom) = (&layout.plots[0], &inset.plot);
         // Inside the plot area, clear of the window it zooms on.
         assert!(main.area.contains(&inset.background));
         assert!(!inset.background.overlaps(&inset.marker));

@@ -2,6 +2,7 @@
 //! everything inside it mapped to pixels — grid lines, the zero line, the curves and the
 //! shaded band. The main plot and the inset are both a `Plot`.
 
+use super::style::Stroke;
 use super::ticks::Ticks;
 use super::{Band, Colour, Series};
 
@@ -46,9 +47,11 @@ impl Rect {
     }
 }
 
-/// A curve in px: its colour and its polylines (one unless it was clipped to a window).
+/// A curve in px: its colour, its stroke and its polylines (one unless it was clipped
+/// to a window).
 pub(super) struct Curve {
     pub(crate) colour: Colour,
+    pub(crate) stroke: Stroke,
     pub(crate) pieces: Vec<Vec<(f64, f64)>>,
 }
 
@@ -105,27 +108,30 @@ impl Plot {
         self.area.bottom - (y - y0) / (y1 - y0) * self.area.height()
     }
 
-    /// Adds each series as one polyline through its finite points (all inside the ranges).
-    pub(super) fn draw_series(&mut self, series: &[Series]) {
-        for s in series {
+    /// Adds each series as one polyline through its finite points (all inside the
+    /// ranges), stroked as the stroke of the same index.
+    pub(super) fn draw_series(&mut self, series: &[Series], strokes: &[Stroke]) {
+        for (s, &stroke) in series.iter().zip(strokes) {
             let path = finite(&s.points).map(|p| self.at(p)).collect();
             self.curves.push(Curve {
                 colour: s.colour,
+                stroke,
                 pieces: vec![path],
             });
         }
     }
 
     /// Adds each series cut to the plot's x range (inset windows on a longer curve).
-    pub(super) fn draw_series_clipped(&mut self, series: &[Series]) {
+    pub(super) fn draw_series_clipped(&mut self, series: &[Series], strokes: &[Stroke]) {
         let window = self.x.range();
-        for s in series {
+        for (s, &stroke) in series.iter().zip(strokes) {
             let pieces = clip(&s.points, window)
                 .into_iter()
                 .map(|piece| piece.into_iter().map(|p| self.at(p)).collect())
                 .collect();
             self.curves.push(Curve {
                 colour: s.colour,
+                stroke,
                 pieces,
             });
         }

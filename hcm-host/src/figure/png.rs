@@ -8,17 +8,15 @@ use super::font;
 use super::layout::{Anchor, Label, Layout};
 use super::legend::Swatch;
 use super::plot::{Plot, Shade};
+use super::style::{dashes, Stroke};
 use super::Colour;
-
-/// Stroke width of the curves (px).
-const CURVE_WIDTH: f64 = 2.0;
-/// Stroke width of the legend's colour lines (px).
-const SWATCH_WIDTH: f64 = 2.0;
 
 /// The layout as a PNG file: 8-bit RGB, `width` × `height` pixels.
 pub(super) fn render(layout: &Layout) -> Result<Vec<u8>, png::EncodingError> {
     let mut canvas = Canvas::new(layout.width as u32, layout.height as u32, Colour::WHITE);
-    plot(&mut canvas, &layout.main);
+    for p in &layout.plots {
+        plot(&mut canvas, p);
+    }
     if let Some(inset) = &layout.inset {
         canvas.outline(inset.marker, Colour::MARKER);
         let b = inset.background;
@@ -28,9 +26,10 @@ pub(super) fn render(layout: &Layout) -> Result<Vec<u8>, png::EncodingError> {
     for entry in &layout.legend {
         let a = entry.area;
         match entry.swatch {
-            Swatch::Line => {
+            Swatch::Line(stroke) => {
                 let y = 0.5 * (a.top + a.bottom);
-                canvas.stroke(&[(a.left, y), (a.right, y)], SWATCH_WIDTH, entry.colour);
+                let line = [(a.left, y), (a.right, y)];
+                dashed(&mut canvas, &[line.to_vec()], stroke, entry.colour);
             }
             Swatch::Block => canvas.fill((a.left, a.right), (a.top, a.bottom), entry.colour),
         }
@@ -58,10 +57,15 @@ fn plot(canvas: &mut Canvas, plot: &Plot) {
     }
     canvas.outline(area, Colour::AXIS);
     for curve in &plot.curves {
-        for piece in &curve.pieces {
-            canvas.stroke(piece, CURVE_WIDTH, curve.colour);
-        }
+        dashed(canvas, &curve.pieces, curve.stroke, curve.colour);
     }
+}
+
+/// Strokes the polylines `pieces` (px) with `stroke`'s width and dashes in `colour`.
+fn dashed(canvas: &mut Canvas, pieces: &[Vec<(f64, f64)>], stroke: Stroke, colour: Colour) {
+    let pattern = stroke.pattern();
+    let cut: Vec<Vec<(f64, f64)>> = pieces.iter().flat_map(|p| dashes(p, &pattern)).collect();
+    canvas.stroke_pieces(&cut, stroke.width, colour);
 }
 
 /// Fills the band: every pixel column between two of its points, from the upper to the
@@ -212,13 +216,24 @@ mod tests {
         let area = figure.plot_area();
         let (left, _, right, _) = area;
         // The diagonal and the flat line each cross the whole plot area, 2 px wide: far more
-        // pixels than their legend lines (25 px × 2) alone. Anti-aliased, a 2 px line is
+        // pixels than their legend lines (32 px × 2) alone. Anti-aliased, a 2 px line is
         // its colour exactly along its 1 px core and at least half so across its width.
-        for colour in [RED, BLUE] {
+        // The second curve is dashed (7 px on, 4 px off, round ends): over 6/10 of it.
+        for (colour, share) in [(RED, 1.0), (BLUE, 0.6)] {
             let n = count_covered(&image, area, colour);
-            assert!(n as f64 > 1.5 * (right - left), "{colour:?}: {n} px");
+            assert!(
+                n as f64 > 1.5 * share * (right - left),
+                "{colour:?}: {n} px"
+            );
             let core = count(&image, area, colour);
-            assert!(core as f64 > 0.9 * (right - left), "{colour:?}: {core} px");
+            assert!(
+                core as f64 > 0.9 * share * (right - left),
+                "{colour:?}: {core} px"
+            );
+            assert!(
+                BLUE != colour || (core as f64) < 0.95 * (right - left),
+                "dashed"
+            );
         }
         // Nothing is drawn in a colour that is not asked for.
         assert_eq!(count(&image, area, Colour::hex(0x00ff00)), 0);

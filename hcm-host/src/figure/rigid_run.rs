@@ -1,9 +1,12 @@
 //! The figures of a 3D run (`hcm simulate --figures`): a side view of the moving bodies'
 //! motion among the fixed ones (`trajectory`), and the contact force and torque on the
 //! moving bodies over time with each contact event's touch-down marked (`contact_force`,
-//! `contact_torque`).
+//! `contact_torque`), and both over each of the first events on its own time scale
+//! (`contact_events`: a contact of a millisecond is a spike on the run's time axis).
 
+use super::events::{event_figure, EventSpan, Quantity};
 use super::side_view::{plane_trace, shape_outlines, Outline};
+use super::style::{Dash, Stroke};
 use super::NamedFigure;
 use super::{Colour, Figure, Series};
 use crate::dataset::{BodyTrack, Sample};
@@ -11,6 +14,9 @@ use crate::scenario::{Model, Shape};
 use crate::simulate::Simulation;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
+/// Events given a panel of their own in `contact_events`: the first ones (a body coming
+/// to rest may touch down many times).
+pub(crate) const MAX_EVENT_PANELS: usize = 6;
 /// Touch-downs per body at which its outline is drawn: the first ones (a body coming to
 /// rest may touch down many times; more outlines would hide each other).
 pub(crate) const MAX_TOUCH_DOWN_OUTLINES: usize = 6;
@@ -27,8 +33,8 @@ const TOUCH_DOWN: Colour = Colour::hex(0xff7f0e);
 const END: Colour = Colour::hex(0xd62728);
 const MARK: Colour = Colour::hex(0x999999);
 
-/// The three figures of a 3D run of `model`: `trajectory`, `contact_force`,
-/// `contact_torque`.
+/// The four figures of a 3D run of `model`: `trajectory`, `contact_force`,
+/// `contact_torque`, `contact_events`.
 pub fn rigid_figures(model: &Model, simulation: &Simulation) -> Vec<NamedFigure> {
     let name = &model.scenario.name;
     let force = |s: &Sample| s.force;
@@ -58,7 +64,72 @@ pub fn rigid_figures(model: &Model, simulation: &Simulation) -> Vec<NamedFigure>
                 &torque,
             ),
         },
+        NamedFigure {
+            stem: "contact_events",
+            figure: per_event(model, simulation),
+        },
     ]
+}
+
+/// ‖F‖ (N) and ‖T‖ (N·m) on every recorded body over each of the first
+/// [`MAX_EVENT_PANELS`] contact events, one column per event on its own time scale (ms).
+pub fn per_event(model: &Model, simulation: &Simulation) -> Figure<'static> {
+    let ms = |s: &Sample| 1e3 * s.time;
+    let norms = |y_label: &'static str, component: fn(&Sample) -> [f64; 3]| {
+        let series = (simulation.run.bodies.iter())
+            .map(|track| {
+                let points = track.samples.iter();
+                let points = points.map(|s| (ms(s), Vector3::from(component(s)).norm()));
+                curve("moving body", PATH, points.collect())
+            })
+            .collect();
+        (y_label, series)
+    };
+    let quantities = [
+        norms("‖F‖ (N)", |s| s.force),
+        norms("‖T‖ about the centre of mass (N·m)", |s| s.torque),
+    ]
+    .map(|(y_label, series)| Quantity {
+        x_label: "time (ms)".to_owned(),
+        y_label: y_label.to_owned(),
+        series,
+        zero_line: false,
+    });
+    let events: Vec<(String, EventSpan)> = (simulation.events.iter())
+        .take(MAX_EVENT_PANELS)
+        .enumerate()
+        .map(|(k, e)| {
+            let c = &model.contacts[e.contact];
+            let pair = format!(
+                "{}–{}",
+                model.bodies[c.body_1].name, model.bodies[c.body_2].name
+            );
+            let lift_off = e.lift_off.unwrap_or(simulation.end_time);
+            let span = EventSpan {
+                touch_down: 1e3 * e.touch_down,
+                lift_off: 1e3 * lift_off,
+            };
+            let name = format!(
+                "event {}, {pair}: {:.2} ms long",
+                k + 1,
+                span.lift_off - span.touch_down
+            );
+            (name, span)
+        })
+        .collect();
+    let shown = if simulation.events.len() > MAX_EVENT_PANELS {
+        format!(
+            " (the first {MAX_EVENT_PANELS} of {})",
+            simulation.events.len()
+        )
+    } else {
+        String::new()
+    };
+    let title = format!(
+        "{}: contact force and torque on the moving body, each event on its own time scale{shown}",
+        model.scenario.name
+    );
+    event_figure(&title, &events, &quantities)
 }
 
 /// The side view (x–z, mm, equal scales): each recorded body's centre-of-mass path and
@@ -113,12 +184,13 @@ pub fn trajectory(model: &Model, simulation: &Simulation) -> Figure<'static> {
             .into_iter()
             .map(|(label, o, colour)| curve(label, colour, o)),
     );
-    name_each_kind_once(&mut series);
     for s in &mut series {
         s.points.iter_mut().for_each(|p| *p = (p.0 * MM, p.1 * MM));
     }
     let title = format!("{}: side view, looking along +y", model.scenario.name);
-    Figure::new(&title, "x (mm)", "z (mm)", series).with_equal_scales()
+    Figure::new(&title, "x (mm)", "z (mm)", series)
+        .with_equal_scales()
+        .with_stroke("fixed bodies", Stroke::dashed(Dash::Solid))
 }
 
 /// The outlines of the body of `track` at the start, at its first touch-downs and at
@@ -214,8 +286,13 @@ fn wrench(
         })
         .collect();
     series.extend(norms);
-    name_each_kind_once(&mut series);
+    let mark = Stroke {
+        width: 1.2,
+        dash: Dash::Dashed,
+    };
     Figure::new(title, "time (s)", y_label, series)
+        .with_stroke("touch-down", mark)
+        .with_stroke(label, Stroke::dashed(Dash::Solid))
 }
 
 fn curve(label: &'static str, colour: Colour, points: Vec<(f64, f64)>) -> Series<'static> {
@@ -223,19 +300,6 @@ fn curve(label: &'static str, colour: Colour, points: Vec<(f64, f64)>) -> Series
         label,
         colour,
         points,
-    }
-}
-
-/// Clears the label of every series but the first of each label, so that the legend
-/// names each kind of curve once.
-fn name_each_kind_once(series: &mut [Series<'static>]) {
-    let mut named: Vec<&str> = Vec::new();
-    for s in series {
-        if named.contains(&s.label) {
-            s.label = "";
-        } else {
-            named.push(s.label);
-        }
     }
 }
 
@@ -295,19 +359,6 @@ mod tests {
         let (p, q) = pose_at(&samples, 9.0);
         assert_eq!(p, Vector3::new(1.0, 0.0, 2.0));
         assert!((q.angle() - 0.4).abs() < 1e-12);
-    }
-
-    #[test]
-    fn each_kind_of_curve_is_named_once() {
-        let mut series = vec![
-            curve("a", PATH, vec![]),
-            curve("b", PATH, vec![]),
-            curve("a", PATH, vec![]),
-            curve("b", PATH, vec![]),
-        ];
-        name_each_kind_once(&mut series);
-        let labels: Vec<&str> = series.iter().map(|s| s.label).collect();
-        assert_eq!(labels, ["a", "b", "", ""]);
     }
 
     #[test]

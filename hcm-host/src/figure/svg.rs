@@ -6,11 +6,9 @@ use super::font::FAMILY;
 use super::layout::{Anchor, Label, Layout, TextSize};
 use super::legend::Swatch;
 use super::plot::{Plot, Rect};
+use super::style::Stroke;
 use super::Colour;
 use std::fmt::Write;
-
-/// Stroke width of the curves in the main plot and in the inset (px).
-const CURVE_WIDTH: f64 = 1.6;
 
 /// The layout as an SVG document (sizes in px).
 pub(super) fn render(layout: &Layout) -> String {
@@ -22,7 +20,9 @@ pub(super) fn render(layout: &Layout) -> String {
         TextSize::Normal.px()
     );
     let _ = writeln!(svg, r#"<rect width="100%" height="100%" fill="white"/>"#);
-    plot(&mut svg, &layout.main);
+    for p in &layout.plots {
+        plot(&mut svg, p);
+    }
     if let Some(inset) = &layout.inset {
         rect(&mut svg, inset.marker, "none", Colour::MARKER);
         rect(&mut svg, inset.background, "white", Colour::WHITE);
@@ -31,9 +31,16 @@ pub(super) fn render(layout: &Layout) -> String {
     for entry in &layout.legend {
         let a = entry.area;
         match entry.swatch {
-            Swatch::Line => {
+            Swatch::Line(stroke) => {
                 let y = 0.5 * (a.top + a.bottom);
-                line(&mut svg, (a.left, y), (a.right, y), entry.colour, 2.0);
+                let _ = writeln!(
+                    svg,
+                    r#"<line x1="{:.1}" x2="{:.1}" y1="{y:.1}" y2="{y:.1}" stroke="{}"{}/>"#,
+                    a.left,
+                    a.right,
+                    entry.colour.css(),
+                    stroke_attributes(stroke)
+                );
             }
             Swatch::Block => rect(&mut svg, a, &entry.colour.css(), entry.colour),
         }
@@ -45,9 +52,15 @@ pub(super) fn render(layout: &Layout) -> String {
     svg
 }
 
-/// Appends one set of axes: band, grid, zero line, frame, curves.
+/// Appends one set of axes as a group that names its data ranges (`data-x`, `data-y`:
+/// low and high, data units): band, grid, zero line, frame, curves.
 fn plot(svg: &mut String, plot: &Plot) {
     let area = plot.area;
+    let ((x0, x1), (y0, y1)) = (plot.x.range(), plot.y.range());
+    let _ = writeln!(
+        svg,
+        r#"<g class="panel" data-x="{x0} {x1}" data-y="{y0} {y1}">"#
+    );
     if let Some(band) = &plot.band {
         let upper = band.columns.iter().map(|c| (c.0, c.1));
         let lower = band.columns.iter().rev().map(|c| (c.0, c.2));
@@ -72,12 +85,30 @@ fn plot(svg: &mut String, plot: &Plot) {
         for piece in &curve.pieces {
             let _ = writeln!(
                 svg,
-                r#"<polyline fill="none" stroke="{}" stroke-width="{CURVE_WIDTH}" stroke-linejoin="round" points="{}"/>"#,
+                r#"<polyline fill="none" stroke="{}"{} stroke-linejoin="round" points="{}"/>"#,
                 curve.colour.css(),
+                stroke_attributes(curve.stroke),
                 points(piece.iter().copied())
             );
         }
     }
+    svg.push_str("</g>\n");
+}
+
+/// The attributes of a line stroked with `stroke`: its width, and its dashes (with
+/// round ends, as the PNG draws them) named in `data-dash`.
+fn stroke_attributes(stroke: Stroke) -> String {
+    let width = stroke.width;
+    let pattern = stroke.pattern();
+    if pattern.is_empty() {
+        return format!(r#" stroke-width="{width}" data-dash="solid""#);
+    }
+    let lengths: Vec<String> = pattern.iter().map(|l| format!("{l}")).collect();
+    format!(
+        r#" stroke-width="{width}" stroke-dasharray="{}" stroke-linecap="round" data-dash="{}""#,
+        lengths.join(" "),
+        stroke.dash.name()
+    )
 }
 
 /// `x,y x,y …` with two decimals (px).

@@ -7,7 +7,7 @@ use super::errors::{recorded, TimePoint};
 use super::stages::{Predictions, Timeline};
 use super::CubeError;
 use crate::dataset::{Dataset, Sample};
-use crate::figure::{Colour, Figure, Series};
+use crate::figure::{Colour, Dash, Figure, Series, Stroke};
 use crate::pipeline::NamedFigure;
 use crate::toss::{TossEvaluation, TossSetup};
 
@@ -68,19 +68,21 @@ pub fn toss_figures(
         }
         series
     };
-    let top = Figure::new(
-        &format!("Held-out tosses {tosses} from above (fitted model)"),
-        "x (mm)",
-        "y (mm)",
-        path_series(&|s, _| mm(s, 0), &|s| mm(s, 1)),
-    )
-    .with_equal_scales();
-    let height = Figure::new(
+    let top = recorded_solid(
+        Figure::new(
+            &format!("Held-out tosses {tosses} from above (fitted model)"),
+            "x (mm)",
+            "y (mm)",
+            path_series(&|s, _| mm(s, 0), &|s| mm(s, 1)),
+        )
+        .with_equal_scales(),
+    );
+    let height = recorded_solid(Figure::new(
         &format!("Held-out tosses {tosses}: height of the centre (fitted model)"),
         "time since the window start (s)",
         "z (mm)",
         path_series(&|s, t0| s.time - t0, &|s| mm(s, 2)),
-    );
+    ));
     Ok(vec![
         NamedFigure {
             stem: "paths_top",
@@ -93,6 +95,15 @@ pub fn toss_figures(
         error_figure(timeline, fitted.len(), true),
         error_figure(timeline, fitted.len(), false),
     ])
+}
+
+/// `figure` with every recorded path solid and every predicted one dashed, so that a
+/// toss's two curves are told apart in greyscale as well as by their shades.
+fn recorded_solid(figure: Figure<'static>) -> Figure<'static> {
+    SHOWN.iter().fold(figure, |f, (recorded, predicted, _, _)| {
+        f.with_stroke(recorded, Stroke::dashed(Dash::Solid))
+            .with_stroke(predicted, Stroke::dashed(Dash::Dashed))
+    })
 }
 
 /// The held-out mean position (or rotation) error over time, both models, where at

@@ -4,8 +4,8 @@
 //! the figures.
 
 use super::curves::{mean_curve, replay_curve, WrenchCurve};
+use super::figures::{event_spans, figures};
 use crate::dataset::Dataset;
-use crate::figure::{Colour, Figure, Series};
 use crate::identify::replay::with_physics;
 use crate::identify::rigid::{mover_name, replay, RigidIdentifyError, WrenchTarget};
 use crate::pipeline::NamedFigure;
@@ -151,7 +151,7 @@ pub fn evaluate_peg(
         }
     }
     let curves = curves(models, &target, validation, c);
-    let figures = figures(&curves);
+    let figures = figures(&curves, &event_spans(&target.events));
     Ok(PegEvaluation {
         models: models.iter().map(|m| m.0.to_owned()).collect(),
         runs: (target.runs, target.runs - target.left_out.len()),
@@ -182,160 +182,4 @@ fn curves(
         out.push((*label, replay_curve(&replay_model, c, &mover, window)));
     }
     out
-}
-
-/// Colours: S2 mean, then the models.
-const COLOURS: [u32; 4] = [0x333333, 0xd62728, 0x1f77b4, 0x2ca02c];
-
-/// The times of a curve's samples (ms).
-fn milliseconds(c: &WrenchCurve) -> Vec<f64> {
-    c.time.iter().map(|t| 1e3 * t).collect::<Vec<_>>()
-}
-
-/// A curve's `values` against time (ms).
-fn over_time(values: fn(&WrenchCurve) -> &Vec<f64>) -> impl Fn(&WrenchCurve) -> Vec<(f64, f64)> {
-    move |c: &WrenchCurve| {
-        milliseconds(c)
-            .into_iter()
-            .zip(values(c).iter().copied())
-            .collect()
-    }
-}
-
-/// `mean − curve` of a curve's `values` against time (ms).
-fn error_against(
-    mean: &WrenchCurve,
-    values: fn(&WrenchCurve) -> &Vec<f64>,
-) -> impl Fn(&WrenchCurve) -> Vec<(f64, f64)> + '_ {
-    move |c: &WrenchCurve| -> Vec<(f64, f64)> {
-        milliseconds(c)
-            .into_iter()
-            .zip(values(mean).iter().zip(values(c)).map(|(m, v)| m - v))
-            .collect()
-    }
-}
-
-/// The curves the figures draw, and S2's mean the errors are taken against.
-struct Panels<'c> {
-    /// S2's mean and the models drawn (the int8 HCM overlaps the f32 one at these
-    /// scales: drawn in the table only).
-    shown: Vec<&'c (&'static str, WrenchCurve)>,
-    /// S2's mean curve.
-    mean: &'c WrenchCurve,
-}
-
-impl Panels<'_> {
-    /// One series per curve shown, of the points `pick` takes from it.
-    fn series(&self, pick: &dyn Fn(&WrenchCurve) -> Vec<(f64, f64)>) -> Vec<Series<'static>> {
-        self.shown
-            .iter()
-            .zip(COLOURS)
-            .map(|((label, curve), colour)| Series {
-                label,
-                colour: Colour::hex(colour),
-                points: pick(curve),
-            })
-            .collect()
-    }
-
-    /// The models' series of `pick` (S2's mean left out).
-    fn errors(&self, pick: &dyn Fn(&WrenchCurve) -> Vec<(f64, f64)>) -> Vec<Series<'static>> {
-        let mut all = self.series(pick);
-        all.remove(0);
-        all
-    }
-}
-
-/// The x axis of every figure over time.
-const T_LABEL: &str = "time since the first wall contact (ms)";
-
-/// The wrench's norm over time: ‖F‖ (N) and ‖T‖ (N·m), S2 mean and models.
-fn wrench_figures(panels: &Panels<'_>) -> [NamedFigure; 2] {
-    [
-        NamedFigure {
-            stem: "contact_force",
-            figure: Figure::new(
-                "Contact force on the peg",
-                T_LABEL,
-                "‖F‖ (N)",
-                panels.series(&over_time(force_norms)),
-            ),
-        },
-        NamedFigure {
-            stem: "contact_torque",
-            figure: Figure::new(
-                "Contact torque on the peg about its centre of mass",
-                T_LABEL,
-                "‖T‖ (N·m)",
-                panels.series(&over_time(torque_norms)),
-            ),
-        },
-    ]
-}
-
-/// The models' errors over time, S2 mean − model: of ‖F‖ (N) and of ‖T‖ (N·m).
-fn error_figures(panels: &Panels<'_>) -> [NamedFigure; 2] {
-    [
-        NamedFigure {
-            stem: "force_error",
-            figure: Figure::new(
-                "Force error: S2 mean − model",
-                T_LABEL,
-                "‖F‖ error (N)",
-                panels.errors(&error_against(panels.mean, force_norms)),
-            )
-            .with_zero_line(),
-        },
-        NamedFigure {
-            stem: "torque_error",
-            figure: Figure::new(
-                "Torque error: S2 mean − model",
-                T_LABEL,
-                "‖T‖ error (N·m)",
-                panels.errors(&error_against(panels.mean, torque_norms)),
-            )
-            .with_zero_line(),
-        },
-    ]
-}
-
-/// The peg's centre of mass in the x–z plane (mm), S2 mean and models.
-fn path_figure(panels: &Panels<'_>) -> NamedFigure {
-    NamedFigure {
-        stem: "peg_path",
-        figure: Figure::new(
-            "The peg's centre of mass through the hole (side view, x stretched)",
-            "x (mm)",
-            "z (mm)",
-            panels.series(&|c: &WrenchCurve| {
-                c.x.iter()
-                    .zip(&c.z)
-                    .map(|(x, z)| (1e3 * x, 1e3 * z))
-                    .collect()
-            }),
-        ),
-    }
-}
-
-/// A curve's force norms (N).
-fn force_norms(c: &WrenchCurve) -> &Vec<f64> {
-    &c.force
-}
-
-/// A curve's torque norms (N·m).
-fn torque_norms(c: &WrenchCurve) -> &Vec<f64> {
-    &c.torque
-}
-
-/// ‖F‖ and ‖T‖ over time (S2 mean and models), their errors (S2 mean − model), and the
-/// peg's path in the x–z plane.
-fn figures(curves: &[(&'static str, WrenchCurve)]) -> Vec<NamedFigure> {
-    let panels = Panels {
-        shown: curves.iter().take(3).collect(),
-        mean: &curves[0].1,
-    };
-    let mut figures = Vec::from(wrench_figures(&panels));
-    figures.extend(error_figures(&panels));
-    figures.push(path_figure(&panels));
-    figures
 }

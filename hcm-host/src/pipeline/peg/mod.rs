@@ -5,6 +5,7 @@
 
 mod curves;
 mod evaluate;
+mod figures;
 mod report;
 
 pub use curves::{mean_curve, replay_curve, WrenchCurve};
