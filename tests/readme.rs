@@ -1,15 +1,18 @@
-//! Every command the README shows runs. Each `hcm …` and `cargo run … -p hcm-host -- …`
-//! line of the README's `sh` blocks runs through the `hcm` fixture, block by block, each
-//! block in a fresh directory holding a copy of `scenarios/` and `examples/rig/` (as a
-//! clone's root does), so that relative paths resolve as they would for a reader and
-//! outputs land in the temporary directory. A failing command fails the test, naming its README line.
+//! Every command the documentation shows runs. Each `hcm …` and `cargo run … -p hcm-host
+//! -- …` line of the `sh` blocks of `README.md` and of every Markdown page under `docs/`
+//! runs through the `hcm` fixture, block by block, each block in a fresh directory holding
+//! a copy of `scenarios/` and `examples/rig/` (as a clone's root does), so that relative
+//! paths resolve as they would for a reader who runs them from the repository's root, and
+//! outputs land in the temporary directory. A failing command fails the test, naming its
+//! file and line.
 //!
 //! As the README says, two kinds of line are too long for CI and run smaller: a `--runs`
 //! above [`MOST_RUNS`] runs with `--runs` [`MOST_RUNS`], and `reproduce` (the paper's
-//! 1000 runs by default) with `--runs` [`MOST_RUNS`].
+//! 1000 runs by default) with `--runs` [`MOST_RUNS`]. Commands too long even so (minutes)
+//! are shown in `bash`, `console` or `text` blocks, which this test does not run.
 
 use hcm_tests::cli::Hcm;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The most runs a README command is given here (README: "too long for CI").
 const MOST_RUNS: usize = 40;
@@ -24,7 +27,7 @@ const NOT_RUN: [&str; 5] = [
     "cargo build",
 ];
 
-/// A command line of the README: its line number (1-based) and text, continuation
+/// A command line of a page: its line number (1-based) and text, continuation
 /// lines joined.
 struct Line {
     number: usize,
@@ -146,43 +149,95 @@ fn copy_files(from: &Path, to: &Path) {
     }
 }
 
-#[test]
-fn every_command_of_the_readme_runs() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
-    let blocks = sh_blocks(&readme);
-    let mut ran = 0;
-    for block in &blocks {
-        let hcm = Hcm::new();
-        copy_files(&root.join("scenarios"), &hcm.path("scenarios"));
-        copy_files(&root.join("examples/rig"), &hcm.path("examples/rig"));
-        for line in block {
-            let words = words(&line.text);
-            let Some(arguments) = hcm_arguments(&words) else {
-                assert!(
-                    NOT_RUN.iter().any(|p| line.text.starts_with(p)),
-                    "README line {}: `{}` is neither an hcm command nor one CI runs itself",
-                    line.number,
-                    line.text
-                );
-                continue;
-            };
-            let arguments = shortened(arguments);
-            // Shown with the fixture's message if the command fails.
-            eprintln!("README line {}: hcm {}", line.number, arguments.join(" "));
-            let (subcommand, rest) = arguments.split_first().expect("a subcommand");
-            rest.iter()
-                .fold(hcm.run(subcommand), |call, argument| call.arg(argument))
-                .ok();
-            ran += 1;
+/// The Markdown pages whose commands run: `README.md`, then every `.md` file under
+/// `docs/` (in sorted order, subdirectories included), each with its path relative to
+/// `root`.
+fn pages(root: &Path) -> Vec<PathBuf> {
+    fn under(directory: &Path, found: &mut Vec<PathBuf>) {
+        let mut entries: Vec<PathBuf> = std::fs::read_dir(directory)
+            .unwrap()
+            .map(|entry| entry.unwrap().path())
+            .collect();
+        entries.sort();
+        for path in entries {
+            if path.is_dir() {
+                under(&path, found);
+            } else if path.extension().is_some_and(|e| e == "md") {
+                found.push(path);
+            }
         }
     }
-    // The README's blocks: the first two commands, the simulations, the hertz example,
-    // PM1/PM2, the HCM step by step and the diagnosis.
+    let mut found = vec![root.join("README.md")];
+    under(&root.join("docs"), &mut found);
+    found
+        .into_iter()
+        .map(|path| path.strip_prefix(root).unwrap().to_path_buf())
+        .collect()
+}
+
+/// Runs the hcm commands of one `sh` block of `page` in a fresh directory; how many ran.
+fn run_block(root: &Path, page: &Path, block: &[Line]) -> usize {
+    let hcm = Hcm::new();
+    copy_files(&root.join("scenarios"), &hcm.path("scenarios"));
+    copy_files(&root.join("examples/rig"), &hcm.path("examples/rig"));
+    let mut ran = 0;
+    for line in block {
+        let words = words(&line.text);
+        let Some(arguments) = hcm_arguments(&words) else {
+            assert!(
+                NOT_RUN.iter().any(|p| line.text.starts_with(p)),
+                "{} line {}: `{}` is neither an hcm command nor one CI runs itself",
+                page.display(),
+                line.number,
+                line.text
+            );
+            continue;
+        };
+        let arguments = shortened(arguments);
+        // Shown with the fixture's message if the command fails.
+        eprintln!(
+            "{} line {}: hcm {}",
+            page.display(),
+            line.number,
+            arguments.join(" ")
+        );
+        let (subcommand, rest) = arguments.split_first().expect("a subcommand");
+        rest.iter()
+            .fold(hcm.run(subcommand), |call, argument| call.arg(argument))
+            .ok();
+        ran += 1;
+    }
+    ran
+}
+
+#[test]
+fn every_command_of_the_readme_and_the_docs_runs() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let (mut blocks, mut ran) = (0, 0);
+    for page in pages(root) {
+        let text = std::fs::read_to_string(root.join(&page)).unwrap();
+        for block in sh_blocks(&text) {
+            ran += run_block(root, &page, &block);
+            blocks += 1;
+        }
+    }
+    // The blocks: the first two commands, the worked examples, the simulations, the
+    // hertz example, PM1/PM2, the HCM step by step, the peg and the rigid fits.
+    assert!(blocks >= 6 && ran >= 17, "{blocks} blocks, {ran} commands");
+}
+
+#[test]
+fn the_pages_are_the_readme_and_the_docs() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let pages = pages(root);
+    assert_eq!(pages[0], Path::new("README.md"));
     assert!(
-        blocks.len() >= 6 && ran >= 17,
-        "{} blocks, {ran} commands",
-        blocks.len()
+        pages.contains(&PathBuf::from("docs/README.md")),
+        "{pages:?}"
+    );
+    assert!(
+        pages[1..].iter().all(|p| p.starts_with("docs")),
+        "{pages:?}"
     );
 }
 
