@@ -1,5 +1,8 @@
 //! `hcm`: hybrid contact modeling from the command line.
 
+// The CLI's doc comments are its `--help` text, where `<law>` and `<example>` are
+// placeholders a reader fills in, not HTML.
+#[allow(rustdoc::invalid_html_tags)]
 mod cli;
 
 /// Exit status of a process ended by SIGPIPE (128 + 13), as a shell reports it.

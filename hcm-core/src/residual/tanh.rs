@@ -77,7 +77,7 @@ const fn monic(c: &[f64; 4]) -> [f64; 3] {
 
 /// tanh(z) to within 1.2e-6 in `f64` and `f32`; NaN gives 0, ±∞ gives ±R(7).
 ///
-/// Evaluated as z_k·P̃(v)/Q̃(v) (see [`K`]): the same rational function as z·P/Q, but
+/// Evaluated as z_k·P̃(v)/Q̃(v) (see `K`): the same rational function as z·P/Q, but
 /// with monic polynomials, split as (v + c₂)·v² + (c₁·v + c₀) around the v² both
 /// share — four instructions a polynomial on the Cortex-M4F instead of six, and k
 /// rides on the clamp's multiply.

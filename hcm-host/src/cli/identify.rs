@@ -21,7 +21,7 @@ use std::path::PathBuf;
 /// Terms:
 ///   PM2           physics model 2: a contact law with parameters identified on data
 ///   S1            the training set written by `hcm generate` (OUT.s1.csv)
-///   physics file  TOML naming each contact's law and parameters, plus a [fit] record
+///   physics file  TOML naming each contact's law and parameters, plus a fit record
 ///   GA            the paper's genetic algorithm (`--method ga`): it simulates candidate
 ///                 parameters and compares them with the data
 ///   indicators    of one contact: maximum force, impulse, energy loss and duration

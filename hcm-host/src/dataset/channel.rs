@@ -55,7 +55,7 @@ impl Channel {
         }
     }
 
-    /// Indices in [`COLUMNS`] of the channel's columns.
+    /// Indices in `COLUMNS` of the channel's columns.
     pub fn columns(self) -> std::ops::Range<usize> {
         let (first, count) = match self {
             Channel::Position => (3, 3),

@@ -11,7 +11,7 @@
 //! so the delay that puts every contact on its after-flight is the weighted least
 //! squares τ̂ = −Σ gap·Δv/sd² / Σ Δv²/sd² over contacts and axes, with variance
 //! 1/Σ Δv²/sd² ([`fit`]); it is used when the gaps without it are too large or τ̂ is
-//! more than [`DELAY_SIGMAS`] standard deviations from 0. The motion at each force sample t is then the integration
+//! more than `DELAY_SIGMAS` standard deviations from 0. The motion at each force sample t is then the integration
 //! read at t + τ̂ with the flight before put back at t (`shift`): the motion as it
 //! was, against which the force reads τ̂ late — what the diagnosis names as a sensor
 //! delay. τ̂'s own uncertainty is carried per row: δ moves by Δv(t)·dτ and δ̇ by

@@ -33,7 +33,7 @@ pub struct FlightFit {
 
 impl FlightFit {
     /// Fits `frames` (time (s), position (m)) with gravity `gravity` (m/s²), referred to
-    /// `t_ref`. None with fewer than [`MIN_FRAMES`] frames or frames all at one time.
+    /// `t_ref`. None with fewer than `MIN_FRAMES` frames or frames all at one time.
     pub fn fit(frames: &[(f64, [f64; 3])], gravity: [f64; 3], t_ref: f64) -> Option<FlightFit> {
         let n = frames.len();
         if n < MIN_FRAMES {

@@ -15,7 +15,7 @@
 //! first, read in flight where the contact force is 0. Motion that obeys Newton's law
 //! with the recorded force leaves an RMS misfit of about 1 in those units; motion that
 //! does not — a spline through frames — leaves many times more. Above
-//! [`MAX_MISFIT`] the contact's motion is **replaced** by the force's: p0 and v0 fitted
+//! `MAX_MISFIT` the contact's motion is **replaced** by the force's: p0 and v0 fitted
 //! by least squares to every recorded row of the contact and its flights (the spline's
 //! frames, whatever their rate), with their uncertainty from the misfit itself and the
 //! rows' correlation (`independent`), carried per row as an empty-cell reconstruction

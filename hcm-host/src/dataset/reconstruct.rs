@@ -6,12 +6,12 @@
 //! For each moving body of a contact whose rows are not complete (position, velocity and
 //! force on every row):
 //!
-//! 1. the contacts are located in its force samples ([`ForceSeries::contacts`]);
+//! 1. the contacts are located in its force samples (`ForceSeries::contacts`);
 //! 2. the free flight before each contact is fitted to the camera positions (a parabola
 //!    per axis with the scenario's gravity, least squares — [`FlightFit`]); velocity
 //!    cells of the frames, differentiated by the rig, are not used;
 //! 3. Newton's law m·ẍ = f + m·g is integrated through the contact from that flight
-//!    ([`integrate`]), the measured force taken piecewise linear between its samples;
+//!    (`integrate`), the measured force taken piecewise linear between its samples;
 //! 4. the flight after the contact, fitted the same way, gives the motion after it and a
 //!    check of the integration ([`ContactCheck`]).
 //!
@@ -23,7 +23,7 @@
 //!
 //! Data whose every row already holds position, velocity and force are returned as they
 //! are, borrowed, with no uncertainty: today's simulated data take exactly the path
-//! they always took. [`complete_with`] can ask for more ([`Checks`]): motion recorded on
+//! they always took. `complete_with` can ask for more ([`Checks`]): motion recorded on
 //! every row checked against Newton's law with the force and replaced where it fails
 //! (`super::newton`, a camera splined onto the force rows), and the force integrated as
 //! read a given delay late behind the frames (`super::delay`).
@@ -93,7 +93,7 @@ pub struct Completed<'a> {
     pub(crate) checked_delay: Option<Delay>,
 }
 
-/// What [`complete_with`] checks beyond [`complete`].
+/// What `complete_with` checks beyond [`complete`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Checks {
     /// Check motion recorded on every row against the force through each contact and
@@ -153,7 +153,7 @@ pub struct ContactCheck {
     /// Camera frames fitted before and after the contact.
     pub(crate) frames: (usize, usize),
     /// Integrated minus after-flight velocity at the end (m/s), with its standard
-    /// deviation per axis; None without [`MIN_FRAMES`] frames after the contact.
+    /// deviation per axis; None without `MIN_FRAMES` frames after the contact.
     pub velocity_gap: Option<([f64; 3], [f64; 3])>,
     /// Integrated minus after-flight position at the end (m), with its standard
     /// deviation per axis; None as for the velocity.

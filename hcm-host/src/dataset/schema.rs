@@ -1,6 +1,6 @@
 //! The columns of the measured-data CSV format — names, order, SI units and meaning — in
 //! one place. The writer's header, the reader's column lookup, the README table and the
-//! order of a [`Sample`]'s numbers all come from [`COLUMNS`].
+//! order of a [`Sample`]'s numbers all come from `COLUMNS`.
 
 use super::Sample;
 
@@ -33,7 +33,7 @@ pub(crate) const NUMERIC_COUNT: usize = COLUMN_COUNT - FIRST_NUMERIC;
 pub(crate) const RUN: usize = 0;
 /// Index in [`COLUMNS`] of `body`.
 pub(crate) const BODY: usize = 1;
-/// Index in [`COLUMNS`] of `time`, the first numeric column.
+/// Index in `COLUMNS` of `time`, the first numeric column.
 pub const TIME: usize = 2;
 /// Index in [`COLUMNS`] of the first numeric column; numeric column `i` of a
 /// [`Sample`] (see [`sample_values`]) is `COLUMNS[FIRST_NUMERIC + i]`.
@@ -85,7 +85,7 @@ pub(crate) const COLUMNS: [Column; COLUMN_COUNT] = [
     ),
 ];
 
-/// The numeric columns of a sample, in [`COLUMNS`] order (`time`, `px` … `tz`).
+/// The numeric columns of a sample, in `COLUMNS` order (`time`, `px` … `tz`).
 pub fn sample_values(sample: &Sample) -> [f64; NUMERIC_COUNT] {
     let [px, py, pz] = sample.position;
     let [qw, qx, qy, qz] = sample.orientation;

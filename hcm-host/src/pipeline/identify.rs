@@ -21,7 +21,7 @@ pub struct Pm2 {
     pub(crate) model: Model,
 }
 
-/// Identifies [`PM2_LAW`] on the training set of `scenario` (read from `path`) by
+/// Identifies `PM2_LAW` on the training set of `scenario` (read from `path`) by
 /// `method` (seeded with `seed`).
 pub fn identify_pm2(
     scenario: &Scenario,

@@ -134,7 +134,7 @@ impl FrictionSpec {
     pub(crate) const PARAMETERS: [&'static str; 4] =
         ["mu_static", "mu_dynamic", "v_static", "v_dynamic"];
 
-    /// The value of the friction parameter called `name` (a [`Self::PARAMETERS`] name)
+    /// The value of the friction parameter called `name` (a `Self::PARAMETERS` name)
     /// in `law`, for Eq 18's noise.
     pub fn parameter<'a>(
         law: &'a mut VelocityStepFriction<f64>,

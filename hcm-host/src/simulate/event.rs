@@ -257,7 +257,7 @@ impl EventTracker {
     }
 
     /// Updates every event that was open during the last step: its maxima on a grid
-    /// of [`PEAK_SUBSTEPS`] inner points and the step's end, and its work by Boole's
+    /// of `PEAK_SUBSTEPS` inner points and the step's end, and its work by Boole's
     /// rule on that grid and the step's start.
     pub fn track_step(
         &mut self,

@@ -208,7 +208,7 @@ impl RigidSystem<'_> {
         !self.model.bodies[b].inertia[(0, 0)].is_nan()
     }
 
-    /// Latches the point histories at the accepted state `y` (see [`PointMemory`]).
+    /// Latches the point histories at the accepted state `y` (see `PointMemory`).
     pub fn latch(&mut self, y: &[f64]) {
         for c in 0..self.model.contacts.len() {
             let (pose_1, pose_2) = self.poses(y, c);

@@ -10,7 +10,7 @@
 //! Each member draws, for every moving body with a fitted state, its position and
 //! velocity offsets per axis jointly from that axis's covariance, and its rotation
 //! vector and angular-velocity offsets likewise (the rotation applied on the left:
-//! R' = exp([δa]ₓ)·R). Draws come from ChaCha8 seeded with the seed, one stream per
+//! R' = exp(δaₓ)·R). Draws come from ChaCha8 seeded with the seed, one stream per
 //! toss: the same seed gives the same forecast on any number of threads.
 //!
 //! A member also scatters the contact's stiffness, damping and friction coefficients

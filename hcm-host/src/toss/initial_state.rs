@@ -11,10 +11,10 @@
 //!   window start, the rotation vectors log(R_i·R_wᵀ) fitted by a straight line per
 //!   component: constant angular velocity ω (world frame), exact in free flight for a
 //!   body of isotropic inertia such as the cube (8.1e-4 kg·m² about every axis); the
-//!   start orientation is exp([a]ₓ)·R_w.
+//!   start orientation is exp(aₓ)·R_w.
 //!
-//! The fit uses the last [`FIT_FRAMES`] frames up to and including the window start.
-//! With fewer than [`MIN_FIT_FRAMES`] (a toss filmed from just before its landing) the
+//! The fit uses the last `FIT_FRAMES` frames up to and including the window start.
+//! With fewer than `MIN_FIT_FRAMES` (a toss filmed from just before its landing) the
 //! recorded pose, velocity and angular velocity at the window start are used as they
 //! are, and [`StateSource::Recorded`] says so.
 

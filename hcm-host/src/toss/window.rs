@@ -59,7 +59,7 @@ pub fn find_window(setup: &TossSetup, run: &str, track: &BodyTrack) -> Result<Wi
 /// circumscribed radius of a body it can touch (a fixed partner, or another mover at
 /// its recorded pose in the frame nearest in time), or turned away from one within a
 /// frame's travel of touching it (a bounce between two frames); contacts already within
-/// reach in a body's first frame, or within [`RESTING`] of its radius (a block or a ball
+/// reach in a body's first frame, or within `RESTING` of its radius (a block or a ball
 /// resting on the table), do not start it, unless no other contact ever comes. Every mover's window starts at the same time; a toss
 /// with no contact at all is an error naming the run and the primary's lowest
 /// clearance.

@@ -3,7 +3,7 @@
 //! misses — for the 1D examples the normal-force error f_measured − f_PM2 from the
 //! contact's motion state [δ, δ̇, δ̇0] ([`residual_pairs`]); for a rigid body the
 //! force and torque error from its 13 state components ([`wrench_pairs`], trained
-//! with [`wrench_settings`]). The contact-frame residual ([`point_residual`]) learns
+//! with [`wrench_settings`](fn@wrench_settings)). The contact-frame residual ([`point_residual`]) learns
 //! from a force sensor's wrench ([`point_samples`]) or, from a camera's poses alone,
 //! from the poses the physics misses a few frames on ([`motion_samples`],
 //! [`motion_residual`]).
@@ -107,7 +107,7 @@ pub struct TrainSettings {
     pub output_nets: OutputNets,
     /// Input columns that are the components of one vector (one unit), e.g. a
     /// body's position, quaternion, velocity, angular velocity. A component whose
-    /// spread is below [`VECTOR_CONSTANT`] of its vector's largest counts as constant
+    /// spread is below `VECTOR_CONSTANT` of its vector's largest counts as constant
     /// and is normalised by that largest spread, its vector's scale: the peg's y, q_x,
     /// q_z, v_y, ω_x, ω_z are 0 up to rounding (its motion is planar; standard
     /// deviations 1e-20 to 1e-10), and dividing by such a spread would turn that

@@ -2,11 +2,11 @@
 //!
 //! Layout (the one the core's blob carries): `hidden_layers` hidden layers of equal
 //! `width` with activation σ (tanh or relu), then a linear output layer. Layer l maps
-//! a⁽ˡ⁾ = σ(W⁽ˡ⁾·a⁽ˡ⁻¹⁾ + b⁽ˡ⁾) with W⁽ˡ⁾ row-major [out][in]; the network reads the
+//! a⁽ˡ⁾ = σ(W⁽ˡ⁾·a⁽ˡ⁻¹⁾ + b⁽ˡ⁾) with W⁽ˡ⁾ row-major outin; the network reads the
 //! normalised input x̂ = (x − mean)/scale and returns y = ŷ·scale + mean.
 //!
 //! Training works on a flat parameter vector ([`Layout`]) holding, layer by layer from
-//! input to output, the weights [out][in] then the biases [out] — the export order, so
+//! input to output, the weights outin then the biases out — the export order, so
 //! [`Layout::layers`] only cuts it up.
 
 use rand::RngExt;
@@ -30,7 +30,7 @@ pub struct Network {
     pub hidden_layers: usize,
     /// Activation of the hidden layers.
     pub activation: Activation,
-    /// (weights row-major [out][in], biases [out]) per layer, input → output;
+    /// (weights row-major outin, biases out) per layer, input → output;
     /// `hidden_layers + 1` layers.
     pub layers: Vec<(Vec<f64>, Vec<f64>)>,
     /// Input normalisation x̂ = (x − input_mean)/input_scale (raw input units).
@@ -118,7 +118,7 @@ pub struct Layout {
     shapes: Vec<(usize, usize, usize)>,
 }
 
-/// Per-sample work space of [`Layout::forward`] and [`Layout::accumulate_gradient`].
+/// Per-sample work space of [`Layout::forward`] and `Layout::accumulate_gradient`.
 #[derive(Clone, Debug)]
 pub struct Scratch {
     /// a⁽⁰⁾ = x̂, then each layer's output; the last is the network output ŷ.

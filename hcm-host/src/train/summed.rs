@@ -11,7 +11,7 @@
 //! its RMS. Backpropagation: ∂L/∂ŷ_p = σ_y ⊙ L_pᵀ·(2e/s), e the row's error.
 //!
 //! The rest is [`super::train`]'s: the same seeded split (by row), initial weights,
-//! shuffles, Adam, reduce-on-plateau and early stopping ([`super::fit`]), gradients
+//! shuffles, Adam, reduce-on-plateau and early stopping (`super::fit`), gradients
 //! summed over fixed chunks of rows in chunk order (bit-identical whatever the thread
 //! count). The outputs are not centred (μ_y = 0: a correction with no target is
 //! zero), and each output's scale is the one at which it alone would carry the
@@ -34,7 +34,7 @@ use std::time::Instant;
 #[derive(Clone, Debug, PartialEq)]
 pub struct SummedRow {
     /// Each point's inputs (raw units) and lever: the target each unit output makes at
-    /// that point, row-major [target][output].
+    /// that point, row-major targetoutput.
     pub points: Vec<(Vec<f64>, Vec<f64>)>,
     /// The row's target (raw units).
     pub target: Vec<f64>,
@@ -47,7 +47,7 @@ pub struct SummedRow {
 /// whatever the number of threads.
 ///
 /// An output the fit does not need — fixed at 0, the training loss rises by less than
-/// [`UNNEEDED`] of what the network gains over a zero output — is fixed at 0 and
+/// `UNNEEDED` of what the network gains over a zero output — is fixed at 0 and
 /// listed last: nothing in the data says what it should be, and its scale, set by a
 /// lever that is tiny throughout training, would turn the network's arbitrary value
 /// there into a huge one wherever the lever is not tiny (measured on the peg, planar: a

@@ -79,7 +79,7 @@ pub enum WrenchResidualError {
 
 /// The wrench residual of contact `c` of `pm2` (the scenario with PM2 in place) on the
 /// samples of the first `events` contact events of `training` (S1): the joint network
-/// of [`wrench_settings`] trained for at most `settings.epochs` epochs, then its int8
+/// of [`wrench_settings`](fn@wrench_settings) trained for at most `settings.epochs` epochs, then its int8
 /// twin for `settings.int8_epochs`, both seeded with `settings.seed`. Reports
 /// [`Stage::Train`] and [`Stage::Int8Twin`] to `progress`.
 ///

@@ -3,7 +3,7 @@
 //! components in, the wrench PM2 misses out.
 //!
 //! **Input**: the moving body's state as the integrator stores it and passes it to
-//! the residual (`simulate`'s `contact_load`; [`RigidState`]'s order):
+//! the residual (`simulate`'s `contact_load`; `RigidState`'s order):
 //! position p (m, world), quaternion q = (w, x, y, z) (–, body → world), velocity v
 //! (m/s, world), angular velocity ω (rad/s, **body frame**). The data record ω in the
 //! world frame; it is turned into the body frame here, so that the HCM sees in the

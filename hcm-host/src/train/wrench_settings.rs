@@ -28,7 +28,7 @@ const MAX_EPOCHS: usize = 400;
 const PATIENCE: usize = 40;
 
 /// The training settings of a wrench residual split as `nets`, seeded with `seed`:
-/// width [`WRENCH_WIDTH`] for one network, [`PER_OUTPUT_WIDTH`] per network for six;
+/// width `WRENCH_WIDTH` for one network, `PER_OUTPUT_WIDTH` per network for six;
 /// the state's position, quaternion, velocity and angular velocity as input vectors.
 pub fn wrench_settings(nets: OutputNets, seed: u64) -> TrainSettings {
     TrainSettings {

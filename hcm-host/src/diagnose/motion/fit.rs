@@ -67,7 +67,7 @@ impl Subject<'_> {
     }
 
     /// Every toss's score of `part` under `effect` with `values` (`None` if the data
-    /// cannot be read so, or a replay fails): see [`toss_score`]. A candidate that
+    /// cannot be read so, or a replay fails): see `toss_score`. A candidate that
     /// reads the data otherwise (a length scale) has them prepared afresh, from the
     /// subject's model.
     pub fn scores(
@@ -154,7 +154,7 @@ pub struct Fitted {
 }
 
 /// Fits `effect` to `training` in `bounds`, starting from `neutral`: one parameter by
-/// [`line_search`], two by the
+/// `line_search`, two by the
 /// polish from `neutral`. The neutral values win ties (no change unless it helps).
 pub fn fit(
     subject: &Subject<'_>,

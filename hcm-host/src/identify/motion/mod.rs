@@ -1,7 +1,7 @@
 //! Identification from motion alone (issue 17): a tossed body's contact law, friction
 //! and table height fitted to filmed tosses — poses, no force — by replaying each
 //! training toss from its window start ([`crate::toss`]) and minimising the mean score
-//! `hcm predict` prints ([`fitness`]). The genetic algorithm
+//! `hcm predict` prints ([`fitness`](mod@fitness)). The genetic algorithm
 //! ([`crate::numerics::optimize::genetic`], seeded, its generation evaluated in parallel) searches
 //! the box of [`parameters`]; Nelder–Mead ([`crate::numerics::optimize::nelder_mead`]) refines its best. The tosses are
 //! split by [`split`]: the fit never sees the held-out part.
@@ -77,7 +77,7 @@ pub fn identify_motion(
 /// The force measured at the recorded poses as a second term of the motion fit's
 /// objective (issue 28: "both → both in one objective"): the score of a candidate is
 /// its trajectory fitness over the scenario's own plus its force cost
-/// ([`combined::force_cost`]) over the scenario's own — each 1 at the start, so that
+/// (`combined::force_cost`) over the scenario's own — each 1 at the start, so that
 /// neither dominates by its unit. `MotionFit`'s fitnesses are in those units.
 pub fn identify_motion_and_force(
     model: &Model,

@@ -9,7 +9,7 @@ use crate::scenario::{Assignment, Model, Scenario, ScenarioError, Shape};
 use crate::toss::partner::shift_surface;
 
 /// The assignments that turn `model`'s scenario into the fitted one, from the
-/// fit's [`MotionParameters::named`] values: the law's two parameters, `mu_static`,
+/// fit's `MotionParameters::named` values: the law's two parameters, `mu_static`,
 /// `mu_dynamic`, `table_offset` (m), `inertia_scale` (–) and a box's `rounding` (m).
 pub fn fitted_assignments(
     model: &Model,

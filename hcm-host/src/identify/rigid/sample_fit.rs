@@ -10,11 +10,11 @@
 //! - **Coordinates**: a parameter searched on a log scale (stiffness, transition
 //!   speeds) is fitted as its logarithm; the others as they are; both inside the box.
 //! - **Starts**: the scenario's values (clamped into the box) and
-//!   [`EXTRA_STARTS`] points of a Halton sequence in the box (deterministic: same data,
+//!   `EXTRA_STARTS` points of a Halton sequence in the box (deterministic: same data,
 //!   same fit); the lowest cost wins. Friction is not linear in its transition speeds
 //!   and the box spans decades, so one local search can stop in another valley.
 //! - **Standard errors**: the larger of the asymptotic one (σ²(JᵀJ)⁻¹, samples taken
-//!   as independent) and a delete-a-group jackknife over the runs ([`GROUPS`] groups,
+//!   as independent) and a delete-a-group jackknife over the runs (`GROUPS` groups,
 //!   each re-fitted from the best): samples of one run share its scatter, which the
 //!   asymptotic one does not see.
 

@@ -8,14 +8,14 @@
 //!    solve needs, in O(columns²) memory whatever the number of rows. Householder QR
 //!    is backward stable column by column, so regressors ten orders of magnitude apart
 //!    need no scaling here, and no pivoting is needed to reduce.
-//! 2. [`Reduction::solve`]: column-pivoted QR (Businger & Golub 1965) of the small
+//! 2. `Reduction::solve`: column-pivoted QR (Businger & Golub 1965) of the small
 //!    triangle with its columns scaled to unit norm. R's columns have A's column norms,
 //!    so pivoting R is pivoting A; pivoting orders the diagonal of the new triangle by
 //!    decreasing magnitude, which makes the rank decision reliable: a column whose
-//!    diagonal entry is at or below [`RANK_TOLERANCE`] times the largest is dependent
+//!    diagonal entry is at or below `RANK_TOLERANCE` times the largest is dependent
 //!    on the ones before it. Its coefficient is set to 0 (the "basic" solution of
 //!    Golub & Van Loan, *Matrix Computations*, §5.5) instead of a huge value, and
-//!    [`LinearFit::rank`] says so.
+//!    `LinearFit::rank` says so.
 //!
 //! The residual sum of squares is read from the trailing part of Qᵀb, so it does not
 //! suffer the cancellation of ‖b‖² − ‖A·x‖²; the covariance, when asked, is
@@ -37,7 +37,7 @@ pub use reduction::Reduction;
 /// columns scaled to unit norm: a relative, unit-free threshold).
 pub(crate) const RANK_TOLERANCE: f64 = 1e-12;
 
-/// Which covariance of the coefficients [`Reduction::solve`] returns.
+/// Which covariance of the coefficients `Reduction::solve` returns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Covariance {
     /// (AᵀA)⁻¹ alone (the columns' units to the power −2): for a caller that scales it

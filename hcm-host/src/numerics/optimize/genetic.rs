@@ -26,7 +26,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-/// Tuning of [`minimize`]. The defaults suit 2–4 parameters and a fitness costing
+/// Tuning of `minimize`. The defaults suit 2–4 parameters and a fitness costing
 /// about a millisecond.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GeneticSettings {
@@ -81,7 +81,7 @@ impl Default for GeneticSettings {
     }
 }
 
-/// What [`minimize`] found.
+/// What `minimize` found.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GeneticResult {
     /// Best parameter values found, in `bounds` order and units.
@@ -96,7 +96,7 @@ pub struct GeneticResult {
     pub(crate) history: Vec<f64>,
 }
 
-/// Why [`minimize`] could not run.
+/// Why `minimize` could not run.
 #[derive(Debug, thiserror::Error)]
 pub enum GeneticError {
     /// No parameters to search.

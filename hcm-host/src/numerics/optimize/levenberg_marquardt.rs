@@ -45,7 +45,7 @@ const MIN_DAMPING: f64 = 1e-15;
 /// A damping above this means no step along any direction reduces the cost.
 const MAX_DAMPING: f64 = 1e32;
 
-/// Settings of [`levenberg_marquardt`].
+/// Settings of `levenberg_marquardt`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LmSettings {
     /// Maximum number of iterations (Jacobian evaluations).
@@ -76,24 +76,24 @@ impl Default for LmSettings {
     }
 }
 
-/// Why [`levenberg_marquardt`] stopped.
+/// Why `levenberg_marquardt` stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Termination {
     /// The residuals are exactly zero.
     ExactFit,
     /// For every free parameter the cosine between the residuals and its Jacobian
-    /// column is at most [`LmSettings::gradient_tolerance`].
+    /// column is at most `LmSettings::gradient_tolerance`.
     SmallGradient,
     /// Every parameter sits on a bound with the gradient pushing outward (or is fixed
     /// by equal bounds): no direction inside the box descends.
     HeldByBounds,
-    /// A step shorter than [`LmSettings::step_tolerance`] was accepted, or none that
+    /// A step shorter than `LmSettings::step_tolerance` was accepted, or none that
     /// short reduces the cost: a minimum to the tolerance.
     SmallStep,
     /// An accepted step's actual and predicted relative reductions of the cost were
-    /// both at most [`LmSettings::cost_tolerance`].
+    /// both at most `LmSettings::cost_tolerance`.
     SmallReduction,
-    /// [`LmSettings::max_iterations`] iterations ran without meeting a tolerance.
+    /// `LmSettings::max_iterations` iterations ran without meeting a tolerance.
     MaxIterations,
     /// The damping grew beyond 1e32 without a step that reduces the cost (a residual
     /// function that is not smooth, or NaN all around the point).
@@ -125,7 +125,7 @@ impl std::fmt::Display for Termination {
     }
 }
 
-/// The outcome of [`levenberg_marquardt`].
+/// The outcome of `levenberg_marquardt`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LmResult {
     /// The best parameters found, in the caller's units.

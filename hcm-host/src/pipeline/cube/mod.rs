@@ -1,11 +1,11 @@
 //! `hcm reproduce cube-toss`: issue 17 end to end on filmed tosses — the tosses split
 //! by toss number ([`split_tosses`]), the contact fitted from motion alone on the
-//! training part ([`identify_motion`]), the held-out tosses predicted with the fitted
+//! training part (`identify_motion`), the held-out tosses predicted with the fitted
 //! model and with the scenario's own parameters beside the frozen pose, the second fold
 //! (the same fit on the held-out part, judged on the training part: every toss
 //! predicted by a fit that never saw it), their error over
 //! time and per phase ([`errors`], [`phases`]), the diagnosis of what the fitted model
-//! still gets wrong ([`diagnose_motion`]), and the report's figures ([`figures`]).
+//! still gets wrong (`diagnose_motion`), and the report's figures (`figures`).
 //! Nothing here prints or writes a file: progress goes to a [`Progress`], and the
 //! caller writes what comes back.
 

@@ -3,14 +3,14 @@
 //!
 //! - **flight**: the window's frames before the centre first comes within the body's
 //!   circumscribed radius of the table (no corner can touch yet);
-//! - **first impact**: from that frame to [`IMPACT_AFTER`] frames after the recorded
+//! - **first impact**: from that frame to `IMPACT_AFTER` frames after the recorded
 //!   centre stops falling (its first frame whose height the next frame does not go
 //!   below): the landing and the rebound that follows it;
 //! - **sliding/tumbling**: from there until the body settles;
 //! - **settling**: the frames from which the recorded motion stays nearly at rest to the
-//!   toss's end — every later frame is followed, over [`REST_SPAN`] frames, by a centre
-//!   moving less than [`REST_DISTANCE`] of the body's width and an orientation turning
-//!   less than [`REST_ANGLE`].
+//!   toss's end — every later frame is followed, over `REST_SPAN` frames, by a centre
+//!   moving less than `REST_DISTANCE` of the body's width and an orientation turning
+//!   less than `REST_ANGLE`.
 //!
 //! Each frame of the window is in exactly one phase; a phase may be empty for a toss
 //! (a body still moving at the end of its recording never settles).
