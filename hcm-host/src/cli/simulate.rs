@@ -26,6 +26,9 @@ use std::path::{Path, PathBuf};
 ///                   and the fixed bodies' outlines (a plane's trace at the body's y)
 ///   contact_force   ‖F‖ on the moving body over time (N), touch-downs marked
 ///   contact_torque  ‖T‖ about its centre of mass over time (N·m), touch-downs marked
+///   contact_events  ‖F‖ and ‖T‖ of each of the first 6 contact events, one panel per
+///                   event on its own time scale (a millisecond's contact is a spike
+///                   on the run's axis)
 ///
 /// Terms:
 ///   scenario    a TOML file of bodies, materials, contact laws and solver settings
@@ -44,7 +47,7 @@ pub struct Args {
     #[arg(long)]
     out: PathBuf,
     /// Directory (created if missing) for the figures of a 3D scenario: trajectory,
-    /// contact_force, contact_torque (.svg and .png).
+    /// contact_force, contact_torque, contact_events (.svg and .png).
     #[arg(long, value_name = "DIR", value_hint = clap::ValueHint::DirPath)]
     figures: Option<PathBuf>,
 }

@@ -97,6 +97,13 @@ pub fn answer_line(d: &Diagnosis) -> String {
             )
         } else if d.unexplained_share > 0.0 {
             "unexplained: the base model leaves a structured residual that no catalogued effect explains".into()
+        } else if d.base_structured {
+            // What entered fitted the training runs' structure, then failed the held-out
+            // runs: not "nothing but noise".
+            "none named: the base model's residual is structured beyond the noise, and the \
+             effects that fit it on the training runs do not hold on the held-out runs (the \
+             decision below says why)"
+                .into()
         } else {
             "none: the base model leaves nothing but noise".into()
         };
