@@ -72,7 +72,7 @@ pub fn rigid_figures(model: &Model, simulation: &Simulation) -> Vec<NamedFigure>
 }
 
 /// ‖F‖ (N) and ‖T‖ (N·m) on every recorded body over each of the first
-/// [`MAX_EVENT_PANELS`] contact events, one column per event on its own time scale (ms).
+/// `MAX_EVENT_PANELS` (6) contact events, one column per event on its own time scale (ms).
 pub fn per_event(model: &Model, simulation: &Simulation) -> Figure<'static> {
     let ms = |s: &Sample| 1e3 * s.time;
     let norms = |y_label: &'static str, component: fn(&Sample) -> [f64; 3]| {

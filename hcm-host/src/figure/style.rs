@@ -66,7 +66,7 @@ impl Stroke {
     /// Width of the curves by default (px).
     pub(super) const WIDTH: f64 = 2.0;
 
-    /// A line [`Stroke::WIDTH`] wide with the dashes `dash`.
+    /// A line `Stroke::WIDTH` (2 px) wide with the dashes `dash`.
     pub const fn dashed(dash: Dash) -> Stroke {
         Stroke {
             width: Stroke::WIDTH,
