@@ -56,23 +56,33 @@ pub enum LawInputError {
     /// A parameter the law does not have.
     #[error("law `{law}`: no parameter `{parameter}`; its parameters are: {expected}")]
     UnknownParameter {
+        /// The law's name.
         law: String,
+        /// The parameter given.
         parameter: String,
+        /// The law's parameters, comma-separated.
         expected: String,
     },
     /// A parameter of the law that was not given.
     #[error("law `{law}`: missing parameter `{parameter}`; its parameters are: {expected}")]
     MissingParameter {
+        /// The law's name.
         law: String,
+        /// The parameter not given.
         parameter: String,
+        /// The law's parameters, comma-separated.
         expected: String,
     },
     /// A parameter given as something other than a number.
     #[error("law `{law}`: `{parameter}` must be a number, found {found}; its parameters are: {expected}")]
     NotANumber {
+        /// The law's name.
         law: String,
+        /// The parameter.
         parameter: String,
+        /// What was given instead, with its type (`string "stiff"`).
         found: String,
+        /// The law's parameters, comma-separated.
         expected: String,
     },
     /// The parameters parse but are outside their physical domain.

@@ -20,6 +20,8 @@
 //! 11. [`diagnose`] — what the simulation gets wrong, and why;
 //! 12. [`pipeline`] — `hcm reproduce`'s presets over the stages.
 
+#![warn(missing_docs)]
+
 pub mod dataset;
 pub mod diagnose;
 pub mod evaluate;

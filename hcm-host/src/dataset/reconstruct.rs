@@ -54,8 +54,11 @@ pub enum ReconstructError {
          sensor's rows, or give position, velocity and force on every row"
     )]
     NoForce {
+        /// The run's id.
         run: String,
+        /// The moving body's name.
         body: String,
+        /// The first channel some row lacks (`position`, `velocity` or `force`).
         missing: &'static str,
     },
     /// Too few camera frames in a flight before a contact.
@@ -65,9 +68,13 @@ pub enum ReconstructError {
          {MIN_FRAMES}"
     )]
     FewFrames {
+        /// The run's id.
         run: String,
+        /// The moving body's name.
         body: String,
+        /// Time of the contact's first force sample (s).
         time: f64,
+        /// Camera frames found in the flight before it.
         frames: usize,
     },
 }

@@ -38,13 +38,17 @@ pub enum ExperimentError {
     /// A condition's overrides do not make a valid scenario.
     #[error("condition `{condition}`: {source}")]
     Condition {
+        /// The condition's name.
         condition: String,
+        /// What is wrong with the scenario its overrides make.
         source: ScenarioError,
     },
     /// A run's simulation failed.
     #[error("run `{run}`: {source}")]
     Simulation {
+        /// The run's id.
         run: String,
+        /// Why its simulation failed.
         source: SimulationError,
     },
     /// Nothing to generate.
@@ -52,7 +56,12 @@ pub enum ExperimentError {
     NoRuns,
     /// More runs than can be counted.
     #[error("--runs {runs}: {runs} runs of each of {conditions} conditions are more than can be counted")]
-    TooManyRuns { runs: usize, conditions: usize },
+    TooManyRuns {
+        /// Runs asked for per condition (`--runs`).
+        runs: usize,
+        /// Conditions of the scenario.
+        conditions: usize,
+    },
     /// The split would leave S1 or S2 empty.
     #[error(
         "--runs {runs}: the split into S1 (training) and S2 (validation) needs at least one \
@@ -61,9 +70,13 @@ pub enum ExperimentError {
          or more"
     )]
     TooFewRuns {
+        /// Runs asked for per condition (`--runs`).
         runs: usize,
+        /// The fewest runs per condition that leave S1 and S2 one run each.
         minimum: usize,
+        /// Conditions of the scenario.
         conditions: usize,
+        /// Share of the runs held out for S2 (%): `experiment.holdout_fraction` × 100.
         holdout_percent: f64,
     },
     /// Every condition is held out: S1 would be empty.
@@ -81,10 +94,15 @@ pub enum ExperimentError {
         crate::simulate::footprint::shown(*budget)
     )]
     TooManyForMemory {
+        /// Runs asked for per condition (`--runs`).
         runs: usize,
+        /// Runs over every condition.
         total: usize,
+        /// Memory one run's record takes, margin included (bytes).
         per_run: f64,
+        /// Memory available to the runs (bytes).
         budget: f64,
+        /// The most runs per condition that fit in the budget.
         most: u64,
     },
     /// The output would not fit on the disk.
@@ -94,8 +112,11 @@ pub enum ExperimentError {
         crate::output::bytes(*per_run)
     )]
     TooLarge {
+        /// Runs over every condition.
         runs: u64,
+        /// Estimated size of one run's output (bytes).
         per_run: u64,
+        /// Where the output was to go, and the space needed and free there.
         space: NoSpace,
     },
     /// An output could not be written.

@@ -41,15 +41,21 @@ pub enum PreContactError {
     Indicators(#[from] IndicatorError),
     /// The run never completes a contact.
     #[error("run `{run}` has no completed contact, so no pre-contact state to replay from")]
-    NoContact { run: String },
+    NoContact {
+        /// The run's id.
+        run: String,
+    },
     /// A moving body has no sample before the first touch-down.
     #[error(
         "run `{run}`, body `{body}`: no sample at or before the first touch-down at \
          t = {touch_down} s; record from before the contact (record.contact_margin)"
     )]
     NoSampleBefore {
+        /// The run's id.
         run: String,
+        /// The moving body's name.
         body: String,
+        /// Time of the run's first touch-down (s).
         touch_down: f64,
     },
     /// Two moving bodies' last samples before the contact are at different times.
@@ -59,10 +65,15 @@ pub enum PreContactError {
          on one clock"
     )]
     DifferentClocks {
+        /// The run's id.
         run: String,
+        /// The first moving body's name.
         first: String,
+        /// The second moving body's name.
         second: String,
+        /// Time of the first body's last sample before the contact (s).
         first_time: f64,
+        /// Time of the second body's last sample before the contact (s).
         second_time: f64,
     },
     /// The recorded orientation is not a unit quaternion.
@@ -71,9 +82,13 @@ pub enum PreContactError {
          quaternion of norm {norm}; a replay needs a unit quaternion (within {UNIT_TOLERANCE})"
     )]
     NotUnit {
+        /// The run's id.
         run: String,
+        /// The body's name.
         body: String,
+        /// Time of the sample (s).
         time: f64,
+        /// Euclidean norm of the recorded quaternion (qw, qx, qy, qz) (–).
         norm: f64,
     },
 }

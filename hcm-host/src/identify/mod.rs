@@ -30,7 +30,14 @@ pub enum IdentifyError {
     NoData,
     /// A run never makes (and ends) contact: it cannot be fitted and is not dropped silently.
     #[error("run `{run}` (t = {from} … {to} s) has no completed contact; remove it from the data or check the scenario's geometry")]
-    NoContact { run: String, from: f64, to: f64 },
+    NoContact {
+        /// The run's id.
+        run: String,
+        /// Time of the run's first sample (s).
+        from: f64,
+        /// Time of the run's last sample (s).
+        to: f64,
+    },
     /// The data do not match the scenario.
     #[error(transparent)]
     Data(#[from] IndicatorError),

@@ -99,16 +99,29 @@ pub struct Physics {
 pub enum PhysicsError {
     /// Unreadable or malformed file.
     #[error("physics file {path}: {message}")]
-    File { path: String, message: String },
+    File {
+        /// The physics file's path.
+        path: String,
+        /// Why it could not be read or parsed.
+        message: String,
+    },
     /// A contact pair the scenario does not have.
     #[error("physics file {path}: the scenario has no contact between `{}` and `{}`", bodies[0], bodies[1])]
-    UnknownContact { path: String, bodies: [String; 2] },
+    UnknownContact {
+        /// The physics file's path.
+        path: String,
+        /// The two bodies the file's contact names.
+        bodies: [String; 2],
+    },
     /// A key of the physics file (`contact.0.law`, `contact.0.parameters.restitution`)
     /// holds what its law or the scenario cannot take.
     #[error("physics file {path}: {key}: {message}")]
     Key {
+        /// The physics file's path.
         path: String,
+        /// The key, dotted (`contact.0.parameters.restitution`).
         key: String,
+        /// What is wrong with its value.
         message: String,
     },
     /// The physics file's laws are valid, but the scenario they make is not, while the
@@ -117,7 +130,9 @@ pub enum PhysicsError {
     /// printed with `{:#}` does not repeat it.)
     #[error("physics file {path} does not fit the scenario: {scenario_error}")]
     Misfit {
+        /// The physics file's path.
         path: String,
+        /// What is wrong with the scenario the file's laws make.
         scenario_error: ScenarioError,
     },
     /// The scenario is invalid, with or without the physics applied.

@@ -39,12 +39,20 @@ pub struct DataEvent {
 pub enum IndicatorError {
     /// A moving body of a contact has no rows in the run.
     #[error("run `{run}` has no rows for body `{body}`, which the scenario's contacts need")]
-    MissingBody { run: String, body: String },
+    MissingBody {
+        /// The run's id.
+        run: String,
+        /// The moving body's name.
+        body: String,
+    },
     /// Two moving bodies were sampled on different clocks.
     #[error("run `{run}`: bodies `{first}` and `{second}` are sampled at different times; resample them onto one clock")]
     DifferentClocks {
+        /// The run's id.
         run: String,
+        /// The first moving body's name.
         first: String,
+        /// The second moving body's name.
         second: String,
     },
 }

@@ -355,15 +355,28 @@ pub enum ScenarioError {
     /// The file could not be read, is not text or not TOML, or a key has the wrong
     /// type or is missing.
     #[error("scenario {}: {message}", path.display())]
-    Syntax { path: PathBuf, message: String },
+    Syntax {
+        /// The scenario file's path.
+        path: PathBuf,
+        /// What is wrong, as the reader or TOML parser put it.
+        message: String,
+    },
     /// A `--set` override could not be applied.
     #[error("--set {assignment}: {message}")]
-    Override { assignment: String, message: String },
+    Override {
+        /// The override as given (`key=value`).
+        assignment: String,
+        /// Why it could not be applied.
+        message: String,
+    },
     /// The scenario parses but does not describe a simulable setup.
     #[error("scenario {}: {field}: {message}", path.display())]
     Invalid {
+        /// The scenario file's path.
         path: PathBuf,
+        /// The offending key, dotted (`material.steel.poisson_ratio`).
         field: String,
+        /// What is wrong with its value.
         message: String,
     },
 }

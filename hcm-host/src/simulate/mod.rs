@@ -66,7 +66,9 @@ pub enum SimulationError {
     /// that it is printed once.)
     #[error("scenario `{scenario}`: {cause} (check the law parameters, or loosen simulation.relative_tolerance / raise simulation.max_steps{hint})")]
     Solver {
+        /// The scenario's name.
         scenario: String,
+        /// Why the integrator stopped.
         cause: IntegrationError,
         /// What else to check for this model (e.g. a friction transition speed).
         hint: String,
@@ -81,17 +83,25 @@ pub enum SimulationError {
         footprint::shown(*budget)
     )]
     TooLarge {
+        /// The scenario's name.
         scenario: String,
+        /// Memory the record would take at most (bytes).
         bytes: f64,
+        /// Memory available (bytes).
         budget: f64,
+        /// Samples the record would hold at most: `end_time / period`.
         samples: f64,
+        /// The simulated duration, `simulation.end_time` (s).
         end_time: f64,
+        /// The shorter of the contact and flight record periods (s).
         period: f64,
     },
     /// A contact's parameter noise names a parameter its law does not have.
     #[error("contact {contact}: parameter noise: {source}")]
     Noise {
+        /// The contact's index in the scenario (from 0).
         contact: usize,
+        /// The law's refusal of the parameter's name.
         source: hcm_core::LawError,
     },
 }

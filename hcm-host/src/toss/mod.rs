@@ -57,7 +57,12 @@ use crate::simulate::SimulationError;
 pub enum TossError {
     /// The scenario does not describe bodies tossed onto others.
     #[error("scenario `{scenario}`: {problem}")]
-    Setup { scenario: String, problem: String },
+    Setup {
+        /// The scenario's name.
+        scenario: String,
+        /// What it lacks for a toss, in words.
+        problem: String,
+    },
     /// The data lack what the prediction needs.
     #[error(transparent)]
     Data(#[from] DataError),
@@ -66,7 +71,12 @@ pub enum TossError {
     Scenario(#[from] ScenarioError),
     /// A run has no track of the tossed body.
     #[error("run `{run}` has no samples of body `{body}` (the scenario's moving body); the data's `body` column must name it")]
-    MissingBody { run: String, body: String },
+    MissingBody {
+        /// The run's id.
+        run: String,
+        /// The tossed body's name.
+        body: String,
+    },
     /// The body's centre never comes near enough to a fixed body to touch it.
     #[error(
         "run `{run}`: the centre of `{body}` never comes within {threshold} m of a fixed body \
@@ -74,21 +84,34 @@ pub enum TossError {
          leave the run out or check the fixed bodies' positions (the table height)"
     )]
     NoContact {
+        /// The run's id.
         run: String,
+        /// The tossed body's name.
         body: String,
+        /// Its circumscribed radius (m): nearer than this, the centre may touch.
         threshold: f64,
+        /// The centre's least distance to a fixed body over the run (m).
         lowest: f64,
+        /// When it was that near (s).
         lowest_time: f64,
     },
     /// A frame's pose cannot be used.
     #[error("run `{run}`, t = {time} s: {problem}")]
     Frame {
+        /// The run's id.
         run: String,
+        /// The frame's time (s).
         time: f64,
+        /// What is wrong with its pose, in words.
         problem: String,
     },
     /// The replay failed. (The simulator's error is part of the message, not a
     /// `source`, so that a chain printed with `{:#}` does not repeat it.)
     #[error("run `{run}`: the replay from the window start failed: {error}")]
-    Simulation { run: String, error: SimulationError },
+    Simulation {
+        /// The run's id.
+        run: String,
+        /// Why the simulation of the replay failed.
+        error: SimulationError,
+    },
 }

@@ -167,35 +167,64 @@ pub enum TrainError {
     NoData,
     /// Inputs and targets hold different numbers of rows.
     #[error("{inputs} input rows but {targets} target rows")]
-    RowCountMismatch { inputs: usize, targets: usize },
+    RowCountMismatch {
+        /// Input rows.
+        inputs: usize,
+        /// Target rows.
+        targets: usize,
+    },
     /// The first row has no columns.
     #[error("the {which} rows have no columns")]
-    NoColumns { which: &'static str },
+    NoColumns {
+        /// Which rows: `input` or `target`.
+        which: &'static str,
+    },
     /// A row's length differs from the first row's.
     #[error("{which} row {row} has {found} values, the first row has {expected}")]
     RaggedRow {
+        /// Which rows: `input` or `target`.
         which: &'static str,
+        /// The row's index (from 0).
         row: usize,
+        /// Values of the first row.
         expected: usize,
+        /// Values of this row.
         found: usize,
     },
     /// A NaN or infinity in the data.
     #[error("{which} row {row}, column {column} is {value}: every value must be finite")]
     NonFinite {
+        /// Which rows: `input` or `target`.
         which: &'static str,
+        /// The row's index (from 0).
         row: usize,
+        /// The column's index (from 0).
         column: usize,
+        /// The value found (NaN or ±∞).
         value: f64,
     },
     /// A setting outside its allowed range.
     #[error("bad training setting `{name}`: {reason}")]
-    BadSetting { name: &'static str, reason: String },
+    BadSetting {
+        /// The setting's name.
+        name: &'static str,
+        /// The range it must lie in, and what it was.
+        reason: String,
+    },
     /// Too few rows to hold out a validation set and still train.
     #[error("{rows} rows cannot be split into training and validation rows (validation fraction {fraction})")]
-    TooFewRows { rows: usize, fraction: f64 },
+    TooFewRows {
+        /// Rows of the data.
+        rows: usize,
+        /// Share of the rows held out for validation (–).
+        fraction: f64,
+    },
     /// The loss became NaN or infinite (learning rate too large?).
     #[error("training diverged at epoch {epoch} (non-finite loss); try a smaller learning rate")]
-    Diverged { epoch: usize },
+    Diverged {
+        /// The epoch whose loss was not finite (from 1).
+        epoch: usize,
+    },
 }
 
 /// Trains a network on (inputs, targets) rows — every input row of the same length

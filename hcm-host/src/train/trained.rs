@@ -42,12 +42,20 @@ pub struct TrainedResidual {
 pub enum TrainedError {
     /// The file cannot be read or parsed.
     #[error("{path}: {message}")]
-    File { path: String, message: String },
+    File {
+        /// The file's path.
+        path: String,
+        /// Why it could not be read or parsed.
+        message: String,
+    },
     /// Not a file of this kind or version.
     #[error("{path}: expected format `{FORMAT}` version {FILE_VERSION}, found `{format}` version {version}; write it with `hcm train`")]
     WrongFormat {
+        /// The file's path.
         path: String,
+        /// The format the file names.
         format: String,
+        /// The format version the file names.
         version: u32,
     },
 }

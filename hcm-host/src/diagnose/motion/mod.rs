@@ -71,8 +71,9 @@ pub struct CandidateResult {
 /// One round: the candidates against the model as it stood.
 #[derive(Clone, Debug, Serialize)]
 pub struct Round {
-    /// The round's model's training fitness and mean held-out score (% + °).
+    /// The round's model's training fitness (% + °).
     pub training: f64,
+    /// The round's model's mean held-out score (% + °).
     pub held_out: f64,
     /// Every candidate, in catalogue order.
     pub candidates: Vec<CandidateResult>,
@@ -85,8 +86,9 @@ pub struct Round {
 /// What the diagnosis found.
 #[derive(Clone, Debug, Serialize)]
 pub struct MotionDiagnosis {
-    /// Training and held-out tosses.
+    /// Tosses fitted on (the even toss numbers).
     pub training_tosses: usize,
+    /// Tosses judged on (the odd toss numbers).
     pub held_out_tosses: usize,
     /// The rounds, in order.
     pub rounds: Vec<Round>,
@@ -111,10 +113,16 @@ pub enum MotionDiagnoseError {
     Toss(#[from] TossError),
     /// Too few tosses to judge on.
     #[error("{found} held-out tosses (odd toss numbers); a diagnosis from motion needs at least {MIN_HELD_OUT} and as many for training")]
-    TooFewTosses { found: usize },
+    TooFewTosses {
+        /// Held-out tosses the data hold.
+        found: usize,
+    },
     /// The user's model cannot replay the tosses.
     #[error("the model's replay of the {part} tosses failed; check it with `hcm predict`")]
-    Replay { part: &'static str },
+    Replay {
+        /// Which tosses failed to replay: `training` or `held-out`.
+        part: &'static str,
+    },
 }
 
 fn mean(values: &[f64]) -> f64 {

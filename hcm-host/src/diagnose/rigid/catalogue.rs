@@ -56,17 +56,30 @@ pub enum Family {
 /// One candidate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ForceEffect {
+    /// Both friction coefficients μ_s, μ_d scaled by s (–), s ∈ [0.2, 5].
     FrictionCoefficient,
+    /// A Coulomb law: μ_s = μ_d = μ (–), μ ∈ [0.01, 1.5].
     CoulombFriction,
+    /// Viscous friction −c_v·v_t per touching point, c_v (N·s/m) ∈ [0, F̂/v̂].
     ViscousFriction,
+    /// A couple against the spin about the normal, lever arm a (m) ∈ [0, L/2].
     TorsionalResistance,
+    /// A couple against rolling, lever arm a (m) ∈ [0, L/2].
     RollingResistance,
+    /// Viscous damping c·δ̇ added to the normal law, c (N·s/m) ∈ [0, 10·F̂/δ̇̂].
     ViscousDamping,
+    /// Hysteresis damping c·δⁿ·δ̇ added to the normal law, n the law's exponent
+    /// (Hunt–Crossley's damping), c ∈ [0, 10·F̂/(δ̂ⁿ·δ̇̂)].
     HysteresisDamping,
+    /// A constant pull-off force −a while in contact, a (N) ∈ [0, F̂/2].
     Adhesion,
+    /// Permanent indentation ρ·δ_max on unloading, ρ (–) ∈ [0, 0.9].
     Plasticity,
+    /// The sensor reads g × the wrench, g (–) ∈ [0.5, 2].
     ForceGain,
+    /// The sensor reads F + b, b (N) ∈ [−F̂/10, F̂/10]³.
     ForceOffset,
+    /// The sensor reads the wrench at t − τ, τ (s) ∈ [0, 20·Δt].
     SensorDelay,
 }
 

@@ -110,8 +110,9 @@ pub struct RigidRound {
 /// What the diagnosis found.
 #[derive(Clone, Debug, Serialize)]
 pub struct RigidDiagnosis {
-    /// Runs and rows judged.
+    /// Runs judged.
     pub runs: usize,
+    /// Recorded rows of the contact judged, over every run.
     pub rows: usize,
     /// The rounds.
     pub rounds: Vec<RigidRound>,

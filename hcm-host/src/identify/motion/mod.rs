@@ -96,8 +96,11 @@ pub fn identify_motion_and_force(
 /// The GA and the polish of a fit from motion: the GA's settings, the polish's budget
 /// (replays of the training tosses) and the fold its progress is reported under.
 pub struct Search<'a> {
+    /// The genetic algorithm's settings (population, generations, seed, …).
     pub settings: &'a GeneticSettings,
+    /// Replays of the training tosses the Nelder–Mead polish of the GA's best may take.
     pub polish_budget: usize,
+    /// The fold of the two-fold split the fit's progress is reported under.
     pub fold: Fold,
 }
 

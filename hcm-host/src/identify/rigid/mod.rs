@@ -42,7 +42,12 @@ pub enum RigidIdentifyError {
     NotOneMover(String),
     /// The runs do not usually make the events asked for.
     #[error("{wanted} contact events asked for, but the runs usually make {usual}; ask for at most {usual} or check the data against the scenario")]
-    TooFewEvents { wanted: usize, usual: usize },
+    TooFewEvents {
+        /// Contact events asked for (`--events`; 1 when none were asked for).
+        wanted: usize,
+        /// The event count most runs make (0 when no run makes one).
+        usual: usize,
+    },
     /// The data do not match the scenario.
     #[error(transparent)]
     Data(#[from] IndicatorError),

@@ -79,13 +79,26 @@ pub enum LinearLeastSquaresError {
     NoUnknowns,
     /// Fewer rows (equations) than unknowns.
     #[error("{rows} rows cannot determine {unknowns} unknowns; at least as many rows as unknowns are needed")]
-    TooFewRows { rows: usize, unknowns: usize },
+    TooFewRows {
+        /// Rows (equations) given.
+        rows: usize,
+        /// Unknowns (columns) to determine.
+        unknowns: usize,
+    },
     /// A regressor or target of a row is NaN or infinite.
     #[error("row {row} has a non-finite regressor or target")]
-    NonFiniteEntry { row: usize },
+    NonFiniteEntry {
+        /// The row's index (from 0).
+        row: usize,
+    },
     /// A target index beyond the targets the problem was reduced with.
     #[error("target {target} asked of a problem with {targets} targets")]
-    NoSuchTarget { target: usize, targets: usize },
+    NoSuchTarget {
+        /// The target index asked for (from 0).
+        target: usize,
+        /// Targets the problem was reduced with.
+        targets: usize,
+    },
 }
 
 /// Solves min ‖A·x − b‖² for a tall `rows × columns` matrix given row by row: `row(i,

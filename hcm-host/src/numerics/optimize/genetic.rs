@@ -107,34 +107,53 @@ pub enum GeneticError {
         "parameter `{name}`: bounds [{lower}, {upper}] must be finite numbers with a finite width"
     )]
     NonFiniteBound {
+        /// The parameter's name.
         name: String,
+        /// Lower bound, in the parameter's own unit.
         lower: f64,
+        /// Upper bound, in the parameter's own unit.
         upper: f64,
     },
     /// The lower bound is not below the upper bound.
     #[error("parameter `{name}`: lower bound {lower} must be below upper bound {upper}")]
     EmptyInterval {
+        /// The parameter's name.
         name: String,
+        /// Lower bound, in the parameter's own unit.
         lower: f64,
+        /// Upper bound, in the parameter's own unit.
         upper: f64,
     },
     /// A log-scaled interval that does not lie in (0, ∞).
     #[error("parameter `{name}` is log-scaled, so its lower bound must be > 0 (got {lower})")]
-    NonPositiveLogBound { name: String, lower: f64 },
+    NonPositiveLogBound {
+        /// The parameter's name.
+        name: String,
+        /// Lower bound, in the parameter's own unit.
+        lower: f64,
+    },
     /// Fewer than two individuals cannot be crossed over.
     #[error("the population must have at least 2 individuals (got {0})")]
     PopulationTooSmall(usize),
     /// Another setting outside its domain.
     #[error("genetic-algorithm setting `{setting}` = {value}: {requirement}")]
     InvalidSetting {
+        /// The setting's name (`generations`, `mutation_probability`, …).
         setting: &'static str,
+        /// Its value, as given.
         value: String,
+        /// The domain it must lie in, in words.
         requirement: &'static str,
     },
     /// Every individual of the initial population failed (non-finite fitness), so
     /// selection has nothing to go on.
     #[error("the fitness is non-finite (failed) for all {population} individuals of the initial population; the box [{bounds}] may contain no workable parameters")]
-    NoFiniteFitness { population: usize, bounds: String },
+    NoFiniteFitness {
+        /// Individuals of the initial population.
+        population: usize,
+        /// The search box, one `name ∈ [lower, upper]` per parameter.
+        bounds: String,
+    },
 }
 
 /// Minimises `fitness` over the box `bounds`. `fitness` may return +inf/NaN for a failed

@@ -43,44 +43,76 @@ pub enum LeastSquaresError {
     NoUnknowns,
     /// Fewer rows (equations, residuals) than unknowns.
     #[error("{rows} rows cannot determine {unknowns} unknowns; at least as many rows as unknowns are needed")]
-    TooFewRows { rows: usize, unknowns: usize },
+    TooFewRows {
+        /// Rows (residuals) of the problem.
+        rows: usize,
+        /// Unknowns (parameters) to determine.
+        unknowns: usize,
+    },
     /// A linear least-squares solve failed.
     #[error(transparent)]
     Linear(#[from] LinearLeastSquaresError),
     /// A per-parameter slice has the wrong length.
     #[error("{what} has {found} entries but there are {expected} parameters")]
     LengthMismatch {
+        /// Which slice: `scales` or `bounds`.
         what: &'static str,
+        /// Parameters of the problem.
         expected: usize,
+        /// Entries of the slice.
         found: usize,
     },
     /// A starting value is NaN or infinite.
     #[error("parameter {index}: the initial value {value} is not finite")]
-    NonFiniteInitial { index: usize, value: f64 },
+    NonFiniteInitial {
+        /// The parameter's index (from 0).
+        index: usize,
+        /// The starting value given.
+        value: f64,
+    },
     /// A parameter scale is not a finite positive number.
     #[error("parameter {index}: the scale {scale} must be finite and positive")]
-    InvalidScale { index: usize, scale: f64 },
+    InvalidScale {
+        /// The parameter's index (from 0).
+        index: usize,
+        /// The scale given, in the parameter's own unit.
+        scale: f64,
+    },
     /// A parameter's bounds are NaN or the lower one exceeds the upper one.
     #[error("parameter {index}: the bounds [{lower}, {upper}] are not an interval")]
     InvalidBounds {
+        /// The parameter's index (from 0).
         index: usize,
+        /// Lower bound, in the parameter's own unit.
         lower: f64,
+        /// Upper bound, in the parameter's own unit.
         upper: f64,
     },
     /// A solver setting is outside its domain.
     #[error("setting `{name}` = {value} is out of range: {expected}")]
     InvalidSetting {
+        /// The setting's name.
         name: &'static str,
+        /// Its value, as given.
         value: f64,
+        /// The domain it must lie in, in words.
         expected: &'static str,
     },
     /// The residuals are not all finite at the starting point.
     #[error("residual {index} is not finite at the initial parameters")]
-    NonFiniteInitialResidual { index: usize },
+    NonFiniteInitialResidual {
+        /// The residual's index (from 0).
+        index: usize,
+    },
     /// Neither a forward nor a backward difference of the residuals with respect to a
     /// parameter is finite.
     #[error("the residuals' derivative with respect to parameter {parameter} is not finite on either side of {value}")]
-    NonFiniteJacobian { parameter: usize, value: f64 },
+    NonFiniteJacobian {
+        /// The parameter's index (from 0).
+        parameter: usize,
+        /// The parameter's value the derivative was taken at.
+        value: f64,
+    },
 }
 
 /// Minimises a scalar function on [lower, upper]: a grid of `grid` points (at least 3),

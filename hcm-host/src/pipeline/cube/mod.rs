@@ -100,8 +100,11 @@ pub enum CubeError {
     /// Too few tosses for one part of the split.
     #[error("{data}: the split by toss number left {training} training and {held_out} held-out runs; both need at least 3 (even and odd toss numbers)")]
     Split {
+        /// The data file's path.
         data: String,
+        /// Training tosses (even toss numbers).
         training: usize,
+        /// Held-out tosses (odd toss numbers).
         held_out: usize,
     },
 }
