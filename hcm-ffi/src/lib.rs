@@ -38,6 +38,8 @@
 //! plain data, `HcmResidual`, carries a marker that only a successful decode writes.
 //! Each `unsafe` block states the invariant it relies on.
 
+#![warn(missing_docs)]
+
 // `catch_unwind` needs unwinding: with `panic = "abort"` a panic would abort the
 // controller's process instead of returning `HCM_STATUS_PANIC`.
 #[cfg(panic = "abort")]

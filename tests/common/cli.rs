@@ -84,6 +84,7 @@ impl Default for Hcm {
 }
 
 impl Hcm {
+    /// A fresh, empty temporary directory to run `hcm` in.
     pub fn new() -> Self {
         Hcm {
             dir: tempfile::tempdir().expect("a temporary directory"),

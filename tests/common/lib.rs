@@ -5,6 +5,8 @@
 //! This is the library of the root package `hcm-tests`, so that Cargo finds every file in
 //! `tests/` and `benches/` by itself; `tests/common/` holds no tests of its own.
 
+#![warn(missing_docs)]
+
 pub mod cli;
 pub mod hidden;
 pub mod reference;

@@ -15,6 +15,7 @@ pub const BALL_MASS: f64 = 0.06693;
 /// Impact speed after a 0.1 m drop (m/s).
 pub const IMPACT_SPEED: f64 = 1.4007;
 
+/// The ball's steel: Young's modulus E = 206 GPa, Poisson's ratio ν = 0.3.
 pub fn steel<T: Real>() -> Material<T> {
     Material {
         youngs_modulus: T::of(2.06e11),
@@ -22,6 +23,7 @@ pub fn steel<T: Real>() -> Material<T> {
     }
 }
 
+/// The ground's concrete: Young's modulus E = 25.193 GPa, Poisson's ratio ν = 0.25.
 pub fn concrete<T: Real>() -> Material<T> {
     Material {
         youngs_modulus: T::of(2.5193e10),
@@ -34,6 +36,7 @@ pub fn hertz_stiffness<T: Real>() -> T {
     sphere_plane::hertz_stiffness(&steel(), &concrete(), T::of(BALL_RADIUS))
 }
 
+/// Hertz's law (Eq 2) for the ball on the ground: the Eq 3 stiffness, exponent 1.5.
 pub fn hertz<T: Real>() -> Hertz<T> {
     Hertz {
         stiffness: hertz_stiffness(),
@@ -61,6 +64,8 @@ pub fn variable_stiffness<T: Real>() -> VariableStiffness<T> {
     }
 }
 
+/// The IMPACT law (Eq 8–9) for the ball: k = 6.86·10⁹ N/m^1.5, e = 1.5, damping
+/// rising to d_max = 100 N·s/m at δ_max = 10 µm.
 pub fn impact<T: Real>() -> Impact<T> {
     Impact {
         stiffness: T::of(6.86e9),
@@ -70,6 +75,7 @@ pub fn impact<T: Real>() -> Impact<T> {
     }
 }
 
+/// Hunt–Crossley's law for the ball: k = 6.86·10⁹ N/m^1.5, n = 1.5, χ = 0.07 s/m.
 pub fn hunt_crossley<T: Real>() -> HuntCrossley<T> {
     HuntCrossley {
         stiffness: T::of(6.86e9),
@@ -78,6 +84,7 @@ pub fn hunt_crossley<T: Real>() -> HuntCrossley<T> {
     }
 }
 
+/// Flores' law for the ball: k = 6.86·10⁹ N/m^1.5, n = 1.5, restitution ce = 0.93.
 pub fn flores<T: Real>() -> Flores<T> {
     Flores {
         stiffness: T::of(6.86e9),

@@ -86,14 +86,19 @@ pub enum Motion {
     /// A camera at `frame_rate` (Hz) with position noise σ_z (m), cubic-splined through
     /// its frames onto the force rows (vz the spline's slope): full rows, readable today.
     CameraSplined {
+        /// The camera's frame rate (Hz).
         frame_rate: f64,
+        /// σ_z of the white Gaussian noise on each frame's position (m).
         position_noise: f64,
     },
     /// A camera's frames as rows of their own, force cells empty, and force rows with
     /// empty motion cells; vz at the frames with noise σ_v (m/s), or empty if None.
     Camera {
+        /// The camera's frame rate (Hz).
         frame_rate: f64,
+        /// σ_z of the white Gaussian noise on each frame's position (m).
         position_noise: f64,
+        /// σ_v of the white Gaussian noise on each frame's vz (m/s); None: vz empty.
         velocity_noise: Option<f64>,
     },
 }
@@ -134,21 +139,26 @@ pub struct Rig {
 pub struct RunTruth {
     /// Run identifier as written.
     pub id: String,
-    /// Touch-down and lift-off times, at δ = 0 (s).
+    /// Touch-down time, at δ = 0 (s).
     pub touch_down: f64,
+    /// Lift-off time, at δ = 0 (s).
     pub lift_off: f64,
-    /// Impact speed δ̇0 and separation speed −δ̇ at lift-off (m/s).
+    /// Impact speed δ̇0 (m/s).
     pub impact_speed: f64,
+    /// Separation speed −δ̇ at lift-off (m/s).
     pub separation_speed: f64,
-    /// Deepest indentation δ_max (m) and largest contact force (N), before the sensor.
+    /// Deepest indentation δ_max (m).
     pub max_depth: f64,
+    /// Largest contact force (N), before the sensor.
     pub peak_force: f64,
 }
 
 /// A recording: the CSV text in the measured-data format and the truth of each run.
 #[derive(Clone, Debug)]
 pub struct Recording {
+    /// The measured data, as a CSV file holds them.
     pub csv: String,
+    /// The truth of each run, in the CSV's run order.
     pub runs: Vec<RunTruth>,
 }
 
@@ -472,13 +482,17 @@ impl Rig {
 pub struct Contact {
     /// Node spacing (s).
     pub step: f64,
-    /// δ (m), δ̇ (m/s), δ̈ (m/s²) and f (N) at the nodes.
+    /// Indentation δ (m) at the nodes.
     pub depth: Vec<f64>,
+    /// Indentation rate δ̇ (m/s) at the nodes.
     pub rate: Vec<f64>,
+    /// Indentation acceleration δ̈ (m/s²) at the nodes.
     pub accel: Vec<f64>,
+    /// Contact force f (N) at the nodes.
     pub force: Vec<f64>,
-    /// Lift-off time after touch-down (s) and −δ̇ there (m/s).
+    /// Lift-off time after touch-down (s).
     pub lift_off: f64,
+    /// Separation speed −δ̇ at lift-off (m/s).
     pub separation_speed: f64,
 }
 
