@@ -986,3 +986,28 @@ fn a_toss_of_one_frame_is_refused_not_scored() {
         ],
     );
 }
+
+#[test]
+fn a_relative_tolerance_of_one_or_more_is_refused() {
+    let hcm = Hcm::new();
+    let out = hcm.path("trajectory.csv");
+    let text = std::fs::read_to_string(scenario("bouncing_ball.toml")).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("relative_tolerance"))
+        .unwrap();
+    let path = edited_ball(&hcm, "loose.toml", line, "relative_tolerance = 1.0");
+    let call = hcm
+        .run("simulate")
+        .opt("--scenario", &path)
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, call),
+        &[
+            "loose.toml",
+            "simulation.relative_tolerance",
+            "below 1",
+            "found 1",
+        ],
+    );
+}

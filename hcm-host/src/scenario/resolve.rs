@@ -335,6 +335,15 @@ impl Scenario {
                 ));
             }
         }
+        if s.relative_tolerance >= 1.0 {
+            return Err((
+                "simulation.relative_tolerance".into(),
+                format!(
+                    "is a fraction of the state, below 1 (e.g. 1e-8), found {}",
+                    s.relative_tolerance
+                ),
+            ));
+        }
         if !(r.contact_margin >= 0.0 && r.contact_margin.is_finite()) {
             return Err((
                 "record.contact_margin".into(),
