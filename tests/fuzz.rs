@@ -73,7 +73,8 @@ use std::time::{Duration, Instant};
 const DEFAULT_CASES: u64 = 20_000;
 /// The seed without `HCM_FUZZ_SEED`.
 const SEED: u64 = 0x4843_4d5f_4655_5a5a;
-/// The longest an error message may be (bytes).
+/// The longest an error message may be (bytes), whatever the input: messages quote at
+/// most a short excerpt of it (`hcm_host::input`), never a whole line or name.
 const MESSAGE_LIMIT: usize = 2_000;
 /// A case running longer than this is a hang.
 const HANG_LIMIT: Duration = Duration::from_secs(20);
@@ -203,41 +204,17 @@ fn judge<T: Target>(target: &T, case: &Case, scratch: &Path) -> Verdict {
         Ok(Outcome::Refused { stage, message }) => {
             if message.trim().is_empty() {
                 Verdict::BadMessage(format!("empty message at {stage}: {message:?}"))
-            } else if message.len() > message_limit(&case.bytes) {
+            } else if message.len() > MESSAGE_LIMIT {
                 Verdict::BadMessage(format!(
                     "message of {} bytes at {stage}: {}",
                     message.len(),
                     escaped(message.as_bytes(), 400)
                 ))
-            } else if message.len() > MESSAGE_LIMIT {
-                Verdict::Refused(LONG_QUOTE)
             } else {
                 Verdict::Refused(stage)
             }
         }
     }
-}
-
-/// The stage reported for a refusal whose message is longer than [`MESSAGE_LIMIT`] only
-/// because it quotes a long line of the input.
-const LONG_QUOTE: &str = "any stage, quoting a long input line (> MESSAGE_LIMIT bytes)";
-
-/// The longest message allowed for `input`: [`MESSAGE_LIMIT`], plus (unless
-/// `HCM_FUZZ_STRICT_MESSAGES` is set) three times its longest line — the TOML parser's
-/// messages quote the whole line they point into, `--set` errors the whole assignment
-/// and resolution errors a whole name. A message never quotes more than that (never
-/// the whole input).
-fn message_limit(input: &[u8]) -> usize {
-    static STRICT: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    if *STRICT.get_or_init(|| std::env::var_os("HCM_FUZZ_STRICT_MESSAGES").is_some()) {
-        return MESSAGE_LIMIT;
-    }
-    let longest = lines(input)
-        .iter()
-        .map(|line| line.len())
-        .max()
-        .unwrap_or(0);
-    MESSAGE_LIMIT + 3 * longest
 }
 
 /// A panic payload's text.

@@ -70,6 +70,13 @@ pub fn shorten(message: &str) -> String {
     cut(message, 4 * EXCERPT)
 }
 
+/// `message` cut to at most [`EXCERPT`] × 16 characters: for a parser's message that
+/// quotes a few lines of the input under its own caret (TOML's), which [`shorten`]
+/// would cut before the reason.
+pub fn bounded(message: &str) -> String {
+    cut(message, 16 * EXCERPT)
+}
+
 /// A TOML error in `text` as a message: TOML's own (the line, a caret under the
 /// span, the reason) when the line is short, otherwise the line and column with at
 /// most [`EXCERPT`] characters of the line around the error.
@@ -81,8 +88,10 @@ pub fn toml_error(text: &str, error: &toml::de::Error) -> String {
     let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
     let line = &text[line_start..line_end];
-    if line.chars().count() <= 4 * EXCERPT && error.message().len() <= 4 * EXCERPT {
-        return error.to_string();
+    let own = error.to_string();
+    // TOML's own message quotes the line (or lines) of the span: kept while short.
+    if line.chars().count() <= 4 * EXCERPT && own.len() <= 8 * EXCERPT {
+        return own;
     }
     let number = 1 + text[..line_start].matches('\n').count();
     let column = 1 + text[line_start..start].chars().count();

@@ -66,6 +66,13 @@ impl Stroke {
     /// Width of the curves by default (px).
     pub(super) const WIDTH: f64 = 2.0;
 
+    /// A measured mean's stroke: thick dots (3 px), drawn last over the models' lines,
+    /// so that no model hides it and it reads apart from them in greyscale.
+    pub const MEASURED: Stroke = Stroke {
+        width: 3.0,
+        dash: Dash::Dotted,
+    };
+
     /// A line `Stroke::WIDTH` (2 px) wide with the dashes `dash`.
     pub const fn dashed(dash: Dash) -> Stroke {
         Stroke {

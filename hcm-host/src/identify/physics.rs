@@ -98,7 +98,7 @@ pub struct Physics {
 #[derive(Debug, thiserror::Error)]
 pub enum PhysicsError {
     /// Unreadable or malformed file.
-    #[error("physics file {path}: {message}")]
+    #[error("physics file {path}: {}", input::bounded(message))]
     File {
         /// The physics file's path.
         path: String,
@@ -106,7 +106,7 @@ pub enum PhysicsError {
         message: String,
     },
     /// A contact pair the scenario does not have.
-    #[error("physics file {path}: the scenario has no contact between `{}` and `{}`", bodies[0], bodies[1])]
+    #[error("physics file {path}: the scenario has no contact between `{}` and `{}`", input::excerpt(&bodies[0]), input::excerpt(&bodies[1]))]
     UnknownContact {
         /// The physics file's path.
         path: String,
@@ -115,7 +115,11 @@ pub enum PhysicsError {
     },
     /// A key of the physics file (`contact.0.law`, `contact.0.parameters.restitution`)
     /// holds what its law or the scenario cannot take.
-    #[error("physics file {path}: {key}: {message}")]
+    #[error(
+        "physics file {path}: {}: {}",
+        input::shorten(key),
+        input::shorten(message)
+    )]
     Key {
         /// The physics file's path.
         path: String,

@@ -5,7 +5,7 @@ use super::{PipelineError, Progress, Stage, CONTACT};
 use crate::dataset::Dataset;
 use crate::evaluate::{evaluate, ConditionTable};
 use crate::export::Blobs;
-use crate::figure::{Band, Colour, Figure, NamedFigure, Series};
+use crate::figure::{Band, Colour, Figure, NamedFigure, Series, Stroke};
 use crate::identify::replay::{curve, simulate_target_with, targets, Target};
 use crate::progress::in_stage;
 use crate::scenario::Model;
@@ -81,12 +81,14 @@ fn figures(target: &Target, pm2: &Model, hcm: &Model, validation: &Dataset) -> V
         "Contact force over the contact (S2)",
         "time since touch-down (µs)",
         "normal force (N)",
+        // The measured mean last and dotted: over the models' lines, never under them.
         vec![
-            series("S2 mean", 0x333333, points(&target.curve)),
             series("PM2", 0xd62728, points(&pm2_curve)),
             series("HCM", 0x1f77b4, points(&hcm_curve)),
+            series("S2 mean", 0x000000, points(&target.curve)),
         ],
     )
+    .with_stroke("S2 mean", Stroke::MEASURED)
     .with_peak_inset();
     let standard_error = mean_standard_error(pm2, validation, target);
     let band = Band {

@@ -354,7 +354,7 @@ fn default_holdout_fraction() -> f64 {
 pub enum ScenarioError {
     /// The file could not be read, is not text or not TOML, or a key has the wrong
     /// type or is missing.
-    #[error("scenario {}: {message}", path.display())]
+    #[error("scenario {}: {}", path.display(), input::bounded(message))]
     Syntax {
         /// The scenario file's path.
         path: PathBuf,
@@ -362,7 +362,7 @@ pub enum ScenarioError {
         message: String,
     },
     /// A `--set` override could not be applied.
-    #[error("--set {assignment}: {message}")]
+    #[error("--set {}: {}", input::shorten(assignment), input::shorten(message))]
     Override {
         /// The override as given (`key=value`).
         assignment: String,
@@ -370,7 +370,7 @@ pub enum ScenarioError {
         message: String,
     },
     /// The scenario parses but does not describe a simulable setup.
-    #[error("scenario {}: {field}: {message}", path.display())]
+    #[error("scenario {}: {}: {}", path.display(), input::shorten(field), input::shorten(message))]
     Invalid {
         /// The scenario file's path.
         path: PathBuf,

@@ -7,7 +7,7 @@
 
 use super::curves::WrenchCurve;
 use crate::figure::events::{event_figure, EventSpan, Quantity};
-use crate::figure::{Colour, Dash, Figure, Series, Stroke};
+use crate::figure::{Colour, Figure, Series, Stroke};
 use crate::identify::rigid::EventTarget;
 use crate::pipeline::NamedFigure;
 
@@ -15,13 +15,7 @@ use crate::pipeline::NamedFigure;
 const COLOURS: [u32; 4] = [0x000000, 0xd62728, 0x1f77b4, 0x2ca02c];
 
 /// The S2 mean's label and stroke: thick dots, drawn over the models' lines.
-const MEAN: (&str, Stroke) = (
-    "S2 mean",
-    Stroke {
-        width: 3.0,
-        dash: Dash::Dotted,
-    },
-);
+const MEAN: (&str, Stroke) = ("S2 mean", Stroke::MEASURED);
 
 /// The x axis of every figure over time.
 const T_LABEL: &str = "time since the first wall contact (ms)";
