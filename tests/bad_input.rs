@@ -38,11 +38,7 @@ fn says(message: &str, parts: &[&str]) {
 /// The bouncing-ball scenario with `from` replaced by `to`, written to the fixture's
 /// directory as `name`.
 fn edited_ball(hcm: &Hcm, name: &str, from: &str, to: &str) -> PathBuf {
-    let text = std::fs::read_to_string(scenario("bouncing_ball.toml")).unwrap();
-    assert!(text.contains(from), "{from}");
-    let path = hcm.path(name);
-    std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
-    path
+    edited(hcm, "bouncing_ball.toml", name, from, to)
 }
 
 #[test]

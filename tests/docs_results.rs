@@ -31,24 +31,7 @@ fn root() -> &'static Path {
 
 /// `README.md` and every `.md` file under `docs/`, sorted, as paths from the root.
 fn pages() -> Vec<PathBuf> {
-    fn under(directory: &Path, found: &mut Vec<PathBuf>) {
-        let mut entries: Vec<PathBuf> = std::fs::read_dir(directory)
-            .unwrap()
-            .map(|entry| entry.unwrap().path())
-            .collect();
-        entries.sort();
-        for path in entries {
-            if path.is_dir() {
-                under(&path, found);
-            } else if path.extension().is_some_and(|e| e == "md") {
-                found.push(path);
-            }
-        }
-    }
-    let mut found = vec![root().join("README.md")];
-    under(&root().join("docs"), &mut found);
-    let relative = |path: PathBuf| path.strip_prefix(root()).unwrap().to_path_buf();
-    found.into_iter().map(relative).collect()
+    hcm_tests::sources::markdown_pages(root())
 }
 
 /// The results pages: the pages under `docs/results/`, each with its `results.json`.

@@ -149,32 +149,6 @@ fn copy_files(from: &Path, to: &Path) {
     }
 }
 
-/// The Markdown pages whose commands run: `README.md`, then every `.md` file under
-/// `docs/` (in sorted order, subdirectories included), each with its path relative to
-/// `root`.
-fn pages(root: &Path) -> Vec<PathBuf> {
-    fn under(directory: &Path, found: &mut Vec<PathBuf>) {
-        let mut entries: Vec<PathBuf> = std::fs::read_dir(directory)
-            .unwrap()
-            .map(|entry| entry.unwrap().path())
-            .collect();
-        entries.sort();
-        for path in entries {
-            if path.is_dir() {
-                under(&path, found);
-            } else if path.extension().is_some_and(|e| e == "md") {
-                found.push(path);
-            }
-        }
-    }
-    let mut found = vec![root.join("README.md")];
-    under(&root.join("docs"), &mut found);
-    found
-        .into_iter()
-        .map(|path| path.strip_prefix(root).unwrap().to_path_buf())
-        .collect()
-}
-
 /// Runs the hcm commands of one `sh` block of `page` in a fresh directory; how many ran.
 fn run_block(root: &Path, page: &Path, block: &[Line]) -> usize {
     let hcm = Hcm::new();
@@ -214,7 +188,7 @@ fn run_block(root: &Path, page: &Path, block: &[Line]) -> usize {
 fn every_command_of_the_readme_and_the_docs_runs() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let (mut blocks, mut ran) = (0, 0);
-    for page in pages(root) {
+    for page in hcm_tests::sources::markdown_pages(root) {
         let text = std::fs::read_to_string(root.join(&page)).unwrap();
         for block in sh_blocks(&text) {
             ran += run_block(root, &page, &block);
@@ -229,7 +203,7 @@ fn every_command_of_the_readme_and_the_docs_runs() {
 #[test]
 fn the_pages_are_the_readme_and_the_docs() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let pages = pages(root);
+    let pages = hcm_tests::sources::markdown_pages(root);
     assert_eq!(pages[0], Path::new("README.md"));
     assert!(
         pages.contains(&PathBuf::from("docs/README.md")),
