@@ -984,7 +984,7 @@ fn a_toss_of_one_frame_is_refused_not_scored() {
 }
 
 #[test]
-fn a_relative_tolerance_of_one_or_more_is_refused() {
+fn a_relative_tolerance_of_one_or_a_weight_past_a_float_is_refused() {
     let hcm = Hcm::new();
     let out = hcm.path("trajectory.csv");
     let text = std::fs::read_to_string(scenario("bouncing_ball.toml")).unwrap();
@@ -1004,6 +1004,25 @@ fn a_relative_tolerance_of_one_or_more_is_refused() {
             "simulation.relative_tolerance",
             "below 1",
             "found 1",
+        ],
+    );
+    let heavy = edited(
+        &hcm,
+        "cube_toss.toml",
+        "heavy.toml",
+        "mass = 0.37",
+        "mass = 1e308",
+    );
+    let call = hcm
+        .run("simulate")
+        .opt("--scenario", &heavy)
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, call),
+        &[
+            "heavy.toml",
+            "body `cube` (#0) mass",
+            "1e308 kg weighs more than a float holds",
         ],
     );
 }

@@ -354,6 +354,19 @@ impl Scenario {
         if !self.gravity.iter().all(|g| g.is_finite()) {
             return Err(("gravity".into(), "must be finite".into()));
         }
+        // A mass whose weight overflows makes every force of the run infinite.
+        let g = self.gravity.iter().map(|g| g * g).sum::<f64>().sqrt();
+        for (k, body) in self.bodies.iter().enumerate() {
+            match body.mass {
+                Some(m) if !body.fixed && m.is_finite() && !(m * g).is_finite() => {
+                    return Err((
+                        format!("body `{}` (#{k}) mass", body.name),
+                        format!("{m:e} kg weighs more than a float holds under gravity {g} m/s²: give it in kg"),
+                    ))
+                }
+                _ => {}
+            }
+        }
         Ok(())
     }
 
