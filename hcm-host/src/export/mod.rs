@@ -107,7 +107,7 @@ impl ExportModel {
         {
             length(
                 format!("layer {index} weights"),
-                inputs * outputs,
+                inputs.saturating_mul(outputs),
                 weights.len(),
             )?;
             length(format!("layer {index} bias"), outputs, bias.len())?;
