@@ -1026,3 +1026,49 @@ fn a_relative_tolerance_of_one_or_a_weight_past_a_float_is_refused() {
         ],
     );
 }
+
+#[test]
+fn a_run_or_body_name_past_200_characters_is_refused_with_an_excerpt() {
+    let hcm = Hcm::new();
+    let header = "run,body,time,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,fx,fy,fz,tx,ty,tz";
+    let long = "x".repeat(1_000);
+    let data = hcm.path("long_names.csv");
+    let row = format!("toss_{long},cube,0.0,0,0,0.1,1,0,0,0,0,0,0,0,0,0,,,,,,");
+    std::fs::write(&data, format!("{header}\n{row}\n")).unwrap();
+    let out = hcm.path("predicted.csv");
+    let call = hcm
+        .run("predict")
+        .opt("--scenario", scenario("cube_toss.toml"))
+        .opt("--data", &data)
+        .opt("--out", &out);
+    let stderr = refused(&hcm, &out, call);
+    says(
+        &stderr,
+        &[
+            "long_names.csv, line 2, column `run`",
+            "at most 200 characters, found 1005",
+        ],
+    );
+    assert!(stderr.len() < 600, "{} bytes:\n{stderr}", stderr.len());
+    let named = edited(
+        &hcm,
+        "cube_toss.toml",
+        "named.toml",
+        "name = \"cube\"",
+        &format!("name = \"{long}\""),
+    );
+    let call = hcm
+        .run("simulate")
+        .opt("--scenario", &named)
+        .opt("--out", &out);
+    let stderr = refused(&hcm, &out, call);
+    says(
+        &stderr,
+        &[
+            "named.toml",
+            "body #0 name",
+            "must be 1 to 200 characters, found 1000",
+        ],
+    );
+    assert!(stderr.len() < 600, "{} bytes:\n{stderr}", stderr.len());
+}

@@ -481,7 +481,11 @@ fn partial<'a>(
     .in_column(first.name)
 }
 
-/// A non-empty text cell.
+/// The longest run identifier or body name (characters): names are quoted in
+/// messages, and a name longer than this is a misread file, not a name.
+const NAME_LIMIT: usize = 200;
+
+/// A non-empty text cell of at most [`NAME_LIMIT`] characters.
 fn text<'a>(
     source: &str,
     line: u64,
@@ -495,6 +499,19 @@ fn text<'a>(
                 .at_line(line)
                 .in_column(column.name),
         );
+    }
+    if cell.chars().count() > NAME_LIMIT {
+        return Err(DataError::new(
+            source,
+            format!(
+                "expected {expected} of at most {NAME_LIMIT} characters, found {} \
+                 starting `{}`",
+                cell.chars().count(),
+                crate::input::excerpt(cell)
+            ),
+        )
+        .at_line(line)
+        .in_column(column.name));
     }
     Ok(cell)
 }

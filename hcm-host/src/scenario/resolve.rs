@@ -199,6 +199,17 @@ impl Scenario {
     fn resolve_body(&self, i: usize, invalid: &Invalid<'_>) -> Result<Body, ScenarioError> {
         let spec = &self.bodies[i];
         let field = |key: &str| format!("body `{}` (#{i}) {key}", spec.name);
+        // Names are quoted in every message about the body, and match the data's
+        // `body` column, whose cells are at most 200 characters.
+        if spec.name.is_empty() || spec.name.chars().count() > 200 {
+            return Err(invalid.error(
+                format!("body #{i} name"),
+                format!(
+                    "must be 1 to 200 characters, found {}",
+                    spec.name.chars().count()
+                ),
+            ));
+        }
         if self.bodies[..i].iter().any(|b| b.name == spec.name) {
             return Err(invalid.error(
                 field("name"),

@@ -49,7 +49,7 @@ pub enum TrainedError {
         message: String,
     },
     /// Not a file of this kind or version.
-    #[error("{path}: expected format `{FORMAT}` version {FILE_VERSION}, found `{format}` version {version}; write it with `hcm train`")]
+    #[error("{path}: expected format `{FORMAT}` version {FILE_VERSION}, found `{}` version {version}; write it with `hcm train`", input::excerpt(format))]
     WrongFormat {
         /// The file's path.
         path: String,
