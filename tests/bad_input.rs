@@ -28,6 +28,17 @@ fn refused(hcm: &Hcm, out: &Path, call: hcm_tests::cli::Call) -> String {
     stderr
 }
 
+/// `hcm simulate --scenario scenario --out out`.
+fn simulate(
+    hcm: &Hcm,
+    scenario: impl AsRef<std::ffi::OsStr>,
+    out: impl AsRef<std::ffi::OsStr>,
+) -> hcm_tests::cli::Call {
+    hcm.run("simulate")
+        .opt("--scenario", scenario)
+        .opt("--out", out)
+}
+
 /// Asserts that `message` contains every one of `parts`.
 fn says(message: &str, parts: &[&str]) {
     for part in parts {
@@ -77,13 +88,7 @@ fn an_impossible_material_is_refused_by_key_with_its_allowed_range() {
     ];
     for (i, (from, to, key, expected, found)) in cases.into_iter().enumerate() {
         let path = edited_ball(&hcm, &format!("ball{i}.toml"), from, to);
-        let stderr = refused(
-            &hcm,
-            &out,
-            hcm.run("simulate")
-                .opt("--scenario", &path)
-                .opt("--out", &out),
-        );
+        let stderr = refused(&hcm, &out, simulate(&hcm, &path, &out));
         says(&stderr, &[&format!("ball{i}.toml"), key, expected, found]);
     }
     // Also through --set: the same check, whatever set the value.
@@ -807,13 +812,7 @@ fn every_vector_of_the_wrong_length_is_refused_at_its_line() {
     ];
     for (shipped, from, to, line, what) in cases {
         let path = edited(&hcm, shipped, "edited.toml", from, to);
-        let stderr = refused(
-            &hcm,
-            &out,
-            hcm.run("simulate")
-                .opt("--scenario", &path)
-                .opt("--out", &out),
-        );
+        let stderr = refused(&hcm, &out, simulate(&hcm, &path, &out));
         says(&stderr, &["edited.toml", line, what]);
     }
 }
@@ -822,18 +821,14 @@ fn every_vector_of_the_wrong_length_is_refused_at_its_line() {
 fn a_huge_binary_or_cut_file_is_refused_from_its_size_or_its_first_bad_byte() {
     let hcm = Hcm::new();
     let out = hcm.path("out.csv");
-    let simulate = |path: &Path| {
-        hcm.run("simulate")
-            .opt("--scenario", path)
-            .opt("--out", &out)
-    };
+
     // A gigabyte (sparse: no disk is written) is refused from its size, unread.
     let huge = hcm.path("huge.toml");
     std::fs::File::create(&huge)
         .unwrap()
         .set_len(1 << 30)
         .unwrap();
-    let stderr = refused(&hcm, &out, simulate(&huge));
+    let stderr = refused(&hcm, &out, simulate(&hcm, &huge, &out));
     says(
         &stderr,
         &["huge.toml", "is 1.1 GB", "a scenario is at most 16.8 MB"],
@@ -847,14 +842,14 @@ fn a_huge_binary_or_cut_file_is_refused_from_its_size_or_its_first_bad_byte() {
         "[[body]]\0",
     );
     says(
-        &refused(&hcm, &out, simulate(&nul)),
+        &refused(&hcm, &out, simulate(&hcm, &nul, &out)),
         &["nul.toml", "a NUL byte", "binary"],
     );
     // A line of 200 kB: the message quotes an excerpt, not the line.
     let long = format!("name = \"{}\n", "x".repeat(200_000));
     let long_toml = hcm.path("long.toml");
     std::fs::write(&long_toml, long).unwrap();
-    let stderr = refused(&hcm, &out, simulate(&long_toml));
+    let stderr = refused(&hcm, &out, simulate(&hcm, &long_toml, &out));
     says(
         &stderr,
         &["long.toml", "line 1, column 200009", "near `xxx"],
@@ -913,10 +908,7 @@ fn an_existing_output_of_the_other_kind_is_refused_before_any_work() {
     std::fs::create_dir(&folder).unwrap();
     let out = hcm.path("trajectory.csv");
     // A directory option given a file: refused before the trajectory is written.
-    let call = hcm
-        .run("simulate")
-        .opt("--scenario", &cube)
-        .opt("--out", &out);
+    let call = simulate(&hcm, &cube, &out);
     let stderr = refused(&hcm, &out, call.opt("--figures", &file));
     says(
         &stderr,
@@ -934,11 +926,7 @@ fn an_existing_output_of_the_other_kind_is_refused_before_any_work() {
         &["--out", "taken.svg: is a file", "names a directory"],
     );
     // A file option given a directory.
-    let stderr = hcm
-        .run("simulate")
-        .opt("--scenario", &cube)
-        .opt("--out", &folder)
-        .fails();
+    let stderr = simulate(&hcm, &cube, &folder).fails();
     says(
         &stderr,
         &["--out", "folder: is a directory", "names a file"],
@@ -993,10 +981,7 @@ fn a_relative_tolerance_of_one_or_a_weight_past_a_float_is_refused() {
         .find(|l| l.trim_start().starts_with("relative_tolerance"))
         .unwrap();
     let path = edited_ball(&hcm, "loose.toml", line, "relative_tolerance = 1.0");
-    let call = hcm
-        .run("simulate")
-        .opt("--scenario", &path)
-        .opt("--out", &out);
+    let call = simulate(&hcm, &path, &out);
     says(
         &refused(&hcm, &out, call),
         &[
@@ -1013,10 +998,7 @@ fn a_relative_tolerance_of_one_or_a_weight_past_a_float_is_refused() {
         "mass = 0.37",
         "mass = 1e308",
     );
-    let call = hcm
-        .run("simulate")
-        .opt("--scenario", &heavy)
-        .opt("--out", &out);
+    let call = simulate(&hcm, &heavy, &out);
     says(
         &refused(&hcm, &out, call),
         &[
@@ -1057,10 +1039,7 @@ fn a_run_or_body_name_past_200_characters_is_refused_with_an_excerpt() {
         "name = \"cube\"",
         &format!("name = \"{long}\""),
     );
-    let call = hcm
-        .run("simulate")
-        .opt("--scenario", &named)
-        .opt("--out", &out);
+    let call = simulate(&hcm, &named, &out);
     let stderr = refused(&hcm, &out, call);
     says(
         &stderr,

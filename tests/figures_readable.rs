@@ -7,7 +7,7 @@
 
 use hcm_host::figure::events::{event_figure, EventSpan, Quantity};
 use hcm_host::figure::rigid_run::rigid_figures;
-use hcm_host::figure::{Colour, Dash, Figure, Series, Stroke};
+use hcm_host::figure::{Colour, Figure, Series, Stroke};
 use hcm_host::simulate::simulate;
 
 /// A panel read from the SVG: its x range (data units) and its polylines' (stroke
@@ -99,10 +99,7 @@ fn every_curve_of_a_figure_has_its_own_dashes_and_a_chosen_stroke_is_kept() {
     let dashes: Vec<&str> = found[0].1.iter().map(|c| c.1.as_str()).collect();
     assert_eq!(dashes, ["solid", "dashed", "dotted", "dash-dot"]);
     // A measured mean given thick dots, last, keeps them; the others stay distinct.
-    let mean = Stroke {
-        width: 3.0,
-        dash: Dash::Dotted,
-    };
+    let mean = Stroke::MEASURED;
     let figure = Figure::new(
         "t",
         "x (s)",

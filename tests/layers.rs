@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 /// The layers, bottom first; a module may use any module of a lower layer and none of
 /// its own or a higher one. Kept in step with the map in `hcm-host/src/lib.rs`.
 const LAYERS: &[&[&str]] = &[
-    &["numerics", "input", "output", "law_catalogue", "progress"],
+    &["numerics", "output", "law_catalogue", "progress"],
+    &["input"],
     &["residual"],
     &["scenario"],
     &["dataset"],

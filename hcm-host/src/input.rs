@@ -5,6 +5,7 @@
 //! size, not read; and a parser's message that echoes the offending line (TOML's
 //! does) must not echo a gigabyte-long line to the terminal.
 
+use crate::output::bytes;
 use std::io::Read;
 use std::path::Path;
 
@@ -143,16 +144,6 @@ fn floor_boundary(text: &str, mut index: usize) -> usize {
         index -= 1;
     }
     index
-}
-
-/// A byte count for people: B, kB, MB or GB (powers of 1000).
-fn bytes(count: u64) -> String {
-    match count {
-        c if c < 1_000 => format!("{c} B"),
-        c if c < 1_000_000 => format!("{:.1} kB", c as f64 / 1e3),
-        c if c < 1_000_000_000 => format!("{:.1} MB", c as f64 / 1e6),
-        c => format!("{:.1} GB", c as f64 / 1e9),
-    }
 }
 
 #[cfg(test)]

@@ -5,20 +5,20 @@
 //! The modules are layered, each using only those of the layers below it (bottom
 //! first; `tests/layers.rs` checks it):
 //!
-//! 1. [`numerics`], [`input`], [`output`], [`law_catalogue`], [`progress`] — generic
-//!    numerics and optimisers, files read within a size limit, atomic file output,
-//!    laws by name, how a stage reports progress;
-//! 2. [`residual`] — the stored residual network;
-//! 3. [`scenario`] — scenario files, assignments, contact geometry;
-//! 4. [`dataset`] — measured data;
-//! 5. [`indicators`] — the paper's indicators of contact events;
-//! 6. [`simulate`] — the simulator;
-//! 7. [`experiment`], [`toss`], [`figure`] — noisy experiments, toss replays, figures;
-//! 8. [`identify`] — physics parameters (PM2);
-//! 9. [`train`], [`evaluate`] — the residual network, held-out evaluation;
-//! 10. [`export`] — the blob a controller embeds;
-//! 11. [`diagnose`] — what the simulation gets wrong, and why;
-//! 12. [`pipeline`] — `hcm reproduce`'s presets over the stages.
+//! 1. [`numerics`], [`output`], [`law_catalogue`], [`progress`] — generic numerics and
+//!    optimisers, atomic file output, laws by name, how a stage reports progress;
+//! 2. [`input`] — files read within a size limit, messages quoting excerpts;
+//! 3. [`residual`] — the stored residual network;
+//! 4. [`scenario`] — scenario files, assignments, contact geometry;
+//! 5. [`dataset`] — measured data;
+//! 6. [`indicators`] — the paper's indicators of contact events;
+//! 7. [`simulate`] — the simulator;
+//! 8. [`experiment`], [`toss`], [`figure`] — noisy experiments, toss replays, figures;
+//! 9. [`identify`] — physics parameters (PM2);
+//! 10. [`train`], [`evaluate`] — the residual network, held-out evaluation;
+//! 11. [`export`] — the blob a controller embeds;
+//! 12. [`diagnose`] — what the simulation gets wrong, and why;
+//! 13. [`pipeline`] — `hcm reproduce`'s presets over the stages.
 
 #![warn(missing_docs)]
 
