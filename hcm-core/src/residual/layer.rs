@@ -278,6 +278,43 @@ fn affine<const OUT: usize, A: Fn(f32) -> f32>(
         activate_block(block, sums, &activation);
         first += BLOCK;
     }
+    // Then four at a time (a 6-output wrench layer: 4 + 2), then two, then one: the
+    // remainder kept in named registers too (issue 31: one by one, the peg's 32-6
+    // output layer took 8 instructions per multiply-add on the Cortex-M4F). Each sum
+    // still starts from its bias and adds its inputs in order: the same bits.
+    while let (Some(block), Some(&[b0, b1, b2, b3])) =
+        (z.get_mut(first..first + 4), bias.get(first..first + 4))
+    {
+        let (mut a0, mut a1, mut a2, mut a3) = (b0, b1, b2, b3);
+        for (column, &x) in weights.iter().zip(x) {
+            if let Some(&[w0, w1, w2, w3]) = column.get(first..first + 4) {
+                a0 += w0 * x;
+                a1 += w1 * x;
+                a2 += w2 * x;
+                a3 += w3 * x;
+            }
+        }
+        block.copy_from_slice(&[
+            activation(a0),
+            activation(a1),
+            activation(a2),
+            activation(a3),
+        ]);
+        first += 4;
+    }
+    while let (Some(block), Some(&[b0, b1])) =
+        (z.get_mut(first..first + 2), bias.get(first..first + 2))
+    {
+        let (mut a0, mut a1) = (b0, b1);
+        for (column, &x) in weights.iter().zip(x) {
+            if let Some(&[w0, w1]) = column.get(first..first + 2) {
+                a0 += w0 * x;
+                a1 += w1 * x;
+            }
+        }
+        block.copy_from_slice(&[activation(a0), activation(a1)]);
+        first += 2;
+    }
     // Indexed by a range below OUT, so every `get` is known to succeed (an
     // `enumerate().skip(first)` walked the first outputs again, one by one).
     for output in first..OUT {

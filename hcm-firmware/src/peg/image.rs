@@ -41,6 +41,15 @@ fn costs(
         components: PEG_STATES[3],
     };
     let name = Weights::NAME;
+    #[cfg(feature = "profile")]
+    {
+        marker_start();
+        for _ in 0..8 {
+            black_box(peg_load(&fixture.hcm, black_box(&state)));
+        }
+        marker_end();
+        return;
+    }
     report(
         "peg",
         "manifold",
@@ -48,6 +57,8 @@ fn costs(
             black_box(peg::manifold(black_box(&state)));
         }),
     );
+    #[cfg(feature = "breakdown")]
+    breakdown(counter, fixture, &state, report);
     report(
         "peg_residual",
         name,
@@ -69,6 +80,82 @@ fn costs(
             black_box(PegFixture::<Weights>::decode().is_ok());
         }),
     );
+}
+
+/// Sub-parts of the peg's HCM (issue 31 breakdown; `--features breakdown`).
+#[cfg(feature = "breakdown")]
+fn breakdown(
+    counter: &cost::Counter,
+    fixture: &PegFixture<Weights>,
+    state: &RigidState<f32>,
+    report: &mut dyn FnMut(&str, &str, u32),
+) {
+    use hcm_core::geometry::{box_box, compound, Cuboid};
+    use hcm_core::model::{ContactModel, Residual};
+    use nalgebra::{UnitQuaternion, Vector3};
+    let peg = Cuboid {
+        half_extents: Vector3::new(0.01, 0.01, 0.04),
+        center: state.position(),
+        orientation: state.orientation(),
+    };
+    let block = peg::block_parts();
+    report("peg", "compound_contacts", counter.instructions(|| {
+        black_box(compound::contacts(black_box(&peg), black_box(&block)));
+    }));
+    for (i, part) in block.iter().enumerate() {
+        let n = box_box::contacts(&peg, part).len();
+        let name = ["box_box_0", "box_box_1", "box_box_2", "box_box_3", "box_box_4"][i];
+        let c = counter.instructions(|| {
+            black_box(box_box::contacts(black_box(&peg), black_box(part)));
+        });
+        report("peg", name, c * 10 + n as u32);
+    }
+    report("peg", "state_pose", counter.instructions(|| {
+        let s = black_box(state);
+        black_box((s.orientation(), s.world_angular_velocity()));
+    }));
+    let _ = UnitQuaternion::<f32>::identity();
+    let points = peg::manifold(state);
+    report("peg", "points", points.len() as u32);
+    let physics = ContactModel {
+        normal: fixture.hcm.normal.clone(),
+        friction: fixture.hcm.friction,
+        tangential: fixture.hcm.tangential,
+        residual: hcm_core::model::NoResidual,
+    };
+    report("peg", "pair_load_physics", counter.instructions(|| {
+        black_box(physics.pair_load(black_box(&points), &state.position(), &Vector3::zeros(), &state.components));
+    }));
+    report("peg", "pair_load_full", counter.instructions(|| {
+        black_box(fixture.hcm.pair_load(black_box(&points), &state.position(), &Vector3::zeros(), &state.components));
+    }));
+    report("peg", "correction", counter.instructions(|| {
+        black_box(fixture.hcm.residual.correction(black_box(&state.components[..])));
+    }));
+    let p = &points[0];
+    report("peg", "law_point", counter.instructions(|| {
+        let p = black_box(p);
+        black_box(physics.physics_normal_force(&p.indentation, &p.memory));
+    }));
+    let f = physics.physics_normal_force(&p.indentation, &p.memory);
+    report("peg", "friction_point", counter.instructions(|| {
+        let p = black_box(p);
+        black_box(physics.friction.as_ref().map(|l| l.force(&p.relative_velocity, &p.normal, black_box(f))));
+    }));
+}
+
+#[cfg(feature = "profile")]
+#[inline(never)]
+#[no_mangle]
+fn marker_start() {
+    black_box(1);
+}
+
+#[cfg(feature = "profile")]
+#[inline(never)]
+#[no_mangle]
+fn marker_end() {
+    black_box(2);
 }
 
 #[panic_handler]

@@ -119,6 +119,11 @@ impl<Q: PegWeights> PegFixture<Q> {
 }
 
 /// The block's boxes in the world frame.
+pub fn block_parts() -> [Cuboid<f32>; 5] {
+    block()
+}
+
+/// The block's boxes in the world frame.
 fn block() -> [Cuboid<f32>; 5] {
     BLOCK_PARTS.map(|(half, centre)| Cuboid {
         half_extents: Vector3::from(half),
