@@ -17,6 +17,10 @@ pub const PART_SHIFT: u32 = 16;
 /// earlier part), so the result is deterministic, in part order except for replacements.
 pub fn contacts<T: Real>(moving: &Cuboid<T>, parts: &[Cuboid<T>]) -> Contacts<T> {
     let mut found = Contacts::new();
+    // Not finite or a negative half extent: no part touches it (as box_box::contacts).
+    let Some(frame) = box_box::Frame::of(moving) else {
+        return found;
+    };
     let reach = moving.world_half_extents();
     for (index, part) in parts.iter().enumerate() {
         // A part whose axis-aligned bounds miss the moving box's cannot touch it: the
@@ -24,7 +28,7 @@ pub fn contacts<T: Real>(moving: &Cuboid<T>, parts: &[Cuboid<T>]) -> Contacts<T>
         if bounds_gap(moving, &reach, part) > T::zero() {
             continue;
         }
-        for contact in &box_box::contacts(moving, part) {
+        for contact in &box_box::contacts_with_frame(&frame, part) {
             keep_deepest(&mut found, tagged(contact, index));
         }
     }

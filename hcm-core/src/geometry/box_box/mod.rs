@@ -36,7 +36,8 @@ mod tests;
 use super::{Contacts, Cuboid};
 use crate::Real;
 use clip::Reference;
-use sat::{Frame, Origin};
+use sat::Origin;
+pub(crate) use sat::Frame;
 
 /// Where `box_1` and `box_2` overlap: up to 8 points, each with its own depth δ > 0
 /// (m), the common normal (unit, from box 2 to box 1) and the point (m) half-way across
@@ -44,14 +45,23 @@ use sat::{Frame, Origin};
 /// does NaN or ±∞ anywhere or a negative half extent (no panic). See the module doc for
 /// the choice of axis and the feature ids.
 pub fn contacts<T: Real>(box_1: &Cuboid<T>, box_2: &Cuboid<T>) -> Contacts<T> {
-    let (Some(one), Some(two)) = (Frame::of(box_1), Frame::of(box_2)) else {
+    let Some(one) = Frame::of(box_1) else {
         return Contacts::new();
     };
-    let Some(choice) = sat::choose(&one, &two) else {
+    contacts_with_frame(&one, box_2)
+}
+
+/// [`contacts`] with box 1 already in its frame ([`Frame::of`]): a compound's parts
+/// share the moving box's (issue 31: computed once per call, not once per part).
+pub(crate) fn contacts_with_frame<T: Real>(one: &Frame<T>, box_2: &Cuboid<T>) -> Contacts<T> {
+    let Some(two) = Frame::of(box_2) else {
+        return Contacts::new();
+    };
+    let Some(choice) = sat::choose(one, &two) else {
         return Contacts::new();
     };
     if choice.winning_edge().is_none() {
-        let found = face_contacts(&one, &two, &choice.face);
+        let found = face_contacts(one, &two, &choice.face);
         if !found.is_empty() {
             return found;
         }
@@ -61,7 +71,7 @@ pub fn contacts<T: Real>(box_1: &Cuboid<T>, box_2: &Cuboid<T>) -> Contacts<T> {
     let mut found = Contacts::new();
     if let Some(axis) = choice.edge {
         if let Origin::Edges { axis_1, axis_2 } = axis.origin {
-            let _ = found.push(edge::edge_contact(&one, &two, &axis, (axis_1, axis_2)));
+            let _ = found.push(edge::edge_contact(one, &two, &axis, (axis_1, axis_2)));
         }
     }
     found

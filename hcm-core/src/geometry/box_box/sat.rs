@@ -19,7 +19,7 @@ pub(super) const FACE_PREFERENCE: f64 = 1.05;
 /// A box as the test needs it: centre (m), unit axes (–) and half extents (m), all
 /// finite, in the common frame.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Frame<T: Real> {
+pub(crate) struct Frame<T: Real> {
     pub center: Vector3<T>,
     pub axes: [Vector3<T>; 3],
     pub half: [T; 3],
