@@ -119,6 +119,7 @@ impl<Q: PegWeights> PegFixture<Q> {
 }
 
 /// The block's boxes in the world frame.
+#[allow(dead_code)] // used by the `breakdown` feature of the peg images only
 pub fn block_parts() -> [Cuboid<f32>; 5] {
     block()
 }
