@@ -36,8 +36,8 @@ mod tests;
 use super::{Contacts, Cuboid};
 use crate::Real;
 use clip::Reference;
-use sat::Origin;
 pub(crate) use sat::Frame;
+use sat::Origin;
 
 /// Where `box_1` and `box_2` overlap: up to 8 points, each with its own depth δ > 0
 /// (m), the common normal (unit, from box 2 to box 1) and the point (m) half-way across
