@@ -131,7 +131,7 @@ impl CandleResidual {
 /// One core layer as (Wᵀ (in, out), bias (out)) tensors: the core stores W column by
 /// column, which is Wᵀ row-major.
 fn layer<const IN: usize, const OUT: usize>(
-    layer: &Layer<IN, OUT, F32Weights>,
+    layer: &Layer<IN, OUT>,
     device: &Device,
 ) -> candle_core::Result<(Tensor, Tensor)> {
     Ok((

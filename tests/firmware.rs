@@ -36,6 +36,12 @@ const RUN_ULPS: i64 = 16;
 /// Cortex-M4F (instructions).
 const HCM_F32_BUDGET: u32 = 2_000;
 
+/// A ceiling for one HCM int8 evaluation of the ball (instructions): measured 2,403 at
+/// the integer kernel's introduction (issue 31), against 1,996 in f32 — on a network
+/// this small the activations' quantisation costs more than the dual multiply-
+/// accumulates save (docs/controller.md). A guard against it growing, not a target.
+const HCM_INT8_CEILING: u32 = 2_450;
+
 /// The issue's flash budget for the whole firmware (B).
 const FLASH_BUDGET: u32 = 32 * 1024;
 
@@ -290,13 +296,10 @@ fn the_firmware_fits_its_flash_budget_and_reports_its_costs() {
         "HCM f32: {} instructions > {HCM_F32_BUDGET}",
         cost("hcm.f32")
     );
-    // int8 runs the f32 kernel on weights folded at decoding: never dearer (the two
-    // counts differ only by SysTick's rounding, a fraction of an instruction).
     assert!(
-        cost("hcm.int8") <= cost("hcm.f32") + 1,
-        "HCM int8 {} instructions > f32 {}",
-        cost("hcm.int8"),
-        cost("hcm.f32")
+        cost("hcm.int8") <= HCM_INT8_CEILING,
+        "HCM int8 {} instructions > its ceiling {HCM_INT8_CEILING}",
+        cost("hcm.int8")
     );
     let flash = report.size("flash");
     assert!(
@@ -447,12 +450,23 @@ fn the_peg_int8_image_evaluates_the_peg_hcm_as_the_host_does() {
     check_peg_image::<hcm_core::residual::Int8Weights>(peg_int8_firmware());
 }
 
+/// What int8 buys the peg's controller: the decoded network in a quarter of the
+/// memory for its 32 × 32 layer (levels, not `f32` weights: the image's peak stack,
+/// where the fixture lives, 18 kB against 29.8 kB) at a cost per evaluation within 5 %
+/// of f32's (the integer kernel's dual multiply-accumulates against the activations'
+/// quantisation: 37,528 against 37,334 instructions when introduced).
 #[test]
-fn the_peg_hcm_costs_no_more_with_int8_weights() {
-    let f32_cost = peg_f32_firmware().cost("peg_hcm.f32");
-    let int8_cost = peg_int8_firmware().cost("peg_hcm.int8");
+fn the_peg_int8_image_needs_less_memory_at_about_the_same_cost() {
+    let (float, int8) = (peg_f32_firmware(), peg_int8_firmware());
+    let (f32_stack, int8_stack) = (float.size("stack"), int8.size("stack"));
     assert!(
-        int8_cost <= f32_cost + 1,
-        "peg HCM int8 {int8_cost} > f32 {f32_cost}"
+        int8_stack + 8 * 1024 < f32_stack,
+        "peg int8 stack {int8_stack} B not 8 kB below f32's {f32_stack} B"
+    );
+    let f32_cost = float.cost("peg_hcm.f32");
+    let int8_cost = int8.cost("peg_hcm.int8");
+    assert!(
+        u64::from(int8_cost) * 100 <= u64::from(f32_cost) * 105,
+        "peg HCM int8 {int8_cost} > 105 % of f32 {f32_cost}"
     );
 }

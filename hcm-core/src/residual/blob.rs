@@ -32,7 +32,7 @@ mod length;
 
 pub use error::BlobError;
 
-use super::mlp::{Hidden, HiddenDepth, Layer, Mlp, WeightFormat};
+use super::mlp::{Hidden, HiddenDepth, Mlp, WeightFormat};
 use super::{crc32, Activation, Quantisation};
 use core::fmt;
 use length::Header;
@@ -157,6 +157,12 @@ where
             found: quantisation,
         });
     }
+    // The int8 kernel runs the quantised tanh and no other activation (int8.rs).
+    if quantisation == Quantisation::Int8 && activation != Activation::QuantisedTanh {
+        return Err(BlobError::BadActivation {
+            found: contents.activation,
+        });
+    }
 
     let mut mlp = Mlp::zeroed(activation);
     let scaling = &mut mlp.normalisation;
@@ -199,11 +205,14 @@ where
     }
 
     let mut section = Reader(contents.layers);
-    section.read_layer(&mut mlp.input_layer)?;
+    let used = mlp.input_layer.read(section.0)?;
+    section.take(used)?;
     for layer in mlp.hidden_layers.as_mut() {
-        section.read_layer(layer)?;
+        let used = Q::read_square(layer, section.0)?;
+        section.take(used)?;
     }
-    section.read_layer(&mut mlp.output_layer)?;
+    let used = mlp.output_layer.read(section.0)?;
+    section.take(used)?;
     section.finish()?;
     Ok(mlp)
 }
@@ -330,33 +339,6 @@ impl<'a> Reader<'a> {
             }
         }
         Ok(())
-    }
-
-    fn read_layer<const IN: usize, const OUT: usize, Q: WeightFormat>(
-        &mut self,
-        layer: &mut Layer<IN, OUT, Q>,
-    ) -> Result<(), BlobError> {
-        // Row-major in the blob, column by column in the layer.
-        for output in 0..OUT {
-            for column in &mut layer.weights {
-                if let Some(weight) = column.get_mut(output) {
-                    *weight = Q::weight_from_le(self.take(Q::WEIGHT_BYTES)?)?;
-                }
-            }
-        }
-        if Q::HAS_ROW_SCALE {
-            // Each row's levels times its scale, once, here (see `WeightFormat`).
-            for output in 0..OUT {
-                let scale = Q::row_scale(self.read_f32()?)?;
-                for column in &mut layer.weights {
-                    if let Some(weight) = column.get_mut(output) {
-                        *weight *= scale;
-                    }
-                }
-            }
-        }
-        let finite = |value: f32| value.is_finite();
-        self.read_f32s(&mut layer.bias, finite, BlobError::NonFiniteWeight)
     }
 
     /// `Ok` if the whole section was read.

@@ -1,4 +1,6 @@
-//! One fully connected layer, z = W·x + b, and the two ways its weights are stored.
+//! One fully connected `f32` layer, z = W·x + b, and the two weight formats of a
+//! network's hidden → hidden layers ([`WeightFormat`]: `f32` here, int8 in
+//! [`super::int8`]).
 //!
 //! The weights are held **column by column** (`weights[j][i]` multiplies input j into
 //! output i): z is built as b + Σ_j x_j·W[:, j], so the inner loop is one contiguous
@@ -12,9 +14,10 @@
 //! decoder transposes them once ([`Layer::from_rows`] does the same for a layer built
 //! by hand).
 
-use super::{BlobError, Quantisation};
+use super::int8::{Int8Layer, Q15_UNIT};
+use super::qtanh::quantised_tanh;
+use super::{Activation, BlobError, Quantisation};
 use core::fmt::Debug;
-use core::marker::PhantomData;
 
 mod sealed {
     pub trait Sealed {}
@@ -22,107 +25,200 @@ mod sealed {
     impl Sealed for super::Int8Weights {}
 }
 
-/// How a blob stores one layer's weights; implemented by [`F32Weights`] and
-/// [`Int8Weights`] only (the blob format knows exactly these two).
+/// How a network stores and runs its hidden → hidden layers; implemented by
+/// [`F32Weights`] and [`Int8Weights`] only (the blob format knows exactly these two).
 ///
-/// Decoded, every layer holds `f32` weights and runs the same kernel: an int8 layer's
-/// weight is its level times its row's scale, q·s, rounded to `f32` once at decoding.
-/// int8 is a storage format — a quarter of the blob and of the flash that embeds it —
-/// not an arithmetic: on the two targets hcm runs on, integer arithmetic is slower than
-/// the `f32` kernel, not faster. On the Cortex-M4F an int8 product computed at run time
-/// costs a load, a move to the FPU and a conversion before the same `vmla`
-/// (4 instructions for the f32 kernel's 2; integer multiply-adds need the activations
-/// quantised and the sums converted back, and the dual 16-bit `smlad` is out of reach
-/// of stable Rust without `unsafe`); the x86-64 baseline (SSE2) has no int8 dot
-/// product. Folded, an int8 network costs exactly what an f32 one does, and is never
-/// slower (README, "The controller").
+/// The input layer and the linear output layer are `f32` [`Layer`]s in both (see
+/// [`super::mlp`]). The formats differ in the width × width layers between, the bulk
+/// of a network: `f32` weights and `f32` activations ([`Layer`]), or int8 levels with
+/// a scale per row run in integers on 16-bit activations ([`Int8Layer`]: on a
+/// Cortex-M4 two multiply-accumulates per `smlad` instruction, a quarter of the
+/// flash).
 pub trait WeightFormat: Copy + Debug + PartialEq + sealed::Sealed {
     /// The blob tag of this format.
     const KIND: Quantisation;
-    /// Bytes one weight takes in a blob.
-    const WEIGHT_BYTES: usize;
-    /// Whether a blob carries one `f32` scale per output row of each layer.
-    const HAS_ROW_SCALE: bool;
 
-    /// The weight (f32) or level (int8, as an exact `f32`) stored little-endian in
-    /// `raw` (`WEIGHT_BYTES` long).
-    fn weight_from_le(raw: &[u8]) -> Result<f32, BlobError>;
+    /// A WIDTH → WIDTH hidden layer in this format.
+    type Square<const WIDTH: usize>: Copy + Debug + PartialEq;
 
-    /// A row scale read from a blob, checked (formats without one never read it).
-    fn row_scale(scale: f32) -> Result<f32, BlobError>;
+    /// A square layer whose weights and biases are all zero.
+    fn zeroed_square<const WIDTH: usize>() -> Self::Square<WIDTH>;
+
+    /// Reads a square layer from the front of a blob's layer bytes; the bytes read.
+    fn read_square<const WIDTH: usize>(
+        layer: &mut Self::Square<WIDTH>,
+        bytes: &[u8],
+    ) -> Result<usize, BlobError>;
+
+    /// The last hidden layer's activations (`f32`) for the normalised inputs `x`:
+    /// `input`, then every layer of `layers`, each followed by `activation`.
+    fn hidden_pass<const IN: usize, const WIDTH: usize>(
+        activation: Activation,
+        input: &Layer<IN, WIDTH>,
+        layers: &[Self::Square<WIDTH>],
+        x: &[f32; IN],
+    ) -> [f32; WIDTH];
 }
 
 /// Full-precision weights: every weight an `f32`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct F32Weights;
 
-/// Symmetric int8 weights: w = q·s_row with q ∈ [−127, 127] and one `f32` scale per
-/// output row, folded into `f32` weights when decoded (see [`WeightFormat`]).
+/// Symmetric int8 weights: w = q·σ_row with q ∈ [−127, 127] and one `f32` scale σ per
+/// output row, run as integers ([`Int8Layer`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Int8Weights;
 
 impl WeightFormat for F32Weights {
     const KIND: Quantisation = Quantisation::F32;
-    const WEIGHT_BYTES: usize = 4;
-    const HAS_ROW_SCALE: bool = false;
+    type Square<const WIDTH: usize> = Layer<WIDTH, WIDTH>;
 
-    fn weight_from_le(raw: &[u8]) -> Result<f32, BlobError> {
-        let bytes: [u8; 4] = raw.try_into().map_err(|_| BlobError::Malformed)?;
-        finite(f32::from_le_bytes(bytes))
+    fn zeroed_square<const WIDTH: usize>() -> Layer<WIDTH, WIDTH> {
+        Layer::zeroed()
     }
 
-    fn row_scale(scale: f32) -> Result<f32, BlobError> {
-        Ok(scale)
+    fn read_square<const WIDTH: usize>(
+        layer: &mut Layer<WIDTH, WIDTH>,
+        bytes: &[u8],
+    ) -> Result<usize, BlobError> {
+        layer.read(bytes)
     }
+
+    #[inline]
+    fn hidden_pass<const IN: usize, const WIDTH: usize>(
+        activation: Activation,
+        input: &Layer<IN, WIDTH>,
+        layers: &[Layer<WIDTH, WIDTH>],
+        x: &[f32; IN],
+    ) -> [f32; WIDTH] {
+        // One pass per activation, not a `match` per neuron: each is branch-free.
+        match activation {
+            Activation::Tanh => f32_pass(input, layers, x, tanh_f32),
+            Activation::Relu => f32_pass(input, layers, x, relu_f32),
+            // Not inlined into the kernel like the two above: an `f32` network with
+            // the int8 activation is not one hcm trains, and a third copy of the
+            // kernel with sixteen activations inlined costs ~1.5 kB of flash.
+            Activation::QuantisedTanh => quantised_f32_pass(input, layers, x),
+        }
+    }
+}
+
+/// An `f32` network's pass with the quantised tanh, each activation applied after its
+/// layer's sums are stored (see [`F32Weights::hidden_pass`]); out of line, so that the
+/// two inlined passes cost what they did before it existed.
+#[inline(never)]
+fn quantised_f32_pass<const IN: usize, const WIDTH: usize>(
+    input: &Layer<IN, WIDTH>,
+    layers: &[Layer<WIDTH, WIDTH>],
+    x: &[f32; IN],
+) -> [f32; WIDTH] {
+    let mut hidden = input.forward(x);
+    for layer in layers {
+        hidden.iter_mut().for_each(|z| *z = quantised_tanh_f32(*z));
+        hidden = layer.forward(&hidden);
+    }
+    hidden.iter_mut().for_each(|z| *z = quantised_tanh_f32(*z));
+    hidden
 }
 
 impl WeightFormat for Int8Weights {
     const KIND: Quantisation = Quantisation::Int8;
-    const WEIGHT_BYTES: usize = 1;
-    const HAS_ROW_SCALE: bool = true;
+    type Square<const WIDTH: usize> = Int8Layer<WIDTH, WIDTH>;
 
-    fn weight_from_le(raw: &[u8]) -> Result<f32, BlobError> {
-        match raw {
-            // −128 has no positive twin: the symmetric range is [−127, 127].
-            [byte] if *byte != 0x80 => Ok(f32::from(i8::from_le_bytes([*byte]))),
-            _ => Err(BlobError::Malformed),
+    fn zeroed_square<const WIDTH: usize>() -> Int8Layer<WIDTH, WIDTH> {
+        Int8Layer::zeroed()
+    }
+
+    fn read_square<const WIDTH: usize>(
+        layer: &mut Int8Layer<WIDTH, WIDTH>,
+        bytes: &[u8],
+    ) -> Result<usize, BlobError> {
+        layer.read(bytes)
+    }
+
+    /// The input layer in `f32`, its activations through the quantised tanh (Q15),
+    /// the int8 layers in integers, the last activations back to `f32` (exactly: the
+    /// unit 2⁻¹⁵ is a power of two). An int8 network runs the quantised tanh whatever
+    /// its `activation` says: the decoder refuses an int8 blob of another activation,
+    /// and hcm trains int8 twins with it (see [`Int8Layer`]).
+    #[inline(never)]
+    fn hidden_pass<const IN: usize, const WIDTH: usize>(
+        _activation: Activation,
+        input: &Layer<IN, WIDTH>,
+        layers: &[Int8Layer<WIDTH, WIDTH>],
+        x: &[f32; IN],
+    ) -> [f32; WIDTH] {
+        let mut hidden = input.forward(x);
+        let (mut a, mut b) = ([0_i16; WIDTH], [0_i16; WIDTH]);
+        for (a, &z) in a.iter_mut().zip(&hidden) {
+            *a = quantised_tanh(z);
         }
-    }
-
-    fn row_scale(scale: f32) -> Result<f32, BlobError> {
-        finite(scale)
-    }
-}
-
-/// `value` if finite, else [`BlobError::NonFiniteWeight`].
-fn finite(value: f32) -> Result<f32, BlobError> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(BlobError::NonFiniteWeight)
+        // Two buffers, their roles swapped by reference after each layer.
+        let (mut from, mut to) = (&mut a, &mut b);
+        for layer in layers {
+            layer.forward_into(from, to);
+            core::mem::swap(&mut from, &mut to);
+        }
+        for (h, &a) in hidden.iter_mut().zip(from.iter()) {
+            *h = f32::from(a) * Q15_UNIT;
+        }
+        hidden
     }
 }
 
-/// One fully connected layer with `IN` inputs and `OUT` outputs: z = W·x + b; `Q`
-/// records how its blob stored the weights.
+/// `input` then every layer of `layers`, each followed by `activation`, in `f32`.
+#[inline]
+fn f32_pass<const IN: usize, const WIDTH: usize>(
+    input: &Layer<IN, WIDTH>,
+    layers: &[Layer<WIDTH, WIDTH>],
+    x: &[f32; IN],
+    activation: impl Fn(f32) -> f32 + Copy,
+) -> [f32; WIDTH] {
+    let mut hidden = input.forward_activated(x, activation);
+    for layer in layers {
+        hidden = layer.forward_activated(&hidden, activation);
+    }
+    hidden
+}
+
+/// tanh of one `f32` pre-activation; a function item, so every network and layer
+/// shares the same instance of [`Layer::forward_activated`]. `#[inline]`: without it,
+/// another crate (the host's simulator, a benchmark) calls it once per neuron.
+#[inline]
+fn tanh_f32(z: f32) -> f32 {
+    Activation::Tanh.apply(z)
+}
+
+/// relu of one `f32` pre-activation (see [`tanh_f32`]).
+#[inline]
+fn relu_f32(z: f32) -> f32 {
+    Activation::Relu.apply(z)
+}
+
+/// The quantised tanh of one `f32` pre-activation, as its `f32` value (see
+/// [`tanh_f32`]).
+#[inline]
+fn quantised_tanh_f32(z: f32) -> f32 {
+    Activation::QuantisedTanh.apply(z)
+}
+
+/// One fully connected layer with `IN` inputs and `OUT` outputs and `f32` weights:
+/// z = W·x + b.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Layer<const IN: usize, const OUT: usize, Q: WeightFormat = F32Weights> {
+pub struct Layer<const IN: usize, const OUT: usize> {
     /// Weights column by column, `[in][out]`: `weights[j][i]` multiplies input j into
-    /// output i (dimensionless: the layer works on normalised values). For int8, q·s.
+    /// output i (dimensionless: the layer works on normalised values).
     pub weights: [[f32; OUT]; IN],
     /// Bias, one per output.
     pub bias: [f32; OUT],
-    /// The storage format the weights came from.
-    pub format: PhantomData<Q>,
 }
 
-impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
+impl<const IN: usize, const OUT: usize> Layer<IN, OUT> {
     /// A layer whose weights and biases are all zero.
     pub const fn zeroed() -> Self {
         Layer {
             weights: [[0.0; OUT]; IN],
             bias: [0.0; OUT],
-            format: PhantomData,
         }
     }
 
@@ -132,8 +228,37 @@ impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
         Layer {
             weights: core::array::from_fn(|j| core::array::from_fn(|i| rows[i][j])),
             bias,
-            format: PhantomData,
         }
+    }
+
+    /// Reads the layer from the front of a blob's layer bytes — weights row-major
+    /// (`[out][in]`, little-endian `f32`, finite), then the bias — and returns the
+    /// bytes read; the weights are transposed into columns here.
+    pub(crate) fn read(&mut self, bytes: &[u8]) -> Result<usize, BlobError> {
+        let count = IN.checked_mul(OUT).and_then(|n| n.checked_add(OUT));
+        let used = count
+            .and_then(|n| n.checked_mul(4))
+            .ok_or(BlobError::Malformed)?;
+        let mut values = bytes
+            .get(..used)
+            .ok_or(BlobError::Malformed)?
+            .chunks_exact(4)
+            .map(|word| match *word {
+                [a, b, c, d] => Some(f32::from_le_bytes([a, b, c, d])).filter(|v| v.is_finite()),
+                _ => None,
+            });
+        for output in 0..OUT {
+            for column in &mut self.weights {
+                let value = values.next().flatten().ok_or(BlobError::NonFiniteWeight)?;
+                if let Some(weight) = column.get_mut(output) {
+                    *weight = value;
+                }
+            }
+        }
+        for bias in &mut self.bias {
+            *bias = values.next().flatten().ok_or(BlobError::NonFiniteWeight)?;
+        }
+        Ok(used)
     }
 
     /// Row i of W: the weights of output i, one per input.
@@ -164,16 +289,6 @@ impl<const IN: usize, const OUT: usize, Q: WeightFormat> Layer<IN, OUT, Q> {
     #[inline]
     pub fn forward_activated(&self, x: &[f32; IN], activation: impl Fn(f32) -> f32) -> [f32; OUT] {
         affine(&self.weights, &self.bias, x, activation)
-    }
-}
-
-impl<const IN: usize, const OUT: usize> Layer<IN, OUT, Int8Weights> {
-    /// The int8 layer with levels q given row by row (`levels[i][j]` for input j into
-    /// output i) and one scale per output row (dimensionless): weights q·s in `f32`,
-    /// exactly what decoding the blob gives.
-    pub fn from_levels(levels: [[i8; IN]; OUT], scales: [f32; OUT], bias: [f32; OUT]) -> Self {
-        let rows = core::array::from_fn(|i| levels[i].map(|q| f32::from(q) * scales[i]));
-        Layer::from_rows(rows, bias)
     }
 }
 

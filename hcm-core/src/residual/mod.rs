@@ -8,7 +8,9 @@
 //! [`BlobError`], and any input (NaN included) gives an output.
 //!
 //! - [`mlp`]: the network and its input/output normalisation;
-//! - [`layer`]: one layer and its weight storage (f32 or int8);
+//! - [`layer`]: one `f32` layer and the two weight formats;
+//! - [`int8`]: the int8 layer, run in integers (`smlad` on a Cortex-M4);
+//! - [`qtanh`]: the quantised tanh, the int8 network's activation (a table);
 //! - [`envelope`]: the training envelope, its tolerance and the excursion report;
 //! - [`blob`]: the weights blob format and its decoder;
 //! - [`crc`]: the CRC-32 that guards the blob;
@@ -36,12 +38,15 @@
 pub mod blob;
 pub mod crc;
 pub mod envelope;
+pub mod int8;
 pub mod layer;
 pub mod mlp;
+pub mod qtanh;
 pub mod tanh;
 
 pub use blob::{decode, BlobError};
 pub use crc::crc32;
+pub use int8::Int8Layer;
 pub use mlp::WeightFormat;
 pub use mlp::{
     Envelope, Excursion, F32Weights, Hidden, HiddenDepth, Int8Weights, Layer, Mlp, Normalisation,
@@ -58,6 +63,10 @@ pub enum Activation {
     Tanh,
     /// max(z, 0), with NaN passed through.
     Relu,
+    /// tanh by a table and integer interpolation, in Q15 ([`qtanh`]): the activation
+    /// an int8 network is trained with, so that its integer kernel computes the
+    /// function training fitted (within 1.2e-4 of tanh).
+    QuantisedTanh,
 }
 
 impl Activation {
@@ -66,6 +75,7 @@ impl Activation {
         match self {
             Activation::Tanh => 0,
             Activation::Relu => 1,
+            Activation::QuantisedTanh => 2,
         }
     }
 
@@ -74,6 +84,7 @@ impl Activation {
         match tag {
             0 => Some(Activation::Tanh),
             1 => Some(Activation::Relu),
+            2 => Some(Activation::QuantisedTanh),
             _ => None,
         }
     }
@@ -89,6 +100,11 @@ impl Activation {
     pub fn apply<T: Real>(self, z: T) -> T {
         match self {
             Activation::Tanh => tanh::tanh(z),
+            // The integer function on z rounded to f32: what the int8 kernel computes
+            // from its own f32 pre-activation (NaN gives 0, like tanh's clamp).
+            Activation::QuantisedTanh => {
+                T::of_f32(f32::from(qtanh::quantised_tanh(z.to_f32())) * int8::Q15_UNIT)
+            }
             // `max(0, NaN)` would be 0: test explicitly so that NaN propagates.
             Activation::Relu => {
                 if z < T::zero() {
@@ -106,7 +122,9 @@ impl Activation {
     #[inline]
     pub fn slope<T: Real>(self, a: T) -> T {
         match self {
-            Activation::Tanh => T::one() - a * a,
+            // The table's slope is tanh's within its error: training takes tanh's
+            // (a straight-through estimate across the interpolation's kinks).
+            Activation::Tanh | Activation::QuantisedTanh => T::one() - a * a,
             Activation::Relu => {
                 if a > T::zero() {
                     T::one()
@@ -125,8 +143,9 @@ impl Activation {
 pub enum Quantisation {
     /// Every weight an `f32` (4 bytes).
     F32,
-    /// Every weight an `i8` q ∈ [−127, 127], w ≈ q·scale_row, one `f32` scale per
-    /// output row; accumulation in `f32`.
+    /// The hidden → hidden weights `i8` q ∈ [−127, 127], w ≈ q·scale_row, one `f32`
+    /// scale per output row, run in integers on 16-bit activations
+    /// ([`int8::Int8Layer`]).
     Int8,
 }
 

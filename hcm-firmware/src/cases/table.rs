@@ -53,9 +53,9 @@ pub const MEMORY: ContactMemory<f32> = ContactMemory { max_depth: 30e-6 };
 /// (the firmware parses nothing at run time): k (N/m^n), n (-), c_e (-).
 pub fn ball_pm2() -> LankaraniNikravesh<f32> {
     LankaraniNikravesh {
-        stiffness: 6909580562.346619_f64 as f32,
-        exponent: 1.4894621705815565_f64 as f32,
-        restitution: 0.928999306181048_f64 as f32,
+        stiffness: 6909559489.48986_f64 as f32,
+        exponent: 1.4894618532836206_f64 as f32,
+        restitution: 0.9289993736609472_f64 as f32,
     }
 }
 

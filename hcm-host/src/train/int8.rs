@@ -2,7 +2,8 @@
 //! trains against it) and the export (which writes it).
 
 /// One weight row in the int8 storage: levels q = round(w / s) in −127…127 and the
-/// row's f32 scale s = max|w| / 127 (1 for an all-zero row); the core computes q·s.
+/// row's f32 scale s = max|w| / 127 (1 for an all-zero row); the core sums q times its
+/// integer activations and scales the sum by s.
 /// Finite weights expected (the encoder checks them first).
 pub fn int8_row(row: &[f64]) -> (Vec<i8>, f32) {
     let largest = row.iter().fold(0.0_f64, |m, w| m.max(w.abs()));

@@ -13,7 +13,10 @@
 //! 1. the teacher is the trained f64 network; its outputs on the training inputs are
 //!    the targets (distillation: the int8 twin learns the f32 model's function, not
 //!    the noisy measurements again, so the two agree as closely as the levels allow);
-//! 2. every forward pass uses the rounded weights, and the gradient taken there
+//! 2. with the activation the core's int8 kernel runs: tanh becomes the quantised
+//!    tanh (`hcm_core::residual::qtanh`, a table within 1.2e-4 of tanh), so the twin
+//!    is fitted to it (the Q15 rounding of each activation, at most 1.5e-5, is not
+//!    simulated); every forward pass uses the rounded weights, and the gradient taken there
 //!    updates the unrounded shadow weights (the straight-through estimator, Bengio et
 //!    al. 2013; Jacob et al., CVPR 2018, §3 "fake quantisation");
 //! 3. Adam on batches of 1024 rows with a small step (1e-4) that halves after two
@@ -34,6 +37,7 @@ use super::int8::int8_row;
 use super::network::Layout;
 use super::{shuffle, Network, Normalised, Objective, TrainError, CHUNK_ROWS};
 use crate::numerics::{LinearFit, Reduction};
+use hcm_core::residual::Activation;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
@@ -247,9 +251,19 @@ fn distillation(teacher: &Network, inputs: &[Vec<f64>]) -> (Vec<Vec<f64>>, Norma
         teacher.width,
         teacher.hidden_layers,
         teacher.outputs,
-        teacher.activation,
+        twin_activation(teacher.activation),
     );
     (targets, data, layout)
+}
+
+/// The int8 twin's activation for a teacher's: tanh becomes the quantised tanh, the
+/// table the core's integer kernel evaluates ([`Activation::QuantisedTanh`]), so that
+/// the twin is fitted to the function the controller runs; ReLU stays ReLU.
+fn twin_activation(teacher: Activation) -> Activation {
+    match teacher {
+        Activation::Tanh | Activation::QuantisedTanh => Activation::QuantisedTanh,
+        Activation::Relu => Activation::Relu,
+    }
 }
 
 /// Fine-tunes an int8 twin of `teacher` on the rows `inputs` (raw units, the training
@@ -297,6 +311,7 @@ pub fn quantisation_aware(
     let (best, best_loss) = twin.refitted();
     let network = Network {
         layers: layout.layers(&best),
+        activation: layout.activation,
         ..teacher.clone()
     };
     let report = QuantiseReport {

@@ -1,7 +1,7 @@
 //! Why a weights blob was refused, in words a controller engineer can act on.
 
 use super::{Shape, VERSION};
-use crate::residual::Quantisation;
+use crate::residual::{Activation, Quantisation};
 use core::fmt;
 
 /// Why a weights blob was refused.
@@ -54,7 +54,8 @@ pub enum BlobError {
         /// Its number of hidden layers.
         found: u32,
     },
-    /// The activation tag is not one this firmware knows.
+    /// The activation tag is not one this firmware knows, or not one its weight
+    /// storage runs (an int8 network runs the quantised tanh, tag 2, only).
     BadActivation {
         /// The tag in the blob.
         found: u8,
@@ -124,9 +125,15 @@ impl fmt::Display for BlobError {
                 f,
                 "the weights blob's network has {found} hidden layers; 1 to 3 are supported"
             ),
-            BlobError::BadActivation { found } => {
-                write!(f, "the weights blob names an unknown activation (tag {found})")
-            }
+            BlobError::BadActivation { found } => match Activation::from_tag(*found) {
+                Some(activation) => write!(
+                    f,
+                    "the weights blob is int8 with the {activation:?} activation (tag {found}); \
+                     int8 networks run the quantised tanh (tag 2): export it again with this \
+                     version of hcm"
+                ),
+                None => write!(f, "the weights blob names an unknown activation (tag {found})"),
+            },
             BlobError::BadQuantisation { found } => {
                 write!(f, "the weights blob names an unknown weight storage (tag {found})")
             }
