@@ -313,9 +313,17 @@ fn the_blob_decoded_in_the_core_gives_the_host_wrench_f32_and_int8() {
             // f32 (Mlp::normalise) and training uses the f32-rounded normalisation the
             // blob stores (measured 5.8e-7 joint f32, 6.5e-7 six networks; before:
             // 7.2e-5 and 3.9e-4).
-            assert!(on_data < 1e-6, "{nets:?} {which}: {on_data:e}");
-            assert!(in_box < 1e-6, "{nets:?} {which}: {in_box:e}");
-            assert!(stored < 1e-6, "{nets:?} {which}: {stored:e}");
+            // int8 (issue 31): the core carries its activations as Q15 integers from the
+            // quantised tanh of its f32 pre-activations, the host computes the same
+            // function of f64 ones; where the two straddle a step an activation lands
+            // one unit (2⁻¹⁵ = 3.1e-5) apart. Measured 2.3e-5; held to 1e-4.
+            let bound = match quantisation {
+                Quantisation::F32 => 1e-6,
+                Quantisation::Int8 => 1e-4,
+            };
+            assert!(on_data < bound, "{nets:?} {which}: {on_data:e}");
+            assert!(in_box < bound, "{nets:?} {which}: {in_box:e}");
+            assert!(stored < bound, "{nets:?} {which}: {stored:e}");
         }
         println!(
             "{nets:?} int8 twin: RMS against the f32 network {:.3} (rounded {:.3}), \

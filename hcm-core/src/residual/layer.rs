@@ -91,34 +91,17 @@ impl WeightFormat for F32Weights {
         layers: &[Layer<WIDTH, WIDTH>],
         x: &[f32; IN],
     ) -> [f32; WIDTH] {
-        // One pass per activation, not a `match` per neuron: each is branch-free.
+        // tanh, the activation hcm trains, with its sixteen activations inlined into
+        // the kernel (branch-free); the others through one out-of-line pass, so that
+        // their kernels take no flash (a copy with sixteen ReLUs inlined was 600 B of
+        // the ball's firmware image, another with the quantised tanh 1.5 kB).
         match activation {
             Activation::Tanh => f32_pass(input, layers, x, tanh_f32),
-            Activation::Relu => f32_pass(input, layers, x, relu_f32),
-            // Not inlined into the kernel like the two above: an `f32` network with
-            // the int8 activation is not one hcm trains, and a third copy of the
-            // kernel with sixteen activations inlined costs ~1.5 kB of flash.
-            Activation::QuantisedTanh => quantised_f32_pass(input, layers, x),
+            Activation::Relu | Activation::QuantisedTanh => {
+                plain_f32_pass(activation, input, layers, x)
+            }
         }
     }
-}
-
-/// An `f32` network's pass with the quantised tanh, each activation applied after its
-/// layer's sums are stored (see [`F32Weights::hidden_pass`]); out of line, so that the
-/// two inlined passes cost what they did before it existed.
-#[inline(never)]
-fn quantised_f32_pass<const IN: usize, const WIDTH: usize>(
-    input: &Layer<IN, WIDTH>,
-    layers: &[Layer<WIDTH, WIDTH>],
-    x: &[f32; IN],
-) -> [f32; WIDTH] {
-    let mut hidden = input.forward(x);
-    for layer in layers {
-        hidden.iter_mut().for_each(|z| *z = quantised_tanh_f32(*z));
-        hidden = layer.forward(&hidden);
-    }
-    hidden.iter_mut().for_each(|z| *z = quantised_tanh_f32(*z));
-    hidden
 }
 
 impl WeightFormat for Int8Weights {
@@ -166,6 +149,24 @@ impl WeightFormat for Int8Weights {
     }
 }
 
+/// An `f32` network's pass with the activation applied after each layer's sums are
+/// stored (see [`F32Weights::hidden_pass`]).
+#[inline(never)]
+fn plain_f32_pass<const IN: usize, const WIDTH: usize>(
+    activation: Activation,
+    input: &Layer<IN, WIDTH>,
+    layers: &[Layer<WIDTH, WIDTH>],
+    x: &[f32; IN],
+) -> [f32; WIDTH] {
+    let mut hidden = input.forward(x);
+    for layer in layers {
+        hidden.iter_mut().for_each(|z| *z = activation.apply(*z));
+        hidden = layer.forward(&hidden);
+    }
+    hidden.iter_mut().for_each(|z| *z = activation.apply(*z));
+    hidden
+}
+
 /// `input` then every layer of `layers`, each followed by `activation`, in `f32`.
 #[inline]
 fn f32_pass<const IN: usize, const WIDTH: usize>(
@@ -187,19 +188,6 @@ fn f32_pass<const IN: usize, const WIDTH: usize>(
 #[inline]
 fn tanh_f32(z: f32) -> f32 {
     Activation::Tanh.apply(z)
-}
-
-/// relu of one `f32` pre-activation (see [`tanh_f32`]).
-#[inline]
-fn relu_f32(z: f32) -> f32 {
-    Activation::Relu.apply(z)
-}
-
-/// The quantised tanh of one `f32` pre-activation, as its `f32` value (see
-/// [`tanh_f32`]).
-#[inline]
-fn quantised_tanh_f32(z: f32) -> f32 {
-    Activation::QuantisedTanh.apply(z)
 }
 
 /// One fully connected layer with `IN` inputs and `OUT` outputs and `f32` weights:

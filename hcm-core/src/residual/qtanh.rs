@@ -3,14 +3,16 @@
 //! interpolation in integers.
 //!
 //! ```text
-//! p     = ⌊|z|·32·4096⌋, below 256·4096       (saturating conversion; NaN → 0)
+//! p     = ⌊|z|·32·4096⌋, below 192·4096       (saturating conversion; NaN → 0)
 //! i, f  = p >> 12, p & 4095                     segment [i/32, (i+1)/32) and 1/4096ths in it
 //! a(|z|) = T[i] + ⌊((T[i+1] − T[i])·f + 2048) / 4096⌋
 //! a(z)  = sign(z)·a(|z|)                         Q15: a / 32 768 ≈ tanh(z)
 //! ```
 //!
-//! T[k] = round(tanh(k/32)·32 768), at most 32 767, for k = 0 … 256 (|z| up to 8;
-//! beyond, the last segment's end, 32 767). The table is built at compile time
+//! T[k] = round(tanh(k/32)·32 768), at most 32 767, for k = 0 … 192 (|z| up to 6;
+//! beyond, the last segment's end, 32 767: from |z| = 5.9 on, tanh rounds to the
+//! largest Q15 value anyway, so a table out to 8 held the same function in 128 bytes
+//! more of flash). The table is built at compile time
 //! ([`TABLE`]) from an `exp` written here as a `const fn`.
 //!
 //! Why: the int8 kernel multiplies 16-bit activations ([`super::int8`]), so the
@@ -30,7 +32,7 @@ const POINTS_PER_UNIT: u32 = 32;
 const FRACTION_BITS: u32 = 12;
 
 /// Segments in the table: z from 0 to 8.
-const SEGMENTS: usize = 256;
+const SEGMENTS: usize = 192;
 
 /// The Q15 scale: activation a stands for a / 32 768.
 pub const Q15_ONE: f32 = 32_768.0;
@@ -38,19 +40,18 @@ pub const Q15_ONE: f32 = 32_768.0;
 /// One past the largest position p = ⌊|z|·32·4096⌋ read.
 const LAST_POSITION: u32 = (SEGMENTS as u32) << FRACTION_BITS;
 
-/// T[k] = round(tanh(k/32)·32 768), capped at 32 767, k = 0 … 256.
+/// T[k] = round(tanh(k/32)·32 768), capped at 32 767, k = 0 … 192.
 pub static TABLE: [i16; SEGMENTS + 1] = table();
 
 /// The quantised tanh of `z`, Q15 (see the module docs); NaN gives 0, ±∞ ±32 767.
 #[inline]
 pub fn quantised_tanh(z: f32) -> i16 {
     // The scale is a power of two: |z|·131 072 is exact up to the saturation. The
-    // conversion to u32 saturates (NaN → 0), and the position is held below 256·4096.
+    // conversion to u32 saturates (NaN → 0), and the position is held below 192·4096.
     let position =
         ((z.abs() * (POINTS_PER_UNIT << FRACTION_BITS) as f32) as u32).min(LAST_POSITION - 1);
-    // The mask changes nothing (the index is below 256) but lets the compiler see
-    // that both reads succeed: no bounds checks, no branches.
-    let index = (position >> FRACTION_BITS) as usize & (SEGMENTS - 1);
+    // The index is below 192: both reads succeed.
+    let index = (position >> FRACTION_BITS) as usize;
     let fraction = (position & ((1 << FRACTION_BITS) - 1)) as i32;
     let low = i32::from(TABLE.get(index).copied().unwrap_or(i16::MAX));
     let high = i32::from(TABLE.get(index + 1).copied().unwrap_or(i16::MAX));
@@ -133,7 +134,9 @@ mod tests {
             );
         }
         assert_eq!(TABLE[0], 0);
-        assert_eq!(TABLE[256], i16::MAX);
+        assert_eq!(TABLE[192], i16::MAX);
+        // From 5.9 on tanh rounds to the largest value: the table may stop at 6.
+        assert!((5.9_f64.tanh() * f64::from(Q15_ONE)).round() >= 32_767.0);
     }
 
     #[test]
