@@ -353,11 +353,15 @@ fn the_case_table_exercises_the_residual_and_a_real_bounce() {
 
 /// The host's f32 evaluation of the peg's table with `Q` weights.
 fn host_peg_cases<Q: peg::PegWeights>() -> Vec<(String, Vec<u32>)> {
-    let fixture = peg::PegFixture::<Q>::decode().expect("the peg's blob decodes on the host");
+    let network = peg::decode_network::<Q>().expect("the peg's blob decodes on the host");
     let mut out = Vec::new();
-    peg::evaluate_all(&fixture, &mut |group, item, bits| {
-        out.push((format!("{group}.{item}"), bits.to_vec()));
-    });
+    peg::evaluate_all(
+        &peg::peg_hcm(&network),
+        &network,
+        &mut |group, item, bits| {
+            out.push((format!("{group}.{item}"), bits.to_vec()));
+        },
+    );
     out
 }
 
