@@ -47,7 +47,8 @@ fn main() -> ! {
 /// every law's arm, the effect loop and the tangential couples. Measured: peg-f32
 /// 32,684 → 30,216 B of flash, peg-int8 29,840 → 27,388 B; 37,330 → 37,022
 /// instructions per HCM. The network it reads moved from the stack to a `static`
-/// (static RAM 4 → 7,132 B, peak stack 29,816 → 22,352 B).
+/// (static RAM 4 → 7,132 B; peak stack 29,816 → 22,352 B, and 15,328 B once
+/// [`decode`] wrote straight into it).
 static PEG_HCM: ContactModel<f32, DecodedNetwork> = ContactModel {
     normal: ExtendedLaw {
         base: AnyNormalLaw::Impact(peg_pm2()),
