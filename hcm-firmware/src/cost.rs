@@ -62,7 +62,10 @@ impl Counter {
     }
 
     /// `ticks` over `calls` calls in instructions per call, to the nearest. In f32
-    /// (exact below 2^24; the FPU makes it cheaper in flash than u64 division).
+    /// (exact below 2^24; the FPU makes it cheaper in flash than u64 division). Never
+    /// inlined: one copy serves every measurement (measured: −124 B of flash in the
+    /// ball image, −24 B in a peg image).
+    #[inline(never)]
     fn to_instructions(&self, ticks: u32, calls: u32) -> u32 {
         let per_tick = self.calibration_instructions as f32 / self.calibration_ticks.max(1) as f32;
         (ticks as f32 * per_tick / calls as f32 + 0.5) as u32

@@ -1,7 +1,8 @@
 //! What both images do around their own table: boot, print every case, the
 //! calibration and the costs, the sizes, then leave QEMU with the run's status.
 
-use crate::{cost, memory, out::Line};
+use crate::out::{Out, Radix};
+use crate::{cost, memory};
 use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
 
 /// Where a table sends its results: group, item, raw bits.
@@ -18,44 +19,32 @@ pub fn run<F, E>(
     costs: impl FnOnce(&cost::Counter, &F, Costs<'_>),
 ) -> ! {
     memory::paint_stack();
-    let mut line = Line::new();
+    let mut out = Out::new();
     let counter = cortex_m::Peripherals::take().map(|p| cost::Counter::start(p.SYST));
     let Ok(fixture) = decode() else {
-        line.word("error blob").end();
+        out.line(&["error blob"], &[], Radix::Decimal);
         exit(EXIT_FAILURE)
     };
     evaluate(&fixture, &mut |group, item, bits| {
-        line.word("case ").word(group).word(".").word(item);
-        for &word in bits {
-            line.hex(word);
-        }
-        line.end();
+        out.case(group, item, bits)
     });
     if let Some(counter) = &counter {
-        line.word("calibration")
-            .decimal(counter.calibration_ticks)
-            .decimal(counter.calibration_instructions)
-            .end();
+        let calibration = [counter.calibration_ticks, counter.calibration_instructions];
+        out.line(&["calibration"], &calibration, Radix::Decimal);
         costs(counter, &fixture, &mut |group, item, n| {
-            line.word("cost ")
-                .word(group)
-                .word(".")
-                .word(item)
-                .decimal(n)
-                .end();
+            out.cost(group, item, n)
         });
     }
     // usize is 32 bits on this target: the casts are lossless.
-    line.word("size flash")
-        .decimal(memory::flash_bytes() as u32)
-        .end();
-    line.word("size ram")
-        .decimal(memory::static_ram_bytes() as u32)
-        .end();
-    line.word("size stack")
-        .decimal(memory::peak_stack_bytes() as u32)
-        .end();
-    line.word("end").end();
+    let sizes = [
+        ("size flash", memory::flash_bytes()),
+        ("size ram", memory::static_ram_bytes()),
+        ("size stack", memory::peak_stack_bytes()),
+    ];
+    for (name, bytes) in sizes {
+        out.line(&[name], &[bytes as u32], Radix::Decimal);
+    }
+    out.line(&["end"], &[], Radix::Decimal);
     exit(EXIT_SUCCESS)
 }
 
