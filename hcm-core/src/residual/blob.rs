@@ -16,7 +16,8 @@
 //!   \[−127, 127\] followed by one `f32` scale per output row), then the bias `[out]`
 //!   (`f32`). The input and output layers are `f32` in both kinds (since version 2;
 //!   version 1 stored every layer of an int8 blob as int8). The decoder transposes
-//!   the weights into the core's column-by-column [`Layer`].
+//!   the `f32` weights into the core's column-by-column [`super::Layer`] and keeps
+//!   int8 levels in [`super::Int8Layer`]'s kernel order.
 //!
 //! The arrays are raw bytes in a borrowed postcard byte field, not serde sequences:
 //! decoding then borrows from the blob (nothing allocated) and works for any size

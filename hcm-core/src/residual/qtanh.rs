@@ -9,7 +9,7 @@
 //! a(z)  = sign(z)·a(|z|)                         Q15: a / 32 768 ≈ tanh(z)
 //! ```
 //!
-//! T[k] = round(tanh(k/32)·32 768), at most 32 767, for k = 0 … 192 (|z| up to 6;
+//! T\[k\] = round(tanh(k/32)·32 768), at most 32 767, for k = 0 … 192 (|z| up to 6;
 //! beyond, the last segment's end, 32 767: from |z| = 5.9 on, tanh rounds to the
 //! largest Q15 value anyway, so a table out to 8 held the same function in 128 bytes
 //! more of flash). The table is built at compile time
@@ -40,7 +40,7 @@ pub const Q15_ONE: f32 = 32_768.0;
 /// One past the largest position p = ⌊|z|·32·4096⌋ read.
 const LAST_POSITION: u32 = (SEGMENTS as u32) << FRACTION_BITS;
 
-/// T[k] = round(tanh(k/32)·32 768), capped at 32 767, k = 0 … 192.
+/// T\[k\] = round(tanh(k/32)·32 768), capped at 32 767, k = 0 … 192.
 pub static TABLE: [i16; SEGMENTS + 1] = table();
 
 /// The quantised tanh of `z`, Q15 (see the module docs); NaN gives 0, ±∞ ±32 767.
