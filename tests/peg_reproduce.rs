@@ -58,14 +58,16 @@ fn the_shipped_pipeline_makes_an_hcm_that_beats_pm2_on_both_wall_contacts() {
         let (d, se) = r.events.paired[m];
         assert!(d + 2.0 * se < 0.0, "{}: {d} ± {se}", r.events.models[m]);
     }
-    // Both blobs decode in the core and give the host's wrench within 1e-6.
+    // Both blobs decode in the core and give the host's wrench: f32 within 1e-6, int8
+    // within 1e-4 (its Q15 activations may land one unit, 3.1e-5, from the host's
+    // where an f64 and an f32 pre-activation straddle a step; 1.7e-5 measured).
     assert!(
         r.blobs.f32.round_trip_error < 1e-6,
         "{}",
         r.blobs.f32.round_trip_error
     );
     assert!(
-        r.blobs.int8.round_trip_error < 1e-6,
+        r.blobs.int8.round_trip_error < 1e-4,
         "{}",
         r.blobs.int8.round_trip_error
     );
