@@ -1,30 +1,42 @@
-//! The C example (`examples/c/ball_hcm.c`) end to end: build hcm-ffi's static library,
-//! compile the example with the system's `cc` against the checked-in header, run it on
-//! the ball's exported files (examples/blobs), and recompute every value it prints in
-//! Rust through hcm_core: the law, the extended law and the hybrid model (f32 and int8
-//! residual) must agree **bit for bit**, and every refusal must carry its error code.
+//! The C examples (`examples/c/ball_hcm.c`, `examples/c/peg_hcm.c`) end to end: build
+//! hcm-ffi's static library, compile each example with the system's `cc` against the
+//! checked-in header, run it on the exported files (examples/blobs), and recompute every
+//! value it prints in Rust through hcm_core: for the ball the law, the extended law and
+//! the hybrid model (f32 and int8 residual), for the peg the contact model of the body
+//! pair (`ContactModel::pair_load`: IMPACT + STEP friction at every contact point plus
+//! the 13-32-32-6 wrench residual, f32 and int8) must agree **bit for bit**, and every
+//! refusal must carry its error code.
 //!
-//! The example prints its inputs as raw bits, so this test reads the inputs from its
-//! output rather than repeating its table; the law's constants and status codes are
+//! The examples print their inputs as raw bits, so this test reads the inputs from their
+//! output rather than repeating their tables; the law's constants and status codes are
 //! read from the header, so neither is repeated here either.
 
 use hcm_core::effect::{Adhesion, ContactEffect, ContactMemory, ExtendedLaw, ViscousDamping};
-use hcm_core::law::{AnyNormalLaw, Indentation, LawKind, NormalLaw};
-use hcm_core::model::{ContactModel, Evaluated, Residual};
+use hcm_core::friction::VelocityStepFriction;
+use hcm_core::law::{AnyNormalLaw, Impact, Indentation, LawKind, NormalLaw};
+use hcm_core::model::{ContactModel, ContactPoint, Evaluated, Residual};
 use hcm_core::residual::{decode, Envelope, F32Weights, Int8Weights, Mlp};
+use nalgebra::Vector3;
 use std::collections::HashMap;
 use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::OnceLock;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// [`build_static_library`], once for all the tests of this file.
+fn static_library() -> &'static Path {
+    static LIBRARY: OnceLock<PathBuf> = OnceLock::new();
+    LIBRARY.get_or_init(build_static_library)
+}
+
 /// Builds hcm-ffi with this test's profile and returns its static library, as Cargo
 /// reports it (so any target directory works). The whole workspace's libraries, so
 /// that features resolve as in the test build and its artifacts serve.
-fn static_library() -> PathBuf {
+fn build_static_library() -> PathBuf {
     let exe = std::env::current_exe().expect("the test executable's path");
     // <target>/<profile folder>/deps/<test>: `debug` holds the dev and test profiles.
     let folder = exe
@@ -59,9 +71,10 @@ fn static_library() -> PathBuf {
         .expect("cargo reports libhcm_ffi.a")
 }
 
-/// Compiles the example as the README says and runs it; its standard output.
-fn run_example(library: &Path, folder: &Path) -> String {
-    let exe = folder.join("ball_hcm");
+/// Compiles the example `name` (`examples/c/<name>.c`) as the README says and runs it;
+/// its standard output.
+fn run_example(library: &Path, folder: &Path, name: &str) -> String {
+    let exe = folder.join(name);
     let compile = Command::new("cc")
         .args([
             "-std=c11",
@@ -75,7 +88,7 @@ fn run_example(library: &Path, folder: &Path) -> String {
         .arg(root().join("hcm-ffi/include"))
         .arg("-o")
         .arg(&exe)
-        .arg(root().join("examples/c/ball_hcm.c"))
+        .arg(root().join(format!("examples/c/{name}.c")))
         .arg(library)
         .args(["-lpthread", "-ldl", "-lm"])
         .output()
@@ -91,7 +104,7 @@ fn run_example(library: &Path, folder: &Path) -> String {
         .expect("the example runs");
     assert!(
         run.status.success(),
-        "ball_hcm failed:\n{}",
+        "{name} failed:\n{}",
         String::from_utf8_lossy(&run.stderr)
     );
     String::from_utf8(run.stdout).expect("UTF-8 output")
@@ -149,8 +162,20 @@ impl Record {
 
     /// A float printed as its bits, `0x…`.
     fn float(&self, key: &str) -> f32 {
-        let hex = self.text(key).trim_start_matches("0x");
-        f32::from_bits(u32::from_str_radix(hex, 16).unwrap())
+        bits_to_float(self.text(key))
+    }
+
+    /// Floats printed as their bits, `0x…,0x…`.
+    fn floats(&self, key: &str) -> Vec<f32> {
+        self.text(key).split(',').map(bits_to_float).collect()
+    }
+
+    /// [`Record::floats`] of exactly `N` floats.
+    fn array<const N: usize>(&self, key: &str) -> [f32; N] {
+        let values = self.floats(key);
+        values
+            .try_into()
+            .unwrap_or_else(|v: Vec<f32>| panic!("{}: {key} has {} values", self.kind, v.len()))
     }
 
     /// The contact the record was evaluated at.
@@ -183,6 +208,12 @@ impl Record {
             },
         )
     }
+}
+
+/// `0x…` as the float of those bits.
+fn bits_to_float(text: &str) -> f32 {
+    let hex = text.trim_start_matches("0x");
+    f32::from_bits(u32::from_str_radix(hex, 16).unwrap())
 }
 
 /// The ball's PM2 as the controller holds it: the TOML's f64 parameters rounded to f32.
@@ -340,9 +371,8 @@ impl Reference {
 
 #[test]
 fn the_c_example_matches_rusts_evaluation_bit_for_bit() {
-    let library = static_library();
     let folder = tempfile::tempdir().unwrap();
-    let output = run_example(&library, folder.path());
+    let output = run_example(static_library(), folder.path(), "ball_hcm");
     let mut reference = Reference::new();
     let mut counts: HashMap<String, usize> = HashMap::new();
     for line in output.lines() {
@@ -365,4 +395,218 @@ fn the_c_example_matches_rusts_evaluation_bit_for_bit() {
     for (kind, count) in [("law_force", 6), ("extended_force", 6), ("check", 6)] {
         assert_eq!(counts.get(kind), Some(&count), "{kind}");
     }
+}
+
+/// The peg's PM2 as the controller holds it: IMPACT and STEP friction, the TOML's f64
+/// parameters rounded to f32.
+fn peg_pm2() -> (Impact<f32>, VelocityStepFriction<f32>) {
+    let text = std::fs::read_to_string(root().join("examples/blobs/peg_in_hole.pm2.toml"));
+    let pm2: toml::Table = toml::from_str(&text.unwrap()).unwrap();
+    let contact = &pm2["contact"].as_array().unwrap()[0];
+    assert_eq!(contact["law"].as_str(), Some("impact"));
+    let value = |table: &str, key: &str| contact[table][key].as_float().unwrap() as f32;
+    let law = Impact {
+        stiffness: value("parameters", "stiffness"),
+        exponent: value("parameters", "exponent"),
+        max_damping: value("parameters", "max_damping"),
+        full_damping_depth: value("parameters", "full_damping_depth"),
+    };
+    let friction = VelocityStepFriction {
+        static_coefficient: value("friction", "mu_static"),
+        dynamic_coefficient: value("friction", "mu_dynamic"),
+        stiction_speed: value("friction", "v_static"),
+        dynamic_speed: value("friction", "v_dynamic"),
+    };
+    (law, friction)
+}
+
+/// A contact point as the peg example prints it: δ, δ̇, δ̇0, δ_max, then normal,
+/// position, relative velocity and relative angular velocity.
+fn printed_point(values: [f32; 16]) -> ContactPoint<f32> {
+    let vector = |at: usize| Vector3::new(values[at], values[at + 1], values[at + 2]);
+    ContactPoint {
+        indentation: Indentation {
+            depth: values[0],
+            rate: values[1],
+            approach_speed: values[2],
+        },
+        memory: ContactMemory {
+            max_depth: values[3],
+        },
+        normal: vector(4),
+        position: vector(7),
+        relative_velocity: vector(10),
+        relative_angular_velocity: vector(13),
+    }
+}
+
+/// One `pair` record recomputed through `ContactModel::pair_load` with `residual`:
+/// every printed result, bit for bit; whether the residual took part.
+fn check_pair<R: Residual<f32>>(
+    record: &Record,
+    model: &ContactModel<f32, R>,
+    envelope: &Envelope<13>,
+) -> bool {
+    let input: [f32; 13] = record.array("input");
+    let count = usize::try_from(record.integer("count")).unwrap();
+    let points: Vec<ContactPoint<f32>> = (0..count)
+        .map(|i| printed_point(record.array(&format!("p{i}"))))
+        .collect();
+    let reference = Vector3::new(input[0], input[1], input[2]);
+    let load = model.pair_load(&points, &reference, &Vector3::zeros(), &input);
+    let bits = |values: &[f32]| values.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let state = record.text("state");
+    let w = &load.wrench;
+    assert_eq!(
+        bits(&record.floats("force")),
+        bits(w.force_1.as_slice()),
+        "{state}"
+    );
+    assert_eq!(
+        bits(&record.floats("torque")),
+        bits(w.torque_1.as_slice()),
+        "{state}"
+    );
+    let normal_force = record.float("normal_force");
+    assert_eq!(
+        normal_force.to_bits(),
+        load.normal_force.to_bits(),
+        "{state}"
+    );
+    let touching = points.iter().filter(|p| p.indentation.depth > 0.0).count();
+    assert_eq!(record.integer("points_used"), touching as i64, "{state}");
+    let used = load.evaluated == Evaluated::PhysicsAndResidual;
+    assert_eq!(record.integer("residual_used") == 1, used, "{state}");
+    let outside = envelope
+        .distances(&input)
+        .iter()
+        .enumerate()
+        .filter(|(_, d)| **d != 0.0)
+        .fold(0, |mask, (i, _)| mask | 1 << i);
+    assert_eq!(record.integer("outside"), outside, "{state}");
+    used
+}
+
+/// What the peg example's records are checked against: the core's own objects.
+struct PegReference {
+    header: HashMap<String, i64>,
+    law: Impact<f32>,
+    friction: VelocityStepFriction<f32>,
+    f32_mlp: Mlp<13, 32, 6, 2, F32Weights>,
+    int8_mlp: Mlp<13, 32, 6, 2, Int8Weights>,
+}
+
+impl PegReference {
+    fn new() -> PegReference {
+        let blobs = root().join("examples/blobs");
+        let read = |name: &str| std::fs::read(blobs.join(name)).unwrap();
+        let (law, friction) = peg_pm2();
+        PegReference {
+            header: header_values(),
+            law,
+            friction,
+            f32_mlp: decode(&read("peg_in_hole.f32.hcm")).unwrap(),
+            int8_mlp: decode(&read("peg_in_hole.int8.hcm")).unwrap(),
+        }
+    }
+
+    /// Checks one printed record; for a `pair` record, whether the residual took part.
+    fn check(&self, record: &Record, line: &str) -> Option<bool> {
+        let physics = ContactModel::physics(AnyNormalLaw::from(self.law));
+        let physics = physics.with_friction(self.friction);
+        match record.kind.as_str() {
+            "physics" => self.check_physics(record),
+            "residual" => self.check_residual(record),
+            "pair" => {
+                return Some(match record.text("weights") {
+                    "f32" => {
+                        let model = physics.with_residual(&self.f32_mlp);
+                        check_pair(record, &model, &self.f32_mlp.envelope)
+                    }
+                    "int8" => {
+                        let model = physics.with_residual(&self.int8_mlp);
+                        check_pair(record, &model, &self.int8_mlp.envelope)
+                    }
+                    other => panic!("unknown weights {other}"),
+                })
+            }
+            "check" => self.check_status(record),
+            other => panic!("unknown record {other}: {line}"),
+        }
+        None
+    }
+
+    /// IMPACT and STEP (the header's constants) with the TOML's parameters, bit for bit.
+    fn check_physics(&self, record: &Record) {
+        assert_eq!(record.integer("law"), self.header["HCM_LAW_IMPACT"]);
+        assert_eq!(record.integer("friction"), self.header["HCM_FRICTION_STEP"]);
+        let law = self.law;
+        let expected = [
+            law.stiffness,
+            law.exponent,
+            law.max_damping,
+            law.full_damping_depth,
+        ];
+        assert_eq!(record.array::<4>("law_parameters"), expected);
+        let f = self.friction;
+        let expected = [
+            f.static_coefficient,
+            f.dynamic_coefficient,
+            f.stiction_speed,
+            f.dynamic_speed,
+        ];
+        assert_eq!(record.array::<4>("friction_parameters"), expected);
+    }
+
+    fn check_residual(&self, record: &Record) {
+        let (quantisation, envelope) = match record.text("file") {
+            "peg_in_hole.f32.hcm" => (0, self.f32_mlp.envelope),
+            "peg_in_hole.int8.hcm" => (1, self.int8_mlp.envelope),
+            other => panic!("unknown blob {other}"),
+        };
+        assert_eq!(record.integer("quantisation"), quantisation);
+        assert_eq!(record.text("shape"), "13-32-32-6");
+        assert_eq!(record.array::<13>("min"), envelope.min);
+        assert_eq!(record.array::<13>("max"), envelope.max);
+    }
+
+    /// Each refusal the example shows returned its code (the header's value).
+    fn check_status(&self, record: &Record) {
+        let expected = match record.text("what") {
+            "nine_points" => "HCM_STATUS_BAD_PARAMETER",
+            "not_decoded" => "HCM_STATUS_NOT_DECODED",
+            "ball_blob" => "HCM_STATUS_BLOB_WRONG_SHAPE",
+            "null_points" => "HCM_STATUS_NULL_POINTER",
+            "unknown_friction" => "HCM_STATUS_BAD_PARAMETER",
+            other => panic!("unknown check {other}"),
+        };
+        assert_eq!(
+            record.integer("status"),
+            self.header[expected],
+            "{expected}"
+        );
+    }
+}
+
+#[test]
+fn the_peg_example_matches_pair_load_bit_for_bit() {
+    let folder = tempfile::tempdir().unwrap();
+    let output = run_example(static_library(), folder.path(), "peg_hcm");
+    let reference = PegReference::new();
+    let mut counts: HashMap<String, usize> = HashMap::new();
+    let mut used = [0_usize; 2];
+    for line in output.lines() {
+        let record = Record::parse(line);
+        if let Some(residual_used) = reference.check(&record, line) {
+            used[usize::from(residual_used)] += 1;
+        }
+        *counts.entry(record.kind).or_default() += 1;
+    }
+    // Six states, each with both weight formats: the residual took part at the four wall
+    // states, not in flight (no point touches) nor at −3 m/s (outside its envelope).
+    assert_eq!(used, [4, 8], "{output}");
+    for (kind, count) in [("physics", 1), ("residual", 2), ("pair", 12), ("check", 5)] {
+        assert_eq!(counts.get(kind), Some(&count), "{kind}");
+    }
+    assert!(output.contains(" count=4 "), "a state with four points");
 }

@@ -27,6 +27,10 @@
 // Most effects one `HcmExtendedLaw` holds.
 #define HCM_MAX_EFFECTS 4
 
+// Most contact points one `hcm_pair_load` call takes (a box in a rectangular hole
+// touches at up to eight).
+#define HCM_MAX_POINTS 8
+
 // Inputs of the residual: [δ (m), δ̇ (m/s), δ̇0 (m/s)].
 #define HCM_RESIDUAL_INPUTS 3
 
@@ -44,9 +48,31 @@
 // answered with `HCM_STATUS_MISALIGNED`.
 #define HCM_RESIDUAL_ALIGN 16
 
+// Inputs of the wrench residual: the body's state (for the peg: position (m),
+// quaternion w, x, y, z (–), velocity (m/s), body-frame angular velocity (rad/s)).
+#define HCM_WRENCH_RESIDUAL_INPUTS 13
+
+// Neurons per hidden layer of the wrench residual.
+#define HCM_WRENCH_RESIDUAL_WIDTH 32
+
+// Hidden layers of the wrench residual.
+#define HCM_WRENCH_RESIDUAL_HIDDEN_LAYERS 2
+
+// Outputs of the wrench residual: force x, y, z (N), then torque x, y, z (N·m).
+#define HCM_WRENCH_RESIDUAL_OUTPUTS 6
+
+// Bytes of an `HcmWrenchResidual`: room for the network in either weight format
+// (7,136 bytes today), with margin for a change of the core's layout (a
+// compile-time check guards it).
+#define HCM_WRENCH_RESIDUAL_SIZE 12288
+
+// Alignment (bytes) of an `HcmWrenchResidual`; a pointer that is not a multiple of it
+// is answered with `HCM_STATUS_MISALIGNED`.
+#define HCM_WRENCH_RESIDUAL_ALIGN 16
+
 // The outcome of an `hcm_*` call. On anything but `HCM_STATUS_OK` the call wrote
-// nothing through its output pointers (except `hcm_residual_decode`, which marks its
-// output as not decoded).
+// nothing through its output pointers (except `hcm_residual_decode` and
+// `hcm_wrench_residual_decode`, which mark their output as not decoded).
 //
 // Codes 1–15 are the caller's mistakes at the boundary, 16 and up why a weights
 // blob was refused (one per `hcm_core::residual::BlobError` variant).
@@ -60,16 +86,20 @@ enum HcmStatus
   // A pointer argument is null.
   HCM_STATUS_NULL_POINTER = 1,
   // A pointer argument is not aligned for its type (see `HCM_RESIDUAL_ALIGN` for
-  // `HcmResidual`; 4 bytes for `float` and the law structs).
+  // `HcmResidual`, `HCM_WRENCH_RESIDUAL_ALIGN` for `HcmWrenchResidual`; 4 bytes for
+  // `float` and the other structs).
   HCM_STATUS_MISALIGNED = 2,
   // A blob length larger than any object can be (more than `PTRDIFF_MAX` bytes).
   HCM_STATUS_BAD_LENGTH = 3,
-  // An unknown law or effect kind, or more effects than `HCM_MAX_EFFECTS`.
+  // An unknown law, effect or friction kind, more effects than `HCM_MAX_EFFECTS`,
+  // or more contact points than `HCM_MAX_POINTS`.
   HCM_STATUS_BAD_PARAMETER = 4,
-  // A law or effect parameter outside its physical domain (`hcm_law_validate`,
-  // `hcm_extended_law_validate`), or one kind of effect listed twice.
+  // A law, effect or friction parameter outside its physical domain
+  // (`hcm_law_validate`, `hcm_extended_law_validate`, `hcm_pair_physics_validate`),
+  // or one kind of effect listed twice.
   HCM_STATUS_OUT_OF_DOMAIN = 5,
-  // The `HcmResidual` was never filled by a successful `hcm_residual_decode`.
+  // The `HcmResidual` (`HcmWrenchResidual`) was never filled by a successful
+  // `hcm_residual_decode` (`hcm_wrench_residual_decode`).
   HCM_STATUS_NOT_DECODED = 6,
   // A bug inside hcm: a Rust panic, caught at the boundary.
   HCM_STATUS_PANIC = 7,
@@ -83,7 +113,9 @@ enum HcmStatus
   HCM_STATUS_BLOB_UNSUPPORTED_VERSION = 19,
   // The blob's CRC-32 does not match its contents: it was corrupted.
   HCM_STATUS_BLOB_BAD_CRC = 20,
-  // The blob's network is not 3 inputs, 2 hidden layers of 16, 1 output.
+  // The blob's network is not the shape the call decodes: 3 inputs, 2 hidden
+  // layers of 16, 1 output for `hcm_residual_decode`; 13 inputs, 2 hidden layers of
+  // 32, 6 outputs for `hcm_wrench_residual_decode`.
   HCM_STATUS_BLOB_WRONG_SHAPE = 21,
   // The blob's network has 0 or more than 3 hidden layers.
   HCM_STATUS_BLOB_UNSUPPORTED_DEPTH = 22,
@@ -184,6 +216,78 @@ typedef struct HcmHybridForce {
   uint32_t outside_envelope;
 } HcmHybridForce;
 
+// Which friction law: one of the `HCM_FRICTION_*` constants.
+typedef uint32_t HcmFrictionKind;
+
+// A friction law and its parameters.
+typedef struct HcmFriction {
+  // `HCM_FRICTION_*`.
+  HcmFrictionKind kind;
+  // The law's parameters in the order its `HCM_FRICTION_*` constant lists, SI
+  // units; the entries after the law's count are ignored.
+  float parameters[HCM_MAX_PARAMETERS];
+} HcmFriction;
+
+// The physics of one body pair: the normal law with its effects at every point, and
+// the friction law from each point's slip and normal force.
+typedef struct HcmPairPhysics {
+  // The normal law and its effects.
+  struct HcmExtendedLaw normal;
+  // The friction law.
+  struct HcmFriction friction;
+} HcmPairPhysics;
+
+// Storage for one decoded wrench residual (13-32-32-6, f32 or int8 weights).
+//
+// Declare it anywhere (stack, static, inside a struct): the compiler aligns it.
+// Fill it with `hcm_wrench_residual_decode`; it holds no pointers, so a decoded one
+// may be copied with `memcpy` or by assignment. Its bytes mean nothing to C.
+typedef struct HCM_ALIGNED(16) HcmWrenchResidual {
+  // Opaque.
+  uint8_t storage[HCM_WRENCH_RESIDUAL_SIZE];
+} HcmWrenchResidual;
+
+// One contact point of a body pair, every vector in one common (world) frame.
+typedef struct HcmContactPoint {
+  // Indentation δ (m, > 0 in contact), its rate δ̇ (m/s, > 0 approaching), the
+  // approach speed δ̇0 (m/s) latched at this point's touch-down, and the deepest
+  // indentation δ_max (m) of this contact so far (read only by plasticity; 0 at
+  // touch-down).
+  struct HcmContact contact;
+  // Unit contact normal **n** (-), from body 2 towards body 1.
+  float normal[3];
+  // Contact point (m), where both bodies' forces act.
+  float position[3];
+  // Velocity (m/s) of body 1's material point at the contact relative to body 2's;
+  // its part perpendicular to **n** is the slip friction opposes.
+  float relative_velocity[3];
+  // Angular velocity of body 1 relative to body 2 (rad/s).
+  float relative_angular_velocity[3];
+} HcmContactPoint;
+
+// The loads of one body pair's contact on body 1 (body 2 receives the opposite
+// force).
+typedef struct HcmPairLoad {
+  // Force on body 1 (N), world frame: Σ (f_n·**n** + **f_f**) over the touching
+  // points, plus the residual's force when `residual_used`.
+  float force[3];
+  // Torque on body 1 (N·m) about its reference point: Σ l × (f_n·**n** + **f_f**),
+  // plus the residual's torque when `residual_used`.
+  float torque[3];
+  // Σ f_n over the touching points (N, > 0 repulsive).
+  float normal_force;
+  // How many of the points touch (δ > 0, or δ NaN, which the core lets through so
+  // that it shows): those that contributed.
+  uint32_t points_used;
+  // Whether the residual took part: some point touches, and the residual input lies
+  // inside its training envelope.
+  bool residual_used;
+  // Bit i set: residual input i lies beyond the envelope's tolerated bounds
+  // [min_i − tolerance_i, max_i + tolerance_i] (or is NaN): the core's own rule, so
+  // with a point touching, `residual_used` is 0 exactly when some bit is set.
+  uint32_t outside_envelope;
+} HcmPairLoad;
+
 // What a decoded residual is: its weight storage, shape and training envelope.
 typedef struct HcmResidualInfo {
   // 0: f32 weights, 1: int8 hidden → hidden weights (the blob's tag).
@@ -201,6 +305,25 @@ typedef struct HcmResidualInfo {
   // Largest value of each input in training.
   float envelope_max[HCM_RESIDUAL_INPUTS];
 } HcmResidualInfo;
+
+// What a decoded wrench residual is: its weight storage, shape and training envelope.
+typedef struct HcmWrenchResidualInfo {
+  // 0: f32 weights, 1: int8 hidden → hidden weights (the blob's tag).
+  uint32_t quantisation;
+  // Inputs (13).
+  uint32_t inputs;
+  // Neurons per hidden layer (32).
+  uint32_t width;
+  // Hidden layers (2).
+  uint32_t hidden_layers;
+  // Outputs (6).
+  uint32_t outputs;
+  // Smallest value of each input in training, in the input's unit (for the peg:
+  // m, –, m/s, rad/s as `HCM_WRENCH_RESIDUAL_INPUTS` lists them).
+  float envelope_min[HCM_WRENCH_RESIDUAL_INPUTS];
+  // Largest value of each input in training, in the input's unit.
+  float envelope_max[HCM_WRENCH_RESIDUAL_INPUTS];
+} HcmWrenchResidualInfo;
 
 // Hertz, Eq 2: stiffness k (N/m^n), exponent n (-).
 #define HCM_LAW_HERTZ 0
@@ -236,6 +359,14 @@ typedef struct HcmResidualInfo {
 
 // Plasticity: permanent ratio ρ = δ_p/δ_max (-); reads `HcmContact::max_depth`.
 #define HCM_EFFECT_PLASTICITY 4
+
+// No friction: every point pushes along its normal only.
+#define HCM_FRICTION_NONE 0
+
+// Velocity-based friction with STEP transitions (MSC ADAMS), Eq 10–11: static
+// coefficient μ_s (-), dynamic coefficient μ_d (-), stiction speed v_s (m/s), dynamic
+// speed v_d (m/s).
+#define HCM_FRICTION_STEP 1
 
 #ifdef __cplusplus
 extern "C" {
@@ -292,12 +423,51 @@ HcmStatus hcm_law_validate(const struct HcmLaw *law);
 // `law` must be null or point to an initialised `HcmExtendedLaw`.
 HcmStatus hcm_extended_law_validate(const struct HcmExtendedLaw *law);
 
+// `HCM_STATUS_OK` if the normal law, its effects and the friction law are in their
+// physical domains, `HCM_STATUS_OUT_OF_DOMAIN` if one is not (or one kind of effect
+// is listed twice), `HCM_STATUS_BAD_PARAMETER` for an unknown kind.
+//
+// # Safety
+// `physics` must be null or point to an initialised `HcmPairPhysics`.
+HcmStatus hcm_pair_physics_validate(const struct HcmPairPhysics *physics);
+
+// The contact model of one body pair, into `*out`: `physics` at each of the `count`
+// points `points[0..count]` (the normal law with its effects, friction from the
+// point's slip), summed by Eq 1 with torques about `reference` (3 floats: body 1's
+// reference point, its centre of mass (m)), plus the wrench residual `*residual` at
+// `residual_input` (`HCM_WRENCH_RESIDUAL_INPUTS` floats), evaluated once, when some
+// point touches and the input lies inside the residual's training envelope. Through
+// the core's `ContactModel::pair_load`: the same bits as Rust.
+//
+// No points touching: zero loads, physics only. Non-finite values are not refused:
+// they go through the core's rules (a NaN δ counts as touching and propagates; a NaN
+// or infinite residual input switches the residual off, its bit set in
+// `outside_envelope`). `HCM_STATUS_BAD_PARAMETER` for `count` > `HCM_MAX_POINTS` or an
+// unknown kind; `HCM_STATUS_NOT_DECODED` if `*residual` was never decoded.
+//
+// # Safety
+// `physics` must be null or point to an initialised `HcmPairPhysics`; `residual` null
+// or an initialised `HcmWrenchResidual` (zeroed, or passed to
+// `hcm_wrench_residual_decode`) not written during the call; `points` null or `count`
+// initialised `HcmContactPoint`s; `reference` null or 3 initialised floats;
+// `residual_input` null or `HCM_WRENCH_RESIDUAL_INPUTS` initialised floats; `out`
+// null or writable memory for one `HcmPairLoad`.
+HcmStatus hcm_pair_load(const struct HcmPairPhysics *physics,
+                        const struct HcmWrenchResidual *residual,
+                        const struct HcmContactPoint *points,
+                        size_t count,
+                        const float *reference,
+                        const float *residual_input,
+                        struct HcmPairLoad *out);
+
 // Decodes the weights blob `blob` (`len` bytes, e.g. `bouncing_ball.f32.hcm`) into
 // `*out`, whichever of f32 or int8 weights it holds.
 //
 // On any error `*out` is marked not decoded (if `out` itself is usable), so a later
 // evaluation answers `HCM_STATUS_NOT_DECODED` rather than use a stale network.
-// Every damaged blob is refused with its `HCM_STATUS_BLOB_*` code.
+// Every damaged blob is refused with its `HCM_STATUS_BLOB_*` code; a blob of another
+// shape than 3-16-16-1 (the peg's 13-32-32-6: `hcm_wrench_residual_decode`) with
+// `HCM_STATUS_BLOB_WRONG_SHAPE`.
 //
 // # Safety
 // `blob` must be null or point to `len` readable bytes; `out` must be null or point
@@ -319,6 +489,33 @@ HcmStatus hcm_residual_info(const struct HcmResidual *residual, struct HcmResidu
 // Takes the code as a plain integer: a C caller may pass any `int32_t`.
 const char *hcm_status_name(int32_t code);
 
+// Decodes the weights blob `blob` (`len` bytes, e.g. `peg_in_hole.f32.hcm`) into
+// `*out`, whichever of f32 or int8 weights it holds.
+//
+// On any error `*out` is marked not decoded (if `out` itself is usable), so a later
+// evaluation answers `HCM_STATUS_NOT_DECODED` rather than use a stale network.
+// Every damaged blob is refused with its `HCM_STATUS_BLOB_*` code; a blob of another
+// shape than 13-32-32-6 (the ball's 3-16-16-1: `hcm_residual_decode`) with
+// `HCM_STATUS_BLOB_WRONG_SHAPE`.
+//
+// # Safety
+// `blob` must be null or point to `len` readable bytes; `out` must be null or point
+// to writable memory for one `HcmWrenchResidual` not accessed elsewhere during the
+// call.
+HcmStatus hcm_wrench_residual_decode(const uint8_t *blob,
+                                     size_t len,
+                                     struct HcmWrenchResidual *out);
+
+// Describes the decoded `*residual` into `*info`: `HCM_STATUS_NOT_DECODED` if it was
+// never decoded.
+//
+// # Safety
+// `residual` must be null or point to an initialised `HcmWrenchResidual` (zeroed, or
+// passed to `hcm_wrench_residual_decode`); `info` must be null or point to writable
+// memory for one `HcmWrenchResidualInfo`.
+HcmStatus hcm_wrench_residual_info(const struct HcmWrenchResidual *residual,
+                                   struct HcmWrenchResidualInfo *info);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus
@@ -329,7 +526,13 @@ const char *hcm_status_name(int32_t code);
 #if defined(__cplusplus)
 static_assert(sizeof(HcmResidual) == HCM_RESIDUAL_SIZE, "HcmResidual size");
 static_assert(alignof(HcmResidual) == HCM_RESIDUAL_ALIGN, "HcmResidual alignment");
+static_assert(sizeof(HcmWrenchResidual) == HCM_WRENCH_RESIDUAL_SIZE, "HcmWrenchResidual size");
+static_assert(alignof(HcmWrenchResidual) == HCM_WRENCH_RESIDUAL_ALIGN,
+              "HcmWrenchResidual alignment");
 #elif defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L
 _Static_assert(sizeof(HcmResidual) == HCM_RESIDUAL_SIZE, "HcmResidual size");
 _Static_assert(_Alignof(HcmResidual) == HCM_RESIDUAL_ALIGN, "HcmResidual alignment");
+_Static_assert(sizeof(HcmWrenchResidual) == HCM_WRENCH_RESIDUAL_SIZE, "HcmWrenchResidual size");
+_Static_assert(_Alignof(HcmWrenchResidual) == HCM_WRENCH_RESIDUAL_ALIGN,
+               "HcmWrenchResidual alignment");
 #endif

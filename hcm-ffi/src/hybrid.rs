@@ -81,8 +81,13 @@ fn evaluate<R: Residual<f32>>(
 }
 
 /// The bit mask of the inputs beyond `envelope`'s tolerated bounds (NaN counts as
-/// beyond), from the core's [`Envelope::distances`].
-fn outside(envelope: &Envelope<HCM_RESIDUAL_INPUTS>, input: &[f32; HCM_RESIDUAL_INPUTS]) -> u32 {
+/// beyond), from the core's [`Envelope::distances`]: bit i for input i (at most 32
+/// inputs).
+pub(crate) fn outside<const INPUTS: usize>(
+    envelope: &Envelope<INPUTS>,
+    input: &[f32; INPUTS],
+) -> u32 {
+    const { assert!(INPUTS <= 32) };
     envelope
         .distances(input)
         .iter()

@@ -19,8 +19,15 @@
 //!   the catalogued effects, for one contact;
 //! - `hcm_hybrid_force`: the hybrid model (physics + residual), with whether the
 //!   residual took part and which inputs left its envelope;
-//! - `hcm_law_validate`, `hcm_extended_law_validate`, `hcm_residual_info`,
-//!   `hcm_status_name`.
+//! - `hcm_wrench_residual_decode`: a rigid body's wrench residual (the peg-in-hole's
+//!   13-32-32-6 network, f32 or int8) into a caller-provided `HcmWrenchResidual`;
+//! - `hcm_pair_load`: the contact model of one body pair in one call — IMPACT or any
+//!   other law with its effects and STEP friction at up to `HCM_MAX_POINTS` contact
+//!   points, summed by Eq 1, plus the wrench residual — through the core's
+//!   `ContactModel::pair_load`: force (N) and torque (N·m) on body 1, Σ f_n (N), the
+//!   points used, whether the residual took part;
+//! - `hcm_law_validate`, `hcm_extended_law_validate`, `hcm_pair_physics_validate`,
+//!   `hcm_residual_info`, `hcm_wrench_residual_info`, `hcm_status_name`.
 //!
 //! All in `float` (f32), the controller's type, with the core's conventions (δ > 0 in
 //! contact, δ̇ > 0 approaching, SI units).
@@ -29,13 +36,15 @@
 //!
 //! Every function returns an `HcmStatus`; outputs go through pointers and are written
 //! only on `HCM_STATUS_OK`. Null and misaligned pointers are answered with
-//! `HCM_STATUS_NULL_POINTER` / `HCM_STATUS_MISALIGNED`, an unknown law or effect kind
-//! with `HCM_STATUS_BAD_PARAMETER`, every refused blob with its `HCM_STATUS_BLOB_*`
+//! `HCM_STATUS_NULL_POINTER` / `HCM_STATUS_MISALIGNED`, an unknown law, effect or
+//! friction kind and too many effects or contact points with
+//! `HCM_STATUS_BAD_PARAMETER`, every refused blob with its `HCM_STATUS_BLOB_*`
 //! code. Every entry point runs inside `catch_unwind`: a panic (a bug; the core is
 //! written never to panic) is `HCM_STATUS_PANIC`, never an unwind into C. The inputs
 //! are structs of integers and floats only (kinds are `uint32_t`, not C enums), so any
 //! bytes a C caller passes are a valid Rust value; the one struct whose bytes are not
-//! plain data, `HcmResidual`, carries a marker that only a successful decode writes.
+//! plain data, `HcmResidual` (and `HcmWrenchResidual`), carries a marker that only a
+//! successful decode writes.
 //! Each `unsafe` block states the invariant it relies on.
 
 #![warn(missing_docs)]
@@ -48,8 +57,10 @@ compile_error!("hcm-ffi must be built with panic = \"unwind\": its entry points 
 mod boundary;
 mod hybrid;
 mod law;
+mod pair;
 mod residual;
 mod status;
+mod wrench;
 
 pub use hybrid::{hcm_hybrid_force, HcmHybridForce};
 pub use law::{
@@ -62,9 +73,19 @@ pub use law::{
     HCM_LAW_HUNT_CROSSLEY, HCM_LAW_IMPACT, HCM_LAW_LANKARANI_NIKRAVESH, HCM_LAW_VARIABLE_STIFFNESS,
     HCM_MAX_EFFECTS, HCM_MAX_PARAMETERS,
 };
+pub use pair::{
+    hcm_pair_load, hcm_pair_physics_validate, HcmContactPoint, HcmFriction, HcmFrictionKind,
+    HcmPairLoad, HcmPairPhysics, HCM_FRICTION_NONE, HCM_FRICTION_STEP, HCM_MAX_POINTS,
+};
 pub use residual::{
     hcm_residual_decode, hcm_residual_info, F32Network, HcmResidual, HcmResidualInfo, Int8Network,
     Network, HCM_RESIDUAL_ALIGN, HCM_RESIDUAL_HIDDEN_LAYERS, HCM_RESIDUAL_INPUTS,
     HCM_RESIDUAL_SIZE, HCM_RESIDUAL_WIDTH,
 };
 pub use status::{hcm_status_name, HcmStatus};
+pub use wrench::{
+    hcm_wrench_residual_decode, hcm_wrench_residual_info, F32WrenchNetwork, HcmWrenchResidual,
+    HcmWrenchResidualInfo, Int8WrenchNetwork, WrenchNetwork, HCM_WRENCH_RESIDUAL_ALIGN,
+    HCM_WRENCH_RESIDUAL_HIDDEN_LAYERS, HCM_WRENCH_RESIDUAL_INPUTS, HCM_WRENCH_RESIDUAL_OUTPUTS,
+    HCM_WRENCH_RESIDUAL_SIZE, HCM_WRENCH_RESIDUAL_WIDTH,
+};

@@ -5,13 +5,16 @@
 //! of a size and alignment fixed here and checked at compile time against the Rust
 //! type it holds ([`Decoded`]: a marker, then the network in f32 or int8 weights). The
 //! marker tells a decoded `HcmResidual` from one that never was (zeroed, or left
-//! behind by a failed decode): only a decoded one is read as a network.
+//! behind by a failed decode): only a decoded one is read as a network. The peg's
+//! wrench residual (`crate::wrench`) is stored the same way ([`Storage`]).
 
 use crate::boundary::{checked, checked_mut, guard};
 use crate::HcmStatus;
 use core::mem::{align_of, size_of};
 use core::ptr::addr_of_mut;
-use hcm_core::residual::{decode, BlobError, F32Weights, Int8Weights, Mlp, Quantisation};
+use hcm_core::residual::{
+    decode, BlobError, F32Weights, Hidden, HiddenDepth, Int8Weights, Mlp, Quantisation,
+};
 
 /// Inputs of the residual: [δ (m), δ̇ (m/s), δ̇0 (m/s)].
 pub const HCM_RESIDUAL_INPUTS: usize = 3;
@@ -54,41 +57,134 @@ pub enum Network {
     Int8(Int8Network),
 }
 
-/// What an `HcmResidual`'s storage holds: `marker` first, so that it can be read
-/// (as plain bytes) before anything else is.
-#[repr(C)]
-struct Decoded {
-    marker: u64,
-    network: Network,
+/// Caller-provided opaque storage for one network type: what it holds once decoded,
+/// how to decode it, and the marker that says it was.
+pub(crate) trait Storage {
+    /// The network the storage holds after a successful decode.
+    type Network;
+    /// Written after a successful decode (any other value, zero included, means "not
+    /// decoded"); one per storage type, so that the bytes of one kind of storage
+    /// copied into another are not taken for a network.
+    const MARKER: u64;
+    /// The network `blob` holds, in whichever weight format it declares.
+    fn decode(blob: &[u8]) -> Result<Self::Network, BlobError>;
 }
 
-/// Written after a successful decode: the bytes `hcm-rdl1` (any other value,
-/// zero included, means "not decoded").
-const DECODED: u64 = u64::from_le_bytes(*b"hcm-rdl1");
+/// What a [`Storage`] holds: `marker` first, so that it can be read (as plain bytes)
+/// before anything else is.
+#[repr(C)]
+struct Decoded<N> {
+    marker: u64,
+    network: N,
+}
 
-// The Rust type fits the C storage, and the storage's alignment serves it.
-const _: () = assert!(size_of::<Decoded>() <= HCM_RESIDUAL_SIZE);
-const _: () = assert!(align_of::<Decoded>() <= align_of::<HcmResidual>());
+/// Decodes `len` bytes at `blob` into the storage `out`, which is marked not decoded
+/// first (if `out` itself is usable), so that a refused blob leaves no stale network.
+///
+/// # Safety
+/// `blob` must be null or point to `len` readable bytes; `out` must be null or point
+/// to writable memory for one `S` not accessed elsewhere during the call.
+pub(crate) unsafe fn decode_into<S: Storage>(
+    blob: *const u8,
+    len: usize,
+    out: *mut S,
+) -> Result<(), HcmStatus> {
+    // The Rust type fits the C storage, and the storage's alignment serves it.
+    const {
+        assert!(size_of::<Decoded<S::Network>>() <= size_of::<S>());
+        assert!(align_of::<Decoded<S::Network>>() <= align_of::<S>());
+    }
+    let decoded = checked_mut(out)?.cast::<Decoded<S::Network>>();
+    // SAFETY: `out` is non-null and aligned for `S`, hence (compile-time checks above)
+    // for `Decoded`, and writable (contract); `addr_of_mut` creates no reference to the
+    // possibly uninitialised `network`.
+    unsafe { addr_of_mut!((*decoded).marker).write(0) };
+    let blob = checked(blob)?;
+    if len > isize::MAX as usize {
+        return Err(HcmStatus::BadLength);
+    }
+    // SAFETY: non-null, `u8` needs no alignment, `len` ≤ isize::MAX, and `len`
+    // readable bytes by the caller's contract.
+    let bytes = unsafe { core::slice::from_raw_parts(blob, len) };
+    let network = S::decode(bytes)?;
+    // SAFETY: as for the marker above; the whole `Decoded` fits the storage.
+    unsafe {
+        decoded.write(Decoded {
+            marker: S::MARKER,
+            network,
+        })
+    };
+    Ok(())
+}
+
+/// The network inside the storage `*storage`, if it was decoded.
+///
+/// # Safety
+/// `storage` must be null or point to an initialised `S` (any bytes: a zeroed one is
+/// fine) that is not written during `'a`. Its marker is read first; only storage that
+/// [`decode_into`] wrote (or a byte copy of it) carries `S`'s marker, and only then is
+/// the rest read as an `S::Network`.
+pub(crate) unsafe fn stored<'a, S: Storage>(
+    storage: *const S,
+) -> Result<&'a S::Network, HcmStatus> {
+    const {
+        assert!(size_of::<Decoded<S::Network>>() <= size_of::<S>());
+        assert!(align_of::<Decoded<S::Network>>() <= align_of::<S>());
+    }
+    let decoded = checked(storage)?.cast::<Decoded<S::Network>>();
+    // SAFETY: non-null, aligned (checked; `Decoded` needs no more than `S`) and
+    // initialised (contract); a `u64` is valid for any bytes.
+    let marker = unsafe { core::ptr::addr_of!((*decoded).marker).read() };
+    if marker != S::MARKER {
+        return Err(HcmStatus::NotDecoded);
+    }
+    // SAFETY: the marker is written only together with a valid `S::Network`
+    // (`decode_into`), so the storage holds one.
+    Ok(unsafe { &(*decoded).network })
+}
+
+/// The network of shape `INPUTS`-`WIDTH`×`HIDDEN`-`OUTPUTS` that `blob` holds, as
+/// `f32` (f32 weights) or `int8` (int8 weights) makes it.
+pub(crate) fn decode_either<
+    const INPUTS: usize,
+    const WIDTH: usize,
+    const OUTPUTS: usize,
+    const HIDDEN: usize,
+    N,
+>(
+    blob: &[u8],
+    f32: fn(Mlp<INPUTS, WIDTH, OUTPUTS, HIDDEN, F32Weights>) -> N,
+    int8: fn(Mlp<INPUTS, WIDTH, OUTPUTS, HIDDEN, Int8Weights>) -> N,
+) -> Result<N, BlobError>
+where
+    Hidden<HIDDEN>: HiddenDepth<WIDTH, F32Weights> + HiddenDepth<WIDTH, Int8Weights>,
+{
+    match decode(blob) {
+        Err(BlobError::WrongQuantisation {
+            found: Quantisation::Int8,
+            ..
+        }) => decode(blob).map(int8),
+        other => other.map(f32),
+    }
+}
+
+impl Storage for HcmResidual {
+    type Network = Network;
+    /// The bytes `hcm-rdl1`.
+    const MARKER: u64 = u64::from_le_bytes(*b"hcm-rdl1");
+
+    fn decode(blob: &[u8]) -> Result<Network, BlobError> {
+        Network::decode(blob)
+    }
+}
+
 const _: () = assert!(align_of::<HcmResidual>() == HCM_RESIDUAL_ALIGN);
 const _: () = assert!(size_of::<HcmResidual>() == HCM_RESIDUAL_SIZE);
 
 impl Network {
     /// The network `blob` holds, in whichever weight format it declares.
     pub fn decode(blob: &[u8]) -> Result<Network, BlobError> {
-        match decode::<
-            HCM_RESIDUAL_INPUTS,
-            HCM_RESIDUAL_WIDTH,
-            1,
-            HCM_RESIDUAL_HIDDEN_LAYERS,
-            F32Weights,
-        >(blob)
-        {
-            Err(BlobError::WrongQuantisation {
-                found: Quantisation::Int8,
-                ..
-            }) => decode(blob).map(Network::Int8),
-            other => other.map(Network::F32),
-        }
+        decode_either(blob, Network::F32, Network::Int8)
     }
 }
 
@@ -97,7 +193,9 @@ impl Network {
 ///
 /// On any error `*out` is marked not decoded (if `out` itself is usable), so a later
 /// evaluation answers `HCM_STATUS_NOT_DECODED` rather than use a stale network.
-/// Every damaged blob is refused with its `HCM_STATUS_BLOB_*` code.
+/// Every damaged blob is refused with its `HCM_STATUS_BLOB_*` code; a blob of another
+/// shape than 3-16-16-1 (the peg's 13-32-32-6: `hcm_wrench_residual_decode`) with
+/// `HCM_STATUS_BLOB_WRONG_SHAPE`.
 ///
 /// # Safety
 /// `blob` must be null or point to `len` readable bytes; `out` must be null or point
@@ -108,49 +206,18 @@ pub unsafe extern "C" fn hcm_residual_decode(
     len: usize,
     out: *mut HcmResidual,
 ) -> HcmStatus {
-    guard(|| {
-        let decoded = checked_mut(out)?.cast::<Decoded>();
-        // SAFETY: `out` is non-null and aligned for `HcmResidual`, hence (compile-time
-        // checks above) for `Decoded`, and writable (contract); `addr_of_mut` creates
-        // no reference to the possibly uninitialised `network`.
-        unsafe { addr_of_mut!((*decoded).marker).write(0) };
-        let blob = checked(blob)?;
-        if len > isize::MAX as usize {
-            return Err(HcmStatus::BadLength);
-        }
-        // SAFETY: non-null, `u8` needs no alignment, `len` ≤ isize::MAX, and `len`
-        // readable bytes by the caller's contract.
-        let bytes = unsafe { core::slice::from_raw_parts(blob, len) };
-        let network = Network::decode(bytes)?;
-        // SAFETY: as for the marker above; the whole `Decoded` fits the storage.
-        unsafe {
-            decoded.write(Decoded {
-                marker: DECODED,
-                network,
-            })
-        };
-        Ok(())
-    })
+    // SAFETY: the caller's contract above is `decode_into`'s.
+    guard(|| unsafe { decode_into(blob, len, out) })
 }
 
 /// The network inside `*residual`, if it was decoded.
 ///
 /// # Safety
-/// `residual` must be null or point to an initialised `HcmResidual` (any bytes: a
-/// zeroed one is fine) that is not written during `'a`. Its marker is read first; only
-/// storage that `hcm_residual_decode` wrote (or a byte copy of it) carries the marker,
-/// and only then is the rest read as a [`Network`].
+/// As [`stored`]: `residual` null or an initialised `HcmResidual` not written during
+/// `'a`.
 pub(crate) unsafe fn network<'a>(residual: *const HcmResidual) -> Result<&'a Network, HcmStatus> {
-    let decoded = checked(residual)?.cast::<Decoded>();
-    // SAFETY: non-null, aligned (checked; `Decoded` needs no more than `HcmResidual`)
-    // and initialised (contract); a `u64` is valid for any bytes.
-    let marker = unsafe { core::ptr::addr_of!((*decoded).marker).read() };
-    if marker != DECODED {
-        return Err(HcmStatus::NotDecoded);
-    }
-    // SAFETY: the marker is written only together with a valid `Network`
-    // (`hcm_residual_decode`), so the storage holds one.
-    Ok(unsafe { &(*decoded).network })
+    // SAFETY: the caller's contract above.
+    unsafe { stored(residual) }
 }
 
 /// What a decoded residual is: its weight storage, shape and training envelope.

@@ -5,8 +5,8 @@ use core::ffi::c_char;
 use hcm_core::residual::BlobError;
 
 /// The outcome of an `hcm_*` call. On anything but `HCM_STATUS_OK` the call wrote
-/// nothing through its output pointers (except `hcm_residual_decode`, which marks its
-/// output as not decoded).
+/// nothing through its output pointers (except `hcm_residual_decode` and
+/// `hcm_wrench_residual_decode`, which mark their output as not decoded).
 ///
 /// Codes 1–15 are the caller's mistakes at the boundary, 16 and up why a weights
 /// blob was refused (one per `hcm_core::residual::BlobError` variant).
@@ -18,16 +18,20 @@ pub enum HcmStatus {
     /// A pointer argument is null.
     NullPointer = 1,
     /// A pointer argument is not aligned for its type (see `HCM_RESIDUAL_ALIGN` for
-    /// `HcmResidual`; 4 bytes for `float` and the law structs).
+    /// `HcmResidual`, `HCM_WRENCH_RESIDUAL_ALIGN` for `HcmWrenchResidual`; 4 bytes for
+    /// `float` and the other structs).
     Misaligned = 2,
     /// A blob length larger than any object can be (more than `PTRDIFF_MAX` bytes).
     BadLength = 3,
-    /// An unknown law or effect kind, or more effects than `HCM_MAX_EFFECTS`.
+    /// An unknown law, effect or friction kind, more effects than `HCM_MAX_EFFECTS`,
+    /// or more contact points than `HCM_MAX_POINTS`.
     BadParameter = 4,
-    /// A law or effect parameter outside its physical domain (`hcm_law_validate`,
-    /// `hcm_extended_law_validate`), or one kind of effect listed twice.
+    /// A law, effect or friction parameter outside its physical domain
+    /// (`hcm_law_validate`, `hcm_extended_law_validate`, `hcm_pair_physics_validate`),
+    /// or one kind of effect listed twice.
     OutOfDomain = 5,
-    /// The `HcmResidual` was never filled by a successful `hcm_residual_decode`.
+    /// The `HcmResidual` (`HcmWrenchResidual`) was never filled by a successful
+    /// `hcm_residual_decode` (`hcm_wrench_residual_decode`).
     NotDecoded = 6,
     /// A bug inside hcm: a Rust panic, caught at the boundary.
     Panic = 7,
@@ -41,7 +45,9 @@ pub enum HcmStatus {
     BlobUnsupportedVersion = 19,
     /// The blob's CRC-32 does not match its contents: it was corrupted.
     BlobBadCrc = 20,
-    /// The blob's network is not 3 inputs, 2 hidden layers of 16, 1 output.
+    /// The blob's network is not the shape the call decodes: 3 inputs, 2 hidden
+    /// layers of 16, 1 output for `hcm_residual_decode`; 13 inputs, 2 hidden layers of
+    /// 32, 6 outputs for `hcm_wrench_residual_decode`.
     BlobWrongShape = 21,
     /// The blob's network has 0 or more than 3 hidden layers.
     BlobUnsupportedDepth = 22,
