@@ -16,8 +16,23 @@ use hcm_core::residual::{decode, F32Weights, Int8Weights};
 use hcm_core::rigid::RigidState;
 use hcm_ffi::*;
 use nalgebra::Vector3;
-use peg::{PegFixture, PegResidual, PegWeights, PEG_STATES, STATE_NAMES};
+use peg::{PegResidual, PegWeights, PEG_STATES, STATE_NAMES};
 use std::ptr::{null, null_mut};
+
+/// The peg's HCM with `Q` weights, as the firmware's host test builds it.
+struct PegFixture<Q: PegWeights> {
+    /// PM2 + friction + the residual.
+    hcm: ContactModel<f32, PegResidual<Q>>,
+}
+
+impl<Q: PegWeights> PegFixture<Q> {
+    /// The model with the shipped blob of `Q`.
+    fn decode() -> Result<Self, hcm_core::residual::BlobError> {
+        Ok(PegFixture {
+            hcm: peg::peg_hcm(peg::decode_network::<Q>()?),
+        })
+    }
+}
 
 /// The peg's PM2 as C writes it: IMPACT (k, e, d_max, δ_max) and STEP friction
 /// (μ_s, μ_d, v_s, v_d), the firmware's f32 values.
