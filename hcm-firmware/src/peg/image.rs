@@ -147,6 +147,22 @@ fn costs(
             black_box(peg_load(&PEG_HCM, black_box(&state)));
         }),
     );
+    // The HCM given the manifold, in one call (`ContactModel::pair_load`: the physics
+    // at each point, the residual once), as a controller with contact detection of its
+    // own calls it (and C through `hcm_pair_load`).
+    let points = peg::manifold(&state);
+    report(
+        "peg_pair",
+        name,
+        counter.instructions(|| {
+            black_box(PEG_HCM.pair_load(
+                black_box(&points),
+                &state.position(),
+                &nalgebra::Vector3::zeros(),
+                &state.components,
+            ));
+        }),
+    );
     report(
         "peg_decode",
         name,
