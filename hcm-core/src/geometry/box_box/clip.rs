@@ -56,13 +56,13 @@ pub(super) fn face_contacts<T: Real>(
         for corner in polygon.iter_mut() {
             corner.along = dot(&sub(&corner.point, &frame.center), axis);
         }
-        for negative in [false, true] {
+        for plane in 2 * pair..2 * pair + 2 {
             let side = Side {
                 frame,
                 tangent,
-                negative,
-                // pair < 2: the cast is exact.
-                line: 4 + 2 * pair as u8 + u8::from(negative),
+                negative: plane % 2 == 1,
+                // plane < 4: the cast is exact.
+                line: 4 + plane as u8,
             };
             // A plane with every corner inside leaves the polygon as it is.
             if polygon.iter().all(|c| side.beyond(c) <= T::zero()) {
@@ -112,15 +112,18 @@ fn incident_face<T: Real>(
     outward: &Vector3<T>,
     polygon: &mut Polygon<T>,
 ) -> u32 {
-    let alignment = |i: usize| dot(&incident.axes[i], outward).abs();
-    let axis = (1..3).fold(0, |best, i| {
-        if alignment(i) > alignment(best) {
-            i
-        } else {
-            best
-        }
-    });
-    let negative = dot(&incident.axes[axis], outward) > T::zero();
+    let [a, b, c] = &incident.axes;
+    // The axis most aligned with the normal, the first of equals.
+    let (mut axis, mut along) = (0, dot(a, outward));
+    let d = dot(b, outward);
+    if d.abs() > along.abs() {
+        (axis, along) = (1, d);
+    }
+    let d = dot(c, outward);
+    if d.abs() > along.abs() {
+        (axis, along) = (2, d);
+    }
+    let negative = along > T::zero();
     let sign = if negative { -T::one() } else { T::one() };
     let center = add_scaled(
         &incident.center,
@@ -128,24 +131,25 @@ fn incident_face<T: Real>(
         sign * incident.half[axis],
     );
     let (p, q) = ((axis + 1) % 3, (axis + 2) % 3);
-    // ±1 × h is ±h exactly.
-    let (hp, hq) = (incident.half[p], incident.half[q]);
-    for (k, (sp, sq)) in [(hp, hq), (-hp, hq), (-hp, -hq), (hp, -hq)]
-        .into_iter()
-        .enumerate()
-    {
-        let point = add(
-            &add_scaled(&center, &incident.axes[p], sp),
-            &scale(&incident.axes[q], sq),
-        );
-        // k < 4: the casts are exact; 4 vertices into a capacity of 8.
+    // The centre + the tangents times ±h: axis × (−h) is −(axis × h) exactly.
+    let (u, v) = (
+        scale(&incident.axes[p], incident.half[p]),
+        scale(&incident.axes[q], incident.half[q]),
+    );
+    let (plus, minus) = (add(&center, &u), sub(&center, &u));
+    // 4 vertices into a capacity of 8: no push fails.
+    let mut push = |point, k: u8| {
         let _ = polygon.push(Corner {
             point,
             along: T::zero(),
-            arriving: ((k + 3) % 4) as u8,
-            leaving: k as u8,
+            arriving: (k + 3) % 4,
+            leaving: k,
         });
-    }
+    };
+    push(add(&plus, &v), 0);
+    push(add(&minus, &v), 1);
+    push(sub(&minus, &v), 2);
+    push(sub(&plus, &v), 3);
     face_index(axis, negative)
 }
 

@@ -40,6 +40,8 @@ pub(super) struct Pair<'a, T: Real> {
     two: &'a Shape<T>,
     /// Rᵢⱼ = aᵢ · bⱼ (–), box 1's axis i with box 2's axis j.
     r: [[T; 3]; 3],
+    /// |Rᵢⱼ| (–).
+    size: [[T; 3]; 3],
     /// (centre 1 − centre 2) · aₖ (m).
     along_1: [T; 3],
     /// (centre 1 − centre 2) · bₖ (m).
@@ -64,6 +66,8 @@ impl<'a, T: Real> Pair<'a, T> {
         let d = sub(&one.frame.center, &two.frame.center);
         let row = |a: &Vector3<T>| [dot(a, &b[0]), dot(a, &b[1]), dot(a, &b[2])];
         let r = [row(&a[0]), row(&a[1]), row(&a[2])];
+        let size = |[x, y, z]: [T; 3]| [x.abs(), y.abs(), z.abs()];
+        let size = [size(r[0]), size(r[1]), size(r[2])];
         let delta = T::of(ROUNDING) * epsilon::<T>() + T::of(SKEW) * (one.skew + two.skew);
         let scale = d.x.abs() + d.y.abs() + d.z.abs() + one.size + two.size;
         let beta = delta + delta;
@@ -72,6 +76,7 @@ impl<'a, T: Real> Pair<'a, T> {
             one,
             two,
             r,
+            size,
             along_1: [dot(&d, &a[0]), dot(&d, &a[1]), dot(&d, &a[2])],
             along_2: [dot(&d, &b[0]), dot(&d, &b[1]), dot(&d, &b[2])],
             bound: beta * scale + T::of(TINY),
@@ -88,15 +93,15 @@ impl<'a, T: Real> Pair<'a, T> {
     /// same, bit for bit but for the sign of a zero separation.
     pub fn face_separation(&self, index: usize) -> (T, T) {
         let (one, two) = (&self.one.frame, &self.two.frame);
-        let r = &self.r;
+        let r = &self.size;
         let k = index % 3;
         let (offset, reach_1, reach_2) = if index >= 3 {
             let [p, q, s] = one.half;
-            let reach = p * r[0][k].abs() + q * r[1][k].abs() + s * r[2][k].abs();
+            let reach = p * r[0][k] + q * r[1][k] + s * r[2][k];
             (self.along_2[k], reach, self.two.own[k])
         } else {
             let [p, q, s] = two.half;
-            let reach = p * r[k][0].abs() + q * r[k][1].abs() + s * r[k][2].abs();
+            let reach = p * r[k][0] + q * r[k][1] + s * r[k][2];
             (self.along_1[k], self.one.own[k], reach)
         };
         (offset.abs() - reach_1 - reach_2, offset)
@@ -119,16 +124,18 @@ impl<'a, T: Real> Pair<'a, T> {
         }
     }
 
-    /// Records the best face axis's separation `face` (m, < 0) for [`Pair::screens_out`].
-    pub fn set_face(&mut self, face: T) {
+    /// Records the best face axis's separation `face` (m, < 0) for [`Pair::screens_out`];
+    /// whether the screen can be used.
+    pub fn set_face(&mut self, face: T) -> bool {
         self.face_squared = face * face;
-        self.usable = self.usable && self.face_squared >= T::of(TINY);
+        self.usable && self.face_squared >= T::of(TINY)
     }
 
     /// Whether edge axis aᵢ × bⱼ (box 1's axis `i`, box 2's `j`) may be left out: it
     /// surely is a valid axis along which the boxes overlap, and its penetration surely
     /// is not below the face's by the factor [`FACE_PREFERENCE`]. False whenever in
-    /// doubt (NaN included): the axis is then computed exactly.
+    /// doubt (NaN included): the axis is then computed exactly. Only when
+    /// [`Pair::set_face`] allows it.
     pub fn screens_out(&self, i: usize, j: usize) -> bool {
         let (i1, j1) = ((i + 1) % 3, (j + 1) % 3);
         let (i2, j2) = ((i + 2) % 3, (j + 2) % 3);
@@ -136,18 +143,18 @@ impl<'a, T: Real> Pair<'a, T> {
         // aᵢ × bⱼ has components (−Rᵢ₂ⱼ, Rᵢ₁ⱼ) along box 1's axes i1, i2 (0 along i);
         // along box 2's axes j1, j2 it has Rᵢⱼ₂ and −Rᵢⱼ₁.
         let (u, v) = (r[i2][j], r[i1][j]);
+        let (size_u, size_v) = (self.size[i2][j], self.size[i1][j]);
         let squared = u * u + v * v;
         let (one, two) = (&self.one.frame, &self.two.frame);
         let offset = self.along_1[i2] * v - self.along_1[i1] * u;
         let separation = offset.abs()
-            - (one.half[i1] * u.abs() + one.half[i2] * v.abs())
-            - (two.half[j1] * r[i][j2].abs() + two.half[j2] * r[i][j1].abs());
+            - (one.half[i1] * size_u + one.half[i2] * size_v)
+            - (two.half[j1] * self.size[i][j2] + two.half[j2] * self.size[i][j1]);
         // Penetration × |aᵢ × bⱼ| at least `least` (m); (|aᵢ × bⱼ| + β)² is at most
         // 65/64 of the screen's square plus 65 β².
         let least = -separation - self.bound;
         let width = squared * T::of(65.0 / 64.0) + self.spread;
-        self.usable
-            && squared > self.valid
+        squared > self.valid
             && least > T::zero()
             && least * least * T::of(LOSES) >= self.face_squared * width
     }

@@ -39,7 +39,7 @@ impl<T: Real> Frame<T> {
         let zero = T::zero();
         let sum = |v: &Vector3<T>| v.x * zero + v.y * zero + v.z * zero;
         let nothing = sum(c) + sum(h) + sum(&axes[0]) + sum(&axes[1]) + sum(&axes[2]);
-        let finite = nothing == zero && half.iter().all(|h| *h >= zero);
+        let finite = nothing == zero && h.x >= zero && h.y >= zero && h.z >= zero;
         finite.then_some(Frame {
             center: cuboid.center,
             axes,
@@ -250,11 +250,11 @@ pub(super) fn plan<T: Real>(one: &Shape<T>, two: &Shape<T>) -> Option<Plan<T>> {
         }
     }
     let face = pair.face(best, face);
-    pair.set_face(face.separation);
+    let screen = pair.set_face(face.separation);
     let mut edge: Option<Axis<T>> = None;
     for axis_1 in 0..3 {
         for axis_2 in 0..3 {
-            if pair.screens_out(axis_1, axis_2) {
+            if screen && pair.screens_out(axis_1, axis_2) {
                 continue;
             }
             let Some(axis) = edge_axis(&one.frame, &two.frame, axis_1, axis_2) else {
