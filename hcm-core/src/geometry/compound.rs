@@ -18,21 +18,32 @@ pub const PART_SHIFT: u32 = 16;
 pub fn contacts<T: Real>(moving: &Cuboid<T>, parts: &[Cuboid<T>]) -> Contacts<T> {
     let mut found = Contacts::new();
     // Not finite or a negative half extent: no part touches it (as box_box::contacts).
-    let Some(frame) = box_box::Frame::of(moving) else {
-        return found;
-    };
-    let reach = moving.world_half_extents();
+    if let Some(frame) = box_box::Frame::of(moving) {
+        merge(&frame, parts, &mut found);
+    }
+    // The one return: the vector is built in place, not copied out.
+    found
+}
+
+/// [`contacts`] of the moving box's `frame`, into the empty `found`.
+#[inline(never)]
+fn merge<T: Real>(frame: &box_box::Frame<T>, parts: &[Cuboid<T>], found: &mut Contacts<T>) {
+    let reach = frame.bounds();
+    let one = box_box::Shape::of(*frame);
     for (index, part) in parts.iter().enumerate() {
-        // A part whose axis-aligned bounds miss the moving box's cannot touch it: the
-        // cheap test spares the 15-axis one for the far walls of a hole.
-        if bounds_gap(moving, &reach, part) > T::zero() {
+        // A part not finite touches nothing; one whose axis-aligned bounds miss the
+        // moving box's cannot touch it: the cheap test spares the 15-axis one for the
+        // far walls of a hole.
+        let Some(two) = box_box::Frame::of(part) else {
+            continue;
+        };
+        if misses(&frame.center, &reach, &two) {
             continue;
         }
-        for contact in &box_box::contacts_with_frame(&frame, part) {
-            keep_deepest(&mut found, tagged(contact, index));
-        }
+        box_box::each_contact(&one, &two, &mut |contact| {
+            keep_deepest(found, tagged(&contact, index));
+        });
     }
-    found
 }
 
 /// The contacts of a sphere (`center` (m), `radius` (m); body 1) with every part: one
@@ -63,7 +74,12 @@ pub fn separation<T: Real>(moving: &Cuboid<T>, parts: &[Cuboid<T>]) -> T {
     let mut least = T::MAX;
     let reach = moving.world_half_extents();
     for part in parts {
-        let bounds = bounds_gap(moving, &reach, part);
+        let bounds = bounds_gap(
+            &moving.center,
+            &reach,
+            &part.center,
+            &part.world_half_extents(),
+        );
         let gap = if bounds > T::zero() {
             bounds
         } else {
@@ -79,11 +95,17 @@ pub fn separation<T: Real>(moving: &Cuboid<T>, parts: &[Cuboid<T>]) -> T {
     least
 }
 
-/// The gap (m) between the axis-aligned bounding boxes of `moving` (half extents along
-/// the common axes `reach` (m)) and `part`: > 0 when they miss each other (then a lower
-/// bound on the two boxes' distance), ≤ 0 when they overlap; NaN propagates.
-fn bounds_gap<T: Real>(moving: &Cuboid<T>, reach: &Vector3<T>, part: &Cuboid<T>) -> T {
-    let apart = (moving.center - part.center).abs() - reach - part.world_half_extents();
+/// The gap (m) between the axis-aligned bounding boxes of the moving box (centre
+/// `center` (m), half extents along the common axes `reach` (m)) and a part (`part`,
+/// `part_reach`, likewise): > 0 when they miss each other (then a lower bound on the two
+/// boxes' distance), ≤ 0 when they overlap; NaN propagates.
+fn bounds_gap<T: Real>(
+    center: &Vector3<T>,
+    reach: &Vector3<T>,
+    part: &Vector3<T>,
+    part_reach: &Vector3<T>,
+) -> T {
+    let apart = (center - part).abs() - reach - part_reach;
     // `max` would skip a NaN: keep it, so that NaN input never passes as "apart".
     apart.iter().fold(-T::MAX, |gap, &x| {
         if x.is_nan() || gap.is_nan() {
@@ -92,6 +114,21 @@ fn bounds_gap<T: Real>(moving: &Cuboid<T>, reach: &Vector3<T>, part: &Cuboid<T>)
             gap.max(x)
         }
     })
+}
+
+/// Whether the axis-aligned bounding box of the moving box (centre `center` (m), half
+/// extents `reach` (m)) misses `part`'s: [`bounds_gap`] > 0, with the same operations,
+/// written out per axis (nalgebra's generic ones cost several times more on the
+/// controller).
+fn misses<T: Real>(center: &Vector3<T>, reach: &Vector3<T>, part: &box_box::Frame<T>) -> bool {
+    let bounds = part.bounds();
+    let c = &part.center;
+    let x = (center.x - c.x).abs() - reach.x - bounds.x;
+    let y = (center.y - c.y).abs() - reach.y - bounds.y;
+    let z = (center.z - c.z).abs() - reach.z - bounds.z;
+    // A NaN anywhere makes the gap NaN, which is not > 0.
+    let zero = T::zero();
+    !(x.is_nan() || y.is_nan() || z.is_nan()) && (x > zero || y > zero || z > zero)
 }
 
 /// `contact` with part `index` in the high bits of its feature id.

@@ -3,7 +3,8 @@
 //! reference face a contact point.
 
 use super::sat::Frame;
-use crate::geometry::{ContactGeometry, Contacts};
+use super::vector::{add, add_scaled, dot, scale, sub};
+use crate::geometry::ContactGeometry;
 use crate::Real;
 use nalgebra::Vector3;
 
@@ -15,6 +16,9 @@ use nalgebra::Vector3;
 #[derive(Clone, Copy, Debug)]
 struct Corner<T: Real> {
     point: Vector3<T>,
+    /// (point − reference centre) · the tangent axis being clipped against (m), kept
+    /// for the second plane of the pair.
+    along: T,
     arriving: u8,
     leaving: u8,
 }
@@ -32,42 +36,66 @@ pub(super) struct Reference<'a, T: Real> {
 /// The points of a face contact, each with the common `normal` (–, box 2 → box 1),
 /// its depth δ below the reference face (m, > 0), its point half-way between the
 /// incident surface and the reference face (m) and the feature id of
-/// [`super`]'s encoding, with `tag` (reference box and faces) in bits 6–12.
+/// [`super`]'s encoding, with `tag` (reference box and faces) in bits 6–12, handed to
+/// `emit` in the polygon's order. Whether there was any.
 pub(super) fn face_contacts<T: Real>(
     reference: &Reference<'_, T>,
     incident: &Frame<T>,
     normal: &Vector3<T>,
     reference_is_2: bool,
-) -> Contacts<T> {
-    let (incident_face, mut polygon) = incident_face(incident, &reference.outward);
-    for plane in 0..4 {
-        polygon = clip(&polygon, reference, plane);
-    }
+    emit: &mut impl FnMut(ContactGeometry<T>),
+) -> bool {
+    let [mut polygon, mut spare] = [Polygon::new(), Polygon::new()];
+    let (mut polygon, mut spare) = (&mut polygon, &mut spare);
+    let incident_face = incident_face(incident, &reference.outward, polygon);
     let (frame, outward) = (reference.frame, &reference.outward);
-    let face_center = frame.center + outward * frame.half[reference.axis];
-    let negative = frame.axes[reference.axis].dot(outward) < T::zero();
+    for pair in 0..2 {
+        // Side planes 2·pair (+ side) and 2·pair + 1 (− side) of one tangent axis.
+        let tangent = (reference.axis + 1 + pair) % 3;
+        let axis = &frame.axes[tangent];
+        for corner in polygon.iter_mut() {
+            corner.along = dot(&sub(&corner.point, &frame.center), axis);
+        }
+        for plane in 2 * pair..2 * pair + 2 {
+            let side = Side {
+                frame,
+                tangent,
+                negative: plane % 2 == 1,
+                // plane < 4: the cast is exact.
+                line: 4 + plane as u8,
+            };
+            // A plane with every corner inside leaves the polygon as it is.
+            if polygon.iter().all(|c| side.beyond(c) <= T::zero()) {
+                continue;
+            }
+            clip(polygon, spare, &side);
+            core::mem::swap(&mut polygon, &mut spare);
+        }
+    }
+    let face_center = add_scaled(&frame.center, outward, frame.half[reference.axis]);
+    let negative = dot(&frame.axes[reference.axis], outward) < T::zero();
     let tag = incident_face << 6
         | face_index(reference.axis, negative) << 9
         | u32::from(reference_is_2) << 12;
-    let mut found = Contacts::new();
-    for corner in &polygon {
-        let depth = (face_center - corner.point).dot(outward);
+    let mut any = false;
+    for corner in polygon.iter() {
+        let depth = dot(&sub(&face_center, &corner.point), outward);
         if depth > T::zero() {
             let (low, high) = if corner.arriving < corner.leaving {
                 (corner.arriving, corner.leaving)
             } else {
                 (corner.leaving, corner.arriving)
             };
-            // At most 8 corners into a capacity of 8: the push cannot fail.
-            let _ = found.push(ContactGeometry {
+            emit(ContactGeometry {
                 depth,
                 normal: *normal,
-                point: corner.point + outward * (T::of(0.5) * depth),
+                point: add_scaled(&corner.point, outward, T::of(0.5) * depth),
                 feature: tag | u32::from(low * 8 + high),
             });
+            any = true;
         }
     }
-    found
+    any
 }
 
 /// Face `axis` (0..3) on the negative side or not, as 0..6: 2·axis + (1 if negative).
@@ -77,69 +105,103 @@ pub(super) fn face_index(axis: usize, negative: bool) -> u32 {
 }
 
 /// The face of `incident` most opposed to the reference face's `outward` normal (–):
-/// its index ([`face_index`]) and its four vertices in cyclic order.
-fn incident_face<T: Real>(incident: &Frame<T>, outward: &Vector3<T>) -> (u32, Polygon<T>) {
-    let alignment = |i: usize| incident.axes[i].dot(outward).abs();
-    let axis = (1..3).fold(0, |best, i| {
-        if alignment(i) > alignment(best) {
-            i
-        } else {
-            best
-        }
-    });
-    let negative = incident.axes[axis].dot(outward) > T::zero();
+/// its four vertices in cyclic order, into the empty `polygon`, and its index
+/// ([`face_index`]).
+fn incident_face<T: Real>(
+    incident: &Frame<T>,
+    outward: &Vector3<T>,
+    polygon: &mut Polygon<T>,
+) -> u32 {
+    let [a, b, c] = &incident.axes;
+    // The axis most aligned with the normal, the first of equals.
+    let (mut axis, mut along) = (0, dot(a, outward));
+    let d = dot(b, outward);
+    if d.abs() > along.abs() {
+        (axis, along) = (1, d);
+    }
+    let d = dot(c, outward);
+    if d.abs() > along.abs() {
+        (axis, along) = (2, d);
+    }
+    let negative = along > T::zero();
     let sign = if negative { -T::one() } else { T::one() };
-    let center = incident.center + incident.axes[axis] * (sign * incident.half[axis]);
+    let center = add_scaled(
+        &incident.center,
+        &incident.axes[axis],
+        sign * incident.half[axis],
+    );
     let (p, q) = ((axis + 1) % 3, (axis + 2) % 3);
-    let mut polygon = Polygon::new();
-    for (k, (sp, sq)) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
-        .into_iter()
-        .enumerate()
-    {
-        let point = center
-            + incident.axes[p] * (T::of(sp) * incident.half[p])
-            + incident.axes[q] * (T::of(sq) * incident.half[q]);
-        // k < 4: the casts are exact; 4 vertices into a capacity of 8.
+    // The centre + the tangents times ±h: axis × (−h) is −(axis × h) exactly.
+    let (u, v) = (
+        scale(&incident.axes[p], incident.half[p]),
+        scale(&incident.axes[q], incident.half[q]),
+    );
+    let (plus, minus) = (add(&center, &u), sub(&center, &u));
+    // 4 vertices into a capacity of 8: no push fails.
+    let mut push = |point, k: u8| {
         let _ = polygon.push(Corner {
             point,
-            arriving: ((k + 3) % 4) as u8,
-            leaving: k as u8,
+            along: T::zero(),
+            arriving: (k + 3) % 4,
+            leaving: k,
         });
-    }
-    (face_index(axis, negative), polygon)
+    };
+    push(add(&plus, &v), 0);
+    push(add(&minus, &v), 1);
+    push(sub(&minus, &v), 2);
+    push(sub(&plus, &v), 3);
+    face_index(axis, negative)
 }
 
-/// `polygon` cut by side plane `plane` (0..4: the reference face's tangent axes in
-/// turn, + side then − side) of the reference face, keeping the part inside the face.
-fn clip<T: Real>(polygon: &Polygon<T>, reference: &Reference<'_, T>, plane: usize) -> Polygon<T> {
-    let frame = reference.frame;
-    let tangent = (reference.axis + 1 + plane / 2) % 3;
-    let side = if plane.is_multiple_of(2) {
-        frame.axes[tangent]
-    } else {
-        -frame.axes[tangent]
+/// One side plane of the reference face: across tangent axis `tangent` of `frame`, on
+/// its − side if `negative`; boundary line `line` (4–7).
+struct Side<'a, T: Real> {
+    frame: &'a Frame<T>,
+    tangent: usize,
+    negative: bool,
+    line: u8,
+}
+
+impl<T: Real> Side<'_, T> {
+    /// How far `corner` lies beyond the plane (m): > 0 outside the reference face. On
+    /// the − side (p − c) · (−a) is −((p − c) · a) exactly (rounding is symmetric), and
+    /// −1 × x is −x.
+    fn beyond(&self, corner: &Corner<T>) -> T {
+        let sign = if self.negative { -T::one() } else { T::one() };
+        corner.along * sign - self.frame.half[self.tangent]
+    }
+}
+
+/// `polygon` cut by the side plane `side`, keeping the part inside the face, into
+/// `clipped` (emptied first). Each corner's `along` must hold its coordinate on the
+/// side's tangent axis; a corner made on the + side gets its own, for the − side next.
+fn clip<T: Real>(polygon: &Polygon<T>, clipped: &mut Polygon<T>, side: &Side<'_, T>) {
+    let frame = side.frame;
+    clipped.clear();
+    let Some(last) = polygon.last() else {
+        return;
     };
-    // How far beyond the side plane (m): > 0 outside the reference face.
-    let beyond = |p: &Vector3<T>| (p - frame.center).dot(&side) - frame.half[tangent];
-    // plane < 4: the cast is exact.
-    let line = 4 + plane as u8;
-    let mut clipped = Polygon::new();
-    let count = polygon.len();
-    for (k, to) in polygon.iter().enumerate() {
-        let from = &polygon[(k + count - 1) % count];
-        let (from_beyond, to_beyond) = (beyond(&from.point), beyond(&to.point));
+    let (mut from, mut from_beyond) = (last, side.beyond(last));
+    for to in polygon {
+        let to_beyond = side.beyond(to);
         let (from_in, to_in) = (from_beyond <= T::zero(), to_beyond <= T::zero());
         if from_in != to_in {
             // The signs differ, so the denominator is not zero.
             let s = from_beyond / (from_beyond - to_beyond);
-            let point = from.point + (to.point - from.point) * s;
-            let (arriving, leaving) = if from_in {
-                (from.leaving, line)
+            let point = add_scaled(&from.point, &sub(&to.point, &from.point), s);
+            let along = if side.negative {
+                T::zero()
             } else {
-                (line, from.leaving)
+                dot(&sub(&point, &frame.center), &frame.axes[side.tangent])
+            };
+            let (arriving, leaving) = if from_in {
+                (from.leaving, side.line)
+            } else {
+                (side.line, from.leaving)
             };
             let _ = clipped.push(Corner {
                 point,
+                along,
                 arriving,
                 leaving,
             });
@@ -147,6 +209,6 @@ fn clip<T: Real>(polygon: &Polygon<T>, reference: &Reference<'_, T>, plane: usiz
         if to_in {
             let _ = clipped.push(*to);
         }
+        (from, from_beyond) = (to, to_beyond);
     }
-    clipped
 }

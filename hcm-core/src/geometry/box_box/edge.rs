@@ -1,6 +1,7 @@
 //! An edge–edge contact: one point between the closest points of the two crossing edges.
 
 use super::sat::{Axis, Frame};
+use super::vector::{add, add_scaled, dot, neg, scale, sub};
 use crate::geometry::ContactGeometry;
 use crate::Real;
 use nalgebra::Vector3;
@@ -19,22 +20,22 @@ pub(super) fn edge_contact<T: Real>(
     (axis_1, axis_2): (usize, usize),
 ) -> ContactGeometry<T> {
     // Box 1's edge nearest box 2 lies towards −n, box 2's towards +n.
-    let (middle_1, edge_1) = edge(one, axis_1, &-axis.normal);
+    let (middle_1, edge_1) = edge(one, axis_1, &neg(&axis.normal));
     let (middle_2, edge_2) = edge(two, axis_2, &axis.normal);
     let (direction_1, direction_2) = (one.axes[axis_1], two.axes[axis_2]);
     // Closest points of the two lines; 1 − c² = sin² θ ≥ PARALLEL_EDGES², not zero.
-    let c = direction_1.dot(&direction_2);
-    let w = middle_1 - middle_2;
-    let (d, e) = (direction_1.dot(&w), direction_2.dot(&w));
+    let c = dot(&direction_1, &direction_2);
+    let w = sub(&middle_1, &middle_2);
+    let (d, e) = (dot(&direction_1, &w), dot(&direction_2, &w));
     let sine_squared = T::one() - c * c;
     let s = clamp((c * e - d) / sine_squared, one.half[axis_1]);
     let t = clamp((e - c * d) / sine_squared, two.half[axis_2]);
-    let closest_1 = middle_1 + direction_1 * s;
-    let closest_2 = middle_2 + direction_2 * t;
+    let closest_1 = add_scaled(&middle_1, &direction_1, s);
+    let closest_2 = add_scaled(&middle_2, &direction_2, t);
     ContactGeometry {
         depth: -axis.separation,
         normal: axis.normal,
-        point: (closest_1 + closest_2) * T::of(0.5),
+        point: scale(&add(&closest_1, &closest_2), T::of(0.5)),
         feature: EDGE_EDGE | edge_1 | edge_2 << 4,
     }
 }
@@ -47,11 +48,12 @@ fn edge<T: Real>(frame: &Frame<T>, axis: usize, direction: &Vector3<T>) -> (Vect
     // axis < 3: the cast is exact.
     let mut number = 4 * axis as u32;
     for (bit, other) in [(1, (axis + 1) % 3), (2, (axis + 2) % 3)] {
-        if frame.axes[other].dot(direction) >= T::zero() {
-            middle += frame.axes[other] * frame.half[other];
+        let offset = scale(&frame.axes[other], frame.half[other]);
+        if dot(&frame.axes[other], direction) >= T::zero() {
+            middle = add(&middle, &offset);
             number |= bit;
         } else {
-            middle -= frame.axes[other] * frame.half[other];
+            middle = sub(&middle, &offset);
         }
     }
     (middle, number)

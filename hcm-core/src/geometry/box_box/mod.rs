@@ -29,15 +29,17 @@
 
 mod clip;
 mod edge;
+mod filter;
 mod sat;
 #[cfg(test)]
 mod tests;
+mod vector;
 
-use super::{Contacts, Cuboid};
+use super::{ContactGeometry, Contacts, Cuboid};
 use crate::Real;
 use clip::Reference;
-pub(crate) use sat::Frame;
-use sat::Origin;
+pub(crate) use sat::{Frame, Shape};
+use sat::{Origin, Plan};
 
 /// Where `box_1` and `box_2` overlap: up to 8 points, each with its own depth δ > 0
 /// (m), the common normal (unit, from box 2 to box 1) and the point (m) half-way across
@@ -45,36 +47,47 @@ use sat::Origin;
 /// does NaN or ±∞ anywhere or a negative half extent (no panic). See the module doc for
 /// the choice of axis and the feature ids.
 pub fn contacts<T: Real>(box_1: &Cuboid<T>, box_2: &Cuboid<T>) -> Contacts<T> {
-    let Some(one) = Frame::of(box_1) else {
-        return Contacts::new();
-    };
-    contacts_with_frame(&one, box_2)
-}
-
-/// [`contacts`] with box 1 already in its frame ([`Frame::of`]): a compound's parts
-/// share the moving box's (issue 31: computed once per call, not once per part).
-pub(crate) fn contacts_with_frame<T: Real>(one: &Frame<T>, box_2: &Cuboid<T>) -> Contacts<T> {
-    let Some(two) = Frame::of(box_2) else {
-        return Contacts::new();
-    };
-    let Some(choice) = sat::choose(one, &two) else {
-        return Contacts::new();
-    };
-    if choice.winning_edge().is_none() {
-        let found = face_contacts(one, &two, &choice.face);
-        if !found.is_empty() {
-            return found;
-        }
-    }
-    // An edge axis, or a face whose clipped face lies entirely above the reference
-    // face (a near-tie with an edge): the single edge point.
     let mut found = Contacts::new();
-    if let Some(axis) = choice.edge {
-        if let Origin::Edges { axis_1, axis_2 } = axis.origin {
-            let _ = found.push(edge::edge_contact(one, &two, &axis, (axis_1, axis_2)));
-        }
+    if let (Some(one), Some(two)) = (Frame::of(box_1), Frame::of(box_2)) {
+        // At most 8 points into a capacity of 8: no push fails.
+        each_contact(&Shape::of(one), &two, &mut |contact| {
+            let _ = found.push(contact);
+        });
     }
     found
+}
+
+/// [`contacts`] of box 1, already a [`Shape`] (a compound's parts share the moving
+/// box's, issue 31), and box 2's `two`, each point handed to `emit` in order.
+pub(crate) fn each_contact<T: Real>(
+    one: &Shape<T>,
+    two: &Frame<T>,
+    emit: &mut impl FnMut(ContactGeometry<T>),
+) {
+    let two = Shape::of(*two);
+    let edge = match sat::plan(one, &two) {
+        None => return,
+        Some(Plan::Edge(axis)) => axis,
+        Some(Plan::Face(axis)) => {
+            if face_contacts(&one.frame, &two.frame, &axis, emit) {
+                return;
+            }
+            // The clipped face lies entirely above the reference face (a near-tie
+            // with an edge): the single point of the best edge axis.
+            match sat::best_edge(&one.frame, &two.frame) {
+                Some(axis) => axis,
+                None => return,
+            }
+        }
+    };
+    if let Origin::Edges { axis_1, axis_2 } = edge.origin {
+        emit(edge::edge_contact(
+            &one.frame,
+            &two.frame,
+            &edge,
+            (axis_1, axis_2),
+        ));
+    }
 }
 
 /// The separating-axis test's signed value (m): the largest separation of the boxes'
@@ -92,21 +105,26 @@ pub fn separation<T: Real>(box_1: &Cuboid<T>, box_2: &Cuboid<T>) -> T {
     }
 }
 
-/// The face contact on face `axis`, its reference box its owner.
-fn face_contacts<T: Real>(one: &Frame<T>, two: &Frame<T>, axis: &sat::Axis<T>) -> Contacts<T> {
+/// The face contact on face `axis`, its reference box its owner; whether it had points.
+fn face_contacts<T: Real>(
+    one: &Frame<T>,
+    two: &Frame<T>,
+    axis: &sat::Axis<T>,
+    emit: &mut impl FnMut(ContactGeometry<T>),
+) -> bool {
     let Origin::Face { second, axis: face } = axis.origin else {
-        return Contacts::new();
+        return false;
     };
     // The normal points from box 2 to box 1: box 1's reference face faces −n.
     let (reference, incident, outward) = if second {
         (two, one, axis.normal)
     } else {
-        (one, two, -axis.normal)
+        (one, two, vector::neg(&axis.normal))
     };
     let reference = Reference {
         frame: reference,
         axis: face,
         outward,
     };
-    clip::face_contacts(&reference, incident, &axis.normal, second)
+    clip::face_contacts(&reference, incident, &axis.normal, second, emit)
 }

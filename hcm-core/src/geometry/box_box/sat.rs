@@ -1,9 +1,11 @@
 //! The separating-axis test for two boxes: the 15 candidate axes, the separation along
 //! each, and the choice of the axis the contact is built on.
 
+use super::filter::Pair;
+use super::vector::{cross, dot, neg, sub};
 use crate::geometry::Cuboid;
 use crate::Real;
-use nalgebra::Vector3;
+use nalgebra::{UnitQuaternion, Vector3};
 
 /// Below this |a × b| = sin θ (–) two edge directions count as parallel and their cross
 /// product is no axis: its direction would be rounding noise. Skipping it costs at most
@@ -29,13 +31,15 @@ impl<T: Real> Frame<T> {
     /// The frame of `cuboid`, or `None` when any of its numbers is not finite or a half
     /// extent is negative.
     pub fn of(cuboid: &Cuboid<T>) -> Option<Self> {
-        let rotation = cuboid.orientation.to_rotation_matrix();
-        let m = rotation.matrix();
-        let axes = [0, 1, 2].map(|i| Vector3::new(m[(0, i)], m[(1, i)], m[(2, i)]));
-        let half = [0, 1, 2].map(|i| cuboid.half_extents[i]);
-        let finite = cuboid.center.iter().all(|x| x.is_finite())
-            && axes.iter().flat_map(|a| a.iter()).all(|x| x.is_finite())
-            && half.iter().all(|h| h.is_finite() && *h >= T::zero());
+        let axes = rotated_axes(&cuboid.orientation);
+        let (c, h) = (&cuboid.center, &cuboid.half_extents);
+        let half = [h.x, h.y, h.z];
+        // x · 0 is 0 (or −0) for a finite x and NaN for ±∞ or NaN: the sum is 0 only
+        // if every number is finite (and cannot overflow).
+        let zero = T::zero();
+        let sum = |v: &Vector3<T>| v.x * zero + v.y * zero + v.z * zero;
+        let nothing = sum(c) + sum(h) + sum(&axes[0]) + sum(&axes[1]) + sum(&axes[2]);
+        let finite = nothing == zero && h.x >= zero && h.y >= zero && h.z >= zero;
         finite.then_some(Frame {
             center: cuboid.center,
             axes,
@@ -43,11 +47,81 @@ impl<T: Real> Frame<T> {
         })
     }
 
+    /// Half extents (m) of the box's axis-aligned bounding box in the common frame, as
+    /// [`Cuboid::world_half_extents`] gives them (the same operations, the same bits).
+    pub fn bounds(&self) -> Vector3<T> {
+        let [a, b, c] = &self.axes;
+        let [p, q, r] = self.half;
+        Vector3::new(
+            a.x.abs() * p + b.x.abs() * q + c.x.abs() * r,
+            a.y.abs() * p + b.y.abs() * q + c.y.abs() * r,
+            a.z.abs() * p + b.z.abs() * q + c.z.abs() * r,
+        )
+    }
+
     /// Half the box's width along the unit `direction` (m): Σ hᵢ |aᵢ · u|.
     pub fn reach(&self, direction: &Vector3<T>) -> T {
-        (0..3).fold(T::zero(), |sum, i| {
-            sum + self.half[i] * self.axes[i].dot(direction).abs()
-        })
+        let [a, b, c] = &self.axes;
+        let [p, q, r] = self.half;
+        T::zero()
+            + p * dot(a, direction).abs()
+            + q * dot(b, direction).abs()
+            + r * dot(c, direction).abs()
+    }
+}
+
+/// The columns of `orientation`'s rotation matrix, with the operations of nalgebra's
+/// `to_rotation_matrix` (so the same bits), but doubling by multiplying with 1 + 1
+/// instead of converting the constant 2.0 from `f64` on every call.
+fn rotated_axes<T: Real>(orientation: &UnitQuaternion<T>) -> [Vector3<T>; 3] {
+    let (i, j, k, w) = (orientation.i, orientation.j, orientation.k, orientation.w);
+    let two = T::one() + T::one();
+    let (ww, ii, jj, kk) = (w * w, i * i, j * j, k * k);
+    let (ij, wk, wj) = (i * j * two, w * k * two, w * j * two);
+    let (ik, jk, wi) = (i * k * two, j * k * two, w * i * two);
+    [
+        Vector3::new(ww + ii - jj - kk, wk + ij, ik - wj),
+        Vector3::new(ij - wk, ww - ii + jj - kk, wi + jk),
+        Vector3::new(wj + ik, jk - wi, ww - ii - jj + kk),
+    ]
+}
+
+/// A frame with what the separating-axis test uses against every other box, worked
+/// out once: its reach along its own axes, the sum of its half extents and how far its
+/// axes are from orthonormal.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Shape<T: Real> {
+    pub frame: Frame<T>,
+    /// [`Frame::reach`] along each of its own axes (m).
+    pub own: [T; 3],
+    /// Σ hᵢ (m).
+    pub size: T,
+    /// Σ over the six entries of AᵀA − I (–): 0 for exactly orthonormal axes.
+    pub skew: T,
+}
+
+impl<T: Real> Shape<T> {
+    pub fn of(frame: Frame<T>) -> Self {
+        let [a, b, c] = &frame.axes;
+        let (ab, ac, bc) = (dot(a, b), dot(a, c), dot(b, c));
+        let (aa, bb, cc) = (dot(a, a), dot(b, b), dot(c, c));
+        let [p, q, r] = frame.half;
+        let one = T::one();
+        // The same products and sums as `reach` (whose dot aᵢ · aₖ is aₖ · aᵢ bit for
+        // bit), less its leading 0 +, which changes no comparison.
+        let own = [
+            p * aa.abs() + q * ab.abs() + r * ac.abs(),
+            p * ab.abs() + q * bb.abs() + r * bc.abs(),
+            p * ac.abs() + q * bc.abs() + r * cc.abs(),
+        ];
+        let skew =
+            (aa - one).abs() + (bb - one).abs() + (cc - one).abs() + ab.abs() + ac.abs() + bc.abs();
+        Shape {
+            frame,
+            own,
+            size: p + q + r,
+            skew,
+        }
     }
 }
 
@@ -74,43 +148,64 @@ pub(super) struct Axis<T: Real> {
 /// (box 1's direction (index − 6) / 3, box 2's (index − 6) % 3). `None` for an edge
 /// pair closer to parallel than [`PARALLEL_EDGES`].
 pub(super) fn candidate<T: Real>(one: &Frame<T>, two: &Frame<T>, index: usize) -> Option<Axis<T>> {
-    let (origin, direction) = match index {
-        0..3 => (
-            Origin::Face {
-                second: false,
-                axis: index,
+    let (second, axis) = (index >= 3, index % 3);
+    match index {
+        0..6 => Some(along(
+            one,
+            two,
+            Origin::Face { second, axis },
+            if second {
+                two.axes[axis]
+            } else {
+                one.axes[axis]
             },
-            one.axes[index],
-        ),
-        3..6 => (
-            Origin::Face {
-                second: true,
-                axis: index - 3,
-            },
-            two.axes[index - 3],
-        ),
-        _ => {
-            let (axis_1, axis_2) = ((index - 6) / 3 % 3, (index - 6) % 3);
-            let cross = one.axes[axis_1].cross(&two.axes[axis_2]);
-            let sine = cross.norm();
-            if sine < T::of(PARALLEL_EDGES) || sine.is_nan() {
-                return None;
-            }
-            (Origin::Edges { axis_1, axis_2 }, cross / sine)
-        }
-    };
-    let offset = (one.center - two.center).dot(&direction);
+        )),
+        _ => edge_axis(one, two, (index - 6) / 3 % 3, (index - 6) % 3),
+    }
+}
+
+/// Edge axis `axis_1` × `axis_2` (box 1's edge direction and box 2's, 0..3 each) as
+/// [`candidate`] numbers it 6 + 3 `axis_1` + `axis_2`.
+pub(super) fn edge_axis<T: Real>(
+    one: &Frame<T>,
+    two: &Frame<T>,
+    axis_1: usize,
+    axis_2: usize,
+) -> Option<Axis<T>> {
+    let cross = cross(&one.axes[axis_1], &two.axes[axis_2]);
+    let squared = dot(&cross, &cross);
+    // Well below the threshold's square the square root is too (it rounds
+    // monotonically): skip it. NaN goes on, to the test below.
+    if squared < T::of(PARALLEL_EDGES * PARALLEL_EDGES * 0.99) {
+        return None;
+    }
+    let sine = squared.sqrt();
+    if sine < T::of(PARALLEL_EDGES) || sine.is_nan() {
+        return None;
+    }
+    let unit = Vector3::new(cross.x / sine, cross.y / sine, cross.z / sine);
+    Some(along(one, two, Origin::Edges { axis_1, axis_2 }, unit))
+}
+
+/// The separation along the unit `direction` (–) from `origin`.
+fn along<T: Real>(
+    one: &Frame<T>,
+    two: &Frame<T>,
+    origin: Origin,
+    direction: Vector3<T>,
+) -> Axis<T> {
+    let offset = dot(&sub(&one.center, &two.center), &direction);
     let separation = offset.abs() - one.reach(&direction) - two.reach(&direction);
     let normal = if offset < T::zero() {
-        -direction
+        neg(&direction)
     } else {
         direction
     };
-    Some(Axis {
+    Axis {
         origin,
         normal,
         separation,
-    })
+    }
 }
 
 /// The largest separation over all valid axes (m): < 0 only when the boxes overlap.
@@ -127,37 +222,67 @@ pub(super) fn max_separation<T: Real>(one: &Frame<T>, two: &Frame<T>) -> T {
     largest
 }
 
-/// The axes of least penetration: the best face axis and the best edge axis.
-pub(super) struct Choice<T: Real> {
-    pub face: Axis<T>,
-    /// `None` when every edge pair is parallel (the boxes' axes aligned).
-    pub edge: Option<Axis<T>>,
+/// The axis a contact is built on.
+pub(super) enum Plan<T: Real> {
+    /// The face axis of least penetration: no edge axis beats it by the factor
+    /// [`FACE_PREFERENCE`].
+    Face(Axis<T>),
+    /// The edge axis of least penetration, which beats every face axis by that factor.
+    Edge(Axis<T>),
 }
 
-impl<T: Real> Choice<T> {
-    /// The edge axis, if it beats the face axis by the factor [`FACE_PREFERENCE`].
-    pub fn winning_edge(&self) -> Option<Axis<T>> {
-        self.edge
-            .filter(|e| e.separation * T::of(FACE_PREFERENCE) > self.face.separation)
-    }
-}
-
-/// The best axes of each kind; `None` when some axis separates the boxes (or they
-/// touch exactly there) or a separation is NaN (an overflow).
-pub(super) fn choose<T: Real>(one: &Frame<T>, two: &Frame<T>) -> Option<Choice<T>> {
-    let mut face: Option<Axis<T>> = None;
-    let mut edge: Option<Axis<T>> = None;
-    for index in 0..15 {
-        let Some(axis) = candidate(one, two, index) else {
-            continue;
-        };
-        if axis.separation >= T::zero() || axis.separation.is_nan() {
+/// The axis to build the contact on; `None` when some axis separates the boxes (or they
+/// touch exactly there) or a separation is NaN (an overflow). The choice is the one of
+/// the 15 separations [`candidate`] computes, first the six face axes (exactly, from
+/// dot products shared between the axes), then the edge axes, which
+/// [`Pair::screens_out`] screens: only those that might separate the boxes or win over
+/// the face are computed exactly, with a square root each.
+pub(super) fn plan<T: Real>(one: &Shape<T>, two: &Shape<T>) -> Option<Plan<T>> {
+    let mut pair = Pair::of(one, two);
+    let (mut best, mut face) = (0, pair.face_separation(0));
+    for index in 0..6 {
+        let found = pair.face_separation(index);
+        if found.0 >= T::zero() || found.0.is_nan() {
             return None;
         }
-        let best = if index < 6 { &mut face } else { &mut edge };
-        if best.is_none_or(|b| axis.separation > b.separation) {
-            *best = Some(axis);
+        if found.0 > face.0 {
+            (best, face) = (index, found);
         }
     }
-    Some(Choice { face: face?, edge })
+    let face = pair.face(best, face);
+    let screen = pair.set_face(face.separation);
+    let mut edge: Option<Axis<T>> = None;
+    for axis_1 in 0..3 {
+        for axis_2 in 0..3 {
+            if screen && pair.screens_out(axis_1, axis_2) {
+                continue;
+            }
+            let Some(axis) = edge_axis(&one.frame, &two.frame, axis_1, axis_2) else {
+                continue;
+            };
+            if axis.separation >= T::zero() || axis.separation.is_nan() {
+                return None;
+            }
+            if edge.is_none_or(|b| axis.separation > b.separation) {
+                edge = Some(axis);
+            }
+        }
+    }
+    // An edge screened out loses to the face, so it is not the best edge if one wins.
+    Some(match edge {
+        Some(e) if e.separation * T::of(FACE_PREFERENCE) > face.separation => Plan::Edge(e),
+        _ => Plan::Face(face),
+    })
+}
+
+/// The edge axis of least penetration over all valid edge pairs, each computed exactly
+/// (the first of equals), for boxes no axis separates; `None` when all are parallel.
+pub(super) fn best_edge<T: Real>(one: &Frame<T>, two: &Frame<T>) -> Option<Axis<T>> {
+    let mut best: Option<Axis<T>> = None;
+    for axis in (0..9).filter_map(|index| edge_axis(one, two, index / 3, index % 3)) {
+        if best.is_none_or(|b| axis.separation > b.separation) {
+            best = Some(axis);
+        }
+    }
+    best
 }

@@ -1,3 +1,4 @@
+use super::sat::{Frame, Shape};
 use super::*;
 use core::f64::consts::{FRAC_PI_4, SQRT_2};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -194,4 +195,139 @@ fn f32_as_a_controller_holds_it() {
         assert!((c.normal - Vector3::z()).norm() < 1e-6, "{c:?}");
     }
     assert!((separation(&resting, &base) + 1e-3).abs() < 1e-6);
+}
+
+/// A xorshift generator of numbers in [0, 1), enough to spread poses.
+struct Poses(u64);
+
+impl Poses {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1_u64 << 53) as f64
+    }
+
+    fn within(&mut self, limit: f64) -> f64 {
+        limit * (2.0 * self.next() - 1.0)
+    }
+
+    /// A box 10–200 mm across within 80 mm of the origin, turned at random, barely
+    /// turned (then some edge pairs are parallel and some edge axes copy face axes) or
+    /// not at all, its quaternion a little off unit length now and then.
+    fn cuboid<T: Real>(&mut self) -> Cuboid<T> {
+        let small = [1.0, 1e-3, 1e-7, 0.0][(self.next() * 4.0) as usize];
+        let (i, j, k) = match (self.next() * 3.0) as usize {
+            0 => (self.within(1.0), self.within(1.0), self.within(1.0)),
+            1 => (self.within(0.1) * small, self.within(0.1), 0.0),
+            _ => (0.0, 0.0, 0.0),
+        };
+        let q = nalgebra::Quaternion::new(1.0, i, j, k);
+        let q = q / q.norm() * [1.0, 1.0, 1.0 + 1e-6, 1.0 - 1e-4][(self.next() * 4.0) as usize];
+        Cuboid {
+            half_extents: Vector3::from_fn(|_, _| T::of(0.005 + 0.095 * self.next())),
+            center: Vector3::from_fn(|_, _| T::of(self.within(0.08))),
+            orientation: UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(
+                T::of(q.w),
+                T::of(q.i),
+                T::of(q.j),
+                T::of(q.k),
+            )),
+        }
+    }
+}
+
+/// The axis the contact is built on when all 15 axes are computed exactly (no screen),
+/// the first of equals of each kind: as [`sat::plan`] must choose it.
+fn plan_unscreened<T: Real>(one: &Frame<T>, two: &Frame<T>) -> Option<sat::Plan<T>> {
+    let (mut face, mut edge): (Option<sat::Axis<T>>, Option<sat::Axis<T>>) = (None, None);
+    for index in 0..15 {
+        let Some(axis) = sat::candidate(one, two, index) else {
+            continue;
+        };
+        if axis.separation >= T::zero() || axis.separation.is_nan() {
+            return None;
+        }
+        let best = if index < 6 { &mut face } else { &mut edge };
+        if best.is_none_or(|b| axis.separation > b.separation) {
+            *best = Some(axis);
+        }
+    }
+    let face = face?;
+    Some(match edge {
+        Some(e) if e.separation * T::of(sat::FACE_PREFERENCE) > face.separation => {
+            sat::Plan::Edge(e)
+        }
+        _ => sat::Plan::Face(face),
+    })
+}
+
+/// `plan`'s axis as comparable bits: kind, origin, normal and separation.
+fn plan_bits<T: Real>(plan: Option<sat::Plan<T>>) -> Option<(bool, sat::Origin, [u64; 4])> {
+    let (edge, axis) = match plan? {
+        sat::Plan::Face(axis) => (false, axis),
+        sat::Plan::Edge(axis) => (true, axis),
+    };
+    let n = &axis.normal;
+    // A face separation may differ in the sign of a zero only: compare its value.
+    let separation = if edge {
+        axis.separation.to_f64().to_bits()
+    } else {
+        (axis.separation.to_f64() + 0.0).to_bits()
+    };
+    let bits = [n.x, n.y, n.z].map(|x| x.to_f64().to_bits());
+    Some((edge, axis.origin, [bits[0], bits[1], bits[2], separation]))
+}
+
+/// Pairs of random boxes, half of them moved until they barely overlap (0–1 mm, 0–10 µm
+/// or 0–0.1 µm deep), the choice of axis with the screen against that without, bit
+/// for bit, in `T`.
+fn screen_keeps_the_choice<T: Real>(seed: u64) {
+    let mut poses = Poses(seed);
+    let (mut overlapping, mut edges) = (0, 0);
+    for n in 0..20_000 {
+        let (one, mut two) = (poses.cuboid::<T>(), poses.cuboid::<T>());
+        if n % 2 == 1 {
+            // Bisect the shift of box 2 towards box 1 at which they start to overlap.
+            let d = two.center - one.center;
+            let (mut lo, mut hi) = (T::zero(), T::one());
+            for _ in 0..60 {
+                let mid = (lo + hi) * T::of(0.5);
+                let moved = Cuboid {
+                    center: two.center - d * mid,
+                    ..two
+                };
+                if separation(&one, &moved) < T::zero() {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            let deeper = [1e-3, 1e-5, 1e-7][n % 3] * poses.next();
+            two.center -= d * hi + d.normalize() * T::of(deeper);
+        }
+        let (Some(a), Some(b)) = (Frame::of(&one), Frame::of(&two)) else {
+            continue;
+        };
+        let screened = plan_bits(sat::plan(&Shape::of(a), &Shape::of(b)));
+        assert_eq!(
+            screened,
+            plan_bits(plan_unscreened(&a, &b)),
+            "{one:?} {two:?}"
+        );
+        overlapping += usize::from(screened.is_some());
+        edges += usize::from(screened.is_some_and(|p| p.0));
+    }
+    // The poses reach both kinds of contact.
+    assert!(overlapping > 8_000 && edges > 500, "{overlapping} {edges}");
+}
+
+#[test]
+fn screening_edge_axes_changes_no_choice_f64() {
+    screen_keeps_the_choice::<f64>(0x9E37_79B9_7F4A_7C15);
+}
+
+#[test]
+fn screening_edge_axes_changes_no_choice_f32() {
+    screen_keeps_the_choice::<f32>(0x2545_F491_4F6C_DD1D);
 }

@@ -1,0 +1,170 @@
+//! The dot products two boxes' separating-axis test shares between its axes, the six
+//! face separations from them, and a cheap screen of the nine edge axes.
+//!
+//! An edge axis aᵢ × bⱼ costs a square root and three divisions to normalise before
+//! [`candidate`](super::sat::candidate) can measure the separation along it. Most edge
+//! axes do not matter to the result: they neither separate the boxes nor beat the best
+//! face by the factor [`FACE_PREFERENCE`]. The screen tells those apart without the
+//! square root, from the products Rᵢⱼ = aᵢ · bⱼ (the edge axis's components in box 1's
+//! axes are two of them, ODE's `dBoxBox` trick): the separation times |aᵢ × bⱼ| (m), its
+//! error bounded from the float precision, the boxes' sizes and how far their axes are
+//! from orthonormal. Only an axis the bound cannot decide is computed exactly, so the
+//! choice, and every bit of the contact, is the one of testing all 15 axes exactly.
+
+use super::sat::{Axis, Origin, Shape, FACE_PREFERENCE, PARALLEL_EDGES};
+use super::vector::{dot, neg, sub};
+use crate::Real;
+use nalgebra::Vector3;
+
+/// Allowed error of a product Rᵢⱼ or a screen's coefficient, in units of the float
+/// type's ε (–), and per unit of the boxes' summed orthonormality defect (–): the
+/// rounding of the two ways to the separation (≈ 20 ε), and the triple products the
+/// screen takes as ±Rᵢⱼ, off by ≈ 3.3 × the defect of each box's axes (≈ 3 ε more for
+/// the rounding of the measured defect).
+const ROUNDING: f64 = 48.0;
+const SKEW: f64 = 8.0;
+
+/// The square of [`FACE_PREFERENCE`] with 0.3 % to spare (–): 0.1 % the screen keeps
+/// from the exact comparison, the rest for rounding in the screen's own products.
+const LOSES: f64 = FACE_PREFERENCE * FACE_PREFERENCE / 1.003;
+
+/// Sizes (m) above which the screen could overflow, and squared face separations (m²)
+/// below which it could lose precision to subnormals: every edge axis is then exact.
+const HUGE: f64 = 1e15;
+const TINY: f64 = 1e-30;
+
+/// The products and bounds the separating-axis test of box 1 (`one`) and box 2 (`two`)
+/// shares between its 15 axes.
+pub(super) struct Pair<'a, T: Real> {
+    one: &'a Shape<T>,
+    two: &'a Shape<T>,
+    /// Rᵢⱼ = aᵢ · bⱼ (–), box 1's axis i with box 2's axis j.
+    r: [[T; 3]; 3],
+    /// |Rᵢⱼ| (–).
+    size: [[T; 3]; 3],
+    /// (centre 1 − centre 2) · aₖ (m).
+    along_1: [T; 3],
+    /// (centre 1 − centre 2) · bₖ (m).
+    along_2: [T; 3],
+    /// Error bound (m) of a screened separation times |aᵢ × bⱼ|, against the exact one
+    /// times the exact |aᵢ × bⱼ|.
+    bound: T,
+    /// Error bound (–) of the screen's |aᵢ × bⱼ|, squared and times 65.
+    spread: T,
+    /// Squared |aᵢ × bⱼ| (–) above which the exact edge axis is surely not parallel.
+    valid: T,
+    /// The best face separation, squared (m²).
+    face_squared: T,
+    /// False when the screen cannot bound its error (sizes too large or small, axes far
+    /// from orthonormal, NaN): every edge axis is exact.
+    usable: bool,
+}
+
+impl<'a, T: Real> Pair<'a, T> {
+    pub fn of(one: &'a Shape<T>, two: &'a Shape<T>) -> Self {
+        let (a, b) = (&one.frame.axes, &two.frame.axes);
+        let d = sub(&one.frame.center, &two.frame.center);
+        let row = |a: &Vector3<T>| [dot(a, &b[0]), dot(a, &b[1]), dot(a, &b[2])];
+        let r = [row(&a[0]), row(&a[1]), row(&a[2])];
+        let size = |[x, y, z]: [T; 3]| [x.abs(), y.abs(), z.abs()];
+        let size = [size(r[0]), size(r[1]), size(r[2])];
+        let delta = T::of(ROUNDING) * epsilon::<T>() + T::of(SKEW) * (one.skew + two.skew);
+        let scale = d.x.abs() + d.y.abs() + d.z.abs() + one.size + two.size;
+        let beta = delta + delta;
+        let edge = T::of(PARALLEL_EDGES * 1.01) + beta;
+        Pair {
+            one,
+            two,
+            r,
+            size,
+            along_1: [dot(&d, &a[0]), dot(&d, &a[1]), dot(&d, &a[2])],
+            along_2: [dot(&d, &b[0]), dot(&d, &b[1]), dot(&d, &b[2])],
+            bound: beta * scale + T::of(TINY),
+            spread: beta * beta * T::of(65.0),
+            valid: edge * edge,
+            face_squared: T::zero(),
+            usable: scale < T::of(HUGE) && delta < T::of(1e-3),
+        }
+    }
+
+    /// The separation (m) along face axis `index` (0..6, as
+    /// [`candidate`](super::sat::candidate) numbers them) and its offset (m), the
+    /// centres' distance along the face's axis, whose sign orients the normal: the
+    /// same, bit for bit but for the sign of a zero separation.
+    pub fn face_separation(&self, index: usize) -> (T, T) {
+        let (one, two) = (&self.one.frame, &self.two.frame);
+        let r = &self.size;
+        let k = index % 3;
+        let (offset, reach_1, reach_2) = if index >= 3 {
+            let [p, q, s] = one.half;
+            let reach = p * r[0][k] + q * r[1][k] + s * r[2][k];
+            (self.along_2[k], reach, self.two.own[k])
+        } else {
+            let [p, q, s] = two.half;
+            let reach = p * r[k][0] + q * r[k][1] + s * r[k][2];
+            (self.along_1[k], self.one.own[k], reach)
+        };
+        (offset.abs() - reach_1 - reach_2, offset)
+    }
+
+    /// Face axis `index` (0..6) whose [`Pair::face_separation`] is `separation` (m) and
+    /// whose offset is `offset` (m).
+    pub fn face(&self, index: usize, (separation, offset): (T, T)) -> Axis<T> {
+        let (second, axis) = (index >= 3, index % 3);
+        let frame = if second { self.two } else { self.one };
+        let direction = &frame.frame.axes[axis];
+        Axis {
+            origin: Origin::Face { second, axis },
+            normal: if offset < T::zero() {
+                neg(direction)
+            } else {
+                *direction
+            },
+            separation,
+        }
+    }
+
+    /// Records the best face axis's separation `face` (m, < 0) for [`Pair::screens_out`];
+    /// whether the screen can be used.
+    pub fn set_face(&mut self, face: T) -> bool {
+        self.face_squared = face * face;
+        self.usable && self.face_squared >= T::of(TINY)
+    }
+
+    /// Whether edge axis aᵢ × bⱼ (box 1's axis `i`, box 2's `j`) may be left out: it
+    /// surely is a valid axis along which the boxes overlap, and its penetration surely
+    /// is not below the face's by the factor [`FACE_PREFERENCE`]. False whenever in
+    /// doubt (NaN included): the axis is then computed exactly. Only when
+    /// [`Pair::set_face`] allows it.
+    pub fn screens_out(&self, i: usize, j: usize) -> bool {
+        let (i1, j1) = ((i + 1) % 3, (j + 1) % 3);
+        let (i2, j2) = ((i + 2) % 3, (j + 2) % 3);
+        let r = &self.r;
+        // aᵢ × bⱼ has components (−Rᵢ₂ⱼ, Rᵢ₁ⱼ) along box 1's axes i1, i2 (0 along i);
+        // along box 2's axes j1, j2 it has Rᵢⱼ₂ and −Rᵢⱼ₁.
+        let (u, v) = (r[i2][j], r[i1][j]);
+        let (size_u, size_v) = (self.size[i2][j], self.size[i1][j]);
+        let squared = u * u + v * v;
+        let (one, two) = (&self.one.frame, &self.two.frame);
+        let offset = self.along_1[i2] * v - self.along_1[i1] * u;
+        let separation = offset.abs()
+            - (one.half[i1] * size_u + one.half[i2] * size_v)
+            - (two.half[j1] * self.size[i][j2] + two.half[j2] * self.size[i][j1]);
+        // Penetration × |aᵢ × bⱼ| at least `least` (m); (|aᵢ × bⱼ| + β)² is at most
+        // 65/64 of the screen's square plus 65 β².
+        let least = -separation - self.bound;
+        let width = squared * T::of(65.0 / 64.0) + self.spread;
+        squared > self.valid
+            && least > T::zero()
+            && least * least * T::of(LOSES) >= self.face_squared * width
+    }
+}
+
+/// ε (–) of the float type: `f32`'s when 1 + 2⁻⁵² rounds to 1, else `f64`'s.
+fn epsilon<T: Real>() -> T {
+    if T::of(1.0 + f64::EPSILON) == T::one() {
+        T::of(f64::from(f32::EPSILON))
+    } else {
+        T::of(f64::EPSILON)
+    }
+}
