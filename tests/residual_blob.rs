@@ -108,6 +108,16 @@ where
     );
     assert!(of_scale < 1e-6, "{of_scale:e}");
 
+    // int8 runs the quantised tanh and nothing else: another activation is refused at
+    // export; the same weights with it round-trip.
+    assert!(matches!(
+        encode(&model, Quantisation::Int8),
+        Err(ExportError::Int8Activation { found }) if found == activation
+    ));
+    let model = ExportModel {
+        activation: Activation::QuantisedTanh,
+        ..model
+    };
     let blob = encode(&model, Quantisation::Int8).unwrap();
     let mlp: Mlp<3, 16, 1, HIDDEN, Int8Weights> = decode(&blob).unwrap();
     let (of_scale, relative) = worst_errors(&model, &mlp);
@@ -326,7 +336,7 @@ fn random_damage_never_panics_and_is_always_refused() {
 #[test]
 fn blob_sizes_of_the_reference_network() {
     // 3 inputs, 2 hidden layers of 16, 1 output: 353 weights and biases.
-    let model = random_model(5, 16, 2, Activation::Tanh);
+    let model = random_model(5, 16, 2, Activation::QuantisedTanh);
     let f32_blob = encode(&model, Quantisation::F32).unwrap();
     let int8_blob = encode(&model, Quantisation::Int8).unwrap();
     println!(

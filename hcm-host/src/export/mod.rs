@@ -13,7 +13,7 @@ pub use round_trip::{round_trip_error, round_trip_error_over};
 
 use crate::train::int8_row;
 use hcm_core::residual::blob::{BlobContents, Shape, MAGIC, VERSION};
-use hcm_core::residual::{crc32, Quantisation};
+use hcm_core::residual::{crc32, Activation, Quantisation};
 
 /// A trained residual network as the host holds it (f64, heap), in the layout the
 /// blob stores: layers input → hidden 1 → … → output, each with its weights row-major
@@ -59,6 +59,15 @@ pub enum ExportError {
     BadEnvelope {
         /// Index of the input.
         input: usize,
+    },
+    /// An int8 blob of a network whose activation is not the quantised tanh.
+    #[error(
+        "an int8 blob runs the quantised tanh, and this network uses {found:?}: export its int8 \
+         twin (`hcm train` makes one, trained with it) or export it as f32"
+    )]
+    Int8Activation {
+        /// The network's activation.
+        found: Activation,
     },
     /// A layer size does not fit the blob's 32-bit shape fields.
     #[error("a layer size does not fit in 32 bits")]
@@ -135,7 +144,8 @@ impl ExportModel {
 /// Int8 stores each weight row of the hidden → hidden layers as q = round(w / s) with
 /// s = max|w_row| / 127 (s = 1 for an all-zero row), so the largest weight of each row
 /// is exact to f32 rounding and the others are off by at most s/2; the input and
-/// output layers stay f32.
+/// output layers stay f32. An int8 blob needs a network with the quantised tanh
+/// ([`ExportError::Int8Activation`] otherwise).
 pub fn encode(model: &ExportModel, quantisation: Quantisation) -> Result<Vec<u8>, ExportError> {
     model.check_shape()?;
     let size = |n: usize| u32::try_from(n).map_err(|_| ExportError::TooLarge);
@@ -183,6 +193,13 @@ pub fn encode(model: &ExportModel, quantisation: Quantisation) -> Result<Vec<u8>
             _ => push_f32s(&mut layers, &what, weights)?,
         }
         push_f32s(&mut layers, &format!("layer {index} bias"), bias)?;
+    }
+
+    // The core's int8 kernel runs the quantised tanh only (hcm_core::residual::int8).
+    if quantisation == Quantisation::Int8 && model.activation != Activation::QuantisedTanh {
+        return Err(ExportError::Int8Activation {
+            found: model.activation,
+        });
     }
 
     seal(&BlobContents {
