@@ -124,32 +124,50 @@ impl<'a, T: Real> Pair<'a, T> {
         }
     }
 
-    /// Records the best face axis's separation `face` (m, < 0) for [`Pair::screens_out`];
+    /// Records the best face axis's separation `face` (m, < 0) for [`Pair::exact_edges`];
     /// whether the screen can be used.
     pub fn set_face(&mut self, face: T) -> bool {
         self.face_squared = face * face;
         self.usable && self.face_squared >= T::of(TINY)
     }
 
-    /// Whether edge axis aᵢ × bⱼ (box 1's axis `i`, box 2's `j`) may be left out: it
-    /// surely is a valid axis along which the boxes overlap, and its penetration surely
-    /// is not below the face's by the factor [`FACE_PREFERENCE`]. False whenever in
-    /// doubt (NaN included): the axis is then computed exactly. Only when
-    /// [`Pair::set_face`] allows it.
-    pub fn screens_out(&self, i: usize, j: usize) -> bool {
-        let (i1, j1) = ((i + 1) % 3, (j + 1) % 3);
-        let (i2, j2) = ((i + 2) % 3, (j + 2) % 3);
-        let r = &self.r;
-        // aᵢ × bⱼ has components (−Rᵢ₂ⱼ, Rᵢ₁ⱼ) along box 1's axes i1, i2 (0 along i);
-        // along box 2's axes j1, j2 it has Rᵢⱼ₂ and −Rᵢⱼ₁.
-        let (u, v) = (r[i2][j], r[i1][j]);
-        let (size_u, size_v) = (self.size[i2][j], self.size[i1][j]);
+    /// The edge axes aᵢ × bⱼ of box 1's axis `i` that must be computed exactly, as bits
+    /// j (box 2's axis) of the result: all but those [`Pair::screens_out`] leaves out.
+    /// Only when [`Pair::set_face`] allows it.
+    pub fn exact_edges(&self, i: usize) -> u32 {
+        let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+        let edge = Edge {
+            // aᵢ × bⱼ has components (−Rᵢ₂ⱼ, Rᵢ₁ⱼ) along box 1's axes i1, i2 (0 along
+            // i); along box 2's axes j1, j2 it has Rᵢⱼ₂ and −Rᵢⱼ₁.
+            u: &self.r[i2],
+            v: &self.r[i1],
+            size_u: &self.size[i2],
+            size_v: &self.size[i1],
+            size_w: &self.size[i],
+            offset_u: self.along_1[i1],
+            offset_v: self.along_1[i2],
+            half_u: self.one.frame.half[i1],
+            half_v: self.one.frame.half[i2],
+        };
+        // Box 2's axis j with the next two, written out so that each is a constant.
+        u32::from(!self.screens_out(&edge, 0, 1, 2))
+            | u32::from(!self.screens_out(&edge, 1, 2, 0)) << 1
+            | u32::from(!self.screens_out(&edge, 2, 0, 1)) << 2
+    }
+
+    /// Whether edge axis aᵢ × bⱼ may be left out (box 1's axis i in `edge`, box 2's `j`
+    /// followed by `j1`, `j2`): it surely is a valid axis along which the boxes overlap,
+    /// and its penetration surely is not below the face's by the factor
+    /// [`FACE_PREFERENCE`]. False whenever in doubt (NaN included).
+    #[inline(always)]
+    fn screens_out(&self, edge: &Edge<'_, T>, j: usize, j1: usize, j2: usize) -> bool {
+        let (u, v) = (edge.u[j], edge.v[j]);
         let squared = u * u + v * v;
-        let (one, two) = (&self.one.frame, &self.two.frame);
-        let offset = self.along_1[i2] * v - self.along_1[i1] * u;
+        let half = &self.two.frame.half;
+        let offset = edge.offset_v * v - edge.offset_u * u;
         let separation = offset.abs()
-            - (one.half[i1] * size_u + one.half[i2] * size_v)
-            - (two.half[j1] * self.size[i][j2] + two.half[j2] * self.size[i][j1]);
+            - (edge.half_u * edge.size_u[j] + edge.half_v * edge.size_v[j])
+            - (half[j1] * edge.size_w[j2] + half[j2] * edge.size_w[j1]);
         // Penetration × |aᵢ × bⱼ| at least `least` (m); (|aᵢ × bⱼ| + β)² is at most
         // 65/64 of the screen's square plus 65 β².
         let least = -separation - self.bound;
@@ -158,6 +176,24 @@ impl<'a, T: Real> Pair<'a, T> {
             && least > T::zero()
             && least * least * T::of(LOSES) >= self.face_squared * width
     }
+}
+
+/// The products of one box-1 axis i that the screen of its three edge axes uses.
+struct Edge<'a, T: Real> {
+    /// Rᵢ₂ⱼ and Rᵢ₁ⱼ over j (–), the edge axis's components along box 1's axes i1, i2
+    /// (up to sign), and their sizes.
+    u: &'a [T; 3],
+    v: &'a [T; 3],
+    size_u: &'a [T; 3],
+    size_v: &'a [T; 3],
+    /// |Rᵢⱼ| over j (–).
+    size_w: &'a [T; 3],
+    /// The centres' offset along box 1's axes i1 and i2 (m).
+    offset_u: T,
+    offset_v: T,
+    /// Box 1's half extents along i1 and i2 (m).
+    half_u: T,
+    half_v: T,
 }
 
 /// ε (–) of the float type: `f32`'s when 1 + 2⁻⁵² rounds to 1, else `f64`'s.

@@ -235,17 +235,18 @@ pub(super) enum Plan<T: Real> {
 /// touch exactly there) or a separation is NaN (an overflow). The choice is the one of
 /// the 15 separations [`candidate`] computes, first the six face axes (exactly, from
 /// dot products shared between the axes), then the edge axes, which
-/// [`Pair::screens_out`] screens: only those that might separate the boxes or win over
+/// [`Pair::exact_edges`] screens: only those that might separate the boxes or win over
 /// the face are computed exactly, with a square root each.
 pub(super) fn plan<T: Real>(one: &Shape<T>, two: &Shape<T>) -> Option<Plan<T>> {
     let mut pair = Pair::of(one, two);
-    let (mut best, mut face) = (0, pair.face_separation(0));
+    let (mut best, mut face) = (0, (T::zero(), T::zero()));
     for index in 0..6 {
         let found = pair.face_separation(index);
         if found.0 >= T::zero() || found.0.is_nan() {
             return None;
         }
-        if found.0 > face.0 {
+        // The first of equals.
+        if index == 0 || found.0 > face.0 {
             (best, face) = (index, found);
         }
     }
@@ -253,8 +254,9 @@ pub(super) fn plan<T: Real>(one: &Shape<T>, two: &Shape<T>) -> Option<Plan<T>> {
     let screen = pair.set_face(face.separation);
     let mut edge: Option<Axis<T>> = None;
     for axis_1 in 0..3 {
+        let exact = if screen { pair.exact_edges(axis_1) } else { 7 };
         for axis_2 in 0..3 {
-            if screen && pair.screens_out(axis_1, axis_2) {
+            if exact & 1 << axis_2 == 0 {
                 continue;
             }
             let Some(axis) = edge_axis(&one.frame, &two.frame, axis_1, axis_2) else {
