@@ -35,13 +35,16 @@
 #[path = "../hcm-firmware/src/peg/mod.rs"]
 mod peg;
 
-use candle_core::{Device, Tensor};
+#[path = "common/candle_mlp.rs"]
+mod candle_mlp;
+
+use candle_mlp::CandleMlp;
 use criterion::{criterion_group, criterion_main, Criterion};
 use hcm_core::model::{ContactModel, ContactPoint, Evaluated, PairLoad};
-use hcm_core::residual::{Envelope, F32Weights, Int8Weights, Layer};
+use hcm_core::residual::{F32Weights, Int8Weights};
 use hcm_core::rigid::RigidState;
 use nalgebra::Vector3;
-use peg::{PegFixture, PegResidual, PEG_STATES, STATE_NAMES};
+use peg::{PegResidual, PEG_STATES, STATE_NAMES};
 use std::hint::black_box;
 
 /// Inputs and outputs of the peg's residual.
@@ -51,74 +54,13 @@ const OUTPUTS: usize = 6;
 /// The benchmarked state: `wall_2_peak`.
 const STATE: usize = 3;
 
-/// The peg's residual network in candle-core: the same weights, normalisation and
-/// envelope, as CPU `f32` tensors.
-struct CandleResidual {
-    device: Device,
-    input_mean: Tensor,
-    input_scale: Tensor,
-    /// (Wᵀ as (in, out), bias (out)), input → output.
-    layers: Vec<(Tensor, Tensor)>,
-    output_mean: Tensor,
-    output_scale: Tensor,
-    envelope: Envelope<INPUTS>,
-}
+/// The peg's residual network in candle-core.
+type CandleResidual = CandleMlp<INPUTS, OUTPUTS>;
 
-impl CandleResidual {
-    fn from_core(mlp: &PegResidual<F32Weights>) -> candle_core::Result<Self> {
-        let device = Device::Cpu;
-        let vector = |values: &[f32]| Tensor::from_slice(values, values.len(), &device);
-        let scaling = &mlp.normalisation;
-        let mut layers = vec![layer(&mlp.input_layer, &device)?];
-        for hidden in mlp.hidden_layers.as_ref() {
-            layers.push(layer(hidden, &device)?);
-        }
-        layers.push(layer(&mlp.output_layer, &device)?);
-        Ok(CandleResidual {
-            input_mean: vector(&scaling.input_mean)?,
-            input_scale: vector(&scaling.input_scale)?,
-            layers,
-            output_mean: vector(&scaling.output_mean)?,
-            output_scale: vector(&scaling.output_scale)?,
-            envelope: mlp.envelope,
-            device,
-        })
-    }
-
-    /// Force (N) and torque (N·m) error on the peg for one raw input row.
-    fn evaluate(&self, input: &[f32; INPUTS]) -> candle_core::Result<[f32; OUTPUTS]> {
-        let x = Tensor::from_slice(input, (1, INPUTS), &self.device)?;
-        let mut h = x
-            .broadcast_sub(&self.input_mean)?
-            .broadcast_div(&self.input_scale)?;
-        let last = self.layers.len() - 1;
-        for (index, (weights, bias)) in self.layers.iter().enumerate() {
-            h = h.matmul(weights)?.broadcast_add(bias)?;
-            if index < last {
-                h = h.tanh()?;
-            }
-        }
-        let y = h
-            .broadcast_mul(&self.output_scale)?
-            .broadcast_add(&self.output_mean)?
-            .flatten_all()?
-            .to_vec1::<f32>()?;
-        let mut out = [0.0; OUTPUTS];
-        out.copy_from_slice(&y);
-        Ok(out)
-    }
-}
-
-/// One core layer as (Wᵀ (in, out), bias (out)) tensors: the core stores W column by
-/// column, which is Wᵀ row-major.
-fn layer<const IN: usize, const OUT: usize>(
-    layer: &Layer<IN, OUT, F32Weights>,
-    device: &Device,
-) -> candle_core::Result<(Tensor, Tensor)> {
-    Ok((
-        Tensor::from_slice(layer.weights.as_flattened(), (IN, OUT), device)?,
-        Tensor::from_slice(&layer.bias, OUT, device)?,
-    ))
+/// The peg's HCM with `Q` weights, as the firmware's host test builds it.
+struct PegFixture<Q: peg::PegWeights> {
+    /// PM2 + friction + the residual.
+    hcm: ContactModel<f32, PegResidual<Q>>,
 }
 
 /// `ContactModel::pair_load` with the residual evaluated by candle: the physics' loads,
@@ -223,7 +165,10 @@ fn check_same_function(fixture: &PegFixture<F32Weights>, candle: &CandleResidual
 
 /// The peg's HCM (PM2 + the residual of `Q`), as the firmware decodes it.
 fn fixture<Q: peg::PegWeights>() -> PegFixture<Q> {
-    PegFixture::<Q>::decode().expect("the peg's blob decodes")
+    let network = peg::decode_network::<Q>().expect("the peg's blob decodes");
+    PegFixture {
+        hcm: peg::peg_hcm(network),
+    }
 }
 
 fn bench_peg(c: &mut Criterion) {

@@ -20,7 +20,10 @@
 //!
 //! Run: `cargo bench -p hcm-tests --features candle --bench residual_evaluation`
 
-use candle_core::{Device, Tensor};
+#[path = "common/candle_mlp.rs"]
+mod candle_mlp;
+
+use candle_mlp::CandleMlp;
 use criterion::{criterion_group, criterion_main, Criterion};
 use hcm_core::effect::ContactMemory;
 use hcm_core::law::{AnyNormalLaw, Indentation, NormalLaw};
@@ -73,72 +76,8 @@ fn trained_blobs() -> (Vec<u8>, Vec<u8>) {
     )
 }
 
-/// The core residual's forward pass in candle-core: the same weights, normalisation and
-/// envelope, as CPU `f32` tensors.
-struct CandleResidual {
-    device: Device,
-    input_mean: Tensor,
-    input_scale: Tensor,
-    /// (Wᵀ as (in, out), bias (out)), input → output.
-    layers: Vec<(Tensor, Tensor)>,
-    output_mean: Tensor,
-    output_scale: Tensor,
-    envelope: Envelope<INPUTS>,
-}
-
-impl CandleResidual {
-    fn from_core(mlp: &CoreMlp<F32Weights>) -> candle_core::Result<Self> {
-        let device = Device::Cpu;
-        let vector = |values: &[f32]| Tensor::from_slice(values, values.len(), &device);
-        let scaling = &mlp.normalisation;
-        let mut layers = vec![layer(&mlp.input_layer, &device)?];
-        for hidden in mlp.hidden_layers.as_ref() {
-            layers.push(layer(hidden, &device)?);
-        }
-        layers.push(layer(&mlp.output_layer, &device)?);
-        Ok(CandleResidual {
-            input_mean: vector(&scaling.input_mean)?,
-            input_scale: vector(&scaling.input_scale)?,
-            layers,
-            output_mean: vector(&scaling.output_mean)?,
-            output_scale: vector(&scaling.output_scale)?,
-            envelope: mlp.envelope,
-            device,
-        })
-    }
-
-    /// The force correction (N) for one raw input row.
-    fn evaluate(&self, input: &[f32; INPUTS]) -> candle_core::Result<f32> {
-        let x = Tensor::from_slice(input, (1, INPUTS), &self.device)?;
-        let mut h = x
-            .broadcast_sub(&self.input_mean)?
-            .broadcast_div(&self.input_scale)?;
-        let last = self.layers.len() - 1;
-        for (index, (weights, bias)) in self.layers.iter().enumerate() {
-            h = h.matmul(weights)?.broadcast_add(bias)?;
-            if index < last {
-                h = h.tanh()?;
-            }
-        }
-        h.broadcast_mul(&self.output_scale)?
-            .broadcast_add(&self.output_mean)?
-            .flatten_all()?
-            .get(0)?
-            .to_scalar::<f32>()
-    }
-}
-
-/// One core layer as (Wᵀ (in, out), bias (out)) tensors: the core stores W column by
-/// column, which is Wᵀ row-major.
-fn layer<const IN: usize, const OUT: usize>(
-    layer: &Layer<IN, OUT>,
-    device: &Device,
-) -> candle_core::Result<(Tensor, Tensor)> {
-    Ok((
-        Tensor::from_slice(layer.weights.as_flattened(), (IN, OUT), device)?,
-        Tensor::from_slice(&layer.bias, OUT, device)?,
-    ))
-}
+/// The core residual's forward pass in candle-core (one output: the force correction).
+type CandleResidual = CandleMlp<INPUTS, 1>;
 
 /// `ContactModel::normal_force` with the residual evaluated by candle.
 fn hybrid_candle(
@@ -154,7 +93,7 @@ fn hybrid_candle(
     if !residual.envelope.contains(input) {
         return (physics, Evaluated::PhysicsOnly);
     }
-    let correction = residual.evaluate(input).unwrap();
+    let [correction] = residual.evaluate(input).unwrap();
     (physics + correction, Evaluated::PhysicsAndResidual)
 }
 
@@ -193,7 +132,7 @@ fn check_same_function(
         assert_eq!(evaluated, Evaluated::PhysicsAndResidual);
         assert_eq!(evaluated_candle, Evaluated::PhysicsAndResidual);
         let [residual] = core.residual.evaluate(&input);
-        let residual_candle = candle.evaluate(&input).unwrap();
+        let [residual_candle] = candle.evaluate(&input).unwrap();
         let relative = (force_candle - force).abs() / force.abs();
         println!(
             "  {:6.1}  {rate:8.2}  {force:18.6}  {force_candle:17.6}  {relative:10.2e}  {residual:20.6}  {residual_candle:19.6}",
