@@ -93,22 +93,6 @@ fn pair_load_candle(
     load
 }
 
-/// Eight points: the peg's contact points at `state`, repeated with shifted positions,
-/// depths and slips (a box in a rectangular hole touches at up to eight).
-fn eight_points(state: &RigidState<f32>) -> Vec<ContactPoint<f32>> {
-    let manifold = peg::manifold(state);
-    (0..hcm_core::model::MAX_POINTS)
-        .map(|i| {
-            let mut point = manifold[i % manifold.len()];
-            let s = i as f32;
-            point.position += Vector3::new(1e-3 * s, -2e-3 * s, 5e-4 * s);
-            point.indentation.depth *= 1.0 + 0.1 * s;
-            point.relative_velocity += Vector3::new(0.01 * s, 0.0, -0.02 * s);
-            point
-        })
-        .collect()
-}
-
 /// max |a − b| over max |b|: the distance of `a` from `b` relative to `b`'s scale.
 fn relative(a: &[f32], b: &[f32]) -> f32 {
     let scale = b.iter().fold(0.0_f32, |m, x| m.max(x.abs()));
@@ -139,7 +123,7 @@ fn check_same_function(fixture: &PegFixture<F32Weights>, candle: &CandleResidual
         let state = RigidState {
             components: *components,
         };
-        let points = eight_points(&state);
+        let points = peg::eight_points(&state);
         let reference = state.position();
         let hcm = fixture
             .hcm
@@ -185,7 +169,7 @@ fn bench_peg(c: &mut Criterion) {
     };
     let input = state.components;
     let reference = state.position();
-    let points = eight_points(&state);
+    let points = peg::eight_points(&state);
     let physics = ContactModel::physics(hcm_f32.hcm.normal.clone())
         .with_friction(hcm_f32.hcm.friction.unwrap());
     assert_eq!(peg::manifold(&state).len(), 4);

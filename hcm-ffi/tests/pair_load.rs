@@ -203,30 +203,14 @@ fn peg_states_match_pair_load_bit_for_bit_f32_and_int8() {
     }
 }
 
-/// Eight points: the peg's wall contacts at one state, repeated with shifted
-/// positions, depths and slips, up to `HCM_MAX_POINTS`.
-fn eight_points(state: &RigidState<f32>) -> Vec<ContactPoint<f32>> {
-    let manifold = peg::manifold(state);
-    assert!(!manifold.is_empty());
-    (0..HCM_MAX_POINTS)
-        .map(|i| {
-            let mut point = manifold[i % manifold.len()];
-            let s = i as f32;
-            point.position += Vector3::new(1e-3 * s, -2e-3 * s, 5e-4 * s);
-            point.indentation.depth *= 1.0 + 0.1 * s;
-            point.relative_velocity += Vector3::new(0.01 * s, 0.0, -0.02 * s);
-            point
-        })
-        .collect()
-}
-
 fn check_eight_points<Q: PegWeights>() {
     let fixture = PegFixture::<Q>::decode().unwrap();
     let residual = decoded::<Q>();
     let state = RigidState {
         components: PEG_STATES[1],
     };
-    let mut points = eight_points(&state);
+    let mut points = peg::eight_points(&state);
+    assert_eq!(points.len(), HCM_MAX_POINTS, "the state touches the block");
     // One point apart (δ < 0), one with a NaN depth: the core's rules, through C.
     points[6].indentation.depth = -1e-6;
     let reference = state.position();
@@ -323,7 +307,7 @@ fn mistakes_are_answered_with_their_code() {
     let state = RigidState {
         components: PEG_STATES[1],
     };
-    let points: Vec<HcmContactPoint> = eight_points(&state).iter().map(c_point).collect();
+    let points: Vec<HcmContactPoint> = peg::eight_points(&state).iter().map(c_point).collect();
     let reference: [f32; 3] = state.position().into();
     let input = state.components;
     let (p, r, x) = (points.as_ptr(), reference.as_ptr(), input.as_ptr());

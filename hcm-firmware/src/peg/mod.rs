@@ -163,6 +163,27 @@ pub fn manifold(state: &RigidState<f32>) -> Manifold<f32> {
     points
 }
 
+/// A full manifold for the host's checks and benchmarks: the peg's contact points at
+/// `state` repeated with shifted positions (m), depths and slips (m/s) up to the 8 a box
+/// in a rectangular hole can touch at; empty where the peg touches nothing.
+#[allow(dead_code)] // used by hcm-ffi's pair_load test and benches/peg_hcm.rs only
+pub fn eight_points(state: &RigidState<f32>) -> Manifold<f32> {
+    let manifold = manifold(state);
+    let mut points = Manifold::new();
+    for i in 0..hcm_core::model::MAX_POINTS {
+        let Some(mut point) = manifold.get(i % manifold.len().max(1)).copied() else {
+            break;
+        };
+        let s = i as f32;
+        point.position += Vector3::new(1e-3 * s, -2e-3 * s, 5e-4 * s);
+        point.indentation.depth *= 1.0 + 0.1 * s;
+        point.relative_velocity += Vector3::new(0.01 * s, 0.0, -0.02 * s);
+        // At most MAX_POINTS pushes: it cannot fail.
+        let _ = points.push(point);
+    }
+    points
+}
+
 /// The HCM's loads on the peg in `state` (the state is the residual's input).
 #[inline]
 pub fn peg_load<R: Residual<f32>>(
