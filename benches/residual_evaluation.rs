@@ -28,7 +28,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use hcm_core::effect::ContactMemory;
 use hcm_core::law::{AnyNormalLaw, Indentation, NormalLaw};
 use hcm_core::model::{ContactModel, Evaluated};
-use hcm_core::residual::{decode, Envelope, F32Weights, Int8Weights, Layer, Mlp, Quantisation};
+use hcm_core::residual::{decode, F32Weights, Int8Weights, Mlp, Quantisation};
 use hcm_host::export::encode;
 use hcm_host::residual::{HIDDEN, INPUTS, WIDTH};
 use hcm_host::train::{train, TrainSettings};
