@@ -160,11 +160,12 @@ impl<const IN: usize, const OUT: usize> Int8Layer<IN, OUT> {
     }
 
     /// [`Int8Layer::forward`] into `out` (no array returned by copy: 360 instructions
-    /// of `memcpy` per peg residual on the Cortex-M4F).
+    /// of `memcpy` per peg residual on the Cortex-M4F), each activation as an `i16`
+    /// (Q15) or, for the last layer, straight as its `f32` value.
     #[inline(never)]
-    pub fn forward_into(&self, activations: &[i16; IN], out: &mut [i16; OUT]) {
+    pub fn forward_into<A: Q15Value>(&self, activations: &[i16; IN], out: &mut [A; OUT]) {
         let output = |sum: i32, scale: f32, bias: f32| {
-            quantised_tanh(sum as f32 * (scale * Q15_UNIT) + bias)
+            A::from_q15(quantised_tanh(sum as f32 * (scale * Q15_UNIT) + bias))
         };
         let (blocks, rest) = out.as_chunks_mut::<4>();
         let (rows, last_rows) = self.levels.as_chunks::<4>();
@@ -187,6 +188,27 @@ impl<const IN: usize, const OUT: usize> Int8Layer<IN, OUT> {
         {
             *out = output(one_row(row, activations), scale, bias);
         }
+    }
+}
+
+/// What an [`Int8Layer`] writes its activations as: the Q15 integer the next int8
+/// layer reads, or the `f32` value a·2⁻¹⁵ (exact) the `f32` output layer reads.
+pub trait Q15Value: Copy {
+    /// The value of the Q15 activation `a`.
+    fn from_q15(a: i16) -> Self;
+}
+
+impl Q15Value for i16 {
+    #[inline(always)]
+    fn from_q15(a: i16) -> Self {
+        a
+    }
+}
+
+impl Q15Value for f32 {
+    #[inline(always)]
+    fn from_q15(a: i16) -> Self {
+        f32::from(a) * Q15_UNIT
     }
 }
 

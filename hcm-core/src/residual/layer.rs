@@ -14,7 +14,7 @@
 //! decoder transposes them once ([`Layer::from_rows`] does the same for a layer built
 //! by hand).
 
-use super::int8::{Int8Layer, Q15_UNIT};
+use super::int8::{Int8Layer, Q15Value};
 use super::qtanh::quantised_tanh;
 use super::{Activation, BlobError, Quantisation};
 use core::fmt::Debug;
@@ -132,18 +132,23 @@ impl WeightFormat for Int8Weights {
         x: &[f32; IN],
     ) -> [f32; WIDTH] {
         let mut hidden = input.forward(x);
-        let (mut a, mut b) = ([0_i16; WIDTH], [0_i16; WIDTH]);
-        for (a, &z) in a.iter_mut().zip(&hidden) {
-            *a = quantised_tanh(z);
-        }
-        // Two buffers, their roles swapped by reference after each layer.
-        let (mut from, mut to) = (&mut a, &mut b);
-        for layer in layers {
-            layer.forward_into(from, to);
-            core::mem::swap(&mut from, &mut to);
-        }
-        for (h, &a) in hidden.iter_mut().zip(from.iter()) {
-            *h = f32::from(a) * Q15_UNIT;
+        let mut a = hidden.map(quantised_tanh);
+        let Some((last, first)) = layers.split_last() else {
+            return a.map(<f32 as Q15Value>::from_q15);
+        };
+        if !first.is_empty() {
+            // Two buffers, their roles swapped by reference after each layer.
+            let mut b = a;
+            let (mut from, mut to) = (&mut a, &mut b);
+            for layer in first {
+                layer.forward_into(from, to);
+                core::mem::swap(&mut from, &mut to);
+            }
+            // The last layer writes its `f32` values straight into `hidden` (no pass
+            // converting them after, no buffer of its own).
+            last.forward_into(from, &mut hidden);
+        } else {
+            last.forward_into(&a, &mut hidden);
         }
         hidden
     }

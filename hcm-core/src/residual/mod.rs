@@ -46,7 +46,7 @@ pub mod tanh;
 
 pub use blob::{decode, BlobError};
 pub use crc::crc32;
-pub use int8::Int8Layer;
+pub use int8::{Int8Layer, Q15Value};
 pub use mlp::WeightFormat;
 pub use mlp::{
     Envelope, Excursion, F32Weights, Hidden, HiddenDepth, Int8Weights, Layer, Mlp, Normalisation,
