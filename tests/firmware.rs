@@ -46,6 +46,10 @@ const HCM_INT8_CEILING: u32 = 2_300;
 /// The issue's flash budget for the whole firmware (B).
 const FLASH_BUDGET: u32 = 32 * 1024;
 
+/// Issue 31's flash budget for each peg image (B): measured 24,168 (f32) and 21,228
+/// (int8) once the network is decoded when the image is built (`hcm-firmware/build.rs`).
+const PEG_FLASH_BUDGET: u32 = 24 * 1024;
+
 /// What the firmware printed, parsed.
 #[derive(Debug, Default)]
 struct Report {
@@ -434,8 +438,8 @@ fn check_peg_image<Q: peg::PegWeights>(report: &Report) {
     }
     let flash = report.size("flash");
     assert!(
-        flash <= FLASH_BUDGET,
-        "peg {} image flash {flash} B > budget {FLASH_BUDGET} B",
+        flash <= PEG_FLASH_BUDGET,
+        "peg {} image flash {flash} B > budget {PEG_FLASH_BUDGET} B",
         Q::NAME
     );
     let cost = report.cost(&format!("peg_hcm.{}", Q::NAME));
@@ -455,20 +459,21 @@ fn the_peg_int8_image_evaluates_the_peg_hcm_as_the_host_does() {
     check_peg_image::<hcm_core::residual::Int8Weights>(peg_int8_firmware());
 }
 
-/// What int8 buys the peg's controller: the decoded network in less memory (levels,
-/// not `f32` weights, for its 32 × 32 layer: static RAM, where the image keeps the
-/// decoded network, plus peak stack, 13.6 kB against 22.5 kB when introduced) at a
-/// cost per evaluation within 5 % of f32's (the integer kernel's dual multiply-
-/// accumulates against the activations' quantisation: 37,220 against 37,021
-/// instructions when introduced).
+/// What int8 buys the peg's controller: the network in less memory (levels, not `f32`
+/// weights, for its 32 × 32 layer) at a cost per evaluation within 5 % of f32's (the
+/// integer kernel's dual multiply-accumulates against the activations' quantisation:
+/// 37,220 against 37,021 instructions when introduced). The images hold the network in
+/// flash (decoded when built), so the saving is there: flash + static RAM + peak stack
+/// 25,104 B against 28,044 B when the network moved to flash (before, in RAM: 13.6 kB
+/// against 22.5 kB of static RAM + stack).
 #[test]
 fn the_peg_int8_image_needs_less_memory_at_about_the_same_cost() {
     let (float, int8) = (peg_f32_firmware(), peg_int8_firmware());
-    let memory = |report: &Report| report.size("ram") + report.size("stack");
+    let memory = |report: &Report| report.size("flash") + report.size("ram") + report.size("stack");
     let (f32_memory, int8_memory) = (memory(float), memory(int8));
     assert!(
-        int8_memory + 4 * 1024 < f32_memory,
-        "peg int8 RAM + stack {int8_memory} B not 4 kB below f32's {f32_memory} B"
+        int8_memory + 2 * 1024 < f32_memory,
+        "peg int8 flash + RAM + stack {int8_memory} B not 2 kB below f32's {f32_memory} B"
     );
     let f32_cost = float.cost("peg_hcm.f32");
     let int8_cost = int8.cost("peg_hcm.int8");

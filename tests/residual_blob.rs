@@ -7,8 +7,8 @@ use hcm_core::law::{AnyNormalLaw, Hertz, Indentation};
 use hcm_core::model::{ContactModel, Evaluated};
 use hcm_core::residual::blob::{BlobContents, Shape, VERSION};
 use hcm_core::residual::{
-    decode, Activation, BlobError, Excursion, F32Weights, Hidden, HiddenDepth, Int8Weights, Mlp,
-    Quantisation, WeightFormat,
+    decode, Activation, BlobError, Excursion, F32Weights, Hidden, HiddenDepth, Int8Layer,
+    Int8Weights, Mlp, Quantisation, WeightFormat,
 };
 use hcm_host::export::{encode, seal, ExportError, ExportModel};
 use hcm_host::train::envelope_tolerance;
@@ -512,4 +512,19 @@ fn a_negative_or_infinite_tolerance_is_refused() {
             "{bad}"
         );
     }
+}
+
+/// What the peg images' build script relies on (`hcm-firmware/build.rs`): a decoded
+/// int8 layer rebuilt by the `const` constructor from its stored levels, scales and
+/// biases is the same layer; a level of −128 is read as −127, as everywhere else.
+#[test]
+fn an_int8_layer_rebuilds_from_its_stored_levels() {
+    let blob = include_bytes!("../examples/blobs/peg_in_hole.int8.hcm");
+    let network: Mlp<13, 32, 6, 2, Int8Weights> = decode(blob).expect("the peg's int8 blob");
+    let layer = network.hidden_layers[0];
+    let rebuilt = Int8Layer::from_stored_levels(*layer.stored_levels(), layer.scales, layer.bias);
+    assert_eq!(rebuilt, layer);
+    assert_eq!(rebuilt.level(31, 30), layer.level(31, 30));
+    const EDGE: Int8Layer<4, 1> = Int8Layer::from_stored_levels([[-128, 1, 127, 0]], [1.0], [0.0]);
+    assert_eq!(EDGE.stored_levels(), &[[-127, 1, 127, 0]]);
 }

@@ -33,7 +33,8 @@ impl<T: Real> AirDrag<T> {
     /// saturates at ±[`Real::MAX`].
     pub fn force(&self, velocity: &Vector3<T>) -> Vector3<T> {
         // Saturating |v| first keeps 0·∞ (c = 0 at an overflowing |v|) from giving NaN.
-        let scale = (self.coefficient * velocity.norm().saturate()).saturate();
+        let scale =
+            (self.coefficient * velocity.norm_squared().square_root().saturate()).saturate();
         velocity.map(|component| (-scale * component).saturate())
     }
 

@@ -50,7 +50,7 @@ fn opposing_couple<T: Real>(
     full_rate: T,
     normal_force: T,
 ) -> Vector3<T> {
-    let scale = (rotation.norm_squared() + full_rate * full_rate).sqrt();
+    let scale = (rotation.norm_squared() + full_rate * full_rate).square_root();
     // Saturated before it multiplies: no rotation stays no couple, even at f_n = ∞.
     rotation * (-arm * normal_force.abs() / scale).saturate()
 }

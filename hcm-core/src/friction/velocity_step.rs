@@ -69,7 +69,7 @@ impl<T: Real> VelocityStepFriction<T> {
         normal_force: T,
     ) -> Vector3<T> {
         let slip = relative_velocity - normal * relative_velocity.dot(normal);
-        let speed = slip.norm();
+        let speed = slip.norm_squared().square_root();
         if speed.is_nan() || normal_force.is_nan() {
             return Vector3::repeat(speed + normal_force);
         }

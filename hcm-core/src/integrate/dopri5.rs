@@ -702,7 +702,7 @@ fn stiffness_ratio<T: Real, S: OdeState<T>>(f1: &S, f2: &S, y1: &S, y2: &S) -> T
             .fold(T::zero(), |sum, (a, b)| sum + (*a - *b) * (*a - *b))
     };
     let (rates, states) = (squared_distance(f1, f2), squared_distance(y1, y2));
-    let ratio = (rates / states).sqrt();
+    let ratio = (rates / states).square_root();
     if states > T::zero() && ratio.is_finite() {
         ratio
     } else {

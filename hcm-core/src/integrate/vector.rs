@@ -64,7 +64,7 @@ pub(super) fn scaled_rms<T: Real, S: OdeState<T>>(v: &S, y0: &S, y1: &S, rtol: T
     if count == 0 {
         T::zero()
     } else {
-        (sum / T::of_count(count)).sqrt()
+        (sum / T::of_count(count)).square_root()
     }
 }
 

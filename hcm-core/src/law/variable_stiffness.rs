@@ -52,7 +52,7 @@ impl<T: Real> VariableStiffness<T> {
     pub fn stiffness_at(&self, depth: T) -> T {
         let radicand = T::of(2.0) * self.radius * depth - depth * depth;
         let area_radius = if radicand > T::zero() {
-            radicand.sqrt()
+            radicand.square_root()
         } else if radicand.is_nan() {
             radicand
         } else {
@@ -70,7 +70,7 @@ impl<T: Real> NormalLaw<T> for VariableStiffness<T> {
             return T::zero();
         }
         let k = self.stiffness_at(depth);
-        let damping = T::of(2.0) * self.damping * (k * self.effective_mass).sqrt() * depth;
+        let damping = T::of(2.0) * self.damping * (k * self.effective_mass).square_root() * depth;
         (k * depth + damping * contact.rate).saturate()
     }
 

@@ -72,6 +72,39 @@ impl<const IN: usize, const OUT: usize> Int8Layer<IN, OUT> {
         layer
     }
 
+    /// The layer from its levels as stored (`[out][in]`, each whole group of four in
+    /// [`hcm_dsp::interleave`]'s order: what [`Int8Layer::stored_levels`] gives), a
+    /// scale per row and a bias per output; a level of −128 is read as −127. `const`,
+    /// so that a build step can write a decoded layer into a firmware image as a
+    /// `static` (hcm-firmware's `build.rs`).
+    pub const fn from_stored_levels(
+        mut levels: [[i8; IN]; OUT],
+        scales: [f32; OUT],
+        bias: [f32; OUT],
+    ) -> Self {
+        let mut output = 0;
+        while output < OUT {
+            let mut input = 0;
+            while input < IN {
+                if levels[output][input] == i8::MIN {
+                    levels[output][input] = -127;
+                }
+                input += 1;
+            }
+            output += 1;
+        }
+        Int8Layer {
+            levels,
+            scales,
+            bias,
+        }
+    }
+
+    /// The levels as stored (see [`Int8Layer::from_stored_levels`]).
+    pub const fn stored_levels(&self) -> &[[i8; IN]; OUT] {
+        &self.levels
+    }
+
     /// Where level (output, input) is stored within its row.
     fn slot(input: usize) -> usize {
         let whole = IN - IN % 4;

@@ -47,7 +47,7 @@ impl<T: Real> RigidState<T> {
     /// Orientation (body → world): q/‖q‖. A zero or non-finite q gives NaN, no panic.
     pub fn orientation(&self) -> UnitQuaternion<T> {
         let q = self.quaternion();
-        let norm = q.norm();
+        let norm = q.norm_squared().square_root();
         // Dividing by exactly 1 changes nothing: skipped (the common case while a
         // body does not turn).
         if norm == T::one() {
@@ -87,7 +87,7 @@ impl<T: Real> RigidState<T> {
 
     /// |‖q‖ − 1|: how far the stored quaternion is from unit (dimensionless).
     pub fn quaternion_drift(&self) -> T {
-        (self.quaternion().norm() - T::one()).abs()
+        (self.quaternion().norm_squared().square_root() - T::one()).abs()
     }
 
     fn vector(&self, first: usize) -> Vector3<T> {

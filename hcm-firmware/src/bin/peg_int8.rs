@@ -6,4 +6,8 @@
 /// The weight format this image's blob holds.
 type Weights = hcm_core::residual::Int8Weights;
 
+/// The network of the peg's int8 blob, decoded when the image is built (`build.rs`):
+/// in flash, read in place.
+static NETWORK: peg::PegResidual<Weights> = include!(concat!(env!("OUT_DIR"), "/peg_int8.rs"));
+
 include!("../peg/image.rs");

@@ -179,7 +179,7 @@ pub(super) fn edge_axis<T: Real>(
     if squared < T::of(PARALLEL_EDGES * PARALLEL_EDGES * 0.99) {
         return None;
     }
-    let sine = squared.sqrt();
+    let sine = squared.square_root();
     if sine < T::of(PARALLEL_EDGES) || sine.is_nan() {
         return None;
     }
