@@ -31,20 +31,32 @@ impl<T: Real> Frame<T> {
     /// The frame of `cuboid`, or `None` when any of its numbers is not finite or a half
     /// extent is negative.
     pub fn of(cuboid: &Cuboid<T>) -> Option<Self> {
-        let axes = rotated_axes(&cuboid.orientation);
-        let (c, h) = (&cuboid.center, &cuboid.half_extents);
-        let half = [h.x, h.y, h.z];
+        let frame = Self::unchecked(cuboid);
+        frame.valid().then_some(frame)
+    }
+
+    /// The frame of `cuboid` whatever its numbers; [`Frame::valid`] tells whether
+    /// [`Frame::of`] would give it.
+    pub fn unchecked(cuboid: &Cuboid<T>) -> Self {
+        let h = &cuboid.half_extents;
+        Frame {
+            center: cuboid.center,
+            axes: rotated_axes(&cuboid.orientation),
+            half: [h.x, h.y, h.z],
+        }
+    }
+
+    /// Whether every number is finite and every half extent ≥ 0.
+    pub fn valid(&self) -> bool {
         // x · 0 is 0 (or −0) for a finite x and NaN for ±∞ or NaN: the sum is 0 only
         // if every number is finite (and cannot overflow).
         let zero = T::zero();
         let sum = |v: &Vector3<T>| v.x * zero + v.y * zero + v.z * zero;
-        let nothing = sum(c) + sum(h) + sum(&axes[0]) + sum(&axes[1]) + sum(&axes[2]);
-        let finite = nothing == zero && h.x >= zero && h.y >= zero && h.z >= zero;
-        finite.then_some(Frame {
-            center: cuboid.center,
-            axes,
-            half,
-        })
+        let [p, q, r] = self.half;
+        let [a, b, c] = &self.axes;
+        let nothing =
+            sum(&self.center) + (p * zero + q * zero + r * zero) + sum(a) + sum(b) + sum(c);
+        nothing == zero && p >= zero && q >= zero && r >= zero
     }
 
     /// Half extents (m) of the box's axis-aligned bounding box in the common frame, as
