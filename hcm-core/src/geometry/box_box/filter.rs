@@ -44,12 +44,12 @@ pub(super) struct Pair<'a, T: Real> {
     size: [[T; 3]; 3],
     /// (centre 1 − centre 2) · aₖ (m).
     along_1: [T; 3],
-    /// Box 1's reach along bₖ and box 2's along aₖ (m), as [`Frame::reach`] (less its
-    /// leading 0 +).
-    reach_1: [T; 3],
-    reach_2: [T; 3],
     /// (centre 1 − centre 2) · bₖ (m).
     along_2: [T; 3],
+    /// Box 1's reach along bₖ and box 2's along aₖ (m), as
+    /// [`Frame::reach`](super::sat::Frame::reach) gives them (less its leading 0 +).
+    reach_1: [T; 3],
+    reach_2: [T; 3],
     /// Error bound (m) of a screened separation times |aᵢ × bⱼ|, against the exact one
     /// times the exact |aᵢ × bⱼ|.
     bound: T,
@@ -65,6 +65,7 @@ pub(super) struct Pair<'a, T: Real> {
 }
 
 impl<'a, T: Real> Pair<'a, T> {
+    /// The products and bounds of box 1 `one` and box 2 `two`.
     pub fn of(one: &'a Shape<T>, two: &'a Shape<T>) -> Self {
         let (a, b) = (&one.frame.axes, &two.frame.axes);
         let d = sub(&one.frame.center, &two.frame.center);

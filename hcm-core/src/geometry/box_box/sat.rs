@@ -18,8 +18,8 @@ pub(super) const PARALLEL_EDGES: f64 = 1e-6;
 /// several points, an edge contact one, so near-ties resolve to the steadier face.
 pub(super) const FACE_PREFERENCE: f64 = 1.05;
 
-/// A box as the test needs it: centre (m), unit axes (–) and half extents (m), all
-/// finite, in the common frame.
+/// A box as the test needs it: centre (m), unit axes (–) and half extents (m), in the
+/// common frame; all finite when [`Frame::of`] made it.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Frame<T: Real> {
     pub center: Vector3<T>,
@@ -113,6 +113,7 @@ pub(crate) struct Shape<T: Real> {
 }
 
 impl<T: Real> Shape<T> {
+    /// The shape of `frame`.
     pub fn of(frame: Frame<T>) -> Self {
         let [a, b, c] = &frame.axes;
         let (ab, ac, bc) = (dot(a, b), dot(a, c), dot(b, c));
