@@ -3,8 +3,8 @@
 //! reference face a contact point.
 
 use super::sat::Frame;
-use super::vector::{add, add_scaled, dot, scale, sub};
 use crate::geometry::ContactGeometry;
+use crate::vector::{add, add_scaled, dot, scale, sub};
 use crate::Real;
 use nalgebra::Vector3;
 

@@ -12,7 +12,7 @@
 //! choice, and every bit of the contact, is the one of testing all 15 axes exactly.
 
 use super::sat::{Axis, Origin, Shape, FACE_PREFERENCE, PARALLEL_EDGES};
-use super::vector::{dot, neg, sub};
+use crate::vector::{dot, neg, sub};
 use crate::Real;
 use nalgebra::Vector3;
 

@@ -38,10 +38,9 @@ mod filter;
 mod sat;
 #[cfg(test)]
 mod tests;
-mod vector;
 
 use super::{ContactGeometry, Contacts, Cuboid};
-use crate::Real;
+use crate::{vector, Real};
 use clip::Reference;
 pub(crate) use sat::{Frame, Shape};
 use sat::{Origin, Plan};

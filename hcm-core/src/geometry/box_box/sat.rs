@@ -2,8 +2,8 @@
 //! each, and the choice of the axis the contact is built on.
 
 use super::filter::Pair;
-use super::vector::{cross, dot, neg, sub};
 use crate::geometry::Cuboid;
+use crate::vector::{cross, dot, neg, sub};
 use crate::Real;
 use nalgebra::{UnitQuaternion, Vector3};
 
