@@ -1,6 +1,6 @@
 //! Contact wrench assembly: forces and torques on both bodies, Eq 1.
 
-use crate::Real;
+use crate::{vector, Real};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
@@ -35,13 +35,25 @@ impl<T: Real> ContactWrench<T> {
         arm_1: &Vector3<T>,
         arm_2: &Vector3<T>,
     ) -> Self {
-        let force_1 = normal * normal_force + friction;
-        let force_2 = -force_1;
+        // Written out component by component (`crate::vector`, nalgebra's operation
+        // order, the same bits): nalgebra's generic loops cost the controller several
+        // times the arithmetic.
+        let force_1 = vector::add(&vector::scale(normal, normal_force), friction);
+        let force_2 = vector::neg(&force_1);
         ContactWrench {
             force_1,
-            torque_1: arm_1.cross(&force_1),
+            torque_1: vector::cross(arm_1, &force_1),
             force_2,
-            torque_2: arm_2.cross(&force_2),
+            torque_2: vector::cross(arm_2, &force_2),
         }
+    }
+
+    /// Adds `other`'s forces and torques to these, each component once (N, N·m).
+    #[inline]
+    pub(crate) fn accumulate(&mut self, other: &Self) {
+        self.force_1 = vector::add(&self.force_1, &other.force_1);
+        self.torque_1 = vector::add(&self.torque_1, &other.torque_1);
+        self.force_2 = vector::add(&self.force_2, &other.force_2);
+        self.torque_2 = vector::add(&self.torque_2, &other.torque_2);
     }
 }

@@ -2,7 +2,7 @@
 
 use crate::error::{require_non_negative, require_positive};
 use crate::law::step;
-use crate::{LawError, Real};
+use crate::{vector, LawError, Real};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
@@ -68,15 +68,20 @@ impl<T: Real> VelocityStepFriction<T> {
         normal: &Vector3<T>,
         normal_force: T,
     ) -> Vector3<T> {
-        let slip = relative_velocity - normal * relative_velocity.dot(normal);
-        let speed = slip.norm_squared().square_root();
+        // Written out per component (`crate::vector`, nalgebra's operation order, the
+        // same bits): nalgebra's generic loops took the controller several times the
+        // arithmetic (issue 31).
+        let along = vector::dot(relative_velocity, normal);
+        let slip = vector::sub(relative_velocity, &vector::scale(normal, along));
+        // ‖slip‖ as nalgebra's `norm`: √((x² + y²) + z²).
+        let speed = vector::dot(&slip, &slip).square_root();
         if speed.is_nan() || normal_force.is_nan() {
             return Vector3::repeat(speed + normal_force);
         }
         match speed.positive() {
             Some(speed) => {
                 let magnitude = (self.coefficient(speed) * normal_force.abs()).saturate();
-                slip * (-magnitude / speed)
+                vector::scale(&slip, -magnitude / speed)
             }
             None => Vector3::zeros(),
         }

@@ -31,13 +31,11 @@ fn merge<T: Real>(frame: &box_box::Frame<T>, parts: &[Cuboid<T>], found: &mut Co
     let reach = frame.bounds();
     let one = box_box::Shape::of(*frame);
     for (index, part) in parts.iter().enumerate() {
-        // A part not finite touches nothing; one whose axis-aligned bounds miss the
-        // moving box's cannot touch it: the cheap test spares the 15-axis one for the
-        // far walls of a hole.
-        let Some(two) = box_box::Frame::of(part) else {
-            continue;
-        };
-        if misses(&frame.center, &reach, &two) {
+        // A part whose axis-aligned bounds miss the moving box's cannot touch it: the
+        // cheap test spares the 15-axis one for the far walls of a hole. One not
+        // finite touches nothing either.
+        let two = box_box::Frame::unchecked(part);
+        if misses(&frame.center, &reach, &two) || !two.valid() {
             continue;
         }
         box_box::each_contact(&one, &two, &mut |contact| {

@@ -44,5 +44,5 @@ pub type Contacts<T> = heapless::Vec<ContactGeometry<T>, { crate::model::MAX_POI
 /// `effective_modulus` E* (Pa) as given by [`effective_modulus`] (without the 4/3),
 /// `effective_radius` R (m). A negative or NaN radius gives NaN; the result saturates.
 pub fn hertz_stiffness<T: Real>(effective_modulus: T, effective_radius: T) -> T {
-    (T::of(4.0 / 3.0) * effective_modulus * effective_radius.sqrt()).saturate()
+    (T::of(4.0 / 3.0) * effective_modulus * effective_radius.square_root()).saturate()
 }

@@ -17,7 +17,7 @@ pub fn contact<T: Real>(center: &Vector3<T>, radius: T, cuboid: &Cuboid<T>) -> C
     let local = cuboid.to_local(center);
     let closest = clamp_into(&local, &cuboid.half_extents);
     let offset = local - closest;
-    let distance = offset.norm();
+    let distance = offset.norm_squared().square_root();
     let (closest, normal, depth) = if distance > T::zero() && distance < T::MAX {
         (closest, offset / distance, radius - distance)
     } else {

@@ -34,7 +34,7 @@ pub fn contact<T: Real>(
     radius_2: T,
 ) -> ContactGeometry<T> {
     let offset = center_1 - center_2;
-    let distance = offset.norm();
+    let distance = offset.norm_squared().square_root();
     let normal = if distance > T::zero() && distance < T::MAX {
         offset / distance
     } else {

@@ -30,7 +30,7 @@ use crate::friction::{TangentialEffects, VelocityStepFriction};
 use crate::law::{touching, AnyNormalLaw, Indentation};
 use crate::residual::Excursion;
 use crate::wrench::ContactWrench;
-use crate::{LawError, Real};
+use crate::{vector, LawError, Real};
 use nalgebra::Vector3;
 
 /// Which parts of the contact model produced a force.
@@ -258,10 +258,7 @@ impl<T: Real, R: Residual<T>> ContactModel<T, R> {
             let force = self.corrected_point_force(point, &mut corrected_points);
             load.normal_force = (load.normal_force + force.normal_force).saturate();
             let w = point_wrench(point, &force, reference_1, reference_2);
-            load.wrench.force_1 += w.force_1;
-            load.wrench.torque_1 += w.torque_1;
-            load.wrench.force_2 += w.force_2;
-            load.wrench.torque_2 += w.torque_2;
+            load.wrench.accumulate(&w);
         }
         if correction.is_some() || corrected_points {
             load.evaluated = Evaluated::PhysicsAndResidual;
@@ -353,11 +350,11 @@ pub fn point_wrench<T: Real>(
         force.normal_force,
         &point.normal,
         &force.friction,
-        &(point.position - reference_1),
-        &(point.position - reference_2),
+        &vector::sub(&point.position, reference_1),
+        &vector::sub(&point.position, reference_2),
     );
-    wrench.torque_1 += force.couple;
-    wrench.torque_2 -= force.couple;
+    wrench.torque_1 = vector::add(&wrench.torque_1, &force.couple);
+    wrench.torque_2 = vector::sub(&wrench.torque_2, &force.couple);
     wrench
 }
 

@@ -70,7 +70,7 @@ pub const POINT_OUTPUTS: usize = 5;
 /// The tangential part of `vector` at normal `normal` (unit), and its magnitude.
 fn tangential<T: Real>(vector: &Vector3<T>, normal: &Vector3<T>) -> (Vector3<T>, T) {
     let along = vector - normal * vector.dot(normal);
-    let size = along.norm();
+    let size = along.norm_squared().square_root();
     (along, size)
 }
 

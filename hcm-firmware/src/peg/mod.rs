@@ -24,7 +24,7 @@ use hcm_core::law::{AnyNormalLaw, Impact, Indentation};
 use hcm_core::model::{ContactModel, ContactPoint, Evaluated, Manifold, PairLoad, Residual};
 use hcm_core::residual::{decode, BlobError, F32Weights, Int8Weights, Mlp, WeightFormat};
 use hcm_core::rigid::RigidState;
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 pub use states::{PEG_STATES, STATE_NAMES};
 
 /// The peg's residual: 13 inputs (position (m), orientation quaternion w, x, y, z (–),
@@ -120,33 +120,66 @@ pub fn decode_network<Q: PegWeights>() -> Result<PegResidual<Q>, BlobError> {
 /// The block's boxes in the world frame.
 #[allow(dead_code)] // used by the `breakdown` feature of the peg images only
 pub fn block_parts() -> [Cuboid<f32>; 5] {
-    block()
+    BLOCK
 }
 
-/// The block's boxes in the world frame.
-fn block() -> [Cuboid<f32>; 5] {
-    BLOCK_PARTS.map(|(half, centre)| Cuboid {
-        half_extents: Vector3::from(half),
-        center: Vector3::from(centre),
-        orientation: UnitQuaternion::identity(),
-    })
+/// The block's boxes in the world frame, from [`BLOCK_PARTS`]. A constant, read in
+/// place: built on the stack at every call it took 70 instructions per manifold.
+static BLOCK: [Cuboid<f32>; 5] = {
+    let mut parts = [part(BLOCK_PARTS[0]); 5];
+    let mut i = 1;
+    while i < parts.len() {
+        parts[i] = part(BLOCK_PARTS[i]);
+        i += 1;
+    }
+    parts
+};
+
+/// One of [`BLOCK_PARTS`] as an unrotated box.
+const fn part((half, centre): ([f32; 3], [f32; 3])) -> Cuboid<f32> {
+    Cuboid {
+        half_extents: Vector3::new(half[0], half[1], half[2]),
+        center: Vector3::new(centre[0], centre[1], centre[2]),
+        orientation: UnitQuaternion::new_unchecked(Quaternion::new(1.0, 0.0, 0.0, 0.0)),
+    }
 }
 
 /// The touching points of the peg in `state` with the block, each with its
 /// indentation rate from the peg's motion; every point taken at its touch-down (δ̇0 =
 /// δ̇, nothing remembered), as a controller evaluating one state holds it.
 pub fn manifold(state: &RigidState<f32>) -> Manifold<f32> {
+    let mut points = Manifold::new();
+    manifold_into(state, &mut points);
+    points
+}
+
+/// [`manifold`] into the empty `points`, in place: returned by value, the 516-byte
+/// manifold was copied once more (about 450 instructions per peg HCM).
+pub fn manifold_into(state: &RigidState<f32>, points: &mut Manifold<f32>) {
+    // The orientation once (a square root): `world_angular_velocity` would normalise
+    // the quaternion again. ω = R·ω_body as that method computes it.
+    let orientation = state.orientation();
+    let omega = rotate(&orientation, &state.body_angular_velocity());
+    let velocity = state.velocity();
     let peg = Cuboid {
         half_extents: Vector3::from(PEG_HALF_EXTENTS),
         center: state.position(),
-        orientation: state.orientation(),
+        orientation,
     };
-    let omega = state.world_angular_velocity();
-    let mut points = Manifold::new();
-    for g in &compound::contacts(&peg, &block()) {
-        // The block is fixed: the relative velocity is the peg's material point's.
-        let relative_velocity = state.velocity() + omega.cross(&(g.point - peg.center));
-        let rate = -relative_velocity.dot(&g.normal);
+    for g in &compound::contacts(&peg, &BLOCK) {
+        // The block is fixed: the relative velocity is the peg's material point's,
+        // v + ω × (p − c), written out per component in nalgebra's order (the same
+        // bits; its generic loops cost several times the arithmetic).
+        let (p, c) = (&g.point, &peg.center);
+        let arm = Vector3::new(p.x - c.x, p.y - c.y, p.z - c.z);
+        let relative_velocity = Vector3::new(
+            velocity.x + (omega.y * arm.z - omega.z * arm.y),
+            velocity.y + (omega.z * arm.x - omega.x * arm.z),
+            velocity.z + (omega.x * arm.y - omega.y * arm.x),
+        );
+        let n = &g.normal;
+        let v = &relative_velocity;
+        let rate = -(v.x * n.x + v.y * n.y + v.z * n.z);
         // Both hold at most MAX_POINTS: the push cannot fail.
         let _ = points.push(ContactPoint {
             indentation: Indentation {
@@ -161,7 +194,29 @@ pub fn manifold(state: &RigidState<f32>) -> Manifold<f32> {
             relative_angular_velocity: omega,
         });
     }
-    points
+}
+
+/// `q`·`v`·q⁻¹, nalgebra's `UnitQuaternion * Vector3` written out in its order of
+/// operations (the same bits): t = 2 (q⃗ × v), then (t·w + q⃗ × t) + v. Its generic
+/// loops took 113 instructions more per manifold (issue 31).
+fn rotate(q: &UnitQuaternion<f32>, v: &Vector3<f32>) -> Vector3<f32> {
+    let cross = |a: &Vector3<f32>, b: &Vector3<f32>| {
+        Vector3::new(
+            a.y * b.z - a.z * b.y,
+            a.z * b.x - a.x * b.z,
+            a.x * b.y - a.y * b.x,
+        )
+    };
+    let u = Vector3::new(q.i, q.j, q.k);
+    let c = cross(&u, v);
+    let t = Vector3::new(c.x * 2.0, c.y * 2.0, c.z * 2.0);
+    let d = cross(&u, &t);
+    let w = q.w;
+    Vector3::new(
+        t.x * w + d.x + v.x,
+        t.y * w + d.y + v.y,
+        t.z * w + d.z + v.z,
+    )
 }
 
 /// A full manifold for the host's checks and benchmarks: the peg's contact points at
@@ -191,7 +246,8 @@ pub fn peg_load<R: Residual<f32>>(
     model: &ContactModel<f32, R>,
     state: &RigidState<f32>,
 ) -> PairLoad<f32> {
-    let points = manifold(state);
+    let mut points = Manifold::new();
+    manifold_into(state, &mut points);
     model.pair_load(
         &points,
         &state.position(),

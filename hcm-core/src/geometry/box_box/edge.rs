@@ -1,8 +1,8 @@
 //! An edge–edge contact: one point between the closest points of the two crossing edges.
 
 use super::sat::{Axis, Frame};
-use super::vector::{add, add_scaled, dot, neg, scale, sub};
 use crate::geometry::ContactGeometry;
+use crate::vector::{add, add_scaled, dot, neg, scale, sub};
 use crate::Real;
 use nalgebra::Vector3;
 

@@ -12,7 +12,7 @@
 //! choice, and every bit of the contact, is the one of testing all 15 axes exactly.
 
 use super::sat::{Axis, Origin, Shape, FACE_PREFERENCE, PARALLEL_EDGES};
-use super::vector::{dot, neg, sub};
+use crate::vector::{dot, neg, sub};
 use crate::Real;
 use nalgebra::Vector3;
 
@@ -46,6 +46,10 @@ pub(super) struct Pair<'a, T: Real> {
     along_1: [T; 3],
     /// (centre 1 − centre 2) · bₖ (m).
     along_2: [T; 3],
+    /// Box 1's reach along bₖ and box 2's along aₖ (m), as
+    /// [`Frame::reach`](super::sat::Frame::reach) gives them (less its leading 0 +).
+    reach_1: [T; 3],
+    reach_2: [T; 3],
     /// Error bound (m) of a screened separation times |aᵢ × bⱼ|, against the exact one
     /// times the exact |aᵢ × bⱼ|.
     bound: T,
@@ -61,6 +65,7 @@ pub(super) struct Pair<'a, T: Real> {
 }
 
 impl<'a, T: Real> Pair<'a, T> {
+    /// The products and bounds of box 1 `one` and box 2 `two`.
     pub fn of(one: &'a Shape<T>, two: &'a Shape<T>) -> Self {
         let (a, b) = (&one.frame.axes, &two.frame.axes);
         let d = sub(&one.frame.center, &two.frame.center);
@@ -68,6 +73,16 @@ impl<'a, T: Real> Pair<'a, T> {
         let r = [row(&a[0]), row(&a[1]), row(&a[2])];
         let size = |[x, y, z]: [T; 3]| [x.abs(), y.abs(), z.abs()];
         let size = [size(r[0]), size(r[1]), size(r[2])];
+        let [p, q, t] = one.frame.half;
+        let [x, y, z] = &size;
+        let reach_1 = [
+            p * x[0] + q * y[0] + t * z[0],
+            p * x[1] + q * y[1] + t * z[1],
+            p * x[2] + q * y[2] + t * z[2],
+        ];
+        let [p, q, t] = two.frame.half;
+        let reach = |[x, y, z]: &[T; 3]| p * *x + q * *y + t * *z;
+        let reach_2 = [reach(&size[0]), reach(&size[1]), reach(&size[2])];
         let delta = T::of(ROUNDING) * epsilon::<T>() + T::of(SKEW) * (one.skew + two.skew);
         let scale = d.x.abs() + d.y.abs() + d.z.abs() + one.size + two.size;
         let beta = delta + delta;
@@ -77,6 +92,8 @@ impl<'a, T: Real> Pair<'a, T> {
             two,
             r,
             size,
+            reach_1,
+            reach_2,
             along_1: [dot(&d, &a[0]), dot(&d, &a[1]), dot(&d, &a[2])],
             along_2: [dot(&d, &b[0]), dot(&d, &b[1]), dot(&d, &b[2])],
             bound: beta * scale + T::of(TINY),
@@ -92,17 +109,11 @@ impl<'a, T: Real> Pair<'a, T> {
     /// centres' distance along the face's axis, whose sign orients the normal: the
     /// same, bit for bit but for the sign of a zero separation.
     pub fn face_separation(&self, index: usize) -> (T, T) {
-        let (one, two) = (&self.one.frame, &self.two.frame);
-        let r = &self.size;
         let k = index % 3;
         let (offset, reach_1, reach_2) = if index >= 3 {
-            let [p, q, s] = one.half;
-            let reach = p * r[0][k] + q * r[1][k] + s * r[2][k];
-            (self.along_2[k], reach, self.two.own[k])
+            (self.along_2[k], self.reach_1[k], self.two.own[k])
         } else {
-            let [p, q, s] = two.half;
-            let reach = p * r[k][0] + q * r[k][1] + s * r[k][2];
-            (self.along_1[k], self.one.own[k], reach)
+            (self.along_1[k], self.one.own[k], self.reach_2[k])
         };
         (offset.abs() - reach_1 - reach_2, offset)
     }

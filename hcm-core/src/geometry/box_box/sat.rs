@@ -2,8 +2,8 @@
 //! each, and the choice of the axis the contact is built on.
 
 use super::filter::Pair;
-use super::vector::{cross, dot, neg, sub};
 use crate::geometry::Cuboid;
+use crate::vector::{cross, dot, neg, sub};
 use crate::Real;
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -18,8 +18,8 @@ pub(super) const PARALLEL_EDGES: f64 = 1e-6;
 /// several points, an edge contact one, so near-ties resolve to the steadier face.
 pub(super) const FACE_PREFERENCE: f64 = 1.05;
 
-/// A box as the test needs it: centre (m), unit axes (–) and half extents (m), all
-/// finite, in the common frame.
+/// A box as the test needs it: centre (m), unit axes (–) and half extents (m), in the
+/// common frame; all finite when [`Frame::of`] made it.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Frame<T: Real> {
     pub center: Vector3<T>,
@@ -31,20 +31,32 @@ impl<T: Real> Frame<T> {
     /// The frame of `cuboid`, or `None` when any of its numbers is not finite or a half
     /// extent is negative.
     pub fn of(cuboid: &Cuboid<T>) -> Option<Self> {
-        let axes = rotated_axes(&cuboid.orientation);
-        let (c, h) = (&cuboid.center, &cuboid.half_extents);
-        let half = [h.x, h.y, h.z];
+        let frame = Self::unchecked(cuboid);
+        frame.valid().then_some(frame)
+    }
+
+    /// The frame of `cuboid` whatever its numbers; [`Frame::valid`] tells whether
+    /// [`Frame::of`] would give it.
+    pub fn unchecked(cuboid: &Cuboid<T>) -> Self {
+        let h = &cuboid.half_extents;
+        Frame {
+            center: cuboid.center,
+            axes: rotated_axes(&cuboid.orientation),
+            half: [h.x, h.y, h.z],
+        }
+    }
+
+    /// Whether every number is finite and every half extent ≥ 0.
+    pub fn valid(&self) -> bool {
         // x · 0 is 0 (or −0) for a finite x and NaN for ±∞ or NaN: the sum is 0 only
         // if every number is finite (and cannot overflow).
         let zero = T::zero();
         let sum = |v: &Vector3<T>| v.x * zero + v.y * zero + v.z * zero;
-        let nothing = sum(c) + sum(h) + sum(&axes[0]) + sum(&axes[1]) + sum(&axes[2]);
-        let finite = nothing == zero && h.x >= zero && h.y >= zero && h.z >= zero;
-        finite.then_some(Frame {
-            center: cuboid.center,
-            axes,
-            half,
-        })
+        let [p, q, r] = self.half;
+        let [a, b, c] = &self.axes;
+        let nothing =
+            sum(&self.center) + (p * zero + q * zero + r * zero) + sum(a) + sum(b) + sum(c);
+        nothing == zero && p >= zero && q >= zero && r >= zero
     }
 
     /// Half extents (m) of the box's axis-aligned bounding box in the common frame, as
@@ -101,6 +113,7 @@ pub(crate) struct Shape<T: Real> {
 }
 
 impl<T: Real> Shape<T> {
+    /// The shape of `frame`.
     pub fn of(frame: Frame<T>) -> Self {
         let [a, b, c] = &frame.axes;
         let (ab, ac, bc) = (dot(a, b), dot(a, c), dot(b, c));
