@@ -336,7 +336,10 @@ const BLOCK: usize = 16;
 /// output still sums its inputs in order from its bias, so the bits are those of any
 /// other pass. One pass instead of one per lane: the peg's 32 → 6 output layer went
 /// from two passes over its 32 columns (4 outputs, then 2) to one: the peg's residual
-/// 6,661 → 6,434 instructions in `f32`, 6,741 → 6,514 in int8, on the Cortex-M4F.
+/// 6,661 → 6,434 instructions in `f32`, 6,741 → 6,514 in int8, on the Cortex-M4F. Four
+/// columns per turn of the loop: with few outputs, the loop's own counting was most of
+/// a column's cost (the ball's residual 1,627 → 1,567 instructions in `f32`, 1,896 →
+/// 1,836 in int8; the peg's 6,434 → 6,375 in `f32`).
 #[inline(always)]
 fn remainder<const OUT: usize>(
     weights: &[[f32; OUT]],
@@ -345,55 +348,111 @@ fn remainder<const OUT: usize>(
     z: &mut [f32; OUT],
     activation: impl Fn(f32) -> f32,
 ) {
-    let rest = OUT % BLOCK;
-    let (o8, o4) = (OUT - rest, OUT - rest + (rest & 8));
-    let (o2, o1) = (o4 + (rest & 4), o4 + (rest & 4) + (rest & 2));
-    // Written out lane by lane: at the firmware's `opt-level = "s"` loops over the
-    // lanes stayed loops (4,536 instructions for the ball's residual against 1,627).
-    let eight = |from| match bias.get(from..from + 8) {
-        Some(&[b0, b1, b2, b3, b4, b5, b6, b7]) if rest & 8 != 0 => {
-            [b0, b1, b2, b3, b4, b5, b6, b7]
+    let mut lanes = Lanes::new(bias);
+    let (columns, last_columns) = weights.as_chunks::<4>();
+    let (inputs, last_inputs) = x.as_chunks::<4>();
+    for ([c0, c1, c2, c3], &[x0, x1, x2, x3]) in columns.iter().zip(inputs) {
+        lanes.add(c0, x0);
+        lanes.add(c1, x1);
+        lanes.add(c2, x2);
+        lanes.add(c3, x3);
+    }
+    for (column, &x) in last_columns.iter().zip(last_inputs) {
+        lanes.add(column, x);
+    }
+    lanes.write(z, activation);
+}
+
+/// The sums of [`remainder`]'s lanes: 8, 4, 2 and 1 outputs from `o8`, `o4`, `o2`
+/// and `o1`, each used or not by the bits of OUT mod 16. Written out lane by lane: at
+/// the firmware's `opt-level = "s"` loops over the lanes stayed loops (4,536
+/// instructions for the ball's residual against 1,627).
+struct Lanes<const OUT: usize> {
+    c: [f32; 8],
+    d: [f32; 4],
+    e: [f32; 2],
+    f: f32,
+}
+
+impl<const OUT: usize> Lanes<OUT> {
+    const REST: usize = OUT % BLOCK;
+    const O8: usize = OUT - Self::REST;
+    const O4: usize = Self::O8 + (Self::REST & 8);
+    const O2: usize = Self::O4 + (Self::REST & 4);
+    const O1: usize = Self::O2 + (Self::REST & 2);
+
+    /// Each used lane starting from its outputs' biases.
+    #[inline(always)]
+    fn new(bias: &[f32; OUT]) -> Self {
+        let rest = Self::REST;
+        Lanes {
+            c: match bias.get(Self::O8..Self::O8 + 8) {
+                Some(&[b0, b1, b2, b3, b4, b5, b6, b7]) if rest & 8 != 0 => {
+                    [b0, b1, b2, b3, b4, b5, b6, b7]
+                }
+                _ => [0.0; 8],
+            },
+            d: match bias.get(Self::O4..Self::O4 + 4) {
+                Some(&[b0, b1, b2, b3]) if rest & 4 != 0 => [b0, b1, b2, b3],
+                _ => [0.0; 4],
+            },
+            e: match bias.get(Self::O2..Self::O2 + 2) {
+                Some(&[b0, b1]) if rest & 2 != 0 => [b0, b1],
+                _ => [0.0; 2],
+            },
+            f: bias.get(Self::O1).copied().unwrap_or(0.0),
         }
-        _ => [0.0; 8],
-    };
-    let [mut c0, mut c1, mut c2, mut c3, mut c4, mut c5, mut c6, mut c7] = eight(o8);
-    let [mut d0, mut d1, mut d2, mut d3] = match bias.get(o4..o4 + 4) {
-        Some(&[b0, b1, b2, b3]) if rest & 4 != 0 => [b0, b1, b2, b3],
-        _ => [0.0; 4],
-    };
-    let [mut e0, mut e1] = match bias.get(o2..o2 + 2) {
-        Some(&[b0, b1]) if rest & 2 != 0 => [b0, b1],
-        _ => [0.0; 2],
-    };
-    let mut f0 = bias.get(o1).copied().unwrap_or(0.0);
-    for (column, &x) in weights.iter().zip(x) {
+    }
+
+    /// Adds column `column` times its input `x` to every used lane.
+    #[inline(always)]
+    fn add(&mut self, column: &[f32; OUT], x: f32) {
+        let rest = Self::REST;
         if let (Some(&[w0, w1, w2, w3, w4, w5, w6, w7]), true) =
-            (column.get(o8..o8 + 8), rest & 8 != 0)
+            (column.get(Self::O8..Self::O8 + 8), rest & 8 != 0)
         {
-            (c0, c1, c2, c3) = (c0 + w0 * x, c1 + w1 * x, c2 + w2 * x, c3 + w3 * x);
-            (c4, c5, c6, c7) = (c4 + w4 * x, c5 + w5 * x, c6 + w6 * x, c7 + w7 * x);
+            let [c0, c1, c2, c3, c4, c5, c6, c7] = self.c;
+            self.c = [
+                c0 + w0 * x,
+                c1 + w1 * x,
+                c2 + w2 * x,
+                c3 + w3 * x,
+                c4 + w4 * x,
+                c5 + w5 * x,
+                c6 + w6 * x,
+                c7 + w7 * x,
+            ];
         }
-        if let (Some(&[w0, w1, w2, w3]), true) = (column.get(o4..o4 + 4), rest & 4 != 0) {
-            (d0, d1, d2, d3) = (d0 + w0 * x, d1 + w1 * x, d2 + w2 * x, d3 + w3 * x);
+        if let (Some(&[w0, w1, w2, w3]), true) = (column.get(Self::O4..Self::O4 + 4), rest & 4 != 0)
+        {
+            let [d0, d1, d2, d3] = self.d;
+            self.d = [d0 + w0 * x, d1 + w1 * x, d2 + w2 * x, d3 + w3 * x];
         }
-        if let (Some(&[w0, w1]), true) = (column.get(o2..o2 + 2), rest & 2 != 0) {
-            (e0, e1) = (e0 + w0 * x, e1 + w1 * x);
+        if let (Some(&[w0, w1]), true) = (column.get(Self::O2..Self::O2 + 2), rest & 2 != 0) {
+            let [e0, e1] = self.e;
+            self.e = [e0 + w0 * x, e1 + w1 * x];
         }
-        if let (Some(&w0), true) = (column.get(o1), rest & 1 != 0) {
-            f0 += w0 * x;
+        if let (Some(&w0), true) = (column.get(Self::O1), rest & 1 != 0) {
+            self.f += w0 * x;
         }
     }
-    if let (Some(out), true) = (z.get_mut(o8..o8 + 8), rest & 8 != 0) {
-        out.copy_from_slice(&[c0, c1, c2, c3, c4, c5, c6, c7].map(&activation));
-    }
-    if let (Some(out), true) = (z.get_mut(o4..o4 + 4), rest & 4 != 0) {
-        out.copy_from_slice(&[d0, d1, d2, d3].map(&activation));
-    }
-    if let (Some(out), true) = (z.get_mut(o2..o2 + 2), rest & 2 != 0) {
-        out.copy_from_slice(&[e0, e1].map(&activation));
-    }
-    if let (Some(out), true) = (z.get_mut(o1), rest & 1 != 0) {
-        *out = activation(f0);
+
+    /// The used lanes' activations into their outputs of `z`.
+    #[inline(always)]
+    fn write(self, z: &mut [f32; OUT], activation: impl Fn(f32) -> f32) {
+        let rest = Self::REST;
+        if let (Some(out), true) = (z.get_mut(Self::O8..Self::O8 + 8), rest & 8 != 0) {
+            out.copy_from_slice(&self.c.map(&activation));
+        }
+        if let (Some(out), true) = (z.get_mut(Self::O4..Self::O4 + 4), rest & 4 != 0) {
+            out.copy_from_slice(&self.d.map(&activation));
+        }
+        if let (Some(out), true) = (z.get_mut(Self::O2..Self::O2 + 2), rest & 2 != 0) {
+            out.copy_from_slice(&self.e.map(&activation));
+        }
+        if let (Some(out), true) = (z.get_mut(Self::O1), rest & 1 != 0) {
+            *out = activation(self.f);
+        }
     }
 }
 
