@@ -3,16 +3,16 @@
 //! interpolation in integers.
 //!
 //! ```text
-//! p     = ⌊|z|·32·4096⌋, below 192·4096       (saturating conversion; NaN → 0)
+//! p     = min(⌊|z|·32·4096⌋, 2²⁰ − 1)         (saturating conversion; NaN → 0)
 //! i, f  = p >> 12, p & 4095                     segment [i/32, (i+1)/32) and 1/4096ths in it
 //! a(|z|) = T[i] + ⌊((T[i+1] − T[i])·f + 2048) / 4096⌋
 //! a(z)  = sign(z)·a(|z|)                         Q15: a / 32 768 ≈ tanh(z)
 //! ```
 //!
-//! T\[k\] = round(tanh(k/32)·32 768), at most 32 767, for k = 0 … 192 (|z| up to 6;
-//! beyond, the last segment's end, 32 767: from |z| = 5.9 on, tanh rounds to the
-//! largest Q15 value anyway, so a table out to 8 held the same function in 128 bytes
-//! more of flash). The table is built at compile time
+//! T\[k\] = round(tanh(k/32)·32 768), at most 32 767, for k = 0 … 256 (|z| up to 8;
+//! beyond, the last segment's end, 32 767). From |z| = 5.9 on tanh rounds to the
+//! largest Q15 value anyway, so a table to 6 holds the same function in 128 bytes less;
+//! to 8 the positions are exactly the 20-bit numbers, clamped by one instruction. The table is built at compile time
 //! ([`TABLE`]) from an `exp` written here as a `const fn`.
 //!
 //! Why: the int8 kernel multiplies 16-bit activations ([`super::int8`]), so the
@@ -31,26 +31,28 @@ const POINTS_PER_UNIT: u32 = 32;
 /// Interpolation steps per segment (12 fraction bits: 4 096 steps of 7.6e-6 in z).
 const FRACTION_BITS: u32 = 12;
 
-/// Segments in the table: z from 0 to 8.
-const SEGMENTS: usize = 192;
+/// Segments in the table: z from 0 to 8, so that the positions are the 20-bit numbers
+/// (one `usat` clamps them on a Cortex-M4).
+const SEGMENTS: usize = 256;
 
 /// The Q15 scale: activation a stands for a / 32 768.
 pub const Q15_ONE: f32 = 32_768.0;
 
-/// One past the largest position p = ⌊|z|·32·4096⌋ read.
-const LAST_POSITION: u32 = (SEGMENTS as u32) << FRACTION_BITS;
+/// The largest position p = ⌊|z|·32·4096⌋ read: 2²⁰ − 1.
+const LAST_POSITION: i32 = ((SEGMENTS as i32) << FRACTION_BITS) - 1;
 
-/// T\[k\] = round(tanh(k/32)·32 768), capped at 32 767, k = 0 … 192.
+/// T\[k\] = round(tanh(k/32)·32 768), capped at 32 767, k = 0 … 256.
 pub static TABLE: [i16; SEGMENTS + 1] = table();
 
 /// The quantised tanh of `z`, Q15 (see the module docs); NaN gives 0, ±∞ ±32 767.
 #[inline]
 pub fn quantised_tanh(z: f32) -> i16 {
     // The scale is a power of two: |z|·131 072 is exact up to the saturation. The
-    // conversion to u32 saturates (NaN → 0), and the position is held below 192·4096.
-    let position =
-        ((z.abs() * (POINTS_PER_UNIT << FRACTION_BITS) as f32) as u32).min(LAST_POSITION - 1);
-    // The index is below 192: both reads succeed.
+    // conversion to i32 saturates (NaN → 0; |z|·131 072 ≥ 0), and the clamp to 20 bits
+    // is one `usat` (three instructions as an unsigned minimum with a table to 6).
+    let position = ((z.abs() * (POINTS_PER_UNIT << FRACTION_BITS) as f32) as i32)
+        .clamp(0, LAST_POSITION) as u32;
+    // The index is at most 255: both reads succeed.
     let index = (position >> FRACTION_BITS) as usize;
     let fraction = (position & ((1 << FRACTION_BITS) - 1)) as i32;
     let low = i32::from(TABLE.get(index).copied().unwrap_or(i16::MAX));
@@ -135,6 +137,7 @@ mod tests {
         }
         assert_eq!(TABLE[0], 0);
         assert_eq!(TABLE[192], i16::MAX);
+        assert_eq!(TABLE[256], i16::MAX);
         // From 5.9 on tanh rounds to the largest value: the table may stop at 6.
         assert!((5.9_f64.tanh() * f64::from(Q15_ONE)).round() >= 32_767.0);
     }
@@ -150,6 +153,42 @@ mod tests {
             .fold(0.0_f64, f64::max);
         std::println!("quantised tanh error {worst:.2e}");
         assert!(worst < 1.25e-4, "{worst}");
+    }
+
+    /// The table to 8 clamped at 2²⁰ − 1 is the function the table to 6 clamped at
+    /// 192·4096 − 1 was (its first definition), at every z.
+    #[test]
+    fn the_table_to_8_is_the_function_of_the_table_to_6() {
+        let to_six = |z: f32| -> i16 {
+            let p = ((z.abs() * 131_072.0) as u32).min(192 * 4096 - 1);
+            let (i, f) = ((p >> 12) as usize, (p & 4095) as i32);
+            let (low, high) = (i32::from(TABLE[i]), i32::from(TABLE[i + 1]));
+            let value = (low + (((high - low) * f + 2048) >> 12)) as i16;
+            if z < 0.0 {
+                -value
+            } else {
+                value
+            }
+        };
+        for i in -2_000_000..=2_000_000 {
+            let z = i as f32 * 5e-6;
+            assert_eq!(quantised_tanh(z), to_six(z), "at {z}");
+        }
+        for z in [
+            5.99,
+            6.0,
+            7.99,
+            8.0,
+            8.5,
+            16.0,
+            1e9,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NAN,
+        ] {
+            assert_eq!(quantised_tanh(z), to_six(z), "at {z}");
+            assert_eq!(quantised_tanh(-z), to_six(-z), "at -{z}");
+        }
     }
 
     #[test]
