@@ -5,6 +5,9 @@ use super::{box_box, sphere_box, ContactGeometry, Contacts, Cuboid};
 use crate::Real;
 use nalgebra::Vector3;
 
+mod part;
+pub use part::Part;
+
 /// Bits of a feature id left to the part's own generator; the part index sits above.
 pub const PART_SHIFT: u32 = 16;
 
@@ -25,6 +28,17 @@ pub fn contacts<T: Real>(moving: &Cuboid<T>, parts: &[Cuboid<T>]) -> Contacts<T>
     found
 }
 
+/// [`contacts`] against parts prepared once ([`Part`]): the same points, bit for bit,
+/// without redoing each part's frame, bounds, validity and sums at every call (issue
+/// 31: the peg's block of five boxes, 6,126 → 5,307 instructions per manifold).
+pub fn prepared_contacts<T: Real>(moving: &Cuboid<T>, parts: &[Part<T>]) -> Contacts<T> {
+    let mut found = Contacts::new();
+    if let Some(frame) = box_box::Frame::of(moving) {
+        merge_prepared(&frame, parts, &mut found);
+    }
+    found
+}
+
 /// [`contacts`] of the moving box's `frame`, into the empty `found`.
 #[inline(never)]
 fn merge<T: Real>(frame: &box_box::Frame<T>, parts: &[Cuboid<T>], found: &mut Contacts<T>) {
@@ -35,10 +49,27 @@ fn merge<T: Real>(frame: &box_box::Frame<T>, parts: &[Cuboid<T>], found: &mut Co
         // cheap test spares the 15-axis one for the far walls of a hole. One not
         // finite touches nothing either.
         let two = box_box::Frame::unchecked(part);
-        if misses(&frame.center, &reach, &two) || !two.valid() {
+        if misses(&frame.center, &reach, &two.center, &two.bounds()) || !two.valid() {
             continue;
         }
-        box_box::each_contact(&one, &two, &mut |contact| {
+        box_box::each_contact(&one, &box_box::Shape::of(two), &mut |contact| {
+            keep_deepest(found, tagged(&contact, index));
+        });
+    }
+}
+
+/// [`prepared_contacts`] of the moving box's `frame`, into the empty `found`: as
+/// [`merge`], each part's work read from it.
+#[inline(never)]
+fn merge_prepared<T: Real>(frame: &box_box::Frame<T>, parts: &[Part<T>], found: &mut Contacts<T>) {
+    let reach = frame.bounds();
+    let one = box_box::Shape::of(*frame);
+    for (index, part) in parts.iter().enumerate() {
+        let two = &part.shape;
+        if !part.valid || misses(&frame.center, &reach, &two.frame.center, &part.bounds) {
+            continue;
+        }
+        box_box::each_contact(&one, two, &mut |contact| {
             keep_deepest(found, tagged(&contact, index));
         });
     }
@@ -115,12 +146,15 @@ fn bounds_gap<T: Real>(
 }
 
 /// Whether the axis-aligned bounding box of the moving box (centre `center` (m), half
-/// extents `reach` (m)) misses `part`'s: [`bounds_gap`] > 0, with the same operations,
-/// written out per axis (nalgebra's generic ones cost several times more on the
-/// controller).
-fn misses<T: Real>(center: &Vector3<T>, reach: &Vector3<T>, part: &box_box::Frame<T>) -> bool {
-    let bounds = part.bounds();
-    let c = &part.center;
+/// extents `reach` (m)) misses a part's (centre `c` (m), half extents `bounds` (m)):
+/// [`bounds_gap`] > 0, with the same operations, written out per axis (nalgebra's
+/// generic ones cost several times more on the controller).
+fn misses<T: Real>(
+    center: &Vector3<T>,
+    reach: &Vector3<T>,
+    c: &Vector3<T>,
+    bounds: &Vector3<T>,
+) -> bool {
     let x = (center.x - c.x).abs() - reach.x - bounds.x;
     let y = (center.y - c.y).abs() - reach.y - bounds.y;
     let z = (center.z - c.z).abs() - reach.z - bounds.z;

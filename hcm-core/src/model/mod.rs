@@ -268,23 +268,27 @@ impl<T: Real, R: Residual<T>> ContactModel<T, R> {
         };
         let w = &mut load.wrench;
         match correction {
+            // Written out (`vector`), in the operators' order: nalgebra's took 204
+            // instructions more per peg HCM (issue 31).
             Correction::Wrench { force, torque } => {
-                w.force_1 += force;
-                w.torque_1 += torque;
-                w.force_2 -= force;
-                w.torque_2 -= torque + (reference_1 - reference_2).cross(&force);
+                let arm = vector::sub(reference_1, reference_2);
+                let couple = vector::add(&torque, &vector::cross(&arm, &force));
+                w.force_1 = vector::add(&w.force_1, &force);
+                w.torque_1 = vector::add(&w.torque_1, &torque);
+                w.force_2 = vector::sub(&w.force_2, &force);
+                w.torque_2 = vector::sub(&w.torque_2, &couple);
             }
             Correction::PairWrench {
                 force_1,
                 torque_1,
                 force_2,
                 torque_2,
-            } => {
-                w.force_1 += force_1;
-                w.torque_1 += torque_1;
-                w.force_2 += force_2;
-                w.torque_2 += torque_2;
-            }
+            } => w.accumulate(&ContactWrench {
+                force_1,
+                torque_1,
+                force_2,
+                torque_2,
+            }),
             Correction::NormalForce(_) => {}
         }
         load

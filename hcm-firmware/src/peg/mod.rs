@@ -140,6 +140,20 @@ static BLOCK: [Cuboid<f32>; 5] = {
     parts
 };
 
+/// [`BLOCK`] prepared when the image is built ([`compound::Part::of_f32`]): each
+/// part's frame, bounds and sums read from flash rather than worked out at every
+/// manifold (issue 31: 6,126 → 5,307 instructions per manifold, and 40 B less flash:
+/// the code dropped outweighs the 480 B table).
+static PREPARED: [compound::Part<f32>; 5] = {
+    let mut parts = [compound::Part::of_f32(BLOCK[0]); 5];
+    let mut i = 1;
+    while i < parts.len() {
+        parts[i] = compound::Part::of_f32(BLOCK[i]);
+        i += 1;
+    }
+    parts
+};
+
 /// One of [`BLOCK_PARTS`] as an unrotated box.
 const fn part((half, centre): ([f32; 3], [f32; 3])) -> Cuboid<f32> {
     Cuboid {
@@ -171,7 +185,7 @@ pub fn manifold_into(state: &RigidState<f32>, points: &mut Manifold<f32>) {
         center: state.position(),
         orientation,
     };
-    for g in &compound::contacts(&peg, &BLOCK) {
+    for g in &compound::prepared_contacts(&peg, &PREPARED) {
         // The block is fixed: the relative velocity is the peg's material point's,
         // v + ω × (p − c), written out per component in nalgebra's order (the same
         // bits; its generic loops cost several times the arithmetic).

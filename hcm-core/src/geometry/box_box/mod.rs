@@ -54,22 +54,22 @@ pub fn contacts<T: Real>(box_1: &Cuboid<T>, box_2: &Cuboid<T>) -> Contacts<T> {
     let mut found = Contacts::new();
     if let (Some(one), Some(two)) = (Frame::of(box_1), Frame::of(box_2)) {
         // At most 8 points into a capacity of 8: no push fails.
-        each_contact(&Shape::of(one), &two, &mut |contact| {
+        each_contact(&Shape::of(one), &Shape::of(two), &mut |contact| {
             let _ = found.push(contact);
         });
     }
     found
 }
 
-/// [`contacts`] of box 1, already a [`Shape`] (a compound's parts share the moving
-/// box's, issue 31), and box 2's `two`, each point handed to `emit` in order.
+/// [`contacts`] of box 1 and box 2, already [`Shape`]s (a compound's parts share the
+/// moving box's, and a prepared part brings its own, issue 31), each point handed to
+/// `emit` in order.
 pub(crate) fn each_contact<T: Real>(
     one: &Shape<T>,
-    two: &Frame<T>,
+    two: &Shape<T>,
     emit: &mut impl FnMut(ContactGeometry<T>),
 ) {
-    let two = Shape::of(*two);
-    let edge = match sat::plan(one, &two) {
+    let edge = match sat::plan(one, two) {
         None => return,
         Some(Plan::Edge(axis)) => axis,
         Some(Plan::Face(axis)) => {
