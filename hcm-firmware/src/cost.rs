@@ -101,3 +101,20 @@ fn spin(loops: u32) {
         );
     }
 }
+
+/// Marks where a profiled stretch starts (`--features profile`: `tools/qprof.py` counts
+/// the instructions executed between the two markers' calls in a QEMU trace).
+#[cfg(feature = "profile")]
+#[inline(never)]
+#[no_mangle]
+pub fn marker_start() {
+    core::hint::black_box(1);
+}
+
+/// Marks where a profiled stretch ends (see [`marker_start`]).
+#[cfg(feature = "profile")]
+#[inline(never)]
+#[no_mangle]
+pub fn marker_end() {
+    core::hint::black_box(2);
+}

@@ -43,11 +43,11 @@ fn costs(counter: &cost::Counter, fixture: &Fixture, report: &mut dyn FnMut(&str
     #[cfg(feature = "profile")]
     {
         // `tools/qprof.py`: the int8 HCM eight times between the markers.
-        marker_start();
+        cost::marker_start();
         for _ in 0..8 {
             black_box(hcm_force(&fixture.hcm_int8, black_box(&input)));
         }
-        marker_end();
+        cost::marker_end();
     }
     report(
         "residual",
@@ -144,20 +144,6 @@ fn law_costs(counter: &cost::Counter, report: &mut dyn FnMut(&str, &str, u32)) {
             ));
         }),
     );
-}
-
-#[cfg(feature = "profile")]
-#[inline(never)]
-#[no_mangle]
-fn marker_start() {
-    black_box(1);
-}
-
-#[cfg(feature = "profile")]
-#[inline(never)]
-#[no_mangle]
-fn marker_end() {
-    black_box(2);
 }
 
 #[panic_handler]

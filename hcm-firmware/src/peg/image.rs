@@ -112,11 +112,11 @@ fn costs(
     let name = Weights::NAME;
     #[cfg(feature = "profile")]
     {
-        marker_start();
+        cost::marker_start();
         for _ in 0..8 {
             black_box(peg_load(&PEG_HCM, black_box(&state)));
         }
-        marker_end();
+        cost::marker_end();
         return;
     }
     report(
@@ -223,20 +223,6 @@ fn breakdown(
         let p = black_box(p);
         black_box(physics.friction.as_ref().map(|l| l.force(&p.relative_velocity, &p.normal, black_box(f))));
     }));
-}
-
-#[cfg(feature = "profile")]
-#[inline(never)]
-#[no_mangle]
-fn marker_start() {
-    black_box(1);
-}
-
-#[cfg(feature = "profile")]
-#[inline(never)]
-#[no_mangle]
-fn marker_end() {
-    black_box(2);
 }
 
 #[panic_handler]
