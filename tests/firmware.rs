@@ -38,7 +38,7 @@ const HCM_F32_BUDGET: u32 = 2_000;
 
 /// A ceiling for one HCM int8 evaluation of the ball (instructions): measured 2,403 at
 /// the integer kernel's introduction (issue 31), 2,163 since (docs/controller.md),
-/// against 1,935 in f32 — on a network this small the activations' quantisation costs
+/// against 1,928 in f32 — on a network this small the activations' quantisation costs
 /// more than the dual multiply-accumulates save. A guard against it growing, not a
 /// target.
 const HCM_INT8_CEILING: u32 = 2_200;
