@@ -136,20 +136,24 @@ impl WeightFormat for Int8Weights {
         let Some((last, first)) = layers.split_last() else {
             return a.map(<f32 as Q15Value>::from_q15);
         };
-        if !first.is_empty() {
-            // Two buffers, their roles swapped by reference after each layer.
-            let mut b = a;
+        // Between the first and the last int8 layer, two buffers, their roles swapped
+        // by reference after each layer (the second only made when there is such a
+        // layer).
+        let mut b;
+        let from: &[i16; WIDTH] = if first.is_empty() {
+            &a
+        } else {
+            b = a;
             let (mut from, mut to) = (&mut a, &mut b);
             for layer in first {
                 layer.forward_into(from, to);
                 core::mem::swap(&mut from, &mut to);
             }
-            // The last layer writes its `f32` values straight into `hidden` (no pass
-            // converting them after, no buffer of its own).
-            last.forward_into(from, &mut hidden);
-        } else {
-            last.forward_into(&a, &mut hidden);
-        }
+            from
+        };
+        // The last layer writes its `f32` values straight into `hidden` (no pass
+        // converting them after, no buffer of its own).
+        last.forward_into(from, &mut hidden);
         hidden
     }
 }
@@ -373,8 +377,8 @@ fn remainder<const OUT: usize>(
     lanes.write(z, activation);
 }
 
-/// The sums of [`remainder`]'s lanes: 8, 4, 2 and 1 outputs from `o8`, `o4`, `o2`
-/// and `o1`, each used or not by the bits of OUT mod 16. Written out lane by lane: at
+/// The sums of [`remainder`]'s lanes: 8, 4, 2 and 1 outputs from `O8`, `O4`, `O2`
+/// and `O1`, each used or not by the bits of OUT mod 16. Written out lane by lane: at
 /// the firmware's `opt-level = "s"` loops over the lanes stayed loops (4,536
 /// instructions for the ball's residual against 1,627).
 struct Lanes<const OUT: usize> {
