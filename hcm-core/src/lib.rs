@@ -59,7 +59,7 @@ pub mod model;
 mod real;
 pub mod residual;
 pub mod rigid;
-mod vector;
+pub mod vector;
 pub mod wrench;
 
 pub use error::LawError;

@@ -24,6 +24,7 @@ use hcm_core::law::{AnyNormalLaw, Impact, Indentation};
 use hcm_core::model::{ContactModel, ContactPoint, Evaluated, Manifold, PairLoad, Residual};
 use hcm_core::residual::{decode, BlobError, F32Weights, Int8Weights, Mlp, WeightFormat};
 use hcm_core::rigid::RigidState;
+use hcm_core::vector;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 pub use states::{PEG_STATES, STATE_NAMES};
 
@@ -179,7 +180,7 @@ pub fn manifold_into(state: &RigidState<f32>, points: &mut Manifold<f32>) {
     // The orientation once (a square root): `world_angular_velocity` would normalise
     // the quaternion again. ω = R·ω_body as that method computes it.
     let orientation = state.orientation();
-    let omega = rotate(&orientation, &state.body_angular_velocity());
+    let omega = vector::rotate(&orientation, &state.body_angular_velocity());
     let velocity = state.velocity();
     let peg = Cuboid {
         half_extents: Vector3::from(PEG_HALF_EXTENTS),
@@ -188,18 +189,11 @@ pub fn manifold_into(state: &RigidState<f32>, points: &mut Manifold<f32>) {
     };
     for g in &compound::prepared_contacts(&peg, &PREPARED) {
         // The block is fixed: the relative velocity is the peg's material point's,
-        // v + ω × (p − c), written out per component in nalgebra's order (the same
-        // bits; its generic loops cost several times the arithmetic).
-        let (p, c) = (&g.point, &peg.center);
-        let arm = Vector3::new(p.x - c.x, p.y - c.y, p.z - c.z);
-        let relative_velocity = Vector3::new(
-            velocity.x + (omega.y * arm.z - omega.z * arm.y),
-            velocity.y + (omega.z * arm.x - omega.x * arm.z),
-            velocity.z + (omega.x * arm.y - omega.y * arm.x),
-        );
-        let n = &g.normal;
-        let v = &relative_velocity;
-        let rate = -(v.x * n.x + v.y * n.y + v.z * n.z);
+        // v + ω × (p − c), per component in nalgebra's order (`hcm_core::vector`: the
+        // same bits; nalgebra's generic loops cost several times the arithmetic).
+        let arm = vector::sub(&g.point, &peg.center);
+        let relative_velocity = vector::add(&velocity, &vector::cross(&omega, &arm));
+        let rate = -vector::dot(&relative_velocity, &g.normal);
         // Both hold at most MAX_POINTS: the push cannot fail.
         let _ = points.push(ContactPoint {
             indentation: Indentation {
@@ -214,29 +208,6 @@ pub fn manifold_into(state: &RigidState<f32>, points: &mut Manifold<f32>) {
             relative_angular_velocity: omega,
         });
     }
-}
-
-/// `q`·`v`·q⁻¹, nalgebra's `UnitQuaternion * Vector3` written out in its order of
-/// operations (the same bits): t = 2 (q⃗ × v), then (t·w + q⃗ × t) + v. Its generic
-/// loops took 113 instructions more per manifold (issue 31).
-fn rotate(q: &UnitQuaternion<f32>, v: &Vector3<f32>) -> Vector3<f32> {
-    let cross = |a: &Vector3<f32>, b: &Vector3<f32>| {
-        Vector3::new(
-            a.y * b.z - a.z * b.y,
-            a.z * b.x - a.x * b.z,
-            a.x * b.y - a.y * b.x,
-        )
-    };
-    let u = Vector3::new(q.i, q.j, q.k);
-    let c = cross(&u, v);
-    let t = Vector3::new(c.x * 2.0, c.y * 2.0, c.z * 2.0);
-    let d = cross(&u, &t);
-    let w = q.w;
-    Vector3::new(
-        t.x * w + d.x + v.x,
-        t.y * w + d.y + v.y,
-        t.z * w + d.z + v.z,
-    )
 }
 
 /// A full manifold for the host's checks and benchmarks: the peg's contact points at
