@@ -170,8 +170,8 @@ impl<const IN: usize, const OUT: usize> Source for Int8Layer<IN, OUT> {
         text.push_str("::hcm_core::residual::Int8Layer::from_stored_levels(");
         for (i, part) in [
             self.stored_levels() as &dyn Source,
-            &self.scales,
-            &self.bias,
+            self.scales(),
+            self.biases(),
         ]
         .into_iter()
         .enumerate()

@@ -522,7 +522,8 @@ fn an_int8_layer_rebuilds_from_its_stored_levels() {
     let blob = include_bytes!("../examples/blobs/peg_in_hole.int8.hcm");
     let network: Mlp<13, 32, 6, 2, Int8Weights> = decode(blob).expect("the peg's int8 blob");
     let layer = network.hidden_layers[0];
-    let rebuilt = Int8Layer::from_stored_levels(*layer.stored_levels(), layer.scales, layer.bias);
+    let rebuilt =
+        Int8Layer::from_stored_levels(*layer.stored_levels(), *layer.scales(), *layer.biases());
     assert_eq!(rebuilt, layer);
     assert_eq!(rebuilt.level(31, 30), layer.level(31, 30));
     const EDGE: Int8Layer<4, 1> = Int8Layer::from_stored_levels([[-128, 1, 127, 0]], [1.0], [0.0]);

@@ -57,6 +57,22 @@ pub fn mac4(sum: i32, weights: u32, pair_01: u32, pair_23: u32) -> i32 {
     }
 }
 
+/// `sum` + a₀·b₀ + a₁·b₁ for the signed 16-bit lanes a₀ = bits 0–15 and a₁ = bits
+/// 16–31 of `a` (likewise b of `b`), wrapping: `smlad` on a Cortex-M4 with the `dsp`
+/// feature (one instruction; the compiler's multiply, multiply-accumulate and the lane
+/// extractions take four or more), the same integers elsewhere.
+#[inline(always)]
+pub fn dual_mac(sum: i32, a: u32, b: u32) -> i32 {
+    #[cfg(all(feature = "dsp", target_arch = "arm"))]
+    {
+        dsp::dual_mac(sum, a, b)
+    }
+    #[cfg(not(all(feature = "dsp", target_arch = "arm")))]
+    {
+        portable::dual_mac(sum, a, b)
+    }
+}
+
 /// The sums of four rows over their whole groups of four inputs: for each row r,
 /// Σ over k < `IN` − `IN` % 4 of its weights (stored in [`interleave`]'s order, group
 /// by group) times `activations[k]`, wrapping. Inputs past the last whole group are the
@@ -135,6 +151,12 @@ pub mod portable {
         sum.wrapping_add(a.0 * b_low).wrapping_add(a.1 * b_high)
     }
 
+    /// [`super::dual_mac`] without the instruction.
+    #[inline(always)]
+    pub fn dual_mac(sum: i32, a: u32, b: u32) -> i32 {
+        smlad(sum, lanes(a), b)
+    }
+
     /// [`super::four_row_sums`] through [`mac4`], a group of four inputs at a time.
     #[inline(always)]
     pub fn four_row_sums<const IN: usize>(
@@ -188,6 +210,25 @@ mod dsp {
             );
         }
         sum
+    }
+
+    /// [`super::dual_mac`] in one instruction.
+    #[inline(always)]
+    pub fn dual_mac(sum: i32, a: u32, b: u32) -> i32 {
+        let total: i32;
+        // SAFETY: register-only arithmetic, as in `mac4`. The result has a register
+        // of its own, so a constant `sum` stays in its register across calls.
+        unsafe {
+            asm!(
+                "smlad {total}, {a}, {b}, {sum}",
+                total = lateout(reg) total,
+                sum = in(reg) sum,
+                a = in(reg) a,
+                b = in(reg) b,
+                options(pure, nomem, nostack, preserves_flags),
+            );
+        }
+        total
     }
 
     /// [`super::four_row_sums`]: one pass over the groups of four inputs, the four

@@ -23,7 +23,7 @@
 //! The levels are stored in `mac4`'s order ([`hcm_dsp::interleave`] on every group of
 //! four inputs; a remainder of fewer than four kept in order).
 
-use super::qtanh::{quantised_tanh, Q15_ONE};
+use super::qtanh::{quantised_tanh_scaled, POSITIONS_PER_UNIT, Q15_ONE};
 use super::BlobError;
 use hcm_dsp::{four_row_sums, interleave, mac4};
 
@@ -42,9 +42,15 @@ pub struct Int8Layer<const IN: usize, const OUT: usize> {
     /// the four words loaded together spill the accumulators).
     levels: [[i8; IN]; OUT],
     /// Scale σ_i of each row (dimensionless): the weight is q·σ_i.
-    pub scales: [f32; OUT],
+    scales: [f32; OUT],
     /// Bias b_i, one per output (dimensionless: the layer works on normalised values).
-    pub bias: [f32; OUT],
+    bias: [f32; OUT],
+    /// σ_i·u·P per row, P = [`POSITIONS_PER_UNIT`] (2¹⁷, the quantised tanh's
+    /// table positions per unit of z): the factor from a row's sum straight to the
+    /// position scale, worked out when the layer is made.
+    gains: [f32; OUT],
+    /// b_i·P per output, likewise.
+    offsets: [f32; OUT],
 }
 
 impl<const IN: usize, const OUT: usize> Int8Layer<IN, OUT> {
@@ -54,6 +60,8 @@ impl<const IN: usize, const OUT: usize> Int8Layer<IN, OUT> {
             levels: [[0; IN]; OUT],
             scales: [0.0; OUT],
             bias: [0.0; OUT],
+            gains: [0.0; OUT],
+            offsets: [0.0; OUT],
         }
     }
 
@@ -65,6 +73,8 @@ impl<const IN: usize, const OUT: usize> Int8Layer<IN, OUT> {
             levels: [[0; IN]; OUT],
             scales,
             bias,
+            gains: gains(&scales),
+            offsets: offsets(&bias),
         };
         for (output, row) in levels.iter().enumerate() {
             for (input, &q) in row.iter().enumerate() {
@@ -99,7 +109,19 @@ impl<const IN: usize, const OUT: usize> Int8Layer<IN, OUT> {
             levels,
             scales,
             bias,
+            gains: gains(&scales),
+            offsets: offsets(&bias),
         }
+    }
+
+    /// The scale σ_i of each row (dimensionless).
+    pub const fn scales(&self) -> &[f32; OUT] {
+        &self.scales
+    }
+
+    /// The bias b_i of each output (dimensionless).
+    pub const fn biases(&self) -> &[f32; OUT] {
+        &self.bias
     }
 
     /// The levels as stored (see [`Int8Layer::from_stored_levels`]).
@@ -167,6 +189,8 @@ impl<const IN: usize, const OUT: usize> Int8Layer<IN, OUT> {
         for slot in self.scales.iter_mut().chain(self.bias.iter_mut()) {
             *slot = floats.next().ok_or(BlobError::Malformed)??;
         }
+        self.gains = gains(&self.scales);
+        self.offsets = offsets(&self.bias);
         Ok(level_bytes + 8 * OUT)
     }
 
@@ -199,31 +223,60 @@ impl<const IN: usize, const OUT: usize> Int8Layer<IN, OUT> {
     /// (Q15) or, for the last layer, straight as its `f32` value.
     #[inline(never)]
     pub fn forward_into<A: Q15Value>(&self, activations: &[i16; IN], out: &mut [A; OUT]) {
-        let output = |sum: i32, scale: f32, bias: f32| {
-            A::from_q15(quantised_tanh(sum as f32 * (scale * Q15_UNIT) + bias))
+        // z·P = s·(σ·u·P) + b·P: P is a power of two, so this is the position scale
+        // of z = s·(σ·u) + b bit for bit (see `gains`), one multiply less per output.
+        let output = |sum: i32, gain: f32, offset: f32| {
+            A::from_q15(quantised_tanh_scaled(sum as f32 * gain + offset))
         };
         let (blocks, rest) = out.as_chunks_mut::<4>();
         let (rows, last_rows) = self.levels.as_chunks::<4>();
-        let (scales, last_scales) = self.scales.as_chunks::<4>();
-        let (biases, last_biases) = self.bias.as_chunks::<4>();
-        for (((block, rows), scale), bias) in blocks.iter_mut().zip(rows).zip(scales).zip(biases) {
+        let (gains, last_gains) = self.gains.as_chunks::<4>();
+        let (offsets, last_offsets) = self.offsets.as_chunks::<4>();
+        for (((block, rows), gain), offset) in blocks.iter_mut().zip(rows).zip(gains).zip(offsets) {
             let [s0, s1, s2, s3] = four_rows(rows, activations);
             *block = [
-                output(s0, scale[0], bias[0]),
-                output(s1, scale[1], bias[1]),
-                output(s2, scale[2], bias[2]),
-                output(s3, scale[3], bias[3]),
+                output(s0, gain[0], offset[0]),
+                output(s1, gain[1], offset[1]),
+                output(s2, gain[2], offset[2]),
+                output(s3, gain[3], offset[3]),
             ];
         }
-        for (((out, row), &scale), &bias) in rest
+        for (((out, row), &gain), &offset) in rest
             .iter_mut()
             .zip(last_rows)
-            .zip(last_scales)
-            .zip(last_biases)
+            .zip(last_gains)
+            .zip(last_offsets)
         {
-            *out = output(one_row(row, activations), scale, bias);
+            *out = output(one_row(row, activations), gain, offset);
         }
     }
+}
+
+/// σ_i·u·P for each scale σ_i (see [`Int8Layer`]'s `gains`). σ·u is rounded as the
+/// layer's formula rounds it, then scaled by the power of two P exactly: with the
+/// offsets b·P, s·(σ·u·P) + b·P is (s·(σ·u) + b)·P bit for bit whenever the result is
+/// a normal number (below that the position is 0 either way) and σ < 2¹²⁵ (beyond,
+/// σ·u·P overflows).
+const fn gains<const OUT: usize>(scales: &[f32; OUT]) -> [f32; OUT] {
+    let mut gains = [0.0; OUT];
+    let mut i = 0;
+    while i < OUT {
+        gains[i] = scales[i] * Q15_UNIT * POSITIONS_PER_UNIT;
+        i += 1;
+    }
+    gains
+}
+
+/// b_i·P for each bias b_i (exact: P is a power of two; ±∞ past 2¹¹¹, where z·P
+/// overflows too).
+const fn offsets<const OUT: usize>(bias: &[f32; OUT]) -> [f32; OUT] {
+    let mut offsets = [0.0; OUT];
+    let mut i = 0;
+    while i < OUT {
+        offsets[i] = bias[i] * POSITIONS_PER_UNIT;
+        i += 1;
+    }
+    offsets
 }
 
 /// What an [`Int8Layer`] writes its activations as: the Q15 integer the next int8
@@ -371,14 +424,40 @@ mod tests {
     }
 
     #[test]
+    fn folded_gains_and_offsets_give_the_formula_bit_for_bit() {
+        use crate::residual::qtanh::quantised_tanh;
+        // Scales from 1e-30 to 1e30, biases of both signs down to subnormal, sums
+        // across the i32 range: s·(σ·u·P) + b·P lands on the same activation as
+        // qtanh(s·(σ·u) + b).
+        let mut checked = 0;
+        for e in -60..=60 {
+            let scale = 1.7_f32 * 10_f32.powf(e as f32 * 0.5);
+            for bias in [0.0_f32, -0.0, 1e-40, -3.5e-3, 0.75, -2.5, 7.9, 1e20] {
+                let gain = gains(&[scale])[0];
+                let offset = offsets(&[bias])[0];
+                for k in -40..=40 {
+                    let sum = k * 53_687_091;
+                    let want = quantised_tanh(sum as f32 * (scale * Q15_UNIT) + bias);
+                    let got = quantised_tanh_scaled(sum as f32 * gain + offset);
+                    assert_eq!(got, want, "σ {scale:e}, b {bias:e}, s {sum}");
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 121 * 8 * 81);
+    }
+
+    #[test]
     fn forward_is_the_quantised_tanh_of_the_scaled_sums() {
-        let (_, mut layer) = layer::<6, 5>();
-        layer.bias = [0.5, -0.25, 0.0, 1.0, -1.0];
+        use crate::residual::qtanh::quantised_tanh;
+        let (levels, layer) = layer::<6, 5>();
+        let bias = [0.5, -0.25, 0.0, 1.0, -1.0];
+        let layer = Int8Layer::from_levels(levels, *layer.scales(), bias);
         let activations = [32_767, -32_767, 0, 16_384, -1, 7];
         let sums = layer.sums(&activations);
         let out = layer.forward(&activations);
         for i in 0..5 {
-            let z = sums[i] as f32 * (layer.scales[i] * Q15_UNIT) + layer.bias[i];
+            let z = sums[i] as f32 * (layer.scales[i] * Q15_UNIT) + bias[i];
             assert_eq!(out[i], quantised_tanh(z), "output {i}");
             let value = f64::from(out[i]) / f64::from(Q15_ONE);
             assert!((value - f64::from(z).tanh()).abs() < 1.3e-4, "output {i}");

@@ -25,6 +25,8 @@
 //! ([`super::Activation::QuantisedTanh`]), so the int8 network is fitted to it.
 //! Integers and one exactly specified conversion: the same bits on every target.
 
+use hcm_dsp::dual_mac;
+
 /// Table points per unit of z: segments 1/32 long.
 const POINTS_PER_UNIT: u32 = 32;
 
@@ -44,24 +46,37 @@ const LAST_POSITION: i32 = ((SEGMENTS as i32) << FRACTION_BITS) - 1;
 /// T\[k\] = round(tanh(k/32)·32 768), capped at 32 767, k = 0 … 256.
 pub static TABLE: [i16; SEGMENTS + 1] = table();
 
+/// The table positions per unit of z, 32·4 096 = 2¹⁷ (a power of two: z·P is exact).
+pub const POSITIONS_PER_UNIT: f32 = (POINTS_PER_UNIT << FRACTION_BITS) as f32;
+
 /// The quantised tanh of `z`, Q15 (see the module docs); NaN gives 0, ±∞ ±32 767.
 #[inline]
 pub fn quantised_tanh(z: f32) -> i16 {
-    // The scale is a power of two: |z|·131 072 is exact up to the saturation. The
-    // conversion to i32 saturates (NaN → 0; |z|·131 072 ≥ 0), and the clamp to 20 bits
+    quantised_tanh_scaled(z * POSITIONS_PER_UNIT)
+}
+
+/// The quantised tanh of z given `scaled` = z·[`POSITIONS_PER_UNIT`] (the int8 layer
+/// folds the factor into its scales and biases): the same bits as
+/// [`quantised_tanh`]`(z)`, since |z·P| = |z|·P and z·P has z's sign.
+#[inline]
+pub fn quantised_tanh_scaled(scaled: f32) -> i16 {
+    // The conversion to i32 saturates (NaN → 0; |z|·P ≥ 0), and the clamp to 20 bits
     // is one `usat` (three instructions as an unsigned minimum with a table to 6).
-    let position = ((z.abs() * (POINTS_PER_UNIT << FRACTION_BITS) as f32) as i32)
-        .clamp(0, LAST_POSITION) as u32;
+    let position = ((scaled.abs() as i32).clamp(0, LAST_POSITION)) as u32;
     // The index is at most 255: both reads succeed.
     let index = (position >> FRACTION_BITS) as usize;
-    let fraction = (position & ((1 << FRACTION_BITS) - 1)) as i32;
-    let low = i32::from(TABLE.get(index).copied().unwrap_or(i16::MAX));
-    let high = i32::from(TABLE.get(index + 1).copied().unwrap_or(i16::MAX));
-    // (T[i+1] − T[i])·f ≤ 1 024·4 095 stays far inside i32.
-    let step = ((high - low) * fraction + (1 << (FRACTION_BITS - 1))) >> FRACTION_BITS;
-    // |low + step| ≤ 32 767: a value of the table's own range.
-    let magnitude = (low + step) as i16;
-    if z < 0.0 {
+    let fraction = position & ((1 << FRACTION_BITS) - 1);
+    let low = TABLE.get(index).copied().unwrap_or(i16::MAX) as u16;
+    let high = TABLE.get(index + 1).copied().unwrap_or(i16::MAX) as u16;
+    // T[i] + ⌊((T[i+1] − T[i])·f + 2048) / 4096⌋ = ⌊(T[i]·(4096 − f) + T[i+1]·f + 2048)
+    // / 4096⌋ (T[i]·4096 is a multiple of 4096): one dual multiply-accumulate of the
+    // pair (T[i], T[i+1]) — adjacent, one load — with (4096 − f, f), both within i16
+    // (f ≤ 4 095). The sum stays below 32 767·4 096 + 2 048, and so does the result
+    // below 32 768: a value of the table's own range.
+    let pair = u32::from(low) | u32::from(high) << 16;
+    let weights = ((1 << FRACTION_BITS) - fraction) | fraction << 16;
+    let magnitude = (dual_mac(1 << (FRACTION_BITS - 1), pair, weights) >> FRACTION_BITS) as i16;
+    if scaled < 0.0 {
         -magnitude
     } else {
         magnitude
