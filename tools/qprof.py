@@ -15,6 +15,9 @@ def sym(a):
     return syms[i][1] if i >= 0 else "?"
 tb = {}
 pending = None
+# Library routines (memcpy, memclr…) counted again under the function that called them.
+callee_of = collections.Counter()
+last_other = "?"
 counting = False
 per_addr = collections.Counter()
 trace_re = re.compile(r"Trace \d+: 0x[0-9a-f]+ \[([0-9a-f]+)/([0-9a-f]+)/([0-9a-f]+)/([0-9a-f]+)\]")
@@ -42,6 +45,10 @@ with open(log) as f:
             if counting:
                 for a in tb[key]:
                     per_addr[a] += 1
+                if "mem" in s and ("aeabi" in s or "compiler_builtins" in s):
+                    callee_of[f"{s.split('::')[-1][:20]} <- {last_other[:90]}"] += len(tb[key])
+                else:
+                    last_other = s
 per_fn = collections.Counter()
 for a, n in per_addr.items():
     per_fn[sym(a)] += n
@@ -49,6 +56,9 @@ total = sum(per_fn.values())
 print(f"total {total/reps:.0f} per evaluation ({total} over {reps})")
 for name, n in per_fn.most_common(40):
     print(f"{n/reps:9.0f} {100*n/total:5.1f}%  {name[:150]}")
+
+for name, n in callee_of.most_common(12):
+    print(f"{n/reps:9.0f}  {name}")
 
 # Per source line (innermost inlined frame) of the hottest addresses, and memcpy callers.
 if len(sys.argv) > 4:

@@ -131,10 +131,18 @@ impl WeightFormat for Int8Weights {
         layers: &[Int8Layer<WIDTH, WIDTH>],
         x: &[f32; IN],
     ) -> [f32; WIDTH] {
+        // One array returned on every path, first the input layer's sums, then the
+        // last layer's values: built in the caller's slot, not copied there.
         let mut hidden = input.forward(x);
-        let mut a = hidden.map(quantised_tanh);
+        // From a reference, not `hidden.map(…)`: that took `hidden` by value, a
+        // 128-byte copy for the peg (and zeroing `a` first cost the ball 29
+        // instructions).
+        let mut a: [i16; WIDTH] = core::array::from_fn(|i| quantised_tanh(hidden[i]));
         let Some((last, first)) = layers.split_last() else {
-            return a.map(<f32 as Q15Value>::from_q15);
+            for (value, &a) in hidden.iter_mut().zip(&a) {
+                *value = <f32 as Q15Value>::from_q15(a);
+            }
+            return hidden;
         };
         // Between the first and the last int8 layer, two buffers, their roles swapped
         // by reference after each layer (the second only made when there is such a
