@@ -504,35 +504,10 @@ fn affine<const OUT: usize, A: Fn(f32) -> f32>(
         z.get_mut(first..first + BLOCK),
         bias.get(first..first + BLOCK),
     ) {
-        let (mut a0, mut a1, mut a2, mut a3) = (b0, b1, b2, b3);
-        let (mut a4, mut a5, mut a6, mut a7) = (b4, b5, b6, b7);
-        let (mut a8, mut a9, mut a10, mut a11) = (b8, b9, b10, b11);
-        let (mut a12, mut a13, mut a14, mut a15) = (b12, b13, b14, b15);
-        for (column, &x) in weights.iter().zip(x) {
-            if let Some(&[w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, w15]) =
-                column.get(first..first + BLOCK)
-            {
-                a0 += w0 * x;
-                a1 += w1 * x;
-                a2 += w2 * x;
-                a3 += w3 * x;
-                a4 += w4 * x;
-                a5 += w5 * x;
-                a6 += w6 * x;
-                a7 += w7 * x;
-                a8 += w8 * x;
-                a9 += w9 * x;
-                a10 += w10 * x;
-                a11 += w11 * x;
-                a12 += w12 * x;
-                a13 += w13 * x;
-                a14 += w14 * x;
-                a15 += w15 * x;
-            }
-        }
-        let sums = [
-            a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12, a13, a14, a15,
+        let mut sums = [
+            b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15,
         ];
+        hcm_dsp::block_sums(&mut sums, weights, first, x);
         activate_block(block, sums, &activation);
         first += BLOCK;
     }
