@@ -207,21 +207,29 @@ pub mod portable {
         smlad(sum, lanes(a), b)
     }
 
-    /// [`super::four_row_sums`] through [`mac4`], a group of four inputs at a time.
+    /// [`super::four_row_sums`] through [`mac4`], a group of four inputs at a time, each
+    /// group's two activation pairs formed once for the four rows.
     #[inline(always)]
     pub fn four_row_sums<const IN: usize>(
         rows: &[[i8; IN]; 4],
         activations: &[i16; IN],
     ) -> [i32; 4] {
-        let (groups, _) = activations.as_chunks::<4>();
+        let word = |row: &[i8; IN], k: usize| match row.get(k..k + 4) {
+            Some(&[a, b, c, d]) => u32::from_le_bytes([a as u8, b as u8, c as u8, d as u8]),
+            _ => 0,
+        };
+        let pair = |k: usize| match activations.get(k..k + 2) {
+            Some(&[a, b]) => u32::from(a as u16) | u32::from(b as u16) << 16,
+            _ => 0,
+        };
         let mut sums = [0_i32; 4];
-        for (sum, row) in sums.iter_mut().zip(rows) {
-            let (words, _) = row.as_chunks::<4>();
-            for (levels, x) in words.iter().zip(groups) {
-                let word = u32::from_le_bytes(levels.map(|q| q as u8));
-                let pair = |a: i16, b: i16| u32::from(a as u16) | u32::from(b as u16) << 16;
-                *sum = mac4(*sum, word, pair(x[0], x[1]), pair(x[2], x[3]));
+        let mut k = 0;
+        while k + 4 <= IN {
+            let (p01, p23) = (pair(k), pair(k + 2));
+            for (sum, row) in sums.iter_mut().zip(rows) {
+                *sum = mac4(*sum, word(row, k), p01, p23);
             }
+            k += 4;
         }
         sums
     }
