@@ -181,7 +181,57 @@ fn run_block(root: &Path, page: &Path, block: &[Line]) -> usize {
             .ok();
         ran += 1;
     }
+    for report in markdown_files(&hcm.path("")) {
+        let text = std::fs::read_to_string(&report).unwrap();
+        if let Some(header) = table_without_rows(&text) {
+            panic!(
+                "{} (written by {} line {}'s block): a table without rows under `{header}`",
+                report.display(),
+                page.display(),
+                block.first().map_or(0, |l| l.number)
+            );
+        }
+    }
     ran
+}
+
+/// Every `.md` file under `directory`, at any depth.
+fn markdown_files(directory: &Path) -> Vec<std::path::PathBuf> {
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir(directory).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            found.extend(markdown_files(&path));
+        } else if path.extension().is_some_and(|e| e == "md") {
+            found.push(path);
+        }
+    }
+    found
+}
+
+/// The header of the first Markdown table in `text` with no row under its `|---|`
+/// line (a report saying "listed below" over an empty table), if any.
+fn table_without_rows(text: &str) -> Option<&str> {
+    // A blank line after the last, so that a table ending the file is seen too.
+    let lines: Vec<&str> = text.lines().chain([""]).collect();
+    lines.windows(3).find_map(|w| {
+        let separator = w[1].starts_with("|---") || w[1].starts_with("| ---");
+        (w[0].starts_with('|') && separator && !w[2].starts_with('|')).then_some(w[0])
+    })
+}
+
+#[test]
+fn a_table_without_rows_is_found() {
+    assert_eq!(
+        table_without_rows("text\n\n| a | b |\n|---|---|\n\nmore"),
+        Some("| a | b |")
+    );
+    assert_eq!(
+        table_without_rows("| a | b |\n|---|---|\n| 1 | 2 |\n"),
+        None
+    );
+    // At the very end of a file too.
+    assert_eq!(table_without_rows("| a |\n|---|\n"), Some("| a |"));
 }
 
 #[test]

@@ -80,6 +80,19 @@ pub fn answer(d: &Diagnosis) -> String {
     }
 }
 
+/// Whether the base law, its own parameters re-fitted on the training runs, already
+/// leaves nothing but noise where the law as given left structure: then the decision
+/// tried no effect (it adds one only to a model whose residual is still structured),
+/// and what the base got wrong on these runs was its parameters' values.
+fn refit_explains(d: &Diagnosis) -> bool {
+    d.causes.is_empty()
+        && d.base_structured
+        && !d.after.structured
+        && d.naming.is_empty()
+        && d.not_accepted.is_empty()
+        && d.ambiguous.is_empty()
+}
+
 /// The report's answer in one line a newcomer reads: each named cause with its
 /// values and 95 % intervals and the share of the base model's structured residual
 /// the causes explain and leave; or one verdict — insufficient data, ambiguous between
@@ -97,6 +110,11 @@ pub fn answer_line(d: &Diagnosis) -> String {
             )
         } else if d.unexplained_share > 0.0 {
             "unexplained: the base model leaves a structured residual that no catalogued effect explains".into()
+        } else if refit_explains(d) {
+            "none: the base law's residual is structured as given, and nothing but noise \
+             once its own parameters are re-fitted on the training runs, so no effect was \
+             tried (section 2 says why)"
+                .into()
         } else if d.base_structured {
             // What entered fitted the training runs' structure, then failed the held-out
             // runs: not "nothing but noise".
@@ -213,7 +231,12 @@ fn head(md: &mut String, d: &Diagnosis) {
         let _ = writeln!(md, "**Sensor.** The force sensor does not read its offset in flight after the contacts (χ² {chi:.0} > {threshold:.0} over the readings from ¼ to 1¼ of a contact's duration after lift-off): it rings or drifts, so the momentum balance's gain is not named.\n");
     }
     if let Some(line) = gain_takeaway(&d.gain) {
-        let _ = writeln!(md, "**Gain.** {line}\n");
+        let what = if refit_explains(d) {
+            " The extended model here is the base law re-fitted on the training runs, no effect added."
+        } else {
+            ""
+        };
+        let _ = writeln!(md, "**Gain.** {line}{what}\n");
     }
     md.push_str(TERMS);
     let _ = writeln!(
@@ -276,7 +299,10 @@ fn what_is_wrong(md: &mut String, d: &Diagnosis, figures: &[&str]) {
 /// and the cause's share, and the unexplained share.
 fn the_cause(md: &mut String, d: &Diagnosis) {
     let _ = writeln!(md, "## 2. The cause\n");
-    if d.causes.is_empty() {
+    if refit_explains(d) {
+        let _ = writeln!(md, "No cause is named, and no effect was tried. The base law as given leaves a structured residual on the training runs (χ² {:.1} > {:.1}), but with its own parameters re-fitted on them it leaves noise (χ² {:.1} ≤ {:.1}, σ = {:.2} N), and an effect is only ever added to a model whose residual is still structured. What the base law got wrong on these runs is the values of its parameters, not a missing effect: the extended model below is the base re-fitted, with no effect, and section 4 shows how it predicts the held-out runs.\n",
+            d.before.chi_squared, d.before.threshold, d.after.chi_squared, d.after.threshold, d.after.sigma);
+    } else if d.causes.is_empty() {
         // The rule as `naming` applies it (the linear ranking's share ≥ 2 % only orders
         // the report's selection steps; it decides nothing).
         let _ = writeln!(md, "No cause is named. Every catalogued effect was re-fitted with the base law; one is named when its RSS drop exceeds ln(n)·σ² per parameter (BIC), its 95 % intervals are finite, no effect of another family comes within {} of it in the criterion, it predicts held-out runs better by {GAIN_T} standard errors of the runs' paired differences, and the residual it leaves is noise — or, re-fitted alone, it removes at least {:.0} % of the base model's excess over the noise and wins on held-out runs by {GAIN_T} standard errors (a partial answer). The effects tried and why none was accepted are listed under the decision below.\n", super::naming::EVIDENCE, 100.0 * super::naming::PARTIAL_SHARE);
@@ -354,7 +380,17 @@ fn decision(md: &mut String, d: &Diagnosis) {
     } else {
         String::new()
     };
-    let _ = writeln!(md, "\nThe decision, on full re-fits: each step adds every effect not yet named to the model and re-fits base and effects together ({freedom}); the best by information criterion enters if its RSS drop passes the criterion, its parameters are determined and the best effect of another family scores worse by at least {EVIDENCE} (else `ambiguous`, neither named); it must predict runs it was not fitted on, its gain on held-out runs, run by run, at {GAIN_T} standard errors{scattered}; a cause is named only if the residual then holds nothing but noise, or alone removes at least {:.0} % of the base model's excess and wins on held-out runs (a partial answer); a `stiffness_exponent` only where the momentum balance rules out a force sensor whose gain grows with the force (else `ambiguous` with `sensor_nonlinearity`).\n\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|", 100.0 * super::naming::PARTIAL_SHARE);
+    let _ = writeln!(md, "\nThe decision, on full re-fits: each step adds every effect not yet named to the model and re-fits base and effects together ({freedom}); the best by information criterion enters if its RSS drop passes the criterion, its parameters are determined and the best effect of another family scores worse by at least {EVIDENCE} (else `ambiguous`, neither named); it must predict runs it was not fitted on, its gain on held-out runs, run by run, at {GAIN_T} standard errors{scattered}; a cause is named only if the residual then holds nothing but noise, or alone removes at least {:.0} % of the base model's excess and wins on held-out runs (a partial answer); a `stiffness_exponent` only where the momentum balance rules out a force sensor whose gain grows with the force (else `ambiguous` with `sensor_nonlinearity`).", 100.0 * super::naming::PARTIAL_SHARE);
+    if d.naming.is_empty() {
+        let why = if d.after.structured {
+            ""
+        } else {
+            ": the base law re-fitted alone left no structure to explain"
+        };
+        let _ = writeln!(md, "\nNo step was taken{why}.");
+    } else {
+        let _ = writeln!(md, "\n| effect | RSS before → with (N²) | ΔRSS/σ² vs BIC | parameters determined | entered |\n|---|---|---|---|---|");
+    }
     for t in &d.naming {
         let _ = writeln!(
             md,
