@@ -463,7 +463,8 @@ mod fpu {
         // weights `first..first + 16` of that column, all within `weights` since
         // `first + 16 ≤ OUT` and the columns are `OUT` `f32`s apart; it writes the 16
         // sums and only the registers the hard-float ABI lets a callee clobber (the
-        // s16–s24 it uses are saved and restored).
+        // s16–s24 it uses are saved and restored). Every `vldm`/`vstm` address is that
+        // of an `f32`, so a multiple of 4, as those instructions require.
         unsafe {
             let x = x.as_ptr();
             hcm_dsp_block_sums(
