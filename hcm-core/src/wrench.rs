@@ -48,6 +48,19 @@ impl<T: Real> ContactWrench<T> {
         }
     }
 
+    /// A force `force` (N) and torque `torque` (N·m) on body 1 about its reference
+    /// point, and their reaction on body 2 about its own, `arm` (m) from body 2's
+    /// reference point to body 1's: −F and −(τ + arm × F).
+    pub(crate) fn on_body_1(force: &Vector3<T>, torque: &Vector3<T>, arm: &Vector3<T>) -> Self {
+        let couple = vector::add(torque, &vector::cross(arm, force));
+        ContactWrench {
+            force_1: *force,
+            torque_1: *torque,
+            force_2: vector::neg(force),
+            torque_2: vector::neg(&couple),
+        }
+    }
+
     /// Adds `other`'s forces and torques to these, each component once (N, N·m).
     #[inline]
     pub(crate) fn accumulate(&mut self, other: &Self) {

@@ -266,31 +266,28 @@ impl<T: Real, R: Residual<T>> ContactModel<T, R> {
         let Some(correction) = correction else {
             return load;
         };
-        let w = &mut load.wrench;
-        match correction {
-            // Written out (`vector`), in the operators' order: nalgebra's took 204
-            // instructions more per peg HCM (issue 31).
+        // Added as the points' wrenches are (`ContactWrench::accumulate`, written out
+        // per component: nalgebra's operators took 204 instructions more per peg HCM,
+        // issue 31). Subtracting the reaction is adding its negation, bit for bit.
+        let extra = match correction {
             Correction::Wrench { force, torque } => {
                 let arm = vector::sub(reference_1, reference_2);
-                let couple = vector::add(&torque, &vector::cross(&arm, &force));
-                w.force_1 = vector::add(&w.force_1, &force);
-                w.torque_1 = vector::add(&w.torque_1, &torque);
-                w.force_2 = vector::sub(&w.force_2, &force);
-                w.torque_2 = vector::sub(&w.torque_2, &couple);
+                ContactWrench::on_body_1(&force, &torque, &arm)
             }
             Correction::PairWrench {
                 force_1,
                 torque_1,
                 force_2,
                 torque_2,
-            } => w.accumulate(&ContactWrench {
+            } => ContactWrench {
                 force_1,
                 torque_1,
                 force_2,
                 torque_2,
-            }),
-            Correction::NormalForce(_) => {}
-        }
+            },
+            Correction::NormalForce(_) => return load,
+        };
+        load.wrench.accumulate(&extra);
         load
     }
 }
