@@ -134,9 +134,9 @@ fn bounds_gap<T: Real>(
     part: &Vector3<T>,
     part_reach: &Vector3<T>,
 ) -> T {
-    let apart = (center - part).abs() - reach - part_reach;
+    let gaps = axis_gaps(center, reach, part, part_reach);
     // `max` would skip a NaN: keep it, so that NaN input never passes as "apart".
-    apart.iter().fold(-T::MAX, |gap, &x| {
+    gaps.iter().fold(-T::MAX, |gap, &x| {
         if x.is_nan() || gap.is_nan() {
             x + gap
         } else {
@@ -147,20 +147,35 @@ fn bounds_gap<T: Real>(
 
 /// Whether the axis-aligned bounding box of the moving box (centre `center` (m), half
 /// extents `reach` (m)) misses a part's (centre `c` (m), half extents `bounds` (m)):
-/// [`bounds_gap`] > 0, with the same operations, written out per axis (nalgebra's
-/// generic ones cost several times more on the controller).
+/// [`bounds_gap`] > 0, without its maximum (any axis apart, none NaN: on the
+/// controller the maximum's compares and selects cost the peg's manifold 148
+/// instructions more).
 fn misses<T: Real>(
     center: &Vector3<T>,
     reach: &Vector3<T>,
     c: &Vector3<T>,
     bounds: &Vector3<T>,
 ) -> bool {
-    let x = (center.x - c.x).abs() - reach.x - bounds.x;
-    let y = (center.y - c.y).abs() - reach.y - bounds.y;
-    let z = (center.z - c.z).abs() - reach.z - bounds.z;
+    let [x, y, z] = axis_gaps(center, reach, c, bounds);
     // A NaN anywhere makes the gap NaN, which is not > 0.
     let zero = T::zero();
     !(x.is_nan() || y.is_nan() || z.is_nan()) && (x > zero || y > zero || z > zero)
+}
+
+/// The bounding boxes' gap along each common axis (m), |Δc| − reach − part's reach,
+/// written out per axis (nalgebra's generic operators cost several times more on the
+/// controller).
+fn axis_gaps<T: Real>(
+    center: &Vector3<T>,
+    reach: &Vector3<T>,
+    c: &Vector3<T>,
+    bounds: &Vector3<T>,
+) -> [T; 3] {
+    [
+        (center.x - c.x).abs() - reach.x - bounds.x,
+        (center.y - c.y).abs() - reach.y - bounds.y,
+        (center.z - c.z).abs() - reach.z - bounds.z,
+    ]
 }
 
 /// `contact` with part `index` in the high bits of its feature id.
