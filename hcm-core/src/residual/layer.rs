@@ -497,20 +497,15 @@ fn affine<const OUT: usize, A: Fn(f32) -> f32>(
     // cost the same either way.
     let mut z = [0.0; OUT];
     let mut first = 0;
-    while let (
-        Some(block),
-        Some(&[b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15]),
-    ) = (
+    while let (Some(block), Some(&start)) = (
         z.get_mut(first..first + BLOCK),
-        bias.get(first..first + BLOCK),
+        bias.get(first..).and_then(<[f32]>::first_chunk::<BLOCK>),
     ) {
         // The block's sixteen sums start from their biases and take the inputs in
         // order (`hcm_dsp::block_sums`: on the Cortex-M4F a loop of `vldm` and
         // `vmla.f32` written out, 22 instructions per 16 multiply-adds against the
         // compiler's 37; elsewhere plain Rust): the same bits on every target.
-        let mut sums = [
-            b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15,
-        ];
+        let mut sums = start;
         hcm_dsp::block_sums(&mut sums, weights, first, x);
         activate_block(block, sums, &activation);
         first += BLOCK;

@@ -12,15 +12,17 @@
 //! T\[k\] = round(tanh(k/32)·32 768), at most 32 767, for k = 0 … 256 (|z| up to 8;
 //! beyond, the last segment's end, 32 767). From |z| = 5.9 on tanh rounds to the
 //! largest Q15 value anyway, so a table to 6 holds the same function in 128 bytes less;
-//! to 8 the positions are exactly the 20-bit numbers, clamped by one instruction. The table is built at compile time
-//! ([`TABLE`]) from an `exp` written here as a `const fn`.
+//! to 8 the positions are exactly the 20-bit numbers, clamped by one instruction. The
+//! table is built at compile time ([`TABLE`]) from an `exp` written here as a
+//! `const fn`.
 //!
 //! Why: the int8 kernel multiplies 16-bit activations ([`super::int8`]), so the
 //! activation's output must be an integer; computing the rational tanh of
 //! [`super::tanh`] in `f32` and rounding costs ~20 instructions and a rounding, where
-//! this is a multiply, a conversion, two table loads and integer arithmetic. Its own
-//! error against tanh — at most 1.2e-4 over the real line (1.18e-4 measured) (interpolation between
-//! points 1/32 apart, plus the Q15 rounding; `tests::error_against_tanh`) — does not
+//! this is a multiply, a conversion, one load of two table entries and one dual
+//! multiply-accumulate. Its own error against tanh — at most 1.2e-4 over the real line
+//! (1.18e-4 measured; interpolation between points 1/32 apart, plus the Q15 rounding;
+//! `tests::error_against_tanh`) — does not
 //! reach the network's output as an error: training evaluates this same function
 //! ([`super::Activation::QuantisedTanh`]), so the int8 network is fitted to it.
 //! Integers and one exactly specified conversion: the same bits on every target.
