@@ -479,9 +479,9 @@ fn the_peg_int8_image_evaluates_the_peg_hcm_as_the_host_does() {
 /// weights, for its 32 × 32 layer; flash + static RAM + peak stack 25,104 B against
 /// 28,044 B when the network moved to flash), and issue 31's 8,000 instructions for
 /// the peg's contact model at its points (`pair_load`: the laws, friction and the
-/// residual of Eq 1 over the 4 points; 10,924 when the integer kernel came, 7,216
+/// residual of Eq 1 over the 4 points; 10,924 when the integer kernel came, 7,174
 /// since). In instructions `f32` runs the peg's network in fewer since its loop loads
-/// eight weights per `vldm` (4,830 against 5,312): docs/controller.md has why that
+/// eight weights per `vldm` (4,718 against 5,270): docs/controller.md has why that
 /// is not so in cycles.
 #[test]
 fn the_peg_int8_image_needs_less_memory_and_meets_its_budget() {
