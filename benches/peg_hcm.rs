@@ -25,36 +25,46 @@
 //! `residual_evaluation` explains for the ball's network).
 //!
 //! The firmware's peg module (`hcm-firmware/src/peg`) is compiled in, as
-//! `tests/firmware.rs` does: its states, PM2, blobs, manifold and `peg_load` are the
+//! `tests/controller/firmware.rs` does: its states, PM2, blobs, manifold and `peg_load` are the
 //! firmware's own. Only the core's public API is used (`decode`, `Mlp::evaluate`,
 //! `ContactModel::pair_load`, the f32 network's public weights for candle).
 //!
-//! Run: `cargo bench -p hcm-tests --features candle --bench peg_hcm`
+//! Run: `cargo bench -p hcm-tests --features candle --bench peg_hcm`. Without the
+//! `candle` feature the candle rows and the check are left out and the core's rows run
+//! alone (`cargo test --workspace` runs them so, once each: see docs/tests.md).
 
 #[allow(dead_code)] // the firmware's printing helpers are not used here
 #[path = "../hcm-firmware/src/peg/mod.rs"]
 mod peg;
 
+#[cfg(feature = "candle")]
 #[path = "common/candle_mlp.rs"]
 mod candle_mlp;
 
+#[cfg(feature = "candle")]
 use candle_mlp::CandleMlp;
 use criterion::{criterion_group, criterion_main, Criterion};
-use hcm_core::model::{ContactModel, ContactPoint, Evaluated, PairLoad};
+#[cfg(feature = "candle")]
+use hcm_core::model::PairLoad;
+use hcm_core::model::{ContactModel, ContactPoint, Evaluated};
 use hcm_core::residual::{F32Weights, Int8Weights};
 use hcm_core::rigid::RigidState;
 use nalgebra::Vector3;
-use peg::{PegResidual, PEG_STATES, STATE_NAMES};
+#[cfg(feature = "candle")]
+use peg::STATE_NAMES;
+use peg::{PegResidual, PEG_STATES};
 use std::hint::black_box;
 
 /// Inputs and outputs of the peg's residual.
 const INPUTS: usize = 13;
+#[cfg(feature = "candle")]
 const OUTPUTS: usize = 6;
 
 /// The benchmarked state: `wall_2_peak`.
 const STATE: usize = 3;
 
 /// The peg's residual network in candle-core.
+#[cfg(feature = "candle")]
 type CandleResidual = CandleMlp<INPUTS, OUTPUTS>;
 
 /// The peg's HCM with `Q` weights, as the firmware's host test builds it.
@@ -66,6 +76,7 @@ struct PegFixture<Q: peg::PegWeights> {
 /// `ContactModel::pair_load` with the residual evaluated by candle: the physics' loads,
 /// plus the residual's wrench on body 1 while a point touches and the input lies
 /// inside the envelope (what the core does for a six-output residual).
+#[cfg(feature = "candle")]
 fn pair_load_candle(
     physics: &ContactModel<f32>,
     residual: &CandleResidual,
@@ -94,6 +105,7 @@ fn pair_load_candle(
 }
 
 /// max |a − b| over max |b|: the distance of `a` from `b` relative to `b`'s scale.
+#[cfg(feature = "candle")]
 fn relative(a: &[f32], b: &[f32]) -> f32 {
     let scale = b.iter().fold(0.0_f32, |m, x| m.max(x.abs()));
     let error = a
@@ -107,6 +119,7 @@ fn relative(a: &[f32], b: &[f32]) -> f32 {
 /// within 1e-5 relative, and candle's residual the core f32 network's outputs within
 /// 1e-4 (the two tanh differ; see the module docs), at every peg state inside the
 /// residual's envelope. Prints the comparison.
+#[cfg(feature = "candle")]
 fn check_same_function(fixture: &PegFixture<F32Weights>, candle: &CandleResidual) {
     println!("candle vs hcm_f32 (peg residual 13-32-32-6, same weights and normalisation):");
     println!("  state            residual rel. diff   HCM 8 points rel. diff");
@@ -155,14 +168,22 @@ fn fixture<Q: peg::PegWeights>() -> PegFixture<Q> {
     }
 }
 
-fn bench_peg(c: &mut Criterion) {
-    // candle reads the variable at every matmul: single-threaded gemm throughout.
+/// The f32 network in candle, checked against the core first; candle reads
+/// `RAYON_NUM_THREADS` at every matmul: single-threaded gemm throughout.
+#[cfg(feature = "candle")]
+fn candle_twin(hcm_f32: &PegFixture<F32Weights>) -> CandleResidual {
     std::env::set_var("RAYON_NUM_THREADS", "1");
     assert_eq!(candle_core::utils::get_num_threads(), 1);
+    let candle = CandleResidual::from_core(&hcm_f32.hcm.residual).unwrap();
+    check_same_function(hcm_f32, &candle);
+    candle
+}
+
+fn bench_peg(c: &mut Criterion) {
     let hcm_f32 = fixture::<F32Weights>();
     let hcm_int8 = fixture::<Int8Weights>();
-    let candle = CandleResidual::from_core(&hcm_f32.hcm.residual).unwrap();
-    check_same_function(&hcm_f32, &candle);
+    #[cfg(feature = "candle")]
+    let candle = candle_twin(&hcm_f32);
 
     let state = RigidState {
         components: PEG_STATES[STATE],
@@ -170,20 +191,23 @@ fn bench_peg(c: &mut Criterion) {
     let input = state.components;
     let reference = state.position();
     let points = peg::eight_points(&state);
+    #[cfg(feature = "candle")]
     let physics = ContactModel::physics(hcm_f32.hcm.normal.clone())
         .with_friction(hcm_f32.hcm.friction.unwrap());
     assert_eq!(peg::manifold(&state).len(), 4);
+    let residual_runs = "the benchmarked state must run the residual";
     for evaluated in [
         peg::peg_load(&hcm_f32.hcm, &state).evaluated,
         peg::peg_load(&hcm_int8.hcm, &state).evaluated,
-        pair_load_candle(&physics, &candle, &points, &reference, &input).evaluated,
     ] {
-        assert_eq!(
-            evaluated,
-            Evaluated::PhysicsAndResidual,
-            "the benchmarked state must run the residual"
-        );
+        assert_eq!(evaluated, Evaluated::PhysicsAndResidual, "{residual_runs}");
     }
+    #[cfg(feature = "candle")]
+    assert_eq!(
+        pair_load_candle(&physics, &candle, &points, &reference, &input).evaluated,
+        Evaluated::PhysicsAndResidual,
+        "{residual_runs}"
+    );
 
     let mut group = c.benchmark_group("residual");
     group.bench_function("core_f32", |b| {
@@ -192,6 +216,7 @@ fn bench_peg(c: &mut Criterion) {
     group.bench_function("core_int8", |b| {
         b.iter(|| black_box(&hcm_int8.hcm.residual).evaluate(black_box(&input)))
     });
+    #[cfg(feature = "candle")]
     group.bench_function("candle_1_thread", |b| {
         b.iter(|| black_box(&candle).evaluate(black_box(&input)).unwrap())
     });
@@ -202,6 +227,7 @@ fn bench_peg(c: &mut Criterion) {
     bench_pair_load(
         &mut group, "hcm_int8", &hcm_int8, &points, &reference, &input,
     );
+    #[cfg(feature = "candle")]
     group.bench_function("hcm_candle_1_thread", |b| {
         b.iter(|| {
             pair_load_candle(

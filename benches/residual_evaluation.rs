@@ -18,11 +18,16 @@
 //! envelope check). Before timing, the candle path is checked against `hcm_f32` on a few
 //! inputs (the same function within 1e-5 relative) and the comparison is printed.
 //!
-//! Run: `cargo bench -p hcm-tests --features candle --bench residual_evaluation`
+//! Run: `cargo bench -p hcm-tests --features candle --bench residual_evaluation`.
+//! Without the `candle` feature the candle rows and the check are left out and the
+//! core's rows run alone (`cargo test --workspace` runs them so, once each: see
+//! docs/tests.md).
 
+#[cfg(feature = "candle")]
 #[path = "common/candle_mlp.rs"]
 mod candle_mlp;
 
+#[cfg(feature = "candle")]
 use candle_mlp::CandleMlp;
 use criterion::{criterion_group, criterion_main, Criterion};
 use hcm_core::effect::ContactMemory;
@@ -80,9 +85,11 @@ fn trained_blobs() -> (Vec<u8>, Vec<u8>) {
 }
 
 /// The core residual's forward pass in candle-core (one output: the force correction).
+#[cfg(feature = "candle")]
 type CandleResidual = CandleMlp<INPUTS, 1>;
 
 /// `ContactModel::normal_force` with the residual evaluated by candle.
+#[cfg(feature = "candle")]
 fn hybrid_candle(
     law: &AnyNormalLaw<f32>,
     residual: &CandleResidual,
@@ -115,6 +122,7 @@ fn state(depth: f32, rate: f32) -> (Indentation<f32>, [f32; INPUTS]) {
 /// Fails unless candle computes the same function as the core f32 model: hybrid force
 /// within 1e-5 relative, residual correction within 1e-4 (against max(|r|, 1 N), its
 /// scale being tens of N; candle's libm tanh differs from the core's by ≤ 1.2e-6).
+#[cfg(feature = "candle")]
 fn check_same_function(
     law: &AnyNormalLaw<f32>,
     core: &Hybrid<F32Weights>,
@@ -144,7 +152,7 @@ fn check_same_function(
         assert!(relative <= 1e-5, "force {force} vs candle {force_candle}");
         // candle's tanh is libm's; the core's rational one is within 1.2e-6 of it per
         // activation, which the layers carry to the output amplified by their row sums
-        // (tests/residual_blob.rs asserts that carried bound exactly): 1e-4 here.
+        // (tests/contact/residual_blob.rs asserts that carried bound exactly): 1e-4 here.
         assert!(
             (residual_candle - residual).abs() <= 1e-4 * residual.abs().max(1.0),
             "residual {residual} vs candle {residual_candle}"
@@ -159,26 +167,24 @@ fn bench_per_contact(c: &mut Criterion) {
     let law: AnyNormalLaw<f32> = reference::lankarani_nikravesh::<f32>().into();
     let hcm_f32: Hybrid<F32Weights> = ContactModel::physics(law).with_residual(residual_f32);
     let hcm_int8: Hybrid<Int8Weights> = ContactModel::physics(law).with_residual(residual_int8);
-    let candle = CandleResidual::from_core(&residual_f32).unwrap();
-    check_same_function(&law, &hcm_f32, &candle);
-    println!(
-        "candle threads (default): {}",
-        candle_core::utils::get_num_threads()
-    );
+    #[cfg(feature = "candle")]
+    let candle = candle_twin(&law, &hcm_f32, &residual_f32);
 
     let (contact, input) = state(10e-6, 1.0);
     let memory = ContactMemory::touch_down();
+    let residual_runs = "the benchmarked state must run the residual";
     for evaluated in [
         hcm_f32.normal_force(&contact, &memory, &input).1,
         hcm_int8.normal_force(&contact, &memory, &input).1,
-        hybrid_candle(&law, &candle, &contact, &input).1,
     ] {
-        assert_eq!(
-            evaluated,
-            Evaluated::PhysicsAndResidual,
-            "the benchmarked state must run the residual"
-        );
+        assert_eq!(evaluated, Evaluated::PhysicsAndResidual, "{residual_runs}");
     }
+    #[cfg(feature = "candle")]
+    assert_eq!(
+        hybrid_candle(&law, &candle, &contact, &input).1,
+        Evaluated::PhysicsAndResidual,
+        "{residual_runs}"
+    );
 
     let mut group = c.benchmark_group("per_contact_f32");
     group.bench_function("physics_only", |b| {
@@ -192,18 +198,21 @@ fn bench_per_contact(c: &mut Criterion) {
             black_box(&hcm_int8).normal_force(black_box(&contact), &memory, black_box(&input))
         })
     });
-    let candle_hcm = |b: &mut criterion::Bencher| {
-        b.iter(|| {
-            hybrid_candle(
-                black_box(&law),
-                black_box(&candle),
-                black_box(&contact),
-                black_box(&input),
-            )
-        })
-    };
-    group.bench_function("hcm_candle", candle_hcm);
-    single_threaded_candle(|| group.bench_function("hcm_candle_1_thread", candle_hcm));
+    #[cfg(feature = "candle")]
+    {
+        let candle_hcm = |b: &mut criterion::Bencher| {
+            b.iter(|| {
+                hybrid_candle(
+                    black_box(&law),
+                    black_box(&candle),
+                    black_box(&contact),
+                    black_box(&input),
+                )
+            })
+        };
+        group.bench_function("hcm_candle", candle_hcm);
+        single_threaded_candle(|| group.bench_function("hcm_candle_1_thread", candle_hcm));
+    }
     group.finish();
 
     let mut group = c.benchmark_group("residual_only");
@@ -213,17 +222,37 @@ fn bench_per_contact(c: &mut Criterion) {
     group.bench_function("core_int8", |b| {
         b.iter(|| black_box(&hcm_int8.residual).evaluate(black_box(&input)))
     });
-    let candle_residual = |b: &mut criterion::Bencher| {
-        b.iter(|| black_box(&candle).evaluate(black_box(&input)).unwrap())
-    };
-    group.bench_function("candle", candle_residual);
-    single_threaded_candle(|| group.bench_function("candle_1_thread", candle_residual));
+    #[cfg(feature = "candle")]
+    {
+        let candle_residual = |b: &mut criterion::Bencher| {
+            b.iter(|| black_box(&candle).evaluate(black_box(&input)).unwrap())
+        };
+        group.bench_function("candle", candle_residual);
+        single_threaded_candle(|| group.bench_function("candle_1_thread", candle_residual));
+    }
     group.finish();
+}
+
+/// The f32 network in candle, checked against the core first.
+#[cfg(feature = "candle")]
+fn candle_twin(
+    law: &AnyNormalLaw<f32>,
+    hcm_f32: &Hybrid<F32Weights>,
+    residual_f32: &CoreMlp<F32Weights>,
+) -> CandleResidual {
+    let candle = CandleResidual::from_core(residual_f32).unwrap();
+    check_same_function(law, hcm_f32, &candle);
+    println!(
+        "candle threads (default): {}",
+        candle_core::utils::get_num_threads()
+    );
+    candle
 }
 
 /// Runs `bench` with `RAYON_NUM_THREADS=1`, then restores the variable. candle reads it
 /// at every matmul (`candle_core::utils::get_num_threads`). Set while no other thread
 /// runs: the trainer's rayon workers are idle and the benchmarks are single-threaded.
+#[cfg(feature = "candle")]
 fn single_threaded_candle<R>(bench: impl FnOnce() -> R) {
     let previous = std::env::var_os("RAYON_NUM_THREADS");
     std::env::set_var("RAYON_NUM_THREADS", "1");

@@ -8,7 +8,7 @@
 # introduction (above the `---` line) with the commit and command rewritten; below the line
 # goes the run's report.md, its headings one level down, and beside it the run's
 # results.json and PNG figures (the old ones removed). Then check the page:
-#   cargo test --release --test docs_results
+#   cargo test --release --test repository docs_results::
 set -euo pipefail
 if [ $# -ne 3 ]; then
     echo "usage: $0 EXAMPLE RUN_DIR \"COMMAND\"" >&2

@@ -32,7 +32,7 @@ pub trait Real: RealField + Copy {
     /// the platform's (glibc), which is faster on the host (x86-64: 5 ns against about
     /// 30 ns per call). Each rounds within an ulp, so the two may differ by an ulp or
     /// two — the one reason a law's f32 result on the host can differ from the
-    /// controller's (tests/firmware.rs lists each such value).
+    /// controller's (tests/controller/firmware.rs lists each such value).
     fn pow(self, exponent: Self) -> Self;
 
     /// √self, correctly rounded (IEEE 754 `squareRoot`; unit: the square root of

@@ -3,7 +3,7 @@
 //! with its f32 and int8 blobs; and its answers to a caller's mistakes.
 //!
 //! The peg's HCM is built exactly as the firmware builds it: the module
-//! `hcm-firmware/src/peg` is compiled into this test (as `tests/firmware.rs` does), so
+//! `hcm-firmware/src/peg` is compiled into this test (as `tests/controller/firmware.rs` does), so
 //! its states (`states.rs`: rows of the S1 data set), its PM2 (IMPACT + STEP friction),
 //! its manifold geometry and its `peg_load` are the firmware's own.
 

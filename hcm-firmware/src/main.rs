@@ -6,7 +6,7 @@
 //! wrench, the HCM with f32 and int8 weights, a whole bouncing-ball run — and prints
 //! over semihosting, one line each:
 //!
-//! - `case GROUP.ITEM HEX…`: every result as raw `f32` bits (what `tests/firmware.rs`
+//! - `case GROUP.ITEM HEX…`: every result as raw `f32` bits (what `tests/controller/firmware.rs`
 //!   compares, bit for bit, with the host's evaluation of the same table);
 //! - `cost GROUP.ITEM N`: instructions per evaluation (see [`cost`]);
 //! - `size flash|ram|stack N`: bytes of flash, static RAM, and peak stack;

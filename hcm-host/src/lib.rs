@@ -3,7 +3,7 @@
 //! (`src/cli/`) prints.
 //!
 //! The modules are layered, each using only those of the layers below it (bottom
-//! first; `tests/layers.rs` checks it):
+//! first; `tests/repository/layers.rs` checks it):
 //!
 //! 1. [`numerics`], [`output`], [`law_catalogue`], [`progress`] — generic numerics and
 //!    optimisers, atomic file output, laws by name, how a stage reports progress;

@@ -1,6 +1,6 @@
 //! The Rust sources and the Markdown pages of a tree, for the tests that read the code
-//! itself (tests/layers.rs, tests/function_length.rs) and the documentation
-//! (tests/readme.rs, tests/docs_results.rs).
+//! itself (tests/repository/layers.rs, tests/repository/function_length.rs) and the documentation
+//! (tests/repository/readme.rs, tests/repository/docs_results.rs).
 
 use std::fs;
 use std::path::{Path, PathBuf};

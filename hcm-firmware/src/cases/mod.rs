@@ -1,6 +1,6 @@
 //! The firmware's fixed table of evaluations, compiled twice: into the firmware (for
 //! `thumbv7em-none-eabihf`, printed over semihosting) and into the host test
-//! `tests/firmware.rs` (`#[path]`), which evaluates the same inputs in f32 on the host
+//! `tests/controller/firmware.rs` (`#[path]`), which evaluates the same inputs in f32 on the host
 //! and requires every printed bit pattern to match.
 //!
 //! It depends on `hcm-core` and `nalgebra` only, allocates nothing, and reports each

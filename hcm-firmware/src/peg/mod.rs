@@ -1,6 +1,6 @@
 //! The peg-in-hole's hybrid model (issue 15) on the controller, compiled twice like the
 //! ball's table (`../cases`): into the peg's firmware images and into the host test
-//! `tests/firmware.rs`, which evaluates the same states in f32 on the host and requires
+//! `tests/controller/firmware.rs`, which evaluates the same states in f32 on the host and requires
 //! every printed bit pattern to match.
 //!
 //! For each peg state it runs the whole HCM as the simulator does, in `f32`: the peg's

@@ -24,7 +24,7 @@ use super::through_contact::Integrated;
 
 /// Standard deviations from 0 beyond which a fitted delay is taken as real (–): by
 /// chance a normal deviate passes 5 once in 1.7 million. Measured on the rig's camera
-/// rows (tests/diagnose_rig.rs, 20 data sets without a delay): |τ̂|/sd ≤ 1.7; a 1 µs
+/// rows (tests/diagnose/diagnose_rig.rs, 20 data sets without a delay): |τ̂|/sd ≤ 1.7; a 1 µs
 /// delay: 6.0–7.7.
 pub(crate) const DELAY_SIGMAS: f64 = 5.0;
 

@@ -27,7 +27,7 @@ use crate::numerics::optimize::minimize_scalar;
 
 /// Largest RMS misfit (in standard deviations of what a row can be off by) at which
 /// recorded motion is trusted through a contact (–). Measured on the independent rig
-/// (tests/diagnose_rig.rs): see `README.md`, "Diagnose".
+/// (tests/diagnose/diagnose_rig.rs): see `README.md`, "Diagnose".
 pub(crate) const MAX_MISFIT: f64 = 10.0;
 
 /// Delays tried by the check's coarse search, each side of 0, before refining (–).

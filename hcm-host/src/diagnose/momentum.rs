@@ -143,7 +143,7 @@ const FLIGHT_SIGMAS: f64 = 5.0;
 /// averaged over the events in [`FLIGHT_BINS`] bins of time since lift-off, each mean
 /// judged against the noise σ/√n (σ from the readings' second differences,
 /// [`super::noise`]): χ² = Σ mean²/(σ²/n) beyond dof + [`FLIGHT_SIGMAS`]·√(2·dof).
-/// Measured on the rig (tests/diagnose_rig.rs): a mount ringing at 2 % of the peak at
+/// Measured on the rig (tests/diagnose/diagnose_rig.rs): a mount ringing at 2 % of the peak at
 /// 15 kHz, decaying over 200 µs, gives χ² 235 against 18. One ringing at 8 kHz that is
 /// gone a quarter of a contact after lift-off is not seen, and still reads as a gain
 /// of 1.005.

@@ -25,7 +25,7 @@
 //! same [`EVIDENCE`]: hysteresis damping's exponent p must earn its place over viscous
 //! damping (p = 0) as a rival family would. Motion reconstructed from a few camera
 //! frames blurs each run's touch-down by a µm or so, which a small p mimics (the filmed
-//! rig of tests/diagnose_rig.rs: p = 0.086 by 6.5 in the criterion).
+//! rig of tests/diagnose/diagnose_rig.rs: p = 0.086 by 6.5 in the criterion).
 //!
 //! A cause that passes must also predict runs it was not fitted on: its gain over the
 //! causes already named on held-out runs, run by run ([`super::held_out`]), at
@@ -145,7 +145,7 @@ pub struct Naming {
 
 /// Least share of the base model's excess RSS over the noise, (RSS_base − RSS)/(RSS_base
 /// − n·σ²), one cause alone must remove for a partial answer (–). Measured on the rig
-/// (tests/diagnose_rig.rs): shapes near a catalogued one — a
+/// (tests/diagnose/diagnose_rig.rs): shapes near a catalogued one — a
 /// plastic set unloading along another curve, damping nonlinear in the rate — are
 /// removed at 90–99.5 % by their catalogue relative; out-of-catalogue ones at most 72 %
 /// by any single effect (a plastic set unloading linearly, which a stiffness-exponent

@@ -7,7 +7,7 @@
 //!   contact, and an effect's column must vary within the contact; below
 //!   [`MIN_CONTACT_SAMPLES`] per contact (median over runs) the contact is a handful of
 //!   points (a 110 µs impact at 50 kHz: 5). A force sensor at 100 kHz gives 11–15 on the
-//!   ball's contacts, enough to name a 5 % damping (tests/diagnose_rig.rs);
+//!   ball's contacts, enough to name a 5 % damping (tests/diagnose/diagnose_rig.rs);
 //! - too noisy a force: below a peak-to-noise ratio of [`MIN_PEAK_TO_NOISE`], an effect
 //!   at a few % of the peak is under the noise in every sample;
 //! - too few contacts: fewer than [`MIN_CONTACTS`] runs with a contact leave nothing to
@@ -29,7 +29,7 @@ pub const MIN_CONTACTS: usize = 2;
 /// through a contact may miss the camera's flight after it (–). On consistent data each
 /// contact's gap is a half-normal deviate (median 0.67); a median above 3 over several
 /// contacts does not happen by chance (one contact exceeds 3 with probability 0.003).
-/// Measured on the rig (tests/diagnose_rig.rs, camera rows): see README, "Diagnose".
+/// Measured on the rig (tests/diagnose/diagnose_rig.rs, camera rows): see README, "Diagnose".
 pub const MAX_GAP_SIGMAS: f64 = 3.0;
 
 /// The verdict on the data, with the figures behind it.

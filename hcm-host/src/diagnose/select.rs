@@ -107,7 +107,7 @@ pub enum BaseFreedom {
 /// A change of the exponent is the catalogue's `stiffness_exponent`: left free in the
 /// base it absorbs that effect whole (k·δ^n·(δ/δ_ref)^Δ is k'·δ^(n+Δ)), and a given
 /// model holding the wrong exponent would be answered "none" (Δ = 0.02 on the rig of
-/// tests/diagnose_rig.rs). Motion reconstructed from camera frames is another matter:
+/// tests/diagnose/diagnose_rig.rs). Motion reconstructed from camera frames is another matter:
 /// each contact's δ carries the flight fit's offset, and a law fitted through δ with
 /// errors has its exponent biased low (errors in variables: −0.03 on the rig's filmed
 /// ball with no effect, 83 σ² of RSS). There the exponent is re-tuned with the base.

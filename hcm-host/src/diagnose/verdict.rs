@@ -27,10 +27,10 @@
 //! its in-sample criterion among every catalogued one on the same runs (the folds
 //! reuse them), a selection the held-out comparison must outweigh. Measured: with 2 on
 //! runs, two 3 % hysteresis dampings of the 100 kHz power table were named
-//! `viscous_damping` (tests/diagnose_power_table.rs); with 3 on tosses, a friction
+//! `viscous_damping` (tests/diagnose/diagnose_power_table.rs); with 3 on tosses, a friction
 //! coefficient × 1.5 judged on 5 held-out tosses (Student's t, 4 degrees of freedom)
 //! and a restitution falling with the impact speed were left `ambiguous`
-//! (tests/diagnose_motion.rs).
+//! (tests/diagnose/diagnose_motion.rs).
 
 use super::paired::Paired;
 

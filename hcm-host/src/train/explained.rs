@@ -7,7 +7,7 @@
 //! there is not harmless: 1e-3 N·m about z spins the peg (I_zz = 1.7e-5 kg·m²) by
 //! 0.2 rad/s within one 3 ms wall contact, out of the training envelope, where the
 //! residual switches off mid-contact. Measured on the peg's wall contacts
-//! (tests/peg_hcm.rs, 20 runs): R² 0.001, 0.002, 0.001 for F_y, T_x, T_z against 0.979,
+//! (tests/train/peg_hcm.rs, 20 runs): R² 0.001, 0.002, 0.001 for F_y, T_x, T_z against 0.979,
 //! 0.939, 0.977 for F_x, F_z, T_y.
 
 use super::Network;

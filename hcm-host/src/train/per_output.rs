@@ -8,7 +8,7 @@
 //! neurons, no weights between blocks): output o of the merged network is exactly
 //! network o's output, so the core evaluates either choice with the same code.
 //!
-//! Measured (`cargo test -p hcm-host --test training -- --nocapture output_nets`, two
+//! Measured (`cargo test -p hcm-tests --test train training::output_nets -- --nocapture`, two
 //! outputs: a force error and a moment error that shares its cause): see the README,
 //! "One network or one per output". The default is [`OutputNets::Joint`]: the
 //! outputs of a contact residual share their cause (the same missing physics seen as

@@ -278,7 +278,7 @@ impl Summed {
         // In units of each target column's RMS, as the gradient descends it: a raw sum
         // let a wall's hundreds of newtons hide a friction component's or a torque's
         // error, and a silenced friction scale made those ten times PM2's (R² −12 on
-        // two moving bodies, tests/two_bodies.rs).
+        // two moving bodies, tests/identify/two_bodies.rs).
         (prediction
             .iter()
             .zip(self.target(r))

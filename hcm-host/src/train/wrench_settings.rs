@@ -5,7 +5,7 @@
 //! (`crate::residual::ContactResidual`): the joint network is 13-32-32-6, the six
 //! networks 13-8-8-1 merged block-diagonally into 13-48-48-6.
 //!
-//! Measured (`cargo test --test peg_hcm -- --nocapture six_single`: 20 runs, PM2 =
+//! Measured (`cargo test --test train peg_hcm::six_single -- --nocapture`: 20 runs, PM2 =
 //! IMPACT with exponent 2, 16 runs' 8215 rows trained, 4 runs' 2053 rows held out;
 //! PM2's own error 180 N, 0.45 N·m RMS, on the wall contacts 6.9 N, 0.18 N·m):
 //!

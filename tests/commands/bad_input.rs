@@ -568,7 +568,7 @@ fn runs_without_contact_are_named_apart_from_their_count() {
 /// Every command's outputs are checked against its inputs before any work (issue 30):
 /// an output naming a file the command reads and two outputs naming one file are
 /// refused, naming the options, and the input is left as it was; an output that is a
-/// device is refused too (`tests/outputs.rs` has the pipes and sockets).
+/// device is refused too (`tests/commands/outputs.rs` has the pipes and sockets).
 #[test]
 fn an_output_that_is_an_input_or_a_device_is_refused_before_any_work() {
     let hcm = Hcm::new();

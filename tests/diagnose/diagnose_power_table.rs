@@ -7,7 +7,7 @@
 //! named parameter's 95 % interval holds the truth. Run with `--nocapture` for the
 //! table the README shows.
 //!
-//! Strengths are scaled as in tests/diagnose_power_curve.rs, from each law's own
+//! Strengths are scaled as in tests/diagnose/diagnose_power_curve.rs, from each law's own
 //! no-effect runs.
 
 use hcm_host::diagnose::select::BaseFreedom;

@@ -10,7 +10,7 @@
 //! residual with kinks (each contact point's onset at δ = 0, STEP friction's stick and
 //! slip), and which cells land within 0.2 % is a matter of the training's draw.
 //!
-//! About 2 minutes in release: `cargo test --release -p hcm-tests --test peg_oracle --
+//! About 2 minutes in release: `cargo test --release -p hcm-tests --test train peg_oracle:: --
 //! --ignored --nocapture`.
 
 use hcm_host::export::export_blobs;

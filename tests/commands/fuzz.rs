@@ -43,7 +43,7 @@
 //! the seed (default [`SEED`]). E.g. one million cases of the scenario target:
 //!
 //! ```text
-//! HCM_FUZZ_CASES=1000000 cargo test --release --test fuzz -- fuzz_scenario --nocapture
+//! HCM_FUZZ_CASES=1000000 cargo test --release --test commands fuzz::fuzz_scenario -- --nocapture
 //! ```
 //!
 //! A case taking longer than [`HANG_LIMIT`] is reported as a hang (with its input) and

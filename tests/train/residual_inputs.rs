@@ -6,7 +6,7 @@
 //! the same S1 and judged on the same held-out runs. Run with `--nocapture` for the
 //! tables.
 //!
-//! Measured (`cargo test --release -p hcm-tests --test residual_inputs -- --nocapture`;
+//! Measured (`cargo test --release -p hcm-tests --test train residual_inputs:: -- --nocapture`;
 //! seed 3, f32 blobs): HCM − PM2 mean event error (points per run), and the whole
 //! path's position error (mm RMS) PM2 → HCM:
 //!

@@ -1,4 +1,4 @@
-//! The statistical power of the `hcm diagnose` end-to-end tests (tests/diagnose.rs): each
+//! The statistical power of the `hcm diagnose` end-to-end tests (tests/diagnose/diagnose.rs): each
 //! hidden effect there is checked on one seed; here every case is repeated over seeds
 //! 1..=10 and must be named — exactly, and nothing else — with its parameter within the
 //! single-seed test's tolerance, in at least 8 of the 10 — and the standard error the re-fit
@@ -9,12 +9,12 @@ use hcm_host::indicators::Statistic;
 use hcm_tests::hidden::selected;
 use rayon::prelude::*;
 
-/// Noisy runs per data set, as in tests/diagnose.rs.
+/// Noisy runs per data set, as in tests/diagnose/diagnose.rs.
 const RUNS: usize = 12;
 /// Seeds per case.
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=10;
 
-/// One hidden effect of tests/diagnose.rs, with the check its single-seed test makes.
+/// One hidden effect of tests/diagnose/diagnose.rs, with the check its single-seed test makes.
 struct Case {
     label: &'static str,
     /// The scenario override (empty: nothing hidden).

@@ -783,7 +783,7 @@ fn an_atomic_write_into_a_missing_directory_names_the_destination() {
 
 #[test]
 fn the_readme_documents_this_schema_with_a_readable_example() {
-    let readme = include_str!("../README.md");
+    let readme = include_str!("../../README.md");
     let (_, section) = readme
         .split_once("## Measured-data format")
         .expect("README section `## Measured-data format`");

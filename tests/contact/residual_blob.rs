@@ -519,7 +519,7 @@ fn a_negative_or_infinite_tolerance_is_refused() {
 /// biases is the same layer; a level of −128 is read as −127, as everywhere else.
 #[test]
 fn an_int8_layer_rebuilds_from_its_stored_levels() {
-    let blob = include_bytes!("../examples/blobs/peg_in_hole.int8.hcm");
+    let blob = include_bytes!("../../examples/blobs/peg_in_hole.int8.hcm");
     let network: Mlp<13, 32, 6, 2, Int8Weights> = decode(blob).expect("the peg's int8 blob");
     let layer = network.hidden_layers[0];
     let rebuilt =

@@ -7,7 +7,7 @@
 //! PM2 here is the scenario's IMPACT with the exponent fixed at 2 instead of PM1's
 //! 1.5 and the stiffness rescaled so that the two laws agree at 50 µm (the wall
 //! contacts' indentation at ≈ 40 N): k₂ = k₁/√(50 µm) ≈ 1.4e10 N/m². A quick stand-in
-//! for the genetic algorithm's PM2 (tests/peg_identify.rs), with the same kind of error.
+//! for the genetic algorithm's PM2 (tests/identify/peg_identify.rs), with the same kind of error.
 //!
 //! Run with `--nocapture` to see the measured figures.
 

@@ -2,7 +2,7 @@
 //! scatters IMPACT's and the friction's parameters (Eq 18) and adds noise to the
 //! recorded force and torque (Eq 19); the files are bit-identical at 1 and 2 threads and
 //! read back exactly; bad data are named by file, line and column, or by run. The
-//! replay from each run's pre-contact state and the S2 statistics: tests/peg_s2.rs.
+//! replay from each run's pre-contact state and the S2 statistics: tests/identify/peg_s2.rs.
 //!
 //! Run with `--nocapture` to see the measured spreads.
 

@@ -14,9 +14,9 @@
 //!
 //! QEMU missing is a failure, not a skip: CI installs it (`.ci/run`).
 
-#[path = "../hcm-firmware/src/cases/mod.rs"]
+#[path = "../../hcm-firmware/src/cases/mod.rs"]
 mod cases;
-#[path = "../hcm-firmware/src/peg/mod.rs"]
+#[path = "../../hcm-firmware/src/peg/mod.rs"]
 mod peg;
 
 use std::path::{Path, PathBuf};

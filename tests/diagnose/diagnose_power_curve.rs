@@ -17,7 +17,7 @@ use hcm_host::diagnose::{contact_samples, noise::noise_floor};
 use hcm_tests::hidden::{decided, hidden, EFFECTS};
 use rayon::prelude::*;
 
-/// Runs per data set, as in tests/diagnose.rs.
+/// Runs per data set, as in tests/diagnose/diagnose.rs.
 const RUNS: usize = 12;
 /// Seeds per cell.
 const SEEDS: u64 = 10;
