@@ -1,9 +1,9 @@
-//! What the workspace's integration tests (`tests/*.rs`) and benchmarks (`benches/*.rs`)
+//! What the workspace's integration tests (`tests/<area>/`) and benchmarks (`benches/*.rs`)
 //! share: the reference setup of the paper's examples, the hidden-effect data sets of the
 //! diagnosis tests, and a fixture that runs the `hcm` binary (`cli`).
 //!
-//! This is the library of the root package `hcm-tests`, so that Cargo finds every file in
-//! `tests/` and `benches/` by itself; `tests/common/` holds no tests of its own.
+//! This is the library of the root package `hcm-tests`, so that Cargo finds every area of
+//! `tests/` and every file of `benches/` by itself; `tests/common/` holds no tests of its own.
 
 #![warn(missing_docs)]
 
@@ -16,6 +16,21 @@ pub mod rigid_reference;
 pub mod sources;
 
 use std::path::{Path, PathBuf};
+
+/// The environment variable that runs the long studies (power tables over seeds) at
+/// their full size: `HCM_FULL_STUDIES=1 cargo test --release -p hcm-tests --test diagnose`.
+/// Without it they run smaller in `cargo test`, asserting the same properties over fewer
+/// data sets (docs/tests.md, "Sizes").
+pub const FULL_STUDIES: &str = "HCM_FULL_STUDIES";
+
+/// `full` when [`FULL_STUDIES`] is set to anything but `0` or the empty string, else
+/// `quick`: the size a long study runs at.
+pub fn study_size<T>(quick: T, full: T) -> T {
+    match std::env::var(FULL_STUDIES) {
+        Ok(value) if !value.is_empty() && value != "0" => full,
+        _ => quick,
+    }
+}
 
 /// The shipped peg-in-hole scenario (`scenarios/peg_in_hole.toml`), as read.
 pub fn peg_in_hole() -> hcm_host::scenario::Scenario {

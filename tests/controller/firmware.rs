@@ -135,10 +135,12 @@ fn run_image(args: &[&str]) -> Result<Report, String> {
     cargo_run(&firmware_dir(), args, "firmware")
 }
 
-/// `cargo run --release` in `dir` with `args`, in a target directory `name` of its own
-/// beside the tests' (a cross build would otherwise contend with the host's); parsed.
+/// `cargo run --release` in `dir` with `args`, in the firmware workspace's own target
+/// directory (`hcm-firmware/target`, whatever `CARGO_TARGET_DIR` says: a cross build in
+/// the host's would contend with the host's build for its lock), where `.ci/run`'s
+/// `cargo run --release` of the same images has just built them; parsed.
 fn cargo_run(dir: &Path, args: &[&str], name: &str) -> Result<Report, String> {
-    let target_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("..").join(name);
+    let target_dir = dir.join("target");
     let out = Command::new(env!("CARGO"))
         .args(["run", "--release", "--quiet"])
         .args(args)

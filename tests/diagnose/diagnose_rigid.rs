@@ -8,6 +8,8 @@ use hcm_host::experiment::generate;
 use hcm_host::identify::rigid::identify_from_samples;
 use hcm_host::progress::Silent;
 use hcm_host::scenario::Scenario;
+use rayon::prelude::*;
+use std::fmt::Write;
 
 /// The scene `name` of `tests/common/scenes/` with `contact` lines added to its
 /// `[[contact]]` table and `experiment` lines to its `[experiment]` table.
@@ -45,28 +47,30 @@ fn fitted_and_diagnosed(
 }
 
 /// PM2 identified on 24 runs of `scenario` (without the effects: the scene's law and
-/// friction, fitted), then the diagnosis.
-fn diagnosed(scenario: &Scenario, plain: &Scenario) -> RigidDiagnosis {
+/// friction, fitted), then the diagnosis; its rounds written to `log`.
+fn diagnosed(scenario: &Scenario, plain: &Scenario, log: &mut String) -> RigidDiagnosis {
     let data = generate(scenario, 24, 11, &Silent).unwrap();
     let model = plain.model().unwrap();
     let bounds = &plain.identify.bounds;
     let d = fitted_and_diagnosed(&model, &data, bounds);
     for (k, round) in d.rounds.iter().enumerate() {
-        println!("round {k}: score {:.4e}", round.score);
+        writeln!(log, "round {k}: score {:.4e}", round.score).unwrap();
         for c in &round.candidates {
-            println!(
+            writeln!(
+                log,
                 "  {:<22} gain {:+.3e} ± {:.2e} (t {:.1}){}",
                 c.name,
                 c.gain.mean,
                 c.gain.standard_error,
                 c.gain.t(),
                 if c.helps { " helps" } else { "" }
-            );
+            )
+            .unwrap();
         }
     }
-    println!("{}", d.answer);
+    writeln!(log, "{}", d.answer).unwrap();
     for ((n, v), se) in d.fit.parameters.iter().zip(&d.fit.standard_errors) {
-        println!("  {n:<32} {v:.4e} ± {se:.2e}");
+        writeln!(log, "  {n:<32} {v:.4e} ± {se:.2e}").unwrap();
     }
     d
 }
@@ -74,15 +78,26 @@ fn diagnosed(scenario: &Scenario, plain: &Scenario) -> RigidDiagnosis {
 /// Each `(hidden effect, [[contact]] lines, [experiment] lines)` on the scene `name`:
 /// the effect named alone, or "ambiguous" with it among the tied, or for "none" nothing
 /// named — never a wrong name. `HCM_CASE=<effect>` runs one case.
+/// The cases run in parallel (each is generated, fitted and diagnosed alone), then are
+/// printed and judged in order.
 fn each_named_right(name: &str, cases: &[(&str, &str, &str)]) {
     let plain = hcm_tests::scene(name);
     let only = std::env::var("HCM_CASE").ok();
-    for &(truth, contact, experiment) in cases {
-        if only.as_deref().is_some_and(|o| o != truth) {
-            continue;
-        }
+    let chosen: Vec<_> = cases
+        .iter()
+        .filter(|(truth, _, _)| only.as_deref().is_none_or(|o| o == *truth))
+        .collect();
+    let diagnosed: Vec<(String, RigidDiagnosis)> = chosen
+        .par_iter()
+        .map(|&&(_, contact, experiment)| {
+            let mut log = String::new();
+            let d = diagnosed(&scene_with(name, contact, experiment), &plain, &mut log);
+            (log, d)
+        })
+        .collect();
+    for (&&(truth, _, _), (log, d)) in chosen.iter().zip(&diagnosed) {
         println!("== hidden: {truth}");
-        let d = diagnosed(&scene_with(name, contact, experiment), &plain);
+        print!("{log}");
         let said: Vec<&str> = d.named.iter().chain(&d.ambiguous).copied().collect();
         assert!(
             said.iter().all(|n| *n == truth) || (d.named.is_empty() && said.contains(&truth)),
@@ -152,12 +167,18 @@ fn a_hertz_pm2_on_data_of_another_law_finds_that_law() {
             ["law: lankarani_nikravesh", "law: flores"],
         ),
     ];
-    for (name, right) in cases {
-        let scenario = hcm_tests::scene(name);
-        let data = generate(&scenario, 24, 11, &Silent).unwrap();
-        let model = scenario.model().unwrap();
-        let start = hcm_host::identify::rigid::with_law(&model, 0, "hertz", None).unwrap();
-        let d = fitted_and_diagnosed(&start, &data, &scenario.identify.bounds);
+    // Both scenes at once: each is generated, fitted and diagnosed alone.
+    let diagnosed: Vec<RigidDiagnosis> = cases
+        .par_iter()
+        .map(|(name, _)| {
+            let scenario = hcm_tests::scene(name);
+            let data = generate(&scenario, 24, 11, &Silent).unwrap();
+            let model = scenario.model().unwrap();
+            let start = hcm_host::identify::rigid::with_law(&model, 0, "hertz", None).unwrap();
+            fitted_and_diagnosed(&start, &data, &scenario.identify.bounds)
+        })
+        .collect();
+    for ((name, right), d) in cases.into_iter().zip(diagnosed) {
         println!("{name}: {}", d.answer);
         assert_eq!(d.named.len(), 1, "{name}: {}", d.answer);
         assert!(right.contains(&d.named[0]), "{name}: {}", d.answer);

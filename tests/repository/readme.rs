@@ -12,6 +12,7 @@
 //! are shown in `bash`, `console` or `text` blocks, which this test does not run.
 
 use hcm_tests::cli::Hcm;
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// The most runs a README command is given here (README: "too long for CI").
@@ -237,14 +238,22 @@ fn a_table_without_rows_is_found() {
 #[test]
 fn every_command_of_the_readme_and_the_docs_runs() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let (mut blocks, mut ran) = (0, 0);
+    let mut pages_blocks = Vec::new();
     for page in hcm_tests::sources::markdown_pages(root) {
         let text = std::fs::read_to_string(root.join(&page)).unwrap();
-        for block in sh_blocks(&text) {
-            ran += run_block(root, &page, &block);
-            blocks += 1;
-        }
+        pages_blocks.extend(
+            sh_blocks(&text)
+                .into_iter()
+                .map(|block| (page.clone(), block)),
+        );
     }
+    // Each block runs in a directory of its own: two at once keep both cores busy while
+    // one block's command runs on one.
+    let blocks = pages_blocks.len();
+    let ran: usize = pages_blocks
+        .par_iter()
+        .map(|(page, block)| run_block(root, page, block))
+        .sum();
     // The blocks: the first two commands, the worked examples, the simulations, the
     // hertz example, PM1/PM2, the HCM step by step, the peg and the rigid fits.
     assert!(blocks >= 6 && ran >= 17, "{blocks} blocks, {ran} commands");
