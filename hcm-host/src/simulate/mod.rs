@@ -158,15 +158,41 @@ fn stiction_hint(model: &Model) -> String {
     )
 }
 
+/// What a simulation keeps besides its sampled trajectory.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Observed {
+    /// The contact events with their indicators (`Simulation::events`).
+    Events,
+    /// The samples alone: no event is located or tracked, `Simulation::events` stays
+    /// empty. Events only observe the motion, so the samples are bit for bit those of
+    /// [`Observed::Events`] when the run does not stop on contacts
+    /// (`stop_after_contacts` = 0) and every tick is sampled (one record period, no
+    /// margin): a toss's replay, which scores its frames alone and so skips the
+    /// quarter of its work the events' peaks and work took.
+    Trajectory,
+}
+
 /// Simulates `model` from t = 0 and samples its trajectory.
 pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
+    simulate_observing(model, Observed::Events)
+}
+
+/// [`simulate`], keeping what `observed` says.
+pub fn simulate_observing(
+    model: &Model,
+    observed: Observed,
+) -> Result<Simulation, SimulationError> {
     fits_in_memory(model)?;
     let spec = &model.scenario.simulation;
     let layout = RigidLayout::new(model);
     let y0 = layout.initial_state(model);
     let mut system = RigidSystem::new(model, &layout);
     system.latch(&y0.0);
-    let mut tracker = EventTracker::new(&system, 0.0, &y0.0);
+    // A tracker of no contact finds no crossing and tracks no event.
+    let mut tracker = match observed {
+        Observed::Events => EventTracker::new(&system, 0.0, &y0.0),
+        Observed::Trajectory => EventTracker::default(),
+    };
     let solver_error = |cause| SimulationError::Solver {
         scenario: model.scenario.name.clone(),
         cause,
