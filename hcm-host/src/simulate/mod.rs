@@ -235,3 +235,47 @@ pub fn simulate_observing(
         run: recorder.finish(model),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::Scenario;
+    use std::path::Path;
+
+    /// Every number of every sample, as bits.
+    fn bits(run: &Run) -> Vec<u64> {
+        (run.bodies.iter().flat_map(|t| &t.samples))
+            .flat_map(|s| {
+                let vectors = [
+                    s.position,
+                    s.velocity,
+                    s.angular_velocity,
+                    s.force,
+                    s.torque,
+                ];
+                let numbers = vectors.into_iter().flatten().chain(s.orientation);
+                std::iter::once(s.time).chain(numbers)
+            })
+            .map(f64::to_bits)
+            .collect()
+    }
+
+    /// The shipped cube tossed onto its table (a bounce, a tumble, a rest), recorded at
+    /// one period without a margin: the trajectory alone is the trajectory the events
+    /// were tracked along, bit for bit.
+    #[test]
+    fn a_run_observing_its_trajectory_alone_samples_the_same_bits() {
+        let text = include_str!("../../../scenarios/cube_toss.toml");
+        let scenario = Scenario::parse(Path::new("cube_toss.toml"), text, &[]).unwrap();
+        let mut model = scenario.model().unwrap();
+        model.scenario.simulation.stop_after_contacts = 0;
+        let with_events = simulate_observing(&model, Observed::Events).unwrap();
+        let alone = simulate_observing(&model, Observed::Trajectory).unwrap();
+        assert!(!with_events.events.is_empty(), "the cube lands");
+        assert!(alone.events.is_empty());
+        assert_eq!(with_events.steps, alone.steps);
+        assert_eq!(with_events.end_time.to_bits(), alone.end_time.to_bits());
+        assert!(with_events.run.bodies[0].samples.len() > 50);
+        assert_eq!(bits(&with_events.run), bits(&alone.run));
+    }
+}
