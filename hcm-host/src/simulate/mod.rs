@@ -158,15 +158,41 @@ fn stiction_hint(model: &Model) -> String {
     )
 }
 
+/// What a simulation keeps besides its sampled trajectory.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Observed {
+    /// The contact events with their indicators (`Simulation::events`).
+    Events,
+    /// The samples alone: no event is located or tracked, `Simulation::events` stays
+    /// empty. Events only observe the motion, so the samples are bit for bit those of
+    /// [`Observed::Events`] when the run does not stop on contacts
+    /// (`stop_after_contacts` = 0) and every tick is sampled (one record period, no
+    /// margin): a toss's replay, which scores its frames alone and so skips the
+    /// quarter of its work the events' peaks and work took.
+    Trajectory,
+}
+
 /// Simulates `model` from t = 0 and samples its trajectory.
 pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
+    simulate_observing(model, Observed::Events)
+}
+
+/// [`simulate`], keeping what `observed` says.
+pub fn simulate_observing(
+    model: &Model,
+    observed: Observed,
+) -> Result<Simulation, SimulationError> {
     fits_in_memory(model)?;
     let spec = &model.scenario.simulation;
     let layout = RigidLayout::new(model);
     let y0 = layout.initial_state(model);
     let mut system = RigidSystem::new(model, &layout);
     system.latch(&y0.0);
-    let mut tracker = EventTracker::new(&system, 0.0, &y0.0);
+    // A tracker of no contact finds no crossing and tracks no event.
+    let mut tracker = match observed {
+        Observed::Events => EventTracker::new(&system, 0.0, &y0.0),
+        Observed::Trajectory => EventTracker::default(),
+    };
     let solver_error = |cause| SimulationError::Solver {
         scenario: model.scenario.name.clone(),
         cause,
@@ -208,4 +234,48 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
         steps: stepper.steps(),
         run: recorder.finish(model),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::Scenario;
+    use std::path::Path;
+
+    /// Every number of every sample, as bits.
+    fn bits(run: &Run) -> Vec<u64> {
+        (run.bodies.iter().flat_map(|t| &t.samples))
+            .flat_map(|s| {
+                let vectors = [
+                    s.position,
+                    s.velocity,
+                    s.angular_velocity,
+                    s.force,
+                    s.torque,
+                ];
+                let numbers = vectors.into_iter().flatten().chain(s.orientation);
+                std::iter::once(s.time).chain(numbers)
+            })
+            .map(f64::to_bits)
+            .collect()
+    }
+
+    /// The shipped cube tossed onto its table (a bounce, a tumble, a rest), recorded at
+    /// one period without a margin: the trajectory alone is the trajectory the events
+    /// were tracked along, bit for bit.
+    #[test]
+    fn a_run_observing_its_trajectory_alone_samples_the_same_bits() {
+        let text = include_str!("../../../scenarios/cube_toss.toml");
+        let scenario = Scenario::parse(Path::new("cube_toss.toml"), text, &[]).unwrap();
+        let mut model = scenario.model().unwrap();
+        model.scenario.simulation.stop_after_contacts = 0;
+        let with_events = simulate_observing(&model, Observed::Events).unwrap();
+        let alone = simulate_observing(&model, Observed::Trajectory).unwrap();
+        assert!(!with_events.events.is_empty(), "the cube lands");
+        assert!(alone.events.is_empty());
+        assert_eq!(with_events.steps, alone.steps);
+        assert_eq!(with_events.end_time.to_bits(), alone.end_time.to_bits());
+        assert!(with_events.run.bodies[0].samples.len() > 50);
+        assert_eq!(bits(&with_events.run), bits(&alone.run));
+    }
 }

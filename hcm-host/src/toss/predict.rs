@@ -14,7 +14,7 @@ use super::window::windows;
 use super::{InitialState, TossError, TossSetup, Window};
 use crate::dataset::{BodyTrack, Dataset, Run, Sample};
 use crate::scenario::Model;
-use crate::simulate::simulate;
+use crate::simulate::{simulate_observing, Observed};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 use std::time::Instant;
@@ -252,9 +252,11 @@ pub(crate) fn simulate_toss(
 ) -> Result<TossPrediction, TossError> {
     let started = Instant::now();
     let replay = replay_model(model, setup, toss);
-    let simulation = simulate(&replay).map_err(|error| TossError::Simulation {
-        run: toss.run.to_owned(),
-        error,
+    let simulation = simulate_observing(&replay, Observed::Trajectory).map_err(|error| {
+        TossError::Simulation {
+            run: toss.run.to_owned(),
+            error,
+        }
     })?;
     let seconds = started.elapsed().as_secs_f64();
     let mut predicted = Vec::with_capacity(toss.bodies.len());
