@@ -18,7 +18,7 @@ pub mod sources;
 use std::path::{Path, PathBuf};
 
 /// The environment variable that runs the long studies (power tables over seeds) at
-/// their full size: `HCM_FULL_STUDIES=1 cargo test --release -p hcm-tests --test diagnose diagnose::`.
+/// their full size: `HCM_FULL_STUDIES=1 cargo test --release -p hcm-tests --test diagnose`.
 /// Without it they run smaller in `cargo test`, asserting the same properties over fewer
 /// data sets (docs/tests.md, "Sizes").
 pub const FULL_STUDIES: &str = "HCM_FULL_STUDIES";

@@ -2,7 +2,7 @@
 //!
 //! One test binary per area (issue 46): each file below was a test binary of its own;
 //! as modules of one crate the host library is linked once for all of them.
-//! Run one file's tests with `cargo test -p hcm-tests --test diagnose diagnose:: <module>::`.
+//! Run one file's tests with `cargo test -p hcm-tests --test diagnose <module>::`.
 
 mod diagnose;
 mod diagnose_fitted_base;
