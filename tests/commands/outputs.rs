@@ -341,13 +341,17 @@ fn an_interrupt_at_any_moment_leaves_all_three_outputs_or_none() {
         }
         let status = child.wait().unwrap();
         let left = entries(hcm.dir());
+        let all = ["data.csv", "data.s1.csv", "data.s2.csv"];
         if status.success() {
-            assert_eq!(left, ["data.csv", "data.s1.csv", "data.s2.csv"]);
+            assert_eq!(left, all);
             outcomes[1] += 1;
         } else {
             assert!(ended_by(status, 15), "step {step}: {status}");
-            assert!(left.is_empty(), "step {step}: {left:?}");
-            outcomes[0] += 1;
+            // The signal came before the outputs were renamed into place (none left) or
+            // after the last rename, on the way out (all three, complete): with other
+            // tests on the cores a run can outlast the whole run's time measured here.
+            assert!(left.is_empty() || left == all, "step {step}: {left:?}");
+            outcomes[usize::from(!left.is_empty())] += 1;
         }
     }
     println!("interrupted {}, finished {}", outcomes[0], outcomes[1]);
