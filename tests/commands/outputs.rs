@@ -351,7 +351,11 @@ fn an_interrupt_at_any_moment_leaves_all_three_outputs_or_none() {
             // after the last rename, on the way out (all three, complete): with other
             // tests on the cores a run can outlast the whole run's time measured here.
             assert!(left.is_empty() || left == all, "step {step}: {left:?}");
-            outcomes[usize::from(!left.is_empty())] += 1;
+            if left.is_empty() {
+                outcomes[0] += 1;
+            } else {
+                outcomes[1] += 1;
+            }
         }
     }
     println!("interrupted {}, finished {}", outcomes[0], outcomes[1]);
