@@ -16,7 +16,7 @@ use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// The most runs a README command is given here (README: "too long for CI").
-const MOST_RUNS: usize = 40;
+const MOST_RUNS: usize = 20;
 
 /// Lines of `sh` blocks that CI runs itself (`.ci/run`) or that measure this machine:
 /// not run here.
