@@ -294,12 +294,13 @@ fn command_lines_parse_as_a_shell_would() {
         )
     );
     let reproduce = hcm_arguments(&lines[1].1).unwrap();
-    assert_eq!(shortened(reproduce), ["reproduce", "x", "--runs", "40"]);
+    let most = MOST_RUNS.to_string();
+    assert_eq!(shortened(reproduce), ["reproduce", "x", "--runs", &most]);
     assert_eq!(hcm_arguments(&lines[2].1), None);
     let generate = ["generate", "--runs", "1000", "--out", "x.csv"]
         .map(String::from)
         .to_vec();
-    assert_eq!(shortened(generate)[2], "40");
+    assert_eq!(shortened(generate)[2], most);
     let few = ["generate", "--runs", "10"].map(String::from).to_vec();
     assert_eq!(shortened(few)[2], "10");
 }
