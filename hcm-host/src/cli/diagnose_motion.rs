@@ -1,5 +1,5 @@
 //! `hcm diagnose-motion`: what a tossed or sliding body's simulation gets wrong, from
-//! filmed motion alone (issue 17).
+//! filmed motion alone.
 
 use super::progress::Bars;
 use anyhow::Context;

@@ -1,5 +1,5 @@
 //! `hcm identify-motion`: a tossed body's contact law, friction and table height fitted
-//! to filmed tosses (poses, no force), judged on tosses the fit never saw (issue 17).
+//! to filmed tosses (poses, no force), judged on tosses the fit never saw.
 
 use super::progress::Bars;
 use anyhow::Context;

@@ -1,5 +1,5 @@
 //! `hcm identify` on a rigid (3D) contact: by least squares on the wrench at the
-//! recorded poses (`--method lsq`, issue 28), or as issue 15 defines PM2 — the law with
+//! recorded poses (`--method lsq`), or as the peg-in-hole defines PM2 — the law with
 //! its exponent fixed and the rest, friction included, found by the genetic algorithm
 //! replaying S1's contact events from their mean pre-contact state (`--method ga`).
 

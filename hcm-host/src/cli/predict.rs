@@ -1,5 +1,5 @@
 //! `hcm predict`: replay measured tosses from their window start and score the
-//! prediction against the recorded poses (issue 17).
+//! prediction against the recorded poses.
 
 use super::progress_bar;
 use anyhow::Context;

@@ -22,7 +22,7 @@ pub(super) enum ExampleArg {
     FlatShot,
     /// The paper's Section 5.3 (Table 15): a peg falls tilted into a hole.
     PegInHole,
-    /// Issue 17: real filmed tosses of a cube (--data), fitted and predicted held out.
+    /// Real filmed tosses of a cube (--data), fitted and predicted held out.
     CubeToss,
 }
 

@@ -1,5 +1,5 @@
-//! What a data set holds, said before a command works on it (issue 28: "`hcm` says
-//! which channels it found and what it can do with them"): per body, how many rows
+//! What a data set holds, said before a command works on it (which channels
+//! it found and what can be done with them): per body, how many rows
 //! fill each channel, and what a rigid contact's commands can do with that.
 
 use super::channel::Channel;

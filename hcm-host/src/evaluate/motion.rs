@@ -1,5 +1,5 @@
-//! `hcm evaluate` on a camera's data (issue 28: "trajectory scores (motion data), PM2
-//! beside the HCM beside the data"): every run replayed from its window start by each
+//! `hcm evaluate` on a camera's data (trajectory scores: PM2 beside
+//! the HCM beside the data): every run replayed from its window start by each
 //! model, as `hcm predict` does, and scored against the recorded poses — position error
 //! (% of the body's width) and rotation error (°) — beside the frozen pose, with each
 //! model's per-run difference from the first (HCM − PM2).

@@ -1,4 +1,4 @@
-//! The evaluation of a rigid (3D) contact on held-out runs (issue 28): every model
+//! The evaluation of a rigid (3D) contact on held-out runs: every model
 //! replayed run by run from the run's own pre-contact state, and judged against that
 //! run as it was recorded —
 //! - **events**: each contact event replayed from the recorded state just before it

@@ -1,5 +1,5 @@
 //! What decides the final face: the initial state's uncertainty propagated as an
-//! ensemble (issue 29). A replay starts from the state its free-flight fit gives
+//! ensemble. A replay starts from the state its free-flight fit gives
 //! ([`super::initial_state`]); that fit has a covariance, σ_k²·(AᵀA)⁻¹ per axis for
 //! the position and velocity, and the same for the rotation vector and the angular
 //! velocity, σ_k² its own residual variance (`crate::dataset::FlightFit`): the

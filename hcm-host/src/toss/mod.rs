@@ -1,5 +1,5 @@
-//! Predicting measured tosses (issue 17): a body filmed while it is tossed onto fixed
-//! bodies (a table, a ramp, a bin; issue 28 lifted the one plane) — position and
+//! Predicting measured tosses: a body filmed while it is tossed onto fixed
+//! bodies (a table, a ramp, a bin) — position and
 //! orientation per camera frame, no force — replayed in the 3D
 //! simulator from each toss's *window* start, and the prediction scored against the
 //! recorded poses.

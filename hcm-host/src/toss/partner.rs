@@ -3,7 +3,7 @@
 //! and the two changes a tracker's calibration error makes to where it is — a shift
 //! along the up direction (the table's height) and a tilt about the horizontal axes.
 //!
-//! A plane keeps issue 17's convention: its clearance is measured from its reference
+//! A plane keeps the tosses' convention: its clearance is measured from its reference
 //! point along its normal (not from the surface its `offset` moves), so that fitting
 //! the offset leaves every window as it was. Every other shape's clearance is the
 //! distance to its surface at its scenario pose.

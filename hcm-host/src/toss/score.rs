@@ -1,5 +1,5 @@
-//! How far a predicted toss is from the recorded one, as issue 17 defines it (and the
-//! published simulator comparisons on these tosses report it):
+//! How far a predicted toss is from the recorded one, as the published simulator
+//! comparisons on these tosses report it:
 //!
 //! - position error: the mean over the window's frames of |p_pred − p| divided by the
 //!   body's width (the cube's side, 0.1048 m), in per cent;

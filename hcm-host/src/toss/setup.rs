@@ -3,8 +3,8 @@
 //!
 //! The first moving body is the *primary*: its name is the one a single-body command
 //! prints and its frames index the window. Every other moving body is a *companion*:
-//! replayed from its own frames beside the primary and scored the same way (issue 28:
-//! "several moving bodies" from a camera's poses alone).
+//! replayed from its own frames beside the primary and scored the same way (several
+//! moving bodies from a camera's poses alone).
 
 use super::partner::Partner;
 use super::TossError;

@@ -1,4 +1,4 @@
-//! A toss's window: the frames a prediction is judged on. Issue 17 defines it to start
+//! A toss's window: the frames a prediction is judged on. It starts
 //! [`LEAD_FRAMES`] frames before the body's centre first comes within its circumscribed
 //! radius of a fixed body it can touch (0.0524·√3 m of the table for the ContactNets
 //! cube) — before that frame no corner can touch, so the motion is free flight, which
@@ -6,7 +6,7 @@
 //! toss's last frame. A plane's clearance is measured from its reference point (the
 //! table of the data's frame, z = 0 for the tosses), not from its contact surface, which
 //! a fitted offset moves: the frames scored are the data's, whatever the model
-//! ([`super::partner`]). With several moving bodies (issue 28), the first contact of any
+//! ([`super::partner`]). With several moving bodies, the first contact of any
 //! of them starts the window, one instant for all; a contact already within reach in
 //! the first frame (a block resting on the table) does not.
 

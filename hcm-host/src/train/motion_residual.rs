@@ -1,4 +1,4 @@
-//! The contact-frame residual learned from motion alone (issue 29): the rows of
+//! The contact-frame residual learned from motion alone: the rows of
 //! [`super::motion_samples`] — the pose the physics misses a few frames after each
 //! recorded state, against its touching points' levers along its own path — trained by
 //! the contact-frame residual's stages ([`super::point_residual::train_point_rows`]).

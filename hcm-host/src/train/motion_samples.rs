@@ -1,5 +1,5 @@
-//! The contact-frame residual's training rows from motion alone (issue 29: "the
-//! residual learned from motion"): no sensor measured a force, so the target is what
+//! The contact-frame residual's training rows from motion alone (the
+//! residual learned from motion): no sensor measured a force, so the target is what
 //! the recorded poses imply against the physics' own prediction over a few frames.
 //!
 //! For every window frame k of a toss (its window as `hcm predict` finds it) the

@@ -1,4 +1,4 @@
-//! Diagnosis from motion alone (issue 17): what a tossed or sliding body's simulation
+//! Diagnosis from motion alone: what a tossed or sliding body's simulation
 //! gets wrong when the data hold its poses and no force.
 //!
 //! The tosses are split as the identification from motion splits them (even toss

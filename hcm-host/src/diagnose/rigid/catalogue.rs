@@ -1,4 +1,4 @@
-//! What a force diagnosis of a rigid contact may name (issue 28's 3D catalogue): each
+//! What a force diagnosis of a rigid contact may name (the 3D catalogue): each
 //! candidate a small change of the model with its own parameters, every one of which
 //! has a neutral value that changes nothing, fitted to the wrench at the recorded
 //! poses together with the model's own free parameters.

@@ -1,4 +1,4 @@
-//! The force diagnosis of a rigid (3D) contact (issue 28): given a model (PM2) and
+//! The force diagnosis of a rigid (3D) contact: given a model (PM2) and
 //! data with the moving body's poses and a measured wrench, which effect of the 3D
 //! [`catalogue`] the model lacks — judged on runs it was not fitted on, by the one
 //! rule of every diagnosis ([`super::verdict`], with the runs as units and

@@ -1,5 +1,5 @@
-//! The force term of a fit from motion and force together (issue 28: "both → both in
-//! one objective"): the contact's wrench at every instant with a measured force, at the
+//! The force term of a fit from motion and force together (one objective):
+//! the contact's wrench at every instant with a measured force, at the
 //! recorded poses of the candidate's own geometry (a shifted table moves every
 //! indentation, so the rows are rebuilt per candidate: no simulation, a pass over the
 //! samples), against the measured one — each component over its RMS, as the

@@ -1,5 +1,5 @@
-//! Which fitted parameters the filmed motion fixes (issue 28: "the identifiability of
-//! each said where the data cannot fix it"). Each parameter is moved from the fit, the
+//! Which fitted parameters the filmed motion fixes (each said where the data
+//! cannot fix it). Each parameter is moved from the fit, the
 //! others held, by [`STEP`] (a factor on a log-scaled parameter, a share of the box on
 //! a linear one), both ways within its box; the training fitness it costs, the smaller
 //! of the two, is its *rise*. A parameter whose rise stays under [`LOOSE`] of the

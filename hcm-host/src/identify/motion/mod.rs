@@ -1,4 +1,4 @@
-//! Identification from motion alone (issue 17): a tossed body's contact law, friction
+//! Identification from motion alone: a tossed body's contact law, friction
 //! and table height fitted to filmed tosses — poses, no force — by replaying each
 //! training toss from its window start ([`crate::toss`]) and minimising the mean score
 //! `hcm predict` prints ([`fitness`](mod@fitness)). The genetic algorithm
@@ -75,7 +75,7 @@ pub fn identify_motion(
 }
 
 /// The force measured at the recorded poses as a second term of the motion fit's
-/// objective (issue 28: "both → both in one objective"): the score of a candidate is
+/// objective: the score of a candidate is
 /// its trajectory fitness over the scenario's own plus its force cost
 /// (`combined::force_cost`) over the scenario's own — each 1 at the start, so that
 /// neither dominates by its unit. `MotionFit`'s fitnesses are in those units.

@@ -9,7 +9,7 @@
 //! scenario's: poses at a camera's rate cannot tell them apart from the rest.
 //!
 //! The law's box is the scenario's `[identify.bounds.<law>]` where it gives one, else
-//! scaled from the scenario itself (issue 28: no fixed numbers that fit one example):
+//! scaled from the scenario itself (no fixed numbers that fit one example):
 //! a stiffness or a damping from the scenario's own value ÷/× [`SPAN`]; a damping the
 //! scenario sets to zero from the body's critical damping on its static indentation;
 //! a restitution over 0.05…1.

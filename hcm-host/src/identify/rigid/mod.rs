@@ -1,4 +1,4 @@
-//! PM2 for a rigid body (issue 15, the peg-in-hole): the contact law's parameters but
+//! PM2 for a rigid body (the peg-in-hole's way): the contact law's parameters but
 //! its exponent, and its STEP friction, found by the genetic algorithm so that a
 //! replay from S1's mean pre-contact state makes S1's contact events — peak force and
 //! torque, linear and angular impulse, timing — event by event.

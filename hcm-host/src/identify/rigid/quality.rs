@@ -1,4 +1,4 @@
-//! Whether a rigid identification fitted anything (issue 28, "never a silent failure"):
+//! Whether a rigid identification fitted anything (never a silent failure):
 //! a fit that stops at its search box's edge, replays fewer events than the data have,
 //! or misses an indicator by more than the runs scatter is said, with what to try.
 //!

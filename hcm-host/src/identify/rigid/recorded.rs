@@ -1,5 +1,5 @@
-//! A rigid contact as the rig recorded it (issue 28, "per-point least squares on the
-//! recorded poses"): at every sample where the moving body's recorded pose touches the
+//! A rigid contact as the rig recorded it (for least squares point by
+//! point at the recorded poses): at every sample where the moving body's recorded pose touches the
 //! other body, the contact points the scenario's geometry gives there — depth δ (m),
 //! rate δ̇ (m/s), normal, slip velocity (m/s) — and the wrench the sensor measured on the
 //! moving body.

@@ -1,4 +1,4 @@
-//! PM2 of a rigid contact from its force samples (issue 28): the law's free parameters
+//! PM2 of a rigid contact from its force samples: the law's free parameters
 //! and its STEP friction's, fitted by Levenberg–Marquardt so that the wrench the
 //! contact model gives at every recorded pose matches the measured one
 //! ([`RecordedContact`]), with a standard error per parameter that holds where the runs

@@ -1,5 +1,5 @@
-//! A search box scaled from the rig's own data (issue 28: "bounds scaled from the
-//! scenario … measured peak force, not fixed numbers that fit the examples").
+//! A search box scaled from the rig's own data (from the scenario and the
+//! measured peak force, not fixed numbers that fit the examples).
 //!
 //! The defaults ([`crate::identify::bounds`]) put a stiffness between 1e8 and 1e11
 //! N/m^n: the paper's steel balls and peg. `scenarios/cube_drop.toml`'s 1e7 lies

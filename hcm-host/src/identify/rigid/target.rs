@@ -1,5 +1,5 @@
 //! What S1 says about a rigid body's contact events, and where to replay them from
-//! (issue 15: "fitness by replaying each run from its recorded pre-contact state").
+//! (the fitness: each run replayed from its recorded pre-contact state).
 //!
 //! The events' statistics are the S2 statistics' ([`wrench_statistics`]: events
 //! matched by order over the runs with the usual event count, the others left out and

@@ -1,4 +1,4 @@
-//! `hcm reproduce cube-toss`: issue 17 end to end on filmed tosses — the tosses split
+//! `hcm reproduce cube-toss`: identification from motion end to end on filmed tosses — the tosses split
 //! by toss number ([`split_tosses`]), the contact fitted from motion alone on the
 //! training part (`identify_motion`), the held-out tosses predicted with the fitted
 //! model and with the scenario's own parameters beside the frozen pose, the second fold

@@ -114,7 +114,7 @@ impl CubeResults {
         }
         writeln!(
             out,
-            "\nThe published rows are as issue 17 quotes them, not confirmed from the paper: \
+            "\nThe published rows are quoted second-hand, not confirmed from the paper: \
              simulators fitted and scored on all 550 tosses of the data set (in-sample); ours \
              are scored on tosses the fit never saw: the held-out rows on the odd tosses, the \
              cross-validated rows on all of them.\n"

@@ -11,7 +11,7 @@ use crate::toss::{summarize, Summary, TossEvaluation};
 use serde::Serialize;
 
 /// A simulator's published scores on this data set (fitted and scored on all 550
-/// tosses, as quoted second-hand in issue 17; not confirmed from the paper).
+/// tosses, as quoted second-hand; not confirmed from the paper).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Published {
     /// The simulator.
@@ -22,7 +22,7 @@ pub struct Published {
     pub(crate) rotation: [f64; 2],
 }
 
-/// The published figures issue 17 quotes.
+/// The published figures, as quoted second-hand.
 pub const PUBLISHED: [Published; 3] = [
     Published {
         simulator: "Drake",
