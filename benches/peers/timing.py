@@ -74,7 +74,8 @@ def main():
     args = parser.parse_args()
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     tosses = peers.load_tosses(DATA, peers.read_scores(args.scores))
-    fitted = json.load(open(args.peers))["peers"]
+    with open(args.peers) as f:
+        fitted = json.load(f)["peers"]
     table = {p.name: p for p in peers.peers()}
     per_toss, median = hcm_seconds(args.hcm, args.physics, len(tosses))
     rows = {"hcm": {"mean_ms": 1e3 * per_toss, "median_ms": 1e3 * median}}
@@ -91,8 +92,11 @@ def main():
         row["ratio_to_hcm"] = ratio
         print(f"| {simulator} | {row['mean_ms']:.2f} | {row['median_ms']:.2f} | {ratio:.2f} |")
     if args.out:
-        with open(args.out, "w") as f:
+        # Beside the target, then renamed: never a half-written file.
+        folder = os.path.dirname(os.path.abspath(args.out))
+        with tempfile.NamedTemporaryFile("w", dir=folder, delete=False) as f:
             json.dump({"tosses": len(tosses), "frames": frames, "rows": rows}, f, indent=1)
+        os.replace(f.name, args.out)
 
 
 if __name__ == "__main__":

@@ -158,9 +158,11 @@ fn stiction_hint(model: &Model) -> String {
     )
 }
 
-/// What a simulation keeps besides its sampled trajectory.
+/// What a simulation keeps besides its sampled trajectory. Crate-private: the samples
+/// of [`Observed::Trajectory`] are [`Observed::Events`]' only under the conditions it
+/// states, which the toss replay sets up (`toss::predict::replay_model`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Observed {
+pub(crate) enum Observed {
     /// The contact events with their indicators (`Simulation::events`).
     Events,
     /// The samples alone: no event is located or tracked, `Simulation::events` stays
@@ -178,12 +180,21 @@ pub fn simulate(model: &Model) -> Result<Simulation, SimulationError> {
 }
 
 /// [`simulate`], keeping what `observed` says.
-pub fn simulate_observing(
+pub(crate) fn simulate_observing(
     model: &Model,
     observed: Observed,
 ) -> Result<Simulation, SimulationError> {
     fits_in_memory(model)?;
     let spec = &model.scenario.simulation;
+    let record = &model.scenario.record;
+    // Without events the run cannot stop on contacts nor sample them at their own rate.
+    debug_assert!(
+        observed == Observed::Events
+            || (spec.stop_after_contacts == 0
+                && record.contact_margin == 0.0
+                && record.contact_sample_period == record.flight_sample_period),
+        "Observed::Trajectory needs no stop on contacts, no margin and one record period"
+    );
     let layout = RigidLayout::new(model);
     let y0 = layout.initial_state(model);
     let mut system = RigidSystem::new(model, &layout);
