@@ -106,6 +106,41 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+/// Rows of W taken together by [`pre_activations`].
+const ROWS_AT_ONCE: usize = 4;
+
+/// z = W·a + b into `out` (W row-major, one row per entry of `out`), bit for bit the
+/// [`dot`] of each row: rows are taken [`ROWS_AT_ONCE`] at a time, each row's sum
+/// still added input by input from −0 (the start of `f64`'s `Sum`), so the four
+/// chains of additions overlap in the processor instead of each waiting on the last.
+/// Training spends most of its time here (a 13 → 32 → 32 → 6 network on the peg's
+/// 149 k rows, 225 epochs).
+fn pre_activations(weights: &[f64], biases: &[f64], a: &[f64], out: &mut [f64]) {
+    let n_in = a.len();
+    let mut rows = weights.chunks_exact(ROWS_AT_ONCE * n_in);
+    let mut zs = out.chunks_exact_mut(ROWS_AT_ONCE);
+    let mut bs = biases.chunks_exact(ROWS_AT_ONCE);
+    for ((block, z), b) in (&mut rows).zip(&mut zs).zip(&mut bs) {
+        let (w0, rest) = block.split_at(n_in);
+        let (w1, rest) = rest.split_at(n_in);
+        let (w2, w3) = rest.split_at(n_in);
+        let mut sums = [-0.0_f64; ROWS_AT_ONCE];
+        for ((((x, w0), w1), w2), w3) in a.iter().zip(w0).zip(w1).zip(w2).zip(w3) {
+            sums[0] += w0 * x;
+            sums[1] += w1 * x;
+            sums[2] += w2 * x;
+            sums[3] += w3 * x;
+        }
+        for ((z, b), sum) in z.iter_mut().zip(b).zip(sums) {
+            *z = b + sum;
+        }
+    }
+    let rest = rows.remainder().chunks_exact(n_in);
+    for ((z, b), row) in zs.into_remainder().iter_mut().zip(bs.remainder()).zip(rest) {
+        *z = b + dot(row, a);
+    }
+}
+
 /// The shape behind a flat parameter vector, and forward and backward passes on it
 /// (in normalised units).
 #[derive(Clone, Debug)]
@@ -121,7 +156,10 @@ pub struct Layout {
 /// Per-sample work space of [`Layout::forward`] and `Layout::accumulate_gradient`.
 #[derive(Clone, Debug)]
 pub struct Scratch {
-    /// a⁽⁰⁾ = x̂, then each layer's output; the last is the network output ŷ.
+    /// Each layer's output a⁽¹⁾, a⁽²⁾, …; the last is the network output ŷ. The input
+    /// a⁽⁰⁾ = x̂ is read where it is, never copied here: on the machines measured, the
+    /// C library copies even 13 values with the processor's widest vectors, and that
+    /// copy cost a tenth of the peg's training.
     activations: Vec<Vec<f64>>,
     delta: Vec<f64>,
     delta_previous: Vec<f64>,
@@ -221,7 +259,7 @@ impl Layout {
     /// Empty work space for this layout.
     pub fn scratch(&self) -> Scratch {
         Scratch {
-            activations: self.sizes.iter().map(|&n| vec![0.0; n]).collect(),
+            activations: self.sizes[1..].iter().map(|&n| vec![0.0; n]).collect(),
             delta: Vec::with_capacity(self.sizes.iter().copied().max().unwrap_or(0)),
             delta_previous: Vec::new(),
         }
@@ -234,20 +272,17 @@ impl Layout {
         x: &[f64],
         scratch: &'a mut Scratch,
     ) -> &'a [f64] {
-        scratch.activations[0].copy_from_slice(x);
+        debug_assert_eq!(x.len(), self.sizes[0], "network input length");
         let last = self.sizes.len() - 2;
         for (l, (offset, n_in, n_out)) in self.shapes().enumerate() {
-            let (before, after) = scratch.activations.split_at_mut(l + 1);
-            let (a, out) = (&before[l], &mut after[0]);
+            let (before, after) = scratch.activations.split_at_mut(l);
+            let a = if l == 0 { x } else { &before[l - 1] };
+            let out = &mut after[0];
             let weights = &parameters[offset..offset + n_in * n_out];
             let biases = &parameters[offset + n_in * n_out..offset + n_in * n_out + n_out];
-            for ((z, b), row) in out.iter_mut().zip(biases).zip(weights.chunks_exact(n_in)) {
-                let sum = b + dot(row, a);
-                *z = if l < last {
-                    self.activation.apply(sum)
-                } else {
-                    sum
-                };
+            pre_activations(weights, biases, a, out);
+            if l < last {
+                out.iter_mut().for_each(|z| *z = self.activation.apply(*z));
             }
         }
         scratch.output()
@@ -270,15 +305,16 @@ impl Layout {
         delta.clear();
         delta.extend(output.iter().zip(target).map(|(y, t)| 2.0 * (y - t)));
         scratch.delta = delta;
-        self.backpropagate(parameters, scratch, gradient);
+        self.backpropagate(parameters, x, scratch, gradient);
     }
 
-    /// Adds ∂L/∂θ to `gradient` for the sample of the last [`Layout::forward`] into
+    /// Adds ∂L/∂θ to `gradient` for the sample `x` of the last [`Layout::forward`] into
     /// `scratch`, given ∂L/∂ŷ in `scratch`'s output gradient (set by
     /// [`Scratch::set_output_gradient`]).
     pub(crate) fn backpropagate(
         &self,
         parameters: &[f64],
+        x: &[f64],
         scratch: &mut Scratch,
         gradient: &mut [f64],
     ) {
@@ -288,7 +324,7 @@ impl Layout {
             delta_previous,
         } = scratch;
         for (l, (offset, n_in, n_out)) in self.shapes().enumerate().rev() {
-            let a = &activations[l];
+            let a = if l == 0 { x } else { &activations[l - 1] };
             let split = offset + n_in * n_out;
             let (weight_gradient, bias_gradient) =
                 gradient[offset..split + n_out].split_at_mut(n_in * n_out);
@@ -390,6 +426,39 @@ mod tests {
         let error = gradient_check(Activation::Relu);
         println!("relu: relative gradient error {error:.1e}");
         assert!(error < 1e-6, "relative gradient error {error:e}");
+    }
+
+    #[test]
+    fn rows_taken_together_give_each_rows_dot_product_bit_for_bit() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut value = |zero_share: f64| {
+            let v: f64 = rng.random::<f64>();
+            if v < zero_share {
+                if v < zero_share / 2.0 {
+                    -0.0
+                } else {
+                    0.0
+                }
+            } else {
+                1e3 * (2.0 * rng.random::<f64>() - 1.0) * rng.random::<f64>().powi(8)
+            }
+        };
+        for n_in in 1..15 {
+            for n_out in 1..13 {
+                let weights: Vec<f64> = (0..n_in * n_out).map(|_| value(0.2)).collect();
+                let biases: Vec<f64> = (0..n_out).map(|_| value(0.5)).collect();
+                let a: Vec<f64> = (0..n_in).map(|_| value(0.2)).collect();
+                let mut out = vec![f64::NAN; n_out];
+                pre_activations(&weights, &biases, &a, &mut out);
+                for ((z, b), row) in out.iter().zip(&biases).zip(weights.chunks_exact(n_in)) {
+                    assert_eq!(
+                        z.to_bits(),
+                        (b + dot(row, &a)).to_bits(),
+                        "{n_in} → {n_out}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -312,7 +312,7 @@ impl Summed {
                     .sum();
                 through * self.output_scale[k]
             }));
-            layout.backpropagate(parameters, scratch, gradient);
+            layout.backpropagate(parameters, self.input_of(p), scratch, gradient);
         }
         self.squared_error(&prediction, r)
     }
