@@ -87,6 +87,57 @@ impl Reduction {
         })
     }
 
+    /// Reduces the `rows × columns.len()` problem with one target given column by
+    /// column (each slice `rows` long), the same reduction as [`Reduction::from_rows`]
+    /// would give bit for bit (the same blocks, absorbed at the same rows) without a
+    /// call per row: the least-squares search's Jacobian is stored by columns.
+    pub(crate) fn from_columns(
+        columns: &[&[f64]],
+        target: &[f64],
+    ) -> Result<Reduction, LinearLeastSquaresError> {
+        let (rows, n) = (target.len(), columns.len());
+        if n == 0 {
+            return Err(LinearLeastSquaresError::NoUnknowns);
+        }
+        debug_assert!(columns.iter().all(|c| c.len() == rows));
+        let finite = |i: usize| target[i].is_finite() && columns.iter().all(|c| c[i].is_finite());
+        if let Some(row) = (0..rows).find(|&i| !finite(i)) {
+            return Err(LinearLeastSquaresError::NonFiniteEntry { row });
+        }
+        let capacity = n + BLOCK_ROWS.max(2 * n).min(rows.max(1));
+        let mut work = Work {
+            regressors: Mat::zeros(capacity, n),
+            targets: Mat::zeros(capacity, 1),
+            kept: 0,
+            filled: 0,
+        };
+        let mut orthogonal = vec![0.0];
+        let mut start = 0;
+        while start < rows {
+            let at = work.kept + work.filled;
+            let end = rows.min(start + capacity - at);
+            for (j, column) in columns.iter().enumerate() {
+                work.regressors.col_as_slice_mut(j)[at..at + end - start]
+                    .copy_from_slice(&column[start..end]);
+            }
+            work.targets.col_as_slice_mut(0)[at..at + end - start]
+                .copy_from_slice(&target[start..end]);
+            work.filled += end - start;
+            start = end;
+            if work.kept + work.filled == capacity {
+                work.absorb(&mut orthogonal);
+            }
+        }
+        work.absorb(&mut orthogonal);
+        let kept = work.kept;
+        Ok(Reduction {
+            rows,
+            triangle: work.regressors.get(..kept, ..).to_owned(),
+            projected: work.targets.get(..kept, ..).to_owned(),
+            orthogonal,
+        })
+    }
+
     /// Rows absorbed (n).
     pub fn rows(&self) -> usize {
         self.rows

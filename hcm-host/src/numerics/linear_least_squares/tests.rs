@@ -354,3 +354,60 @@ fn ridge_is_the_penalised_normal_equations() {
     assert!((twins.coefficients[0] - 1.0).abs() < 1e-9, "{twins:?}");
     assert!((twins.coefficients[1] - 1.0).abs() < 1e-9, "{twins:?}");
 }
+
+#[test]
+fn columns_give_the_reduction_of_rows_bit_for_bit() {
+    // Rows past two blocks (1024 each), columns ten orders of magnitude apart.
+    for rows in [3, 7, 1024, 2500] {
+        let column = |j: usize| -> Vec<f64> {
+            (0..rows)
+                .map(|i| {
+                    let x = (i as f64 * 0.37 + j as f64).sin();
+                    x * 10f64.powi(j as i32 * 2 - 5)
+                })
+                .collect()
+        };
+        let columns: Vec<Vec<f64>> = (0..5).map(column).collect();
+        let target: Vec<f64> = (0..rows).map(|i| (i as f64 * 0.11).cos() + 0.3).collect();
+        let by_rows = Reduction::from_rows(rows, 5, 1, |i, row, out| {
+            for (value, c) in row.iter_mut().zip(&columns) {
+                *value = c[i];
+            }
+            out[0] = target[i];
+        })
+        .unwrap();
+        let slices: Vec<&[f64]> = columns.iter().map(Vec::as_slice).collect();
+        let by_columns = Reduction::from_columns(&slices, &target).unwrap();
+        assert_eq!(by_rows.rows(), by_columns.rows());
+        assert_eq!(by_rows.triangle_rows(), by_columns.triangle_rows());
+        for i in 0..by_rows.triangle_rows() {
+            for j in 0..5 {
+                let (a, b) = (by_rows.triangle(i, j), by_columns.triangle(i, j));
+                assert_eq!(a.to_bits(), b.to_bits(), "{rows} rows: R[{i}, {j}]");
+            }
+            let (a, b) = (
+                by_rows.projected_target(i, 0),
+                by_columns.projected_target(i, 0),
+            );
+            assert_eq!(a.to_bits(), b.to_bits(), "{rows} rows: Qᵀb[{i}]");
+        }
+        let (a, b) = (
+            by_rows.orthogonal_sum_of_squares(0),
+            by_columns.orthogonal_sum_of_squares(0),
+        );
+        assert_eq!(a.to_bits(), b.to_bits(), "{rows} rows: the rest");
+    }
+    // The first non-finite row is named, as row by row.
+    let mut column = vec![1.0; 50];
+    column[31] = f64::NAN;
+    let mut target = vec![2.0; 50];
+    target[17] = f64::INFINITY;
+    assert_eq!(
+        Reduction::from_columns(&[&column], &target).unwrap_err(),
+        LinearLeastSquaresError::NonFiniteEntry { row: 17 }
+    );
+    assert_eq!(
+        Reduction::from_columns(&[], &target).unwrap_err(),
+        LinearLeastSquaresError::NoUnknowns
+    );
+}

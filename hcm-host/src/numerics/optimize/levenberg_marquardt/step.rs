@@ -24,12 +24,11 @@ impl Linearisation {
         free: Vec<usize>,
     ) -> Result<Linearisation, LeastSquaresError> {
         let m = r.len();
-        let reduction = Reduction::from_rows(m, free.len(), 1, |i, row, target| {
-            for (value, &j) in row.iter_mut().zip(&free) {
-                *value = jacobian[j * m + i];
-            }
-            target[0] = r[i];
-        })?;
+        let columns: Vec<&[f64]> = free
+            .iter()
+            .map(|&j| &jacobian[j * m..(j + 1) * m])
+            .collect();
+        let reduction = Reduction::from_columns(&columns, r)?;
         let reachable = (0..reduction.triangle_rows())
             .map(|k| reduction.projected_target(k, 0).powi(2))
             .sum();
