@@ -77,14 +77,7 @@ impl Reduction {
                 work.absorb(&mut orthogonal);
             }
         }
-        work.absorb(&mut orthogonal);
-        let kept = work.kept;
-        Ok(Reduction {
-            rows,
-            triangle: work.regressors.get(..kept, ..).to_owned(),
-            projected: work.targets.get(..kept, ..).to_owned(),
-            orthogonal,
-        })
+        Ok(work.finish(rows, orthogonal))
     }
 
     /// Reduces the `rows × columns.len()` problem with one target given column by
@@ -128,14 +121,7 @@ impl Reduction {
                 work.absorb(&mut orthogonal);
             }
         }
-        work.absorb(&mut orthogonal);
-        let kept = work.kept;
-        Ok(Reduction {
-            rows,
-            triangle: work.regressors.get(..kept, ..).to_owned(),
-            projected: work.targets.get(..kept, ..).to_owned(),
-            orthogonal,
-        })
+        Ok(work.finish(rows, orthogonal))
     }
 
     /// Rows absorbed (n).
@@ -182,6 +168,19 @@ impl Reduction {
 }
 
 impl Work {
+    /// The reduction of the `rows` rows pushed: the rows left absorbed, R and the
+    /// leading part of Qᵀb kept, `orthogonal` beside them.
+    fn finish(mut self, rows: usize, mut orthogonal: Vec<f64>) -> Reduction {
+        self.absorb(&mut orthogonal);
+        let kept = self.kept;
+        Reduction {
+            rows,
+            triangle: self.regressors.get(..kept, ..).to_owned(),
+            projected: self.targets.get(..kept, ..).to_owned(),
+            orthogonal,
+        }
+    }
+
     /// Copies one row below the rows already there.
     fn push(&mut self, regressors: &[f64], targets: &[f64]) {
         let at = self.kept + self.filled;
