@@ -56,13 +56,7 @@ impl Reduction {
         if columns == 0 {
             return Err(LinearLeastSquaresError::NoUnknowns);
         }
-        let capacity = columns + BLOCK_ROWS.max(2 * columns).min(rows.max(1));
-        let mut work = Work {
-            regressors: Mat::zeros(capacity, columns),
-            targets: Mat::zeros(capacity, targets),
-            kept: 0,
-            filled: 0,
-        };
+        let mut work = Work::new(rows, columns, targets);
         let mut orthogonal = vec![0.0; targets];
         let (mut regressors, mut values) = (vec![0.0; columns], vec![0.0; targets]);
         for i in 0..rows {
@@ -73,7 +67,7 @@ impl Reduction {
                 return Err(LinearLeastSquaresError::NonFiniteEntry { row: i });
             }
             work.push(&regressors, &values);
-            if work.kept + work.filled == capacity {
+            if work.room() == 0 {
                 work.absorb(&mut orthogonal);
             }
         }
@@ -93,22 +87,19 @@ impl Reduction {
             return Err(LinearLeastSquaresError::NoUnknowns);
         }
         debug_assert!(columns.iter().all(|c| c.len() == rows));
-        let finite = |i: usize| target[i].is_finite() && columns.iter().all(|c| c[i].is_finite());
-        if let Some(row) = (0..rows).find(|&i| !finite(i)) {
+        // The first row with a non-finite entry, each column scanned where it lies.
+        let first_bad = (columns.iter().chain([&target]))
+            .filter_map(|c| c.iter().position(|v| !v.is_finite()))
+            .min();
+        if let Some(row) = first_bad {
             return Err(LinearLeastSquaresError::NonFiniteEntry { row });
         }
-        let capacity = n + BLOCK_ROWS.max(2 * n).min(rows.max(1));
-        let mut work = Work {
-            regressors: Mat::zeros(capacity, n),
-            targets: Mat::zeros(capacity, 1),
-            kept: 0,
-            filled: 0,
-        };
+        let mut work = Work::new(rows, n, 1);
         let mut orthogonal = vec![0.0];
         let mut start = 0;
         while start < rows {
             let at = work.kept + work.filled;
-            let end = rows.min(start + capacity - at);
+            let end = rows.min(start + work.room());
             for (j, column) in columns.iter().enumerate() {
                 work.regressors.col_as_slice_mut(j)[at..at + end - start]
                     .copy_from_slice(&column[start..end]);
@@ -117,7 +108,7 @@ impl Reduction {
                 .copy_from_slice(&target[start..end]);
             work.filled += end - start;
             start = end;
-            if work.kept + work.filled == capacity {
+            if work.room() == 0 {
                 work.absorb(&mut orthogonal);
             }
         }
@@ -168,6 +159,23 @@ impl Reduction {
 }
 
 impl Work {
+    /// Room for `columns` + [`BLOCK_ROWS`] rows (or twice the columns, if more; no more
+    /// than the problem's `rows`) of `columns` regressors and `targets` targets.
+    fn new(rows: usize, columns: usize, targets: usize) -> Work {
+        let capacity = columns + BLOCK_ROWS.max(2 * columns).min(rows.max(1));
+        Work {
+            regressors: Mat::zeros(capacity, columns),
+            targets: Mat::zeros(capacity, targets),
+            kept: 0,
+            filled: 0,
+        }
+    }
+
+    /// Rows that can still be filled before the block must be absorbed.
+    fn room(&self) -> usize {
+        self.regressors.nrows() - self.kept - self.filled
+    }
+
     /// The reduction of the `rows` rows pushed: the rows left absorbed, R and the
     /// leading part of Qᵀb kept, `orthogonal` beside them.
     fn finish(mut self, rows: usize, mut orthogonal: Vec<f64>) -> Reduction {
