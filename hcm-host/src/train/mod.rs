@@ -371,8 +371,9 @@ pub(crate) fn fit(
         shuffle(&mut training, rng);
         // The epoch on a thread of rayon's pool: each mini-batch's chunks are then
         // handed to the pool's other thread directly, not injected from outside and
-        // waited for on a lock — from outside, a fifth of the peg's training was spent
-        // in the kernel's scheduler, and its training took 52 s instead of 44 s.
+        // waited for on a lock (from outside, a fifth of the peg's training samples were
+        // in the kernel's scheduler; alternated runs of `hcm reproduce peg-in-hole`:
+        // training 57.2 and 58.4 s from outside, 51.9 and 53.3 s on the pool).
         let sum = rayon::scope(|_| {
             let mut sum = 0.0;
             for batch in training.chunks(settings.batch_size) {
