@@ -188,7 +188,7 @@ pub(crate) fn simulate_observing(
     let spec = &model.scenario.simulation;
     let record = &model.scenario.record;
     // Without events the run cannot stop on contacts nor sample them at their own rate.
-    debug_assert!(
+    assert!(
         observed == Observed::Events
             || (spec.stop_after_contacts == 0
                 && record.contact_margin == 0.0

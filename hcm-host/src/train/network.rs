@@ -230,13 +230,14 @@ impl Layout {
     }
 
     /// ŷ for the normalised input `x`; the output stays in `scratch` for a backward pass.
+    /// Panics if `x` is not one input wide (a caller's bug, not a data error).
     pub fn forward<'a>(
         &self,
         parameters: &[f64],
         x: &[f64],
         scratch: &'a mut Scratch,
     ) -> &'a [f64] {
-        debug_assert_eq!(x.len(), self.sizes[0], "network input length");
+        assert_eq!(x.len(), self.sizes[0], "network input length");
         let last = self.sizes.len() - 2;
         for (l, (offset, n_in, n_out)) in self.shapes().enumerate() {
             let (before, after) = scratch.activations.split_at_mut(l);

@@ -86,7 +86,7 @@ impl Reduction {
         if n == 0 {
             return Err(LinearLeastSquaresError::NoUnknowns);
         }
-        debug_assert!(columns.iter().all(|c| c.len() == rows));
+        assert!(columns.iter().all(|c| c.len() == rows));
         // The first row with a non-finite entry, each column scanned where it lies.
         let first_bad = (columns.iter().chain([&target]))
             .filter_map(|c| c.iter().position(|v| !v.is_finite()))
