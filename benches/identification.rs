@@ -7,9 +7,9 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use hcm_host::experiment::generate;
-use hcm_host::identify::evolve::Fitness;
+use hcm_host::identify::Fitness;
 use hcm_host::identify::{identify, Method};
-use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::numerics::optimize::GeneticSettings;
 use hcm_host::scenario::Scenario;
 use std::path::Path;
 use std::time::Duration;

@@ -10,8 +10,8 @@
 //! thread, but for the diagnosis (not run there: it takes most of the time) and the
 //! timings.
 
-use hcm_host::pipeline::cube::{reproduce_cube, CubeSettings};
 use hcm_host::pipeline::Silent;
+use hcm_host::pipeline::{reproduce_cube, CubeSettings};
 use hcm_tests::cli::Hcm;
 use serde_json::Value;
 use std::path::{Path, PathBuf};

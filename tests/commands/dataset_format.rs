@@ -6,7 +6,9 @@ use std::fs;
 use std::io::Write;
 use std::path::Path;
 
-use hcm_host::dataset::{schema, BodyTrack, Channel, DataError, Dataset, Run, Sample};
+use hcm_host::dataset::{
+    sample_values, schema_markdown, BodyTrack, Channel, DataError, Dataset, Run, Sample,
+};
 use hcm_host::output::{write_atomically, OutputError};
 
 /// The header, spelled out so that a change to the schema shows up here too.
@@ -103,7 +105,7 @@ fn bits(dataset: &Dataset) -> Vec<(String, String, Vec<u64>)> {
     for run in &dataset.runs {
         for track in &run.bodies {
             for sample in &track.samples {
-                let values = schema::sample_values(sample);
+                let values = sample_values(sample);
                 all.push((
                     run.id.clone(),
                     track.body.clone(),
@@ -788,9 +790,9 @@ fn the_readme_documents_this_schema_with_a_readable_example() {
         .split_once("## Measured-data format")
         .expect("README section `## Measured-data format`");
     assert!(
-        section.contains(&schema::markdown_table()),
+        section.contains(&schema_markdown()),
         "update the README table to:\n{}",
-        schema::markdown_table()
+        schema_markdown()
     );
     let (_, example) = section.split_once("```csv\n").expect("a ```csv example");
     let (example, _) = example.split_once("```").unwrap();

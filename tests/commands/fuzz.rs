@@ -17,7 +17,7 @@
 //!   `benches/peers/full-run/hcm_fit.toml`.
 //! - [`fuzz_dataset`]: measured-data CSV through [`Dataset::from_reader`], then, for
 //!   what reads, every command's [`Dataset::require`] check and
-//!   [`reconstruct::complete`] against the scenario the data belong to. Seeds: the
+//!   [`complete`] against the scenario the data belong to. Seeds: the
 //!   first 200 lines of `data/contactnets-cube/tosses.csv` and two 1D ball files
 //!   written with [`Dataset::to_writer`] (one complete, one with camera-rate motion).
 //! - [`fuzz_blob`]: weights blobs through the host's [`ContactResidual::decode`] (every
@@ -51,7 +51,7 @@
 //! escaped, with the panic's location.
 
 use hcm_core::residual::{decode, F32Weights, Int8Weights, Quantisation};
-use hcm_host::dataset::{needs, reconstruct, BodyTrack, Dataset, Requirement, Run, Sample};
+use hcm_host::dataset::{complete, BodyTrack, Dataset, Requirement, Run, Sample};
 use hcm_host::export;
 use hcm_host::identify::Physics;
 use hcm_host::residual::ContactResidual;
@@ -1206,15 +1206,15 @@ fn fuzz_scenario() {
 
 /// Every command's data requirement, checked on what reads.
 const REQUIREMENTS: [&Requirement; 9] = [
-    &needs::IDENTIFY,
-    &needs::IDENTIFY_RIGID,
-    &needs::IDENTIFY_RIGID_SAMPLES,
-    &needs::TRAIN_RIGID,
-    &needs::TRAIN,
-    &needs::DIAGNOSE,
-    &needs::EVALUATE,
-    &needs::INDICATORS,
-    &needs::INDICATORS_RIGID,
+    &Requirement::IDENTIFY,
+    &Requirement::IDENTIFY_RIGID,
+    &Requirement::IDENTIFY_RIGID_SAMPLES,
+    &Requirement::TRAIN_RIGID,
+    &Requirement::TRAIN,
+    &Requirement::DIAGNOSE,
+    &Requirement::EVALUATE,
+    &Requirement::INDICATORS,
+    &Requirement::INDICATORS_RIGID,
 ];
 
 /// A seed data file and the model of the scenario it belongs to.
@@ -1310,7 +1310,7 @@ impl CsvTarget {
         for seed in &seeds {
             Dataset::from_reader(seed.name, seed.text.as_bytes()).expect("a seed reads");
         }
-        let columns = hcm_host::dataset::schema::header()
+        let columns = hcm_host::dataset::csv_header()
             .split(',')
             .map(str::to_owned)
             .collect();
@@ -1486,7 +1486,7 @@ impl Target for CsvTarget {
                 }
             }
         }
-        match reconstruct::complete(model, &data) {
+        match complete(model, &data) {
             Ok(_) => Outcome::Accepted,
             Err(error) => refused("csv reconstruct", error),
         }

@@ -8,9 +8,9 @@
 //! 5.0 % on its linear impulse, but 3.2 % against 0.5 % on its angular impulse), so the
 //! claim is tested at the shipped size (about a minute).
 
-use hcm_host::pipeline::peg::{reproduce_peg, PegReproduction, PegSettings};
 use hcm_host::pipeline::ScenarioChoice;
 use hcm_host::pipeline::Silent;
+use hcm_host::pipeline::{reproduce_peg, PegReproduction, PegSettings};
 
 fn settings(runs: usize) -> PegSettings {
     PegSettings {

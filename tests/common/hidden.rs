@@ -2,11 +2,11 @@
 //! stepwise selection and joint re-fit name from them, shared by the diagnose tests.
 
 use hcm_host::dataset::Dataset;
-use hcm_host::diagnose::momentum::sensor_gain;
-use hcm_host::diagnose::naming::{name_causes_beside_momentum, Naming};
-use hcm_host::diagnose::select::{select, BaseFreedom, Refit, Selection};
+use hcm_host::diagnose::sensor_gain;
 use hcm_host::diagnose::ContactSamples;
-use hcm_host::diagnose::{contact_samples, noise::noise_floor};
+use hcm_host::diagnose::{contact_samples, noise_floor};
+use hcm_host::diagnose::{name_causes_beside_momentum, Naming};
+use hcm_host::diagnose::{select, BaseFreedom, Refit, Selection};
 use hcm_host::experiment::generate;
 use hcm_host::scenario::{Model, Scenario};
 

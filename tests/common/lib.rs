@@ -108,12 +108,12 @@ pub fn motion_fit(
     model: &hcm_host::scenario::Model,
     training: &hcm_host::dataset::Dataset,
     seed: u64,
-) -> hcm_host::identify::motion::MotionFit {
-    use hcm_host::identify::motion::{identify_motion, MotionParameters, MotionTarget};
+) -> hcm_host::identify::MotionFit {
+    use hcm_host::identify::{identify_motion, MotionParameters, MotionTarget};
     let setup = hcm_host::toss::TossSetup::new(model).unwrap();
     let target = MotionTarget::new(model, training).unwrap();
     let parameters = MotionParameters::new(model, &setup).unwrap();
-    let settings = hcm_host::numerics::optimize::genetic::GeneticSettings {
+    let settings = hcm_host::numerics::optimize::GeneticSettings {
         population: 24,
         generations: 12,
         seed,
@@ -128,7 +128,7 @@ pub fn motion_fit(
 /// the held-out scores `(scene, fitted, truth)` (% + °) and each parameter's probe.
 pub fn print_motion_fit(
     label: &str,
-    found: &hcm_host::identify::motion::MotionFit,
+    found: &hcm_host::identify::MotionFit,
     (scene, fitted, truth): (f64, f64, f64),
 ) {
     println!(
@@ -145,7 +145,7 @@ pub fn print_motion_fit(
 /// Asserts that each `(parameter, true value, relative tolerance)` of `expected` was
 /// found by `fit` within the tolerance and within 4 of its standard errors, printing
 /// each.
-pub fn assert_recovered(fit: &hcm_host::identify::rigid::SampleFit, expected: &[(&str, f64, f64)]) {
+pub fn assert_recovered(fit: &hcm_host::identify::SampleFit, expected: &[(&str, f64, f64)]) {
     for &(name, truth, tolerance) in expected {
         let i = (fit.parameters.iter().position(|p| p.0 == name))
             .unwrap_or_else(|| panic!("no parameter {name}"));

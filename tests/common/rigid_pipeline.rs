@@ -5,7 +5,7 @@
 use hcm_host::evaluate::{evaluate_rigid, rigid_markdown, RigidEvaluation};
 use hcm_host::experiment::generate_split;
 use hcm_host::export::export_blobs;
-use hcm_host::identify::rigid::{identify_from_samples, with_law};
+use hcm_host::identify::{identify_from_samples, with_law};
 use hcm_host::progress::Silent;
 use hcm_host::scenario::Scenario;
 use hcm_host::train::{train_point_residual, train_wrench_residual, ResidualSettings};

@@ -1,10 +1,10 @@
 //! `hcm diagnose`: hidden effects in generated data must be found by name, with their
 //! parameter, from the measured data alone.
 
-use hcm_host::diagnose::catalogue::Candidate;
-use hcm_host::diagnose::gain::{GainRow, GainTable};
-use hcm_host::diagnose::select::{refit, select, BaseFreedom};
-use hcm_host::diagnose::{contact_samples, noise::noise_floor};
+use hcm_host::diagnose::Candidate;
+use hcm_host::diagnose::{contact_samples, noise_floor};
+use hcm_host::diagnose::{refit, select, BaseFreedom};
+use hcm_host::diagnose::{GainRow, GainTable};
 use hcm_host::experiment::generate;
 use hcm_tests::hidden::{causes, hidden, model, selected};
 
@@ -210,7 +210,7 @@ fn the_extended_model_halves_the_held_out_excess_error() {
 
 #[test]
 fn air_drag_is_read_from_the_flight_motion() {
-    use hcm_host::diagnose::drag::fit_drag;
+    use hcm_host::diagnose::fit_drag;
     use hcm_host::diagnose::{diagnose, DiagnoseSettings};
     // c = 0.02 kg/m: 0.04 N at the impact speed, 6 % of the ball's weight; the recorded
     // velocity carries 0.1 mm/s of white noise, as a tracked camera's would.
@@ -359,7 +359,7 @@ fn a_force_sensor_whose_gain_grows_with_the_force_is_not_named_physics() {
         let names: Vec<&str> = d.causes.iter().map(|c| c.effect).collect();
         println!(
             "{kappa}: {} {:?}",
-            hcm_host::diagnose::report::answer(&d),
+            hcm_host::diagnose::answer(&d),
             d.sensor_gain
         );
         if d.unexplained_share > 0.0 {

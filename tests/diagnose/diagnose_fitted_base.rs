@@ -6,8 +6,8 @@
 //! exponent change is not a candidate, on several base laws, with an effect hidden
 //! and with nothing hidden.
 
-use hcm_host::diagnose::select::BaseFreedom;
-use hcm_host::diagnose::{contact_samples, diagnose, noise::noise_floor, DiagnoseSettings};
+use hcm_host::diagnose::BaseFreedom;
+use hcm_host::diagnose::{contact_samples, diagnose, noise_floor, DiagnoseSettings};
 use hcm_host::identify::{identify, Method};
 use hcm_host::progress::Silent;
 use hcm_tests::hidden::{decided, hidden};

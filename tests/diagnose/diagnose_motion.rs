@@ -12,7 +12,7 @@
 use hcm_core::effect::{ContactEffect, HysteresisDamping};
 use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};
 use hcm_host::dataset::{Dataset, Run};
-use hcm_host::diagnose::motion::{diagnose_motion, MotionDiagnosis};
+use hcm_host::diagnose::{diagnose_motion, MotionDiagnosis};
 use hcm_host::scenario::{Model, Scenario};
 use hcm_host::simulate::simulate;
 use rand::rngs::StdRng;

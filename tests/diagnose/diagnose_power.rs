@@ -4,7 +4,7 @@
 //! single-seed test's tolerance, in at least 8 of the 10 — and the standard error the re-fit
 //! reports must agree with the parameter's spread over the seeds.
 
-use hcm_host::diagnose::select::Cause;
+use hcm_host::diagnose::Cause;
 use hcm_host::indicators::Statistic;
 use hcm_tests::hidden::selected;
 use rayon::prelude::*;
@@ -231,7 +231,7 @@ fn drag_found(drag: f64, seed: u64) -> DragTrial {
         hcm_host::experiment::generate(&truth.scenario, RUNS, seed, &hcm_host::progress::Silent)
             .unwrap();
     let samples = hcm_host::diagnose::contact_samples(&truth, &data, 0).unwrap();
-    let fit = hcm_host::diagnose::drag::fit_drag(&samples, truth.bodies[0].mass).unwrap();
+    let fit = hcm_host::diagnose::fit_drag(&samples, truth.bodies[0].mass).unwrap();
     DragTrial {
         named: fit.significant,
         coefficient: fit.coefficient,

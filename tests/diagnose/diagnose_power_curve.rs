@@ -12,8 +12,8 @@
 //! ball's own law's damping exponent (variable stiffness, δ^1.25·δ̇) re-tuning the base
 //! absorbs most of it (README, "Known limit"), which would measure the base, not the rule.
 
-use hcm_host::diagnose::select::BaseFreedom;
-use hcm_host::diagnose::{contact_samples, noise::noise_floor};
+use hcm_host::diagnose::BaseFreedom;
+use hcm_host::diagnose::{contact_samples, noise_floor};
 use hcm_tests::hidden::{decided, hidden, EFFECTS};
 use rayon::prelude::*;
 

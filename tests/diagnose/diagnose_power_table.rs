@@ -10,8 +10,8 @@
 //! Strengths are scaled as in tests/diagnose/diagnose_power_curve.rs, from each law's own
 //! no-effect runs.
 
-use hcm_host::diagnose::select::BaseFreedom;
-use hcm_host::diagnose::{contact_samples, noise::noise_floor};
+use hcm_host::diagnose::BaseFreedom;
+use hcm_host::diagnose::{contact_samples, noise_floor};
 use hcm_host::identify::{identify, Method};
 use hcm_host::progress::Silent;
 use hcm_host::scenario::Model;

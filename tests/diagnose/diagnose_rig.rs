@@ -402,7 +402,7 @@ fn a_wrong_mass_with_motion_at_the_force_rows_is_answered_as_gain_or_mass() {
     let heavier = base_model_with(&rig, &[format!("body.ball.mass={:e}", 1.03 * rig.mass)]);
     let d = answer(&heavier, &data);
     named_alone(&d, "sensor_gain", 0, 1.0 / 1.03, 0.003);
-    let line = hcm_host::diagnose::report::answer_line(&d);
+    let line = hcm_host::diagnose::answer_line(&d);
     assert!(
         line.contains("effective mass is g times the scenario's"),
         "{line}"
@@ -440,7 +440,7 @@ fn a_ringing_sensor_mount_is_unexplained_and_nothing_is_named() {
         d.unexplained_share
     );
     // One verdict (issue 27, class 6): not "ambiguous (a or b) + unexplained".
-    let answer = hcm_host::diagnose::report::answer(&d);
+    let answer = hcm_host::diagnose::answer(&d);
     assert!(
         answer.starts_with("unexplained (") && !answer.contains('+'),
         "{answer}"
@@ -509,7 +509,7 @@ fn lag_named_or_ambiguous(d: &Diagnosis, effect: &str) -> bool {
             d.not_accepted
         );
         // The answer still says how long the lag is, either way.
-        let line = hcm_host::diagnose::report::answer_line(d);
+        let line = hcm_host::diagnose::answer_line(d);
         assert!(
             line.contains("sensor_delay (delay = ")
                 && line.contains("sensor_filter (time_constant = "),
@@ -657,7 +657,7 @@ fn a_shape_close_to_a_catalogued_one_gets_a_partial_answer() {
             "{label}: unexplained {}",
             d.unexplained_share
         );
-        let line = hcm_host::diagnose::report::answer_line(d);
+        let line = hcm_host::diagnose::answer_line(d);
         assert!(
             line.contains("a partial answer") && line.contains("left unexplained"),
             "{line}"

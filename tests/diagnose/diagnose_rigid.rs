@@ -3,9 +3,9 @@
 //! the same data by `hcm identify`'s least squares: the effect named, or an honest
 //! "ambiguous"/"none", never a wrong name. Run with `--nocapture` for the rounds.
 
-use hcm_host::diagnose::rigid::{diagnose_rigid, RigidDiagnoseSettings, RigidDiagnosis};
+use hcm_host::diagnose::{diagnose_rigid, RigidDiagnoseSettings, RigidDiagnosis};
 use hcm_host::experiment::generate;
-use hcm_host::identify::rigid::identify_from_samples;
+use hcm_host::identify::identify_from_samples;
 use hcm_host::progress::Silent;
 use hcm_host::scenario::Scenario;
 use rayon::prelude::*;
@@ -32,7 +32,7 @@ fn scene_with(name: &str, contact: &str, experiment: &str) -> Scenario {
 fn fitted_and_diagnosed(
     start: &hcm_host::scenario::Model,
     data: &hcm_host::dataset::Dataset,
-    bounds: &hcm_host::identify::bounds::BoundsOverrides,
+    bounds: &hcm_host::identify::BoundsOverrides,
 ) -> RigidDiagnosis {
     let pm2 = identify_from_samples(start, data, 0, bounds, true, &Silent)
         .unwrap()
@@ -181,7 +181,7 @@ fn a_hertz_pm2_on_data_of_another_law_finds_that_law() {
             let scenario = hcm_tests::scene(name);
             let data = generate(&scenario, runs(), 11, &Silent).unwrap();
             let model = scenario.model().unwrap();
-            let start = hcm_host::identify::rigid::with_law(&model, 0, "hertz", None).unwrap();
+            let start = hcm_host::identify::with_law(&model, 0, "hertz", None).unwrap();
             fitted_and_diagnosed(&start, &data, &scenario.identify.bounds)
         })
         .collect();

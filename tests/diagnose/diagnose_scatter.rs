@@ -3,8 +3,8 @@
 //! and damping, Eq 18) and a quiet sensor, nothing hidden must name nothing, and a
 //! hidden effect must still be named.
 
-use hcm_host::diagnose::select::BaseFreedom;
-use hcm_host::diagnose::{contact_samples, noise::noise_floor};
+use hcm_host::diagnose::BaseFreedom;
+use hcm_host::diagnose::{contact_samples, noise_floor};
 use hcm_tests::hidden::{decided, measured, model};
 
 /// The names a diagnosis gives on `runs` runs of the ball with the scenario's own 2 %
@@ -52,7 +52,7 @@ fn scatter_alone_names_nothing_and_an_effect_is_still_named() {
 /// thresholds too; without scatter, not.
 #[test]
 fn the_report_states_the_held_out_rule_where_the_runs_scatter() {
-    use hcm_host::diagnose::{diagnose, report::markdown, DiagnoseSettings};
+    use hcm_host::diagnose::{diagnose, diagnosis_markdown, DiagnoseSettings};
     let settings = DiagnoseSettings {
         hcm_epochs: 2,
         ..DiagnoseSettings::default()
@@ -67,7 +67,7 @@ fn the_report_states_the_held_out_rule_where_the_runs_scatter() {
         let data = measured(&model("bouncing_ball.toml", &overrides), 16, 3);
         let d = diagnose(&base, &data, &settings).unwrap();
         assert_eq!(d.before.scattered, scatter);
-        let text = markdown(&d, &[]);
+        let text = diagnosis_markdown(&d, &[]);
         assert!(text.contains("it must predict runs it was not fitted on"));
         assert_eq!(
             text.contains(

@@ -5,7 +5,7 @@
 //! the independent rig.
 
 use hcm_host::diagnose::contact_samples;
-use hcm_host::diagnose::momentum::{sensor_gain, SensorGain};
+use hcm_host::diagnose::{sensor_gain, SensorGain};
 use hcm_host::experiment::generate;
 use hcm_tests::hidden::model;
 use hcm_tests::rig::{Motion, Rig};

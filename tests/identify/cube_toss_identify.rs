@@ -7,7 +7,7 @@
 //! README's.
 
 use hcm_host::dataset::{Dataset, Run};
-use hcm_host::identify::motion::{split_tosses, MotionFit};
+use hcm_host::identify::{split_tosses, MotionFit};
 use hcm_host::scenario::{Model, Scenario};
 use hcm_host::toss::{evaluate_tosses, summarize};
 

@@ -4,9 +4,9 @@
 use hcm_host::dataset::Dataset;
 use hcm_host::evaluate::evaluate;
 use hcm_host::experiment::{generate, split};
-use hcm_host::identify::evolve::Fitness;
+use hcm_host::identify::Fitness;
 use hcm_host::identify::{identify, IdentifyError, Method, Physics};
-use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::numerics::optimize::GeneticSettings;
 use hcm_host::scenario::Scenario;
 use std::path::Path;
 

@@ -9,8 +9,8 @@
 //! contact-frame HCM over that PM2, trained on 18 throws, beats it on the other 6.
 
 use hcm_host::dataset::{BodyTrack, Dataset, Run, Sample};
-use hcm_host::diagnose::rigid::{diagnose_rigid, RigidDiagnoseSettings};
-use hcm_host::identify::rigid::identify_from_samples;
+use hcm_host::diagnose::{diagnose_rigid, RigidDiagnoseSettings};
+use hcm_host::identify::identify_from_samples;
 use hcm_host::progress::Silent;
 use hcm_host::scenario::Scenario;
 use hcm_tests::rigid_pipeline::pm2_of;

@@ -8,7 +8,7 @@
 //! friction towards the truth, from a box scaled from the scene (no `[identify]` table).
 
 use hcm_host::dataset::{Dataset, Run};
-use hcm_host::identify::motion::{split_tosses, MotionFit};
+use hcm_host::identify::{split_tosses, MotionFit};
 use hcm_host::scenario::{Model, Scenario};
 use hcm_host::toss::{evaluate_tosses, summarize};
 
@@ -240,8 +240,8 @@ fn a_hidden_rolling_resistance_is_named_from_poses_alone() {
 /// the scenario.
 #[test]
 fn force_and_motion_are_fitted_in_one_objective() {
-    use hcm_host::identify::motion::combined::ForceData;
-    use hcm_host::identify::motion::{identify_motion_and_force, MotionParameters, MotionTarget};
+    use hcm_host::identify::ForceData;
+    use hcm_host::identify::{identify_motion_and_force, MotionParameters, MotionTarget};
     let path = hcm_tests::scenario("cube_drop.toml");
     let truth = [
         "contact.0.parameters.max_damping=80.0".to_owned(),
@@ -258,7 +258,7 @@ fn force_and_motion_are_fitted_in_one_objective() {
         data: &training,
         contact: 0,
     };
-    let settings = hcm_host::numerics::optimize::genetic::GeneticSettings {
+    let settings = hcm_host::numerics::optimize::GeneticSettings {
         population: 20,
         generations: 10,
         seed: 1,
@@ -266,7 +266,7 @@ fn force_and_motion_are_fitted_in_one_objective() {
     };
     let progress = hcm_host::progress::Silent;
     let fold = hcm_host::progress::Fold::First;
-    let search = hcm_host::identify::motion::Search {
+    let search = hcm_host::identify::MotionSearch {
         settings: &settings,
         polish_budget: 40,
         fold,

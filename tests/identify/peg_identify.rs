@@ -6,10 +6,10 @@
 //! Run with `--nocapture` to see the fitness values and the identified parameters.
 
 use hcm_host::experiment::generate;
-use hcm_host::identify::rigid::{
-    event_errors, fitness, identify_rigid, replay, RigidParameters, WrenchTarget,
+use hcm_host::identify::{
+    event_errors, event_fitness, identify_rigid, replay_events, RigidParameters, WrenchTarget,
 };
-use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::numerics::optimize::GeneticSettings;
 use hcm_host::numerics::optimize::Parameters;
 use hcm_host::scenario::Model;
 use std::collections::BTreeMap;
@@ -18,7 +18,7 @@ use hcm_tests::peg_in_hole as peg;
 
 /// `model` started like the target's replay, with the physics of `physics`.
 fn as_replay(target: &WrenchTarget, physics: &Model) -> Model {
-    hcm_host::identify::replay::with_physics(&target.model, physics)
+    hcm_host::identify::with_physics(&target.model, physics)
 }
 
 #[test]
@@ -45,8 +45,8 @@ fn the_target_and_its_fitness_tell_the_generating_physics_from_a_wrong_one() {
     }
     // The nominal physics replayed from the mean pre-contact state makes the mean
     // events to within the 2 % parameter scatter; ten times the stiffness does not.
-    let right = fitness(&target, &as_replay(&target, &nominal));
-    let events = replay(&as_replay(&target, &nominal), 0).unwrap();
+    let right = event_fitness(&target, &as_replay(&target, &nominal));
+    let events = replay_events(&as_replay(&target, &nominal), 0).unwrap();
     for (k, (t, got)) in events.iter().enumerate().take(target.events.len()) {
         let e = event_errors(&target.events[k], got, t - events[0].0);
         println!("event {k}: relative errors {e:.4?} (max F, max T, ∫F, ∫T, delay)");
@@ -55,7 +55,7 @@ fn the_target_and_its_fitness_tell_the_generating_physics_from_a_wrong_one() {
     let mut stiff = nominal.clone();
     let law = &mut stiff.contacts[0].model.normal.base;
     law.set("stiffness", 1e9).unwrap();
-    let wrong = fitness(&target, &as_replay(&target, &stiff));
+    let wrong = event_fitness(&target, &as_replay(&target, &stiff));
     println!("fitness: nominal {right:.3e}, stiffness × 10 {wrong:.3e}");
     assert!(right < 1e-3, "{right}");
     assert!(wrong > 30.0 * right, "{wrong} vs {right}");
@@ -94,7 +94,7 @@ fn the_genetic_algorithm_fits_impact_with_a_fixed_wrong_exponent() {
             }
         })
         .collect();
-    let start = fitness(&target, &parameters.apply(&target.model, &middle));
+    let start = event_fitness(&target, &parameters.apply(&target.model, &middle));
     let found = identify_rigid(
         &pm2,
         &target,
@@ -110,7 +110,7 @@ fn the_genetic_algorithm_fits_impact_with_a_fixed_wrong_exponent() {
     assert_eq!(found.model.contacts[0].law().get("exponent").unwrap(), 2.0);
     assert!(found.fitness < 0.25 * start, "{} vs {start}", found.fitness);
     // Its replay makes both wall contacts.
-    let replayed = replay(&as_replay(&target, &found.model), 0).unwrap();
+    let replayed = replay_events(&as_replay(&target, &found.model), 0).unwrap();
     assert!(replayed.len() >= 2, "{replayed:?}");
 }
 
@@ -179,7 +179,7 @@ fn hcm_identify_fits_a_rigid_contact_and_writes_its_friction() {
 /// stiffness at either end of its search interval is said.
 #[test]
 fn a_fit_that_does_not_reproduce_the_events_is_said() {
-    use hcm_host::identify::rigid::quality::warnings;
+    use hcm_host::identify::rigid_warnings as warnings;
     let scenario = peg();
     let nominal = scenario.model().unwrap();
     let data = generate(&scenario, 6, 3, &hcm_host::progress::Silent).unwrap();

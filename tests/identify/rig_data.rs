@@ -3,8 +3,8 @@
 //! reconstructed at the force samples against the generator's truth, `identify` on such
 //! data against full-rate data, and the channel each command needs.
 
-use hcm_host::dataset::reconstruct::complete;
-use hcm_host::dataset::{needs, BodyTrack, Channel, Dataset, Sample};
+use hcm_host::dataset::complete;
+use hcm_host::dataset::{BodyTrack, Channel, Dataset, Requirement, Sample};
 use hcm_host::diagnose::contact_samples;
 use hcm_host::experiment::generate;
 use hcm_host::identify::{identify, Method};
@@ -254,7 +254,7 @@ fn commands_name_the_channel_they_miss() {
         sample.clear(Channel::Torque);
     }
     let error = filmed
-        .require("tosses.csv", &model, &[0], &needs::IDENTIFY)
+        .require("tosses.csv", &model, &[0], &Requirement::IDENTIFY)
         .unwrap_err();
     let message = error.to_string();
     for word in [
@@ -283,7 +283,7 @@ fn commands_name_the_channel_they_miss() {
         sample.clear(Channel::Position);
     }
     let message = blind
-        .require("f.csv", &model, &[0], &needs::DIAGNOSE)
+        .require("f.csv", &model, &[0], &Requirement::DIAGNOSE)
         .unwrap_err()
         .to_string();
     assert!(
@@ -291,13 +291,13 @@ fn commands_name_the_channel_they_miss() {
         "{message}"
     );
     let message = blind
-        .require("f.csv", &model, &[0], &needs::INDICATORS_RIGID)
+        .require("f.csv", &model, &[0], &Requirement::INDICATORS_RIGID)
         .unwrap_err()
         .to_string();
     assert!(
         message.contains("every row") && message.contains("t = 0.0 s"),
         "{message}"
     );
-    full.require("f.csv", &model, &[0], &needs::INDICATORS_RIGID)
+    full.require("f.csv", &model, &[0], &Requirement::INDICATORS_RIGID)
         .unwrap();
 }

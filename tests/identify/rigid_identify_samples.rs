@@ -11,7 +11,7 @@
 
 use hcm_host::dataset::Dataset;
 use hcm_host::experiment::generate;
-use hcm_host::identify::rigid::{identify_from_samples, SampleIdentification};
+use hcm_host::identify::{identify_from_samples, SampleIdentification};
 use hcm_host::progress::Silent;
 use hcm_host::scenario::Scenario;
 

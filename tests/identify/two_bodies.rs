@@ -8,7 +8,7 @@
 //! alone, both are replayed and the ball–block contact fitted.
 
 use hcm_host::experiment::generate_split;
-use hcm_host::identify::rigid::{identify_from_samples, with_law};
+use hcm_host::identify::{identify_from_samples, with_law};
 use hcm_host::progress::Silent;
 use hcm_tests::rigid_pipeline::{pipeline, Inputs};
 
@@ -71,7 +71,7 @@ fn truth_model(truth: &[String]) -> hcm_host::scenario::Model {
 /// held-out throws better than the scene and finds the damping.
 #[test]
 fn poses_alone_of_two_moving_bodies_fit_the_contact_between_them() {
-    use hcm_host::identify::motion::{split_tosses, MotionParameters, MotionTarget};
+    use hcm_host::identify::{split_tosses, MotionParameters, MotionTarget};
     use hcm_host::toss::{evaluate_tosses, summarize, TossSetup};
     let truth = [
         "contact.0.parameters.damping=1.2".to_owned(),
@@ -109,14 +109,14 @@ fn poses_alone_of_two_moving_bodies_fit_the_contact_between_them() {
     assert_eq!(setup.movers.len(), 2);
     let target = MotionTarget::new(&model, &training).unwrap();
     let parameters = MotionParameters::for_contact(&model, &setup, Some(0)).unwrap();
-    let settings = hcm_host::numerics::optimize::genetic::GeneticSettings {
+    let settings = hcm_host::numerics::optimize::GeneticSettings {
         population: 20,
         generations: 10,
         seed: 2,
         ..Default::default()
     };
     let (progress, fold) = (hcm_host::progress::Silent, hcm_host::progress::Fold::First);
-    let found = hcm_host::identify::motion::identify_motion(
+    let found = hcm_host::identify::identify_motion(
         &model,
         &target,
         &parameters,

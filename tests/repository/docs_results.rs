@@ -485,7 +485,7 @@ fn the_docs_index_links_every_page() {
 #[test]
 fn the_data_format_page_shows_the_schema_the_reader_reads() {
     let page = std::fs::read_to_string(root().join("docs/data-format.md")).unwrap();
-    let table = hcm_host::dataset::schema::markdown_table();
+    let table = hcm_host::dataset::schema_markdown();
     assert!(
         page.contains(&table),
         "update docs/data-format.md to:\n{table}"

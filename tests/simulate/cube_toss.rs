@@ -7,7 +7,7 @@ use hcm_host::dataset::{Dataset, Run, Sample};
 use hcm_host::scenario::{Model, Scenario};
 use hcm_host::toss::{
     estimate_initial_state, evaluate_tosses, find_window, frozen_pose, predict_toss,
-    score::rotation_angle, score_toss, StateSource, Summary, TossError, TossSetup, LEAD_FRAMES,
+    rotation_angle, score_toss, StateSource, Summary, TossError, TossSetup, LEAD_FRAMES,
 };
 use hcm_tests::cli::Hcm;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};

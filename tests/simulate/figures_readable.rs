@@ -5,8 +5,8 @@
 //! `<g class="panel" data-x="low high" …>` group, each curve a polyline naming its
 //! dashes in `data-dash`.
 
-use hcm_host::figure::events::{event_figure, EventSpan, Quantity};
-use hcm_host::figure::rigid_run::rigid_figures;
+use hcm_host::figure::rigid_figures;
+use hcm_host::figure::{event_figure, EventSpan, Quantity};
 use hcm_host::figure::{Colour, Figure, Series, Stroke};
 use hcm_host::simulate::simulate;
 

@@ -6,7 +6,7 @@
 //! replays, and the forecast must not depend on the thread count.
 
 use hcm_host::dataset::Dataset;
-use hcm_host::identify::motion::split_tosses;
+use hcm_host::identify::split_tosses;
 use hcm_host::scenario::{Model, Scenario};
 use hcm_host::toss::{calibrate_scatter, forecast_faces, summarize_faces, Spread};
 use rand::SeedableRng;

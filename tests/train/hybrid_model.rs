@@ -6,7 +6,7 @@ use hcm_core::residual::Quantisation;
 use hcm_host::evaluate::evaluate;
 use hcm_host::experiment::{generate, split};
 use hcm_host::export::encode;
-use hcm_host::identify::samples::force_samples;
+use hcm_host::identify::force_samples;
 use hcm_host::identify::{identify, Method, Physics};
 use hcm_host::residual::{ContactResidual, HIDDEN, WIDTH};
 use hcm_host::scenario::Scenario;

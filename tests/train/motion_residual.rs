@@ -10,7 +10,7 @@
 //! rotation's.
 
 use hcm_host::dataset::Dataset;
-use hcm_host::identify::motion::split_tosses;
+use hcm_host::identify::split_tosses;
 use hcm_host::residual::ContactResidual;
 use hcm_host::scenario::{Model, Scenario};
 use hcm_host::toss::{evaluate_tosses, summarize};
@@ -53,11 +53,11 @@ fn a_hidden_friction_is_learned_from_poses_alone() {
         int8_epochs: 5,
         seed: 1,
     };
-    let trained = hcm_host::train::motion_residual::train_motion_residual(
+    let trained = hcm_host::train::train_motion_residual(
         &physics,
         &training,
         0,
-        hcm_host::train::motion_residual::HORIZON,
+        hcm_host::train::HORIZON,
         &settings,
         &hcm_host::progress::Silent,
     )
@@ -82,7 +82,7 @@ fn a_contact_the_scenario_lacks_is_refused() {
         .unwrap()
         .model()
         .unwrap();
-    let error = hcm_host::train::motion_samples::motion_rows(&physics, &Dataset::default(), 3, 2)
+    let error = hcm_host::train::motion_rows(&physics, &Dataset::default(), 3, 2)
         .unwrap_err()
         .to_string();
     assert!(

@@ -16,14 +16,14 @@ use hcm_host::dataset::Dataset;
 use hcm_host::experiment::generate;
 use hcm_host::export::encode;
 use hcm_host::export::{round_trip_error, round_trip_error_over};
-use hcm_host::identify::replay::with_physics;
-use hcm_host::identify::rigid::{event_errors, fitness, replay, WrenchTarget};
+use hcm_host::identify::with_physics;
+use hcm_host::identify::{event_errors, event_fitness, replay_events, WrenchTarget};
 use hcm_host::residual::ContactResidual;
 use hcm_host::scenario::{Model, Scenario};
 use hcm_host::simulate::{RigidLayout, RigidSystem};
-use hcm_host::train::explained::{explained_variance, silence_outputs, EXPLAINED_MIN};
-use hcm_host::train::network::Layout;
-use hcm_host::train::wrench_samples::{contact_wrench, moving_body, state_input};
+use hcm_host::train::Layout;
+use hcm_host::train::{contact_wrench, moving_body, state_input};
+use hcm_host::train::{explained_variance, silence_outputs, EXPLAINED_MIN};
 use hcm_host::train::{
     quantisation_aware, train, wrench_pairs, Network, OutputNets, TrainSettings, WrenchPairs,
 };
@@ -56,8 +56,7 @@ fn fixture() -> &'static Fixture {
         let data = generate(&scenario, RUNS, 7, &hcm_host::progress::Silent).unwrap();
         let pairs = wrench_pairs(&pm2, &data, 0).unwrap();
         // The rows `hcm reproduce peg-in-hole` trains on: the two wall contacts.
-        let walls =
-            hcm_host::train::wrench_residual::pairs_before_event(&pm2, &data, 0, 2).unwrap();
+        let walls = hcm_host::train::pairs_before_event(&pm2, &data, 0, 2).unwrap();
         Fixture {
             nominal,
             pm2,
@@ -379,8 +378,8 @@ fn the_hcm_replays_the_wall_contacts_closer_to_s1_than_pm2() {
         ("HCM int8", hcm(Quantisation::Int8)),
     ] {
         let model = with_physics(&target.model, &physics);
-        let score = fitness(&target, &model);
-        let events = replay(&model, 0).unwrap();
+        let score = event_fitness(&target, &model);
+        let events = replay_events(&model, 0).unwrap();
         print!("{label}: fitness {score:.3e};");
         for (k, (t, got)) in events.iter().enumerate().take(target.events.len()) {
             let e = event_errors(&target.events[k], got, t - events[0].0);

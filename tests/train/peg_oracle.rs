@@ -14,13 +14,13 @@
 //! --ignored --nocapture`.
 
 use hcm_host::export::export_blobs;
-use hcm_host::pipeline::peg::CONTACT;
-use hcm_host::pipeline::peg::{evaluate_peg, reproduce_peg, PegSettings};
 use hcm_host::pipeline::ScenarioChoice;
 use hcm_host::pipeline::Silent;
+use hcm_host::pipeline::PEG_CONTACT as CONTACT;
+use hcm_host::pipeline::{evaluate_peg, reproduce_peg, PegSettings};
 use hcm_host::scenario::Model;
-use hcm_host::train::explained::silence_outputs;
-use hcm_host::train::wrench_residual::pairs_before_event;
+use hcm_host::train::pairs_before_event;
+use hcm_host::train::silence_outputs;
 use hcm_host::train::{train, wrench_settings, OutputNets, TrainedResidual};
 
 #[test]

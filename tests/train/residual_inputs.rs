@@ -115,7 +115,7 @@ fn the_contact_frame_blob_runs_in_the_core_as_the_host_simulated_it() {
     use hcm_core::residual::{decode, F32Weights, Int8Weights, Mlp};
     use hcm_host::experiment::generate_split;
     use hcm_host::export::export_blobs;
-    use hcm_host::identify::rigid::{identify_from_samples, with_law};
+    use hcm_host::identify::{identify_from_samples, with_law};
     use hcm_host::progress::Silent;
     use hcm_host::residual::HIDDEN;
     use hcm_host::train::{train_point_residual, ResidualSettings};

@@ -2,12 +2,13 @@
 //! with it, and the gain measured on held-out runs.
 
 use super::progress_bar;
-use hcm_host::dataset::{needs, Dataset};
-use hcm_host::diagnose::report::{answer, markdown};
-use hcm_host::diagnose::select::BaseFreedom;
-use hcm_host::diagnose::structure::structure_figures;
+use hcm_host::dataset::{inventory_summary, DataUse, Dataset, Evidence};
+use hcm_host::diagnose::structure_figures;
+use hcm_host::diagnose::BaseFreedom;
+use hcm_host::diagnose::MotionBase;
+use hcm_host::diagnose::{answer, diagnosis_markdown};
 use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
-use hcm_host::identify::physics::PhysicsBody;
+use hcm_host::identify::PhysicsBody;
 use hcm_host::identify::{FitRecord, Physics};
 use hcm_host::output::{write_bytes, StagedDirectory};
 use hcm_host::scenario::Model;
@@ -80,29 +81,45 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let physics = Physics::read(&args.physics)?;
     let base = physics.apply(&scenario, &args.physics)?.model()?;
     super::check_contact(args.contact, &base)?;
-    if base.is_rigid() {
-        if args.seed != 1 || args.holdout != 0.25 {
-            eprintln!(
-                "note: --seed and --holdout shape the 1D diagnosis's hold-out draw; a 3D \
-                 diagnosis fits every candidate on the even runs and scores it on the odd \
-                 ones and back (both halves held out in turn), whatever they say"
-            );
-        }
+    let data = Dataset::read(&args.data)?;
+    let evidence = Evidence::of(&base, &data, args.contact);
+    if evidence != Evidence::LineForce && (args.seed != 1 || args.holdout != 0.25) {
+        eprintln!(
+            "note: --seed and --holdout shape the 1D diagnosis's hold-out draw; a 3D \
+             diagnosis fits every candidate on the even runs and scores it on the odd \
+             ones and back (both halves held out in turn), whatever they say"
+        );
+    }
+    if evidence != Evidence::LineForce {
+        println!("{}", inventory_summary(&data, &base, args.contact));
+    }
+    if evidence == Evidence::Poses {
+        // A camera's poses: the diagnosis from motion, its answer in OUT/diagnosis.json.
+        let json = args.out.join("diagnosis.json");
+        let freedom = if physics.fitted() {
+            MotionBase::Fitted
+        } else {
+            MotionBase::Given
+        };
+        return super::diagnose_motion::diagnose_into(&base, &data, freedom, &args.data, &json);
+    }
+    if let Some(needs) = evidence.requirement(DataUse::Diagnose) {
+        data.require(
+            &args.data.display().to_string(),
+            &base,
+            &[args.contact],
+            needs,
+        )?;
+    }
+    if evidence == Evidence::Wrench {
         let rigid = super::diagnose_rigid::RigidArgs {
             data: &args.data,
             out: &args.out,
             contact: args.contact,
             fitted: physics.fitted(),
         };
-        return super::diagnose_rigid::run(&rigid, &scenario, &base);
+        return super::diagnose_rigid::run(&rigid, &scenario, &base, &data);
     }
-    let data = Dataset::read(&args.data)?;
-    data.require(
-        &args.data.display().to_string(),
-        &base,
-        &[args.contact],
-        &needs::DIAGNOSE,
-    )?;
     // Built as a hidden directory beside --out and renamed into place when complete:
     // a failure (too few runs, a failed fit) leaves no --out behind.
     let staged = StagedDirectory::create(&args.out, "diagnosis.json")?;
@@ -131,7 +148,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         serde_json::to_string_pretty(&json_of(&diagnosis))?.as_bytes(),
     )?;
     let figures = write_figures(&out, &diagnosis)?;
-    let report = markdown(&diagnosis, &figures);
+    let report = diagnosis_markdown(&diagnosis, &figures);
     write_bytes(&out.join("report.md"), report.as_bytes())?;
     staged.commit()?;
     print!("{report}");

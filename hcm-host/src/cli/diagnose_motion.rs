@@ -3,7 +3,7 @@
 
 use super::progress::Bars;
 use anyhow::Context;
-use hcm_host::diagnose::motion::{
+use hcm_host::diagnose::{
     diagnose_motion_with, MotionBase, MotionDiagnosis, GAIN_T, MIN_GAIN, RIVAL_T,
 };
 use hcm_host::output::write_bytes;

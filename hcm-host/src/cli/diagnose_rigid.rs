@@ -4,9 +4,8 @@
 //! diagnosis.json and extended.toml.
 
 use super::progress::Bars;
-use hcm_host::dataset::{inventory, needs, Dataset};
-use hcm_host::diagnose::motion::MotionBase;
-use hcm_host::diagnose::rigid::{diagnose_rigid, RigidDiagnoseSettings, RigidDiagnosis};
+use hcm_host::dataset::Dataset;
+use hcm_host::diagnose::{diagnose_rigid, RigidDiagnoseSettings, RigidDiagnosis};
 use hcm_host::identify::{FitRecord, Physics};
 use hcm_host::output::write_bytes;
 use hcm_host::scenario::{Model, Scenario};
@@ -21,32 +20,19 @@ pub struct RigidArgs<'a> {
     pub fitted: bool,
 }
 
-pub fn run(args: &RigidArgs<'_>, scenario: &Scenario, base: &Model) -> anyhow::Result<()> {
-    let data = Dataset::read(args.data)?;
-    println!("{}", inventory::summary(&data, base, args.contact));
-    if inventory::motion_only(&data, base, args.contact) {
-        // A camera's poses: the diagnosis from motion, its answer in OUT/diagnosis.json.
-        let json = args.out.join("diagnosis.json");
-        let freedom = if args.fitted {
-            MotionBase::Fitted
-        } else {
-            MotionBase::Given
-        };
-        return super::diagnose_motion::diagnose_into(base, &data, freedom, args.data, &json);
-    }
-    data.require(
-        &args.data.display().to_string(),
-        base,
-        &[args.contact],
-        &needs::IDENTIFY_RIGID_SAMPLES,
-    )?;
+pub fn run(
+    args: &RigidArgs<'_>,
+    scenario: &Scenario,
+    base: &Model,
+    data: &Dataset,
+) -> anyhow::Result<()> {
     let settings = RigidDiagnoseSettings {
         contact: args.contact,
         fitted_base: args.fitted,
         overrides: scenario.identify.bounds.clone(),
     };
     let bars = Bars::with_status(|_| "candidates fitted");
-    let diagnosis = diagnose_rigid(base, &data, &settings, &bars)?;
+    let diagnosis = diagnose_rigid(base, data, &settings, &bars)?;
     // Created once there is something to write: an error leaves no empty directory.
     std::fs::create_dir_all(args.out)?;
     let extended = extended_physics(&diagnosis, args);

@@ -1,7 +1,7 @@
 //! `hcm evaluate`: the paper's table for a physics model on validation data.
 
 use anyhow::Context;
-use hcm_host::dataset::{inventory, needs, reconstruct, Dataset};
+use hcm_host::dataset::{complete, inventory_summary, DataUse, Dataset, Evidence};
 use hcm_host::evaluate::{
     evaluate, evaluate_motion, evaluate_rigid, markdown, motion_markdown, rigid_markdown,
 };
@@ -61,17 +61,26 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let pm2 = physics.apply(&scenario, &args.physics)?.model()?;
     super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
-    if pm2.is_rigid() {
+    let evidence = Evidence::of(&pm2, &data, args.contact);
+    if evidence != Evidence::LineForce && !args.json {
+        println!("{}", inventory_summary(&data, &pm2, args.contact));
+    }
+    if evidence == Evidence::Poses {
+        return run_motion(&args, &pm2, &data);
+    }
+    if let Some(needs) = evidence.requirement(DataUse::Evaluate) {
+        data.require(
+            &args.data.display().to_string(),
+            &pm2,
+            &[args.contact],
+            needs,
+        )?;
+    }
+    if evidence == Evidence::Wrench {
         return run_rigid(&args, &pm2, &data);
     }
-    data.require(
-        &args.data.display().to_string(),
-        &pm2,
-        &[args.contact],
-        &needs::EVALUATE,
-    )?;
     // Camera frames and force rows on their own clocks: the motion at the force samples.
-    let completed = reconstruct::complete(&pm2, &data)?;
+    let completed = complete(&pm2, &data)?;
     let data = completed.data.as_ref();
     let models = with_hcm(&args, &pm2)?;
     let columns: Vec<(&str, &hcm_host::scenario::Model)> =
@@ -121,18 +130,6 @@ fn with_hcm(
 /// The rigid path: every run replayed from its own pre-contact state by PM2 (and the
 /// HCM), its events' indicators and the moving body's path against the data.
 fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> anyhow::Result<()> {
-    if !args.json {
-        println!("{}", inventory::summary(data, pm2, args.contact));
-    }
-    if inventory::motion_only(data, pm2, args.contact) {
-        return run_motion(args, pm2, data);
-    }
-    data.require(
-        &args.data.display().to_string(),
-        pm2,
-        &[args.contact],
-        &needs::INDICATORS_RIGID,
-    )?;
     let models = with_hcm(args, pm2)?;
     let columns: Vec<(&str, &hcm_host::scenario::Model)> =
         models.iter().map(|(l, m)| (*l, m)).collect();

@@ -5,7 +5,7 @@
 use super::progress_bar;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
-use hcm_host::identify::motion::{part_of, split_tosses, Part};
+use hcm_host::identify::{part_of, split_tosses, Part};
 use hcm_host::output::write_atomically;
 use hcm_host::scenario::Model;
 use hcm_host::toss::{

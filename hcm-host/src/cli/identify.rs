@@ -2,10 +2,10 @@
 
 use super::progress::Bars;
 use anyhow::Context;
-use hcm_host::dataset::{inventory, needs, Dataset};
-use hcm_host::identify::evolve::Fitness;
+use hcm_host::dataset::{inventory_summary, DataUse, Dataset, Evidence};
+use hcm_host::identify::Fitness;
 use hcm_host::identify::{identify, FitRecord, Identification, Method, Physics};
-use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::numerics::optimize::GeneticSettings;
 use hcm_host::progress::{Progress, Silent};
 use hcm_host::scenario::{Model, Scenario};
 use std::path::PathBuf;
@@ -97,57 +97,58 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let model = scenario.model()?;
     super::check_contact(args.contact, &model)?;
     let data = Dataset::read(&args.data)?;
-    if model.is_rigid() {
-        println!("{}", inventory::summary(&data, &model, args.contact));
-        let motion_only = inventory::motion_only(&data, &model, args.contact);
-        anyhow::ensure!(
-            !(motion_only && args.method == "both"),
-            "{}: --method both fits the force with the motion, and the data hold no force \
-             (fx, fy, fz); drop --method to fit from the poses alone",
-            args.data.display()
-        );
-        if motion_only || args.method == "both" {
-            println!(
-                "fitting from the poses{}, as `hcm identify-motion` does (GA 20 × 10, polish 40)",
-                if motion_only {
-                    ""
-                } else {
-                    " and the force at them"
-                }
-            );
-            let with_force = args.method == "both";
-            let motion = super::identify_motion::Args::from_identify(
-                args.scenario,
-                args.data,
-                args.out,
-                args.seed,
-                args.law,
-                args.contact,
-                with_force,
-            );
-            return super::identify_motion::run(motion);
-        }
+    let evidence = Evidence::of(&model, &data, args.contact);
+    if evidence != Evidence::LineForce {
+        println!("{}", inventory_summary(&data, &model, args.contact));
     }
-    let needs = if model.is_rigid() && args.method == "ga" {
-        &needs::IDENTIFY_RIGID
-    } else if model.is_rigid() {
-        &needs::IDENTIFY_RIGID_SAMPLES
+    anyhow::ensure!(
+        !(evidence == Evidence::Poses && args.method == "both"),
+        "{}: --method both fits the force with the motion, and the data hold no force \
+         (fx, fy, fz); drop --method to fit from the poses alone",
+        args.data.display()
+    );
+    if evidence == Evidence::Poses || (evidence == Evidence::Wrench && args.method == "both") {
+        println!(
+            "fitting from the poses{}, as `hcm identify-motion` does (GA 20 × 10, polish 40)",
+            if evidence == Evidence::Poses {
+                ""
+            } else {
+                " and the force at them"
+            }
+        );
+        let with_force = args.method == "both";
+        let motion = super::identify_motion::Args::from_identify(
+            args.scenario,
+            args.data,
+            args.out,
+            args.seed,
+            args.law,
+            args.contact,
+            with_force,
+        );
+        return super::identify_motion::run(motion);
+    }
+    let by_events = args.method == "ga";
+    let needs = evidence.requirement(if by_events {
+        DataUse::IdentifyEvents
     } else {
-        &needs::IDENTIFY
-    };
-    data.require(
-        &args.data.display().to_string(),
-        &model,
-        &[args.contact],
-        needs,
-    )?;
+        DataUse::Identify
+    });
+    if let Some(needs) = needs {
+        data.require(
+            &args.data.display().to_string(),
+            &model,
+            &[args.contact],
+            needs,
+        )?;
+    }
     let settings = GeneticSettings {
         seed: args.seed,
         population: args.population,
         generations: args.generations,
         ..GeneticSettings::default()
     };
-    if model.is_rigid() {
+    if evidence == Evidence::Wrench {
         return super::identify_rigid::run(&args.into_rigid(), &scenario, &model, &data, settings);
     }
     anyhow::ensure!(

@@ -4,14 +4,14 @@
 use super::progress::Bars;
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
-use hcm_host::identify::motion::combined::ForceData;
-use hcm_host::identify::motion::{
+use hcm_host::identify::with_law;
+use hcm_host::identify::ForceData;
+use hcm_host::identify::{
     beside_physics, fitted_assignments, fitted_physics, fitted_scenario_text, identify_motion,
     set_options, split_tosses, MotionFit, MotionParameters, MotionTarget,
 };
-use hcm_host::identify::motion::{identify_motion_and_force, Search as MotionSearch};
-use hcm_host::identify::rigid::with_law;
-use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::identify::{identify_motion_and_force, MotionSearch};
+use hcm_host::numerics::optimize::GeneticSettings;
 use hcm_host::output::write_bytes;
 use hcm_host::progress::{Fold, Stage};
 use hcm_host::scenario::{Assignment, Model};

@@ -5,12 +5,12 @@
 
 use super::progress::Bars;
 use hcm_host::dataset::Dataset;
-use hcm_host::identify::rigid::{
+use hcm_host::identify::{
     identify_events, identify_from_samples, with_law, ContactScales, RigidIdentification,
     SampleFit, WrenchTarget,
 };
 use hcm_host::identify::{FitRecord, Physics};
-use hcm_host::numerics::optimize::genetic::GeneticSettings;
+use hcm_host::numerics::optimize::GeneticSettings;
 use hcm_host::scenario::{Contact, Model, Scenario};
 use std::path::PathBuf;
 

@@ -1,7 +1,7 @@
 //! `hcm indicators`: the paper's contact indicators from a data file.
 
 use super::report;
-use hcm_host::dataset::{needs, reconstruct, Dataset};
+use hcm_host::dataset::{complete, DataUse, Dataset, Evidence};
 use hcm_host::indicators::{
     from_run, pair_events_from_run, summarize, wrench_statistics, ContactStatistics,
 };
@@ -37,17 +37,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let model = args.scenario.load()?.model()?;
     let dataset = Dataset::read(&args.data)?;
     let contacts: Vec<usize> = (0..model.contacts.len()).collect();
-    let needs = if model.is_rigid() {
-        &needs::INDICATORS_RIGID
-    } else {
-        &needs::INDICATORS
-    };
-    dataset.require(&args.data.display().to_string(), &model, &contacts, needs)?;
-    if model.is_rigid() {
+    // Every contact at once: the scene decides, whichever contact the data show.
+    let evidence = Evidence::of(&model, &dataset, 0);
+    if let Some(needs) = evidence.requirement(DataUse::Indicators) {
+        dataset.require(&args.data.display().to_string(), &model, &contacts, needs)?;
+    }
+    if evidence != Evidence::LineForce {
         return run_rigid(&model, &dataset, args.json);
     }
     // Camera frames and force rows on their own clocks: the motion at the force samples.
-    let completed = reconstruct::complete(&model, &dataset)?;
+    let completed = complete(&model, &dataset)?;
     let dataset = completed.data.as_ref();
     let mut events = Vec::new();
     let mut without_contact = Vec::new();

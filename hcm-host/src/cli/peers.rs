@@ -4,7 +4,7 @@
 //! Its table joins the report; hcm itself never needs Python.
 
 use anyhow::Context;
-use hcm_host::pipeline::cube::{CubeReproduction, CubeSettings};
+use hcm_host::pipeline::{CubeReproduction, CubeSettings};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 

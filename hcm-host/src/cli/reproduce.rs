@@ -5,8 +5,8 @@
 
 use super::progress::Bars;
 use hcm_host::output::StagedDirectory;
-use hcm_host::pipeline::cube::{reproduce_cube, CubeSettings};
-use hcm_host::pipeline::peg::PegSettings;
+use hcm_host::pipeline::PegSettings;
+use hcm_host::pipeline::{reproduce_cube, CubeSettings};
 use hcm_host::pipeline::{
     write_reproduction, Example, Pm2Method, Preset, ReproduceSettings, Reproduced, ScenarioChoice,
     Shipped,

@@ -2,8 +2,8 @@
 
 use super::report;
 use anyhow::Context;
-use hcm_host::dataset::Dataset;
-use hcm_host::figure::rigid_run::rigid_figures;
+use hcm_host::dataset::{Dataset, Evidence};
+use hcm_host::figure::rigid_figures;
 use hcm_host::identify::Physics;
 use hcm_host::output::{commit, StagedFile};
 use hcm_host::pipeline::NamedFigure;
@@ -58,7 +58,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         scenario = Physics::read(path)?.apply(&scenario, path)?;
     }
     let model = scenario.model()?;
-    if args.figures.is_some() && !model.is_rigid() {
+    let evidence = Evidence::simulated(&model);
+    if args.figures.is_some() && evidence == Evidence::LineForce {
         anyhow::bail!(
             "--figures: scenario `{}` is 1D (no box, compound, friction or rotation); \
              the figures show 3D motion — plot OUT's force column instead",
@@ -89,7 +90,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             model.bodies[c.body_1].name, model.bodies[c.body_2].name
         )
     };
-    if model.is_rigid() {
+    if evidence == Evidence::Wrench {
         let rows: Vec<_> = simulation
             .events
             .iter()

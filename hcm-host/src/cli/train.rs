@@ -2,7 +2,7 @@
 //! quantisation-aware int8 twin; `hcm export` turns the result into weights blobs.
 
 use super::progress::Bars;
-use hcm_host::dataset::{inventory, needs, Dataset};
+use hcm_host::dataset::{inventory_summary, DataUse, Dataset, Evidence};
 use hcm_host::identify::Physics;
 use hcm_host::progress::Stage;
 use hcm_host::train::{
@@ -132,15 +132,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .model()?;
     super::check_contact(args.contact, &pm2)?;
     let data = Dataset::read(&args.data)?;
-    if pm2.is_rigid() {
+    let evidence = Evidence::of(&pm2, &data, args.contact);
+    if evidence != Evidence::LineForce {
+        println!("{}", inventory_summary(&data, &pm2, args.contact));
+    }
+    if let Some(needs) = evidence.requirement(DataUse::Train) {
+        data.require(
+            &args.data.display().to_string(),
+            &pm2,
+            &[args.contact],
+            needs,
+        )?;
+    }
+    if evidence != Evidence::LineForce {
         return run_rigid(&args, &pm2, &data);
     }
-    data.require(
-        &args.data.display().to_string(),
-        &pm2,
-        &[args.contact],
-        &needs::TRAIN,
-    )?;
     let (settings, bars) = settings_and_bars(&args);
     let trained = train_force_residual(&pm2, &data, args.contact, &settings, &bars)?;
     let (report, tuned) = (&trained.report, &trained.int8);
@@ -169,13 +175,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 /// The rigid path: the wrench residual of Eq 12 on every touching sample (or those
 /// before `--events`), its outputs' R², and a warning when it explains nothing.
 fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> anyhow::Result<()> {
-    println!("{}", inventory::summary(data, pm2, args.contact));
-    data.require(
-        &args.data.display().to_string(),
-        pm2,
-        &[args.contact],
-        &needs::TRAIN_RIGID,
-    )?;
     let (settings, bars) = settings_and_bars(args);
     let events = args.events.unwrap_or(usize::MAX);
     let (trained, what) = match args.inputs {

@@ -40,7 +40,7 @@ pub struct Delay {
 /// The delay that best closes the position gaps of every contact of `completed`
 /// reconstructed from camera frames (see the module documentation); None without a
 /// contact with a flight after it.
-pub fn fit(completed: &Completed<'_>) -> Option<Delay> {
+pub fn fit_delay(completed: &Completed<'_>) -> Option<Delay> {
     let (mut num, mut den) = (0.0, 0.0);
     let checks = completed
         .tracks

@@ -33,7 +33,7 @@ pub fn channel_counts(data: &Dataset) -> Vec<(String, [usize; 6], usize)> {
 
 /// The summary a rigid command prints: the runs, each body's channels with their row
 /// counts, and what contact `c` of `model` can be given from them.
-pub fn summary(data: &Dataset, model: &Model, c: usize) -> String {
+pub fn inventory_summary(data: &Dataset, model: &Model, c: usize) -> String {
     let counts = channel_counts(data);
     let mut out = format!("data: {} runs", data.runs.len());
     for (body, filled, rows) in &counts {
@@ -103,7 +103,7 @@ fn what_is_filled(
 /// Whether `data` hold contact `c`'s moving body's poses and no force or torque on
 /// either body:
 /// what a camera records, which `hcm identify` and `hcm diagnose` answer by replaying
-/// the runs from their poses ([`crate::identify::motion`]).
+/// the runs from their poses ([`crate::identify::identify_motion`]).
 pub fn motion_only(data: &Dataset, model: &Model, c: usize) -> bool {
     let Some(contact) = model.contacts.get(c) else {
         return false;

@@ -82,26 +82,36 @@
 //! before writing anything, and [`Dataset::write`] goes through
 //! [`crate::output::write_atomically`], so a failed write leaves no file behind.
 
-pub mod channel;
-pub mod needs;
-pub mod reconstruct;
-pub mod schema;
+mod channel;
+mod needs;
+mod reconstruct;
+mod schema;
+pub use schema::{csv_header, sample_values, schema_markdown};
 
-pub mod delay;
+mod delay;
+mod evidence;
 mod flight;
 mod implied;
-pub mod newton;
+mod newton;
 mod read;
 mod recorded_motion;
 mod through_contact;
 mod write;
 
 pub use channel::Channel;
-pub mod inventory;
-pub mod state;
+pub use evidence::{DataUse, Evidence};
+mod inventory;
+pub use inventory::{inventory_summary, motion_only};
+mod state;
+pub(crate) use delay::DELAY_SIGMAS;
+pub use delay::{fit_delay, Delay};
 pub use flight::FlightFit;
 pub use needs::{Need, Requirement};
+pub(crate) use newton::MAX_MISFIT;
+pub(crate) use reconstruct::complete_with;
+pub use reconstruct::{complete, Checks, Completed, ReconstructError, TrackReconstruction};
 pub use state::state_input;
+pub use state::{Frames, STATE_INPUTS};
 pub use write::RunWriter;
 
 use std::fmt::Write as _;

@@ -32,102 +32,104 @@ pub struct Requirement {
     pub(crate) because: &'static str,
 }
 
-/// The 1D commands: motion from camera frames, force from the sensor's rows.
-const CAMERA_AND_SENSOR: &[(Channel, Need)] = &[
-    (Channel::Position, Need::SomeRows),
-    (Channel::Force, Need::SomeRows),
-];
+impl Requirement {
+    /// The 1D commands: motion from camera frames, force from the sensor's rows.
+    const CAMERA_AND_SENSOR: &[(Channel, Need)] = &[
+        (Channel::Position, Need::SomeRows),
+        (Channel::Force, Need::SomeRows),
+    ];
 
-/// The rigid (3D) commands: full states on every row, not reconstructed yet.
-const FULL_STATES: &[(Channel, Need)] = &[
-    (Channel::Position, Need::EveryRow),
-    (Channel::Orientation, Need::EveryRow),
-    (Channel::Velocity, Need::EveryRow),
-    (Channel::AngularVelocity, Need::EveryRow),
-    (Channel::Force, Need::EveryRow),
-    (Channel::Torque, Need::EveryRow),
-];
+    /// The rigid (3D) commands: full states on every row, not reconstructed yet.
+    const FULL_STATES: &[(Channel, Need)] = &[
+        (Channel::Position, Need::EveryRow),
+        (Channel::Orientation, Need::EveryRow),
+        (Channel::Velocity, Need::EveryRow),
+        (Channel::AngularVelocity, Need::EveryRow),
+        (Channel::Force, Need::EveryRow),
+        (Channel::Torque, Need::EveryRow),
+    ];
 
-/// `hcm identify` on a 1D contact (least squares or GA on force curves).
-pub const IDENTIFY: Requirement = Requirement {
-    command: "hcm identify",
-    channels: CAMERA_AND_SENSOR,
-    because: "it fits the law's force to the measured contact force along the motion \
-              (camera frames are enough for the motion: it is reconstructed at the force samples)",
-};
+    /// `hcm identify` on a 1D contact (least squares or GA on force curves).
+    pub const IDENTIFY: Requirement = Requirement {
+        command: "hcm identify",
+        channels: Self::CAMERA_AND_SENSOR,
+        because: "it fits the law's force to the measured contact force along the motion \
+                  (camera frames are enough for the motion: it is reconstructed at the force samples)",
+    };
 
-/// `hcm identify` on a rigid (3D) contact.
-pub const IDENTIFY_RIGID: Requirement = Requirement {
-    command: "hcm identify (rigid, 3D)",
-    channels: FULL_STATES,
-    because: "it replays each contact event from its full pre-contact state and compares \
-              wrenches; 3D motion is not reconstructed from camera frames yet, so give every \
-              channel on every row",
-};
+    /// `hcm identify` on a rigid (3D) contact.
+    pub const IDENTIFY_RIGID: Requirement = Requirement {
+        command: "hcm identify (rigid, 3D)",
+        channels: Self::FULL_STATES,
+        because: "it replays each contact event from its full pre-contact state and compares \
+                  wrenches; 3D motion is not reconstructed from camera frames yet, so give every \
+                  channel on every row",
+    };
 
-/// The rigid fit from force samples: the mover's poses (velocities, where missing,
-/// from the poses) and a force, each at its own rate.
-const STATES_AND_FORCE: &[(Channel, Need)] = &[
-    (Channel::Position, Need::SomeRows),
-    (Channel::Orientation, Need::SomeRows),
-    (Channel::Force, Need::SomeRows),
-];
+    /// The rigid fit from force samples: the mover's poses (velocities, where missing,
+    /// from the poses) and a force, each at its own rate.
+    const STATES_AND_FORCE: &[(Channel, Need)] = &[
+        (Channel::Position, Need::SomeRows),
+        (Channel::Orientation, Need::SomeRows),
+        (Channel::Force, Need::SomeRows),
+    ];
 
-/// `hcm identify --method lsq` on a rigid (3D) contact, and `hcm train` there.
-pub const IDENTIFY_RIGID_SAMPLES: Requirement = Requirement {
-    command: "hcm identify (rigid, 3D, force samples)",
-    channels: STATES_AND_FORCE,
-    because: "it compares the law's wrench at each recorded pose with the force measured \
-              there (on the moving body, or on the fixed one by a force plate at the same \
-              instant; torque is used where recorded)",
-};
+    /// `hcm identify --method lsq` on a rigid (3D) contact, and `hcm train` there.
+    pub const IDENTIFY_RIGID_SAMPLES: Requirement = Requirement {
+        command: "hcm identify (rigid, 3D, force samples)",
+        channels: Self::STATES_AND_FORCE,
+        because: "it compares the law's wrench at each recorded pose with the force measured \
+                  there (on the moving body, or on the fixed one by a force plate at the same \
+                  instant; torque is used where recorded)",
+    };
 
-/// `hcm train` on a rigid (3D) contact.
-pub const TRAIN_RIGID: Requirement = Requirement {
-    command: "hcm train (rigid, 3D)",
-    channels: STATES_AND_FORCE,
-    because: "the residual network learns the measured minus the modelled wrench at each \
-              recorded state",
-};
+    /// `hcm train` on a rigid (3D) contact.
+    pub const TRAIN_RIGID: Requirement = Requirement {
+        command: "hcm train (rigid, 3D)",
+        channels: Self::STATES_AND_FORCE,
+        because: "the residual network learns the measured minus the modelled wrench at each \
+                  recorded state",
+    };
 
-/// `hcm train`.
-pub const TRAIN: Requirement = Requirement {
-    command: "hcm train",
-    channels: CAMERA_AND_SENSOR,
-    because: "the residual network learns measured minus modelled contact force",
-};
+    /// `hcm train`.
+    pub const TRAIN: Requirement = Requirement {
+        command: "hcm train",
+        channels: Self::CAMERA_AND_SENSOR,
+        because: "the residual network learns measured minus modelled contact force",
+    };
 
-/// `hcm diagnose`.
-pub const DIAGNOSE: Requirement = Requirement {
-    command: "hcm diagnose",
-    channels: CAMERA_AND_SENSOR,
-    because: "it compares the model's force with the measured force in contact, along the \
-              motion around it",
-};
+    /// `hcm diagnose`.
+    pub const DIAGNOSE: Requirement = Requirement {
+        command: "hcm diagnose",
+        channels: Self::CAMERA_AND_SENSOR,
+        because: "it compares the model's force with the measured force in contact, along the \
+                  motion around it",
+    };
 
-/// `hcm evaluate`.
-pub const EVALUATE: Requirement = Requirement {
-    command: "hcm evaluate",
-    channels: CAMERA_AND_SENSOR,
-    because: "its indicators (maximum force, impulse, energy loss, duration) are read from \
-              the measured force and the motion",
-};
+    /// `hcm evaluate`.
+    pub const EVALUATE: Requirement = Requirement {
+        command: "hcm evaluate",
+        channels: Self::CAMERA_AND_SENSOR,
+        because: "its indicators (maximum force, impulse, energy loss, duration) are read from \
+                  the measured force and the motion",
+    };
 
-/// `hcm indicators` on a 1D scenario.
-pub const INDICATORS: Requirement = Requirement {
-    command: "hcm indicators",
-    channels: CAMERA_AND_SENSOR,
-    because: "maximum force and impulse are read from the force, duration and energy loss \
-              from the motion",
-};
+    /// `hcm indicators` on a 1D scenario.
+    pub const INDICATORS: Requirement = Requirement {
+        command: "hcm indicators",
+        channels: Self::CAMERA_AND_SENSOR,
+        because: "maximum force and impulse are read from the force, duration and energy loss \
+                  from the motion",
+    };
 
-/// `hcm indicators` on a rigid (3D) scenario.
-pub const INDICATORS_RIGID: Requirement = Requirement {
-    command: "hcm indicators (rigid, 3D)",
-    channels: FULL_STATES,
-    because: "each event's wrench and poses are read row by row; 3D motion is not \
-              reconstructed from camera frames yet, so give every channel on every row",
-};
+    /// `hcm indicators` on a rigid (3D) scenario.
+    pub const INDICATORS_RIGID: Requirement = Requirement {
+        command: "hcm indicators (rigid, 3D)",
+        channels: Self::FULL_STATES,
+        because: "each event's wrench and poses are read row by row; 3D motion is not \
+                  reconstructed from camera frames yet, so give every channel on every row",
+    };
+}
 
 impl Dataset {
     /// Checks that the data hold what `requirement` needs for the contacts `contacts` of

@@ -20,7 +20,7 @@ pub(super) fn read(source: &str, reader: impl Read) -> Result<Dataset, DataError
             source,
             format!(
                 "the file is empty; expected a header row `{}`",
-                schema::header()
+                schema::csv_header()
             ),
         ));
     };
@@ -266,7 +266,7 @@ impl Layout {
             problem.push_str(&format!(
                 "; expected all of {} in any order (a channel the rig does not record \
                  may be left out whole, e.g. all of fx, fy, fz)",
-                schema::header()
+                schema::csv_header()
             ));
             return Err(here(first, problem));
         }
@@ -545,7 +545,7 @@ mod tests {
 
     #[test]
     fn a_byte_order_mark_before_the_header_is_skipped() {
-        let header = schema::header();
+        let header = schema::csv_header();
         let text = format!("\u{feff}{header}\n0,ball,0,0,0,0,1,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n");
         let dataset = read("bom.csv", text.as_bytes()).unwrap();
         assert_eq!(dataset.runs[0].bodies[0].samples.len(), 1);
@@ -554,7 +554,7 @@ mod tests {
     /// The line `read` blames for a repeated time in the last of `rows`, given with
     /// `separator` after each.
     fn line_of_repeated_time(rows: &[&str], separator: &str) -> Option<u64> {
-        let mut text = schema::header() + separator;
+        let mut text = schema::csv_header() + separator;
         for row in rows {
             text.push_str(row);
             text.push_str(separator);
@@ -579,7 +579,7 @@ mod tests {
             );
         }
         // Without a final line break.
-        let text = format!("{}\n{ROW}\n\n{ROW}", schema::header());
+        let text = format!("{}\n{ROW}\n\n{ROW}", schema::csv_header());
         assert_eq!(
             read("lines.csv", text.as_bytes()).unwrap_err().line,
             Some(4)
@@ -589,19 +589,22 @@ mod tests {
     #[test]
     fn a_line_break_inside_quotes_counts_as_a_line() {
         let two_lines = "0,\"ba\nll\",0,0,0,0,1,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0";
-        let text = format!("{}\n{two_lines}\n{QUOTED}\n{two_lines}\n", schema::header());
+        let text = format!(
+            "{}\n{two_lines}\n{QUOTED}\n{two_lines}\n",
+            schema::csv_header()
+        );
         let error = read("lines.csv", text.as_bytes()).unwrap_err();
         assert_eq!(error.line, Some(5), "{error}");
         let dataset = read(
             "lines.csv",
-            format!("{}\n{two_lines}\n", schema::header()).as_bytes(),
+            format!("{}\n{two_lines}\n", schema::csv_header()).as_bytes(),
         );
         assert_eq!(dataset.unwrap().runs[0].bodies[0].body, "ba\nll");
     }
 
     #[test]
     fn a_short_row_is_reported_with_its_line() {
-        let header = schema::header();
+        let header = schema::csv_header();
         let text = format!("{header}\n0,ball,0,0,0\n");
         let error = read("short.csv", text.as_bytes()).unwrap_err();
         assert_eq!(error.line, Some(2), "{error}");

@@ -132,13 +132,13 @@ pub(crate) fn sample_from_values(values: [f64; NUMERIC_COUNT]) -> Sample {
 }
 
 /// The header row, `run,body,time,px,…,tz`.
-pub fn header() -> String {
+pub fn csv_header() -> String {
     COLUMNS.map(|column| column.name).join(",")
 }
 
 /// The schema as a Markdown table (column, unit, meaning), as in the README and the
 /// module documentation.
-pub fn markdown_table() -> String {
+pub fn schema_markdown() -> String {
     let mut table = String::from("| column | unit | meaning |\n|---|---|---|\n");
     for column in COLUMNS {
         table.push_str(&format!(
@@ -156,7 +156,7 @@ mod tests {
     #[test]
     fn the_header_is_the_documented_one() {
         assert_eq!(
-            header(),
+            csv_header(),
             "run,body,time,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,fx,fy,fz,tx,ty,tz"
         );
         assert_eq!(COLUMNS[RUN].name, "run");
@@ -191,9 +191,9 @@ mod tests {
             .map(|line| format!("{}\n", line.strip_prefix(' ').unwrap_or(line)))
             .collect();
         assert!(
-            documentation.contains(&markdown_table()),
+            documentation.contains(&schema_markdown()),
             "update the table in dataset/mod.rs to:\n{}",
-            markdown_table()
+            schema_markdown()
         );
     }
 }

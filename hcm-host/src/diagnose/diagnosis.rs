@@ -11,9 +11,9 @@ use super::select::{select, BaseFreedom, Cause, Fitted, Refit, Step};
 use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
 use super::ContactSamples;
-use crate::dataset::delay::{Delay, DELAY_SIGMAS};
-use crate::dataset::reconstruct::{complete_with, Checks, Completed};
 use crate::dataset::Dataset;
+use crate::dataset::{complete_with, Checks, Completed};
+use crate::dataset::{Delay, DELAY_SIGMAS};
 use crate::export::encode;
 use crate::identify::IdentifyError;
 use crate::progress::Silent;
@@ -153,7 +153,7 @@ fn reconstruct<'a>(base: &Model, data: &'a Dataset) -> Result<Completed<'a>, Ide
     // significant, reconstruct again with it; keep that only if it puts the contacts on
     // their flights (else the data-quality verdict).
     if let Some(gap) = reconstruction_gap(&completed) {
-        let delay = crate::dataset::delay::fit(&completed)
+        let delay = crate::dataset::fit_delay(&completed)
             .filter(|d| gap > MAX_GAP_SIGMAS || d.value.abs() > DELAY_SIGMAS * d.sd);
         if let Some(delay) = delay {
             let retimed = Checks {

@@ -19,10 +19,8 @@ use super::sensor::Sensor;
 use crate::dataset::Dataset;
 use crate::evaluate::{IndicatorErrors, ModelRow};
 use crate::experiment::condition_of;
-use crate::identify::replay::{
-    pre_contact_state, simulate_target_as, targets, with_physics, Target,
-};
 use crate::identify::IdentifyError;
+use crate::identify::{pre_contact_state, simulate_target_as, targets, with_physics, Target};
 use crate::indicators::{contact_history, event_spans, ContactHistory, EventSpan, Indicators};
 use crate::scenario::Model;
 use crate::simulate::simulate;

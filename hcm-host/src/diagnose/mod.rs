@@ -5,25 +5,45 @@
 //! and residual structure (what is wrong) → catalogue of candidate effects → sparse
 //! selection → joint re-fit (the extended model) → gain on held-out runs.
 
-pub mod samples;
+mod samples;
 
 pub use samples::{contact_samples, ContactSamples};
-pub mod catalogue;
-pub mod diagnosis;
-pub mod gain;
-pub mod held_out;
-pub mod naming;
-pub mod noise;
-pub mod nonlinearity;
-pub mod paired;
-pub mod quality;
-pub mod report;
-pub mod select;
-pub mod sensor;
-pub mod structure;
-pub mod verdict;
+mod catalogue;
+mod diagnosis;
+mod gain;
+mod held_out;
+mod naming;
+mod noise;
+mod nonlinearity;
+mod paired;
+mod quality;
+mod report;
+mod select;
+mod sensor;
+mod structure;
+mod verdict;
 pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};
-pub mod drag;
-pub mod momentum;
-pub mod motion;
-pub mod rigid;
+mod drag;
+mod momentum;
+mod motion;
+mod rigid;
+pub use catalogue::Candidate;
+pub use drag::fit_drag;
+pub use gain::{GainRow, GainTable};
+pub use momentum::sensor_gain;
+pub use momentum::SensorGain;
+pub use motion::diagnose_motion;
+pub use motion::{
+    diagnose_motion_split, MotionDiagnoseError, MotionDiagnosis, GAIN_T, MIN_GAIN, MIN_HELD_OUT,
+    RIVAL_T,
+};
+pub use motion::{diagnose_motion_with, MotionBase};
+pub use naming::{name_causes_beside_momentum, Naming};
+pub use noise::noise_floor;
+pub use report::answer_line;
+pub use report::{answer, diagnosis_markdown};
+pub use rigid::{diagnose_rigid, RigidDiagnoseSettings, RigidDiagnosis};
+pub use select::BaseFreedom;
+pub use select::{refit, Cause};
+pub use select::{select, Refit, Selection};
+pub use structure::structure_figures;

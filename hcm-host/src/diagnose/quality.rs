@@ -14,8 +14,8 @@
 //!   cross-check a cause on.
 
 use super::ContactSamples;
-use crate::dataset::delay::Delay;
-use crate::dataset::reconstruct::Completed;
+use crate::dataset::Completed;
+use crate::dataset::Delay;
 use crate::numerics::median;
 use serde::Serialize;
 

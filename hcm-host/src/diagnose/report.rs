@@ -11,7 +11,7 @@ use super::select::BaseFreedom;
 use super::structure::Structure;
 use super::verdict::GAIN_T;
 use super::Diagnosis;
-use crate::dataset::newton::MAX_MISFIT;
+use crate::dataset::MAX_MISFIT;
 use std::fmt::Write as _;
 
 /// The report's terms, glossed once for a reader who has not read the paper.
@@ -433,7 +433,7 @@ fn freedom_rule(freedom: BaseFreedom) -> &'static str {
 
 /// The report of `d` (report.md) in Markdown; `figures` names the residual figures
 /// written beside it (without extension).
-pub fn markdown(d: &Diagnosis, figures: &[&str]) -> String {
+pub fn diagnosis_markdown(d: &Diagnosis, figures: &[&str]) -> String {
     let mut md = String::new();
     head(&mut md, d);
     what_is_wrong(&mut md, d, figures);

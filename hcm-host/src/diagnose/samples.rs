@@ -2,8 +2,8 @@
 //! run, in contact or not, with the motion state a contact law needs and the force
 //! the sensor recorded.
 
-use crate::dataset::reconstruct::{complete, Completed, TrackReconstruction};
 use crate::dataset::Dataset;
+use crate::dataset::{complete, Completed, TrackReconstruction};
 use crate::identify::IdentifyError;
 use crate::indicators::{contact_history, event_spans};
 use crate::scenario::Model;
@@ -33,7 +33,7 @@ pub struct ContactSamples {
     pub measured: Vec<f64>,
     /// Standard deviation of `depth` from its reconstruction (m): 0 where the motion was
     /// recorded at the sample, else the flight fit's covariance and the force noise
-    /// propagated through Newton's law ([`crate::dataset::reconstruct`]).
+    /// propagated through Newton's law ([`crate::dataset::complete`]).
     pub depth_sd: Vec<f64>,
     /// Standard deviation of `rate` from its reconstruction (m/s), as `depth_sd`.
     pub rate_sd: Vec<f64>,

@@ -33,7 +33,7 @@
 use super::catalogue::{reference_depth, Candidate, Kind, CATALOGUE};
 use super::sensor::Sensor;
 use super::ContactSamples;
-use crate::identify::bounds::Bounds;
+use crate::identify::Bounds;
 use crate::numerics::optimize::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use crate::numerics::optimize::Bound;
 use crate::numerics::{linear_least_squares, Reduction};

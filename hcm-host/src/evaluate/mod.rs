@@ -4,15 +4,15 @@
 //! [`ModelRow`], the shape every judged model takes (`evaluate --json`,
 //! `results.json`, `diagnosis.json`).
 
-pub mod motion;
-pub mod rigid;
+mod motion;
+mod rigid;
 
 pub use motion::{evaluate_motion, motion_markdown, MotionEvaluation};
 pub use rigid::{evaluate_rigid, rigid_markdown, RigidEvaluation};
 
 use crate::dataset::Dataset;
-use crate::identify::replay::{simulate_target_with, targets};
 use crate::identify::IdentifyError;
+use crate::identify::{simulate_target_with, targets};
 use crate::indicators::Indicators;
 use crate::scenario::Model;
 use serde::Serialize;

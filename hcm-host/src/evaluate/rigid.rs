@@ -22,8 +22,8 @@
 
 use crate::dataset::{Channel, Dataset, Run, Sample};
 use crate::experiment::{pre_contact_states, replay_model, state_before};
-use crate::identify::replay::with_physics;
-use crate::identify::rigid::{mover_name, RigidIdentifyError};
+use crate::identify::with_physics;
+use crate::identify::{mover_name, RigidIdentifyError};
 use crate::indicators::{pair_events_from_run, WrenchIndicators};
 use crate::scenario::Model;
 use crate::simulate::simulate;

@@ -89,9 +89,9 @@ pub enum ExperimentError {
     #[error(
         "--runs {runs}: {total} runs of about {} each would take {}, more than the {} of \
          memory available; ask for at most {most} runs per condition",
-        crate::simulate::footprint::shown(*per_run),
-        crate::simulate::footprint::shown(*per_run * *total as f64),
-        crate::simulate::footprint::shown(*budget)
+        crate::simulate::shown_bytes(*per_run),
+        crate::simulate::shown_bytes(*per_run * *total as f64),
+        crate::simulate::shown_bytes(*budget)
     )]
     TooManyForMemory {
         /// Runs asked for per condition (`--runs`).
@@ -180,7 +180,7 @@ const RUN_SIZE_MARGIN: f64 = 2.0;
 /// ([`crate::simulate::footprint::record_bytes`]) with a margin of [`RUN_SIZE_MARGIN`]
 /// (the runs differ by their noise only), times the runs.
 fn fits_in_memory(generation: &Generation, runs: usize) -> Result<(), ExperimentError> {
-    use crate::simulate::footprint::{memory_budget, record_bytes};
+    use crate::simulate::{memory_budget, record_bytes};
     let mut per_run: f64 = 0.0;
     for condition in 0..generation.conditions() {
         let pilot = generation.run(condition * generation.runs_per_condition())?;

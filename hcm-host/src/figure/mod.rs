@@ -12,7 +12,7 @@
 
 mod aspect;
 mod canvas;
-pub mod events;
+mod events;
 mod font;
 mod inset;
 mod layout;
@@ -20,11 +20,13 @@ mod legend;
 mod panels;
 mod plot;
 mod png;
-pub mod rigid_run;
-pub mod side_view;
+mod rigid_run;
+mod side_view;
 mod style;
 mod svg;
 mod ticks;
+pub use events::{event_figure, EventSpan, Quantity};
+pub use rigid_run::rigid_figures;
 
 use layout::Layout;
 pub use style::{Dash, Stroke};

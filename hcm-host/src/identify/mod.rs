@@ -1,14 +1,41 @@
 //! Parameter identification (PM2): fit a normal law to measured data, by separable
 //! least squares ([`separable`]) or by the paper's genetic algorithm ([`evolve`]).
 
-pub mod bounds;
-pub mod evolve;
-pub mod motion;
-pub mod physics;
-pub mod replay;
-pub mod rigid;
-pub mod samples;
-pub mod separable;
+mod bounds;
+mod evolve;
+mod motion;
+mod physics;
+mod replay;
+mod rigid;
+mod samples;
+mod separable;
+pub use bounds::{Bounds, BoundsOverrides};
+pub use evolve::Fitness;
+pub use motion::{
+    beside_physics, fitted_physics, identify_motion, motion_fitness, set_options, split_tosses,
+    MotionFit, MotionParameters, MotionTarget,
+};
+pub use motion::{
+    fitted_assignments, fitted_scenario_text, identify_motion_and_force, part_of, ForceData, Part,
+    Search as MotionSearch,
+};
+pub use physics::PhysicsBody;
+pub use physics::PhysicsError;
+pub(crate) use replay::pre_contact_state;
+pub(crate) use replay::simulate_target_as;
+pub(crate) use replay::simulate_target_with;
+pub use replay::{curve, targets, with_physics, Target};
+pub use rigid::identify_from_samples;
+pub(crate) use rigid::mover_name;
+pub use rigid::{
+    event_errors, event_fitness, identify_rigid, rigid_warnings, SampleIdentification,
+};
+pub use rigid::{
+    fit_samples, identify_events, least_squares, replay_events, with_law, ContactScales,
+    EventTarget, RecordedContact, RecordedSample, RigidIdentification, RigidIdentifyError,
+    RigidParameters, SampleFit, WrenchTarget,
+};
+pub use samples::{force_samples, ForceSample};
 
 pub use physics::{FitRecord, Physics};
 
@@ -16,10 +43,8 @@ use crate::dataset::Dataset;
 use crate::indicators::IndicatorError;
 use crate::progress::{in_stage, Progress, Stage};
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
-use bounds::Bounds;
 use hcm_core::law::AnyNormalLaw;
 use hcm_core::model::ContactModel;
-use samples::ForceSample;
 use std::time::Instant;
 
 /// Why identification failed.
@@ -43,7 +68,7 @@ pub enum IdentifyError {
     Data(#[from] IndicatorError),
     /// The motion could not be reconstructed at the force samples.
     #[error(transparent)]
-    Reconstruct(#[from] crate::dataset::reconstruct::ReconstructError),
+    Reconstruct(#[from] crate::dataset::ReconstructError),
     /// The law cannot be built in this scenario.
     #[error(transparent)]
     Scenario(#[from] ScenarioError),
@@ -139,7 +164,7 @@ pub fn identify(
     let started = Instant::now();
     let (template, bounds) = template(scenario, c, law_name)?;
     // Camera frames and force rows on their own clocks: the motion at the force samples.
-    let completed = crate::dataset::reconstruct::complete(model, data)?;
+    let completed = crate::dataset::complete(model, data)?;
     let data = completed.data.as_ref();
     let (samples, events) = samples::force_samples(model, data, c)?;
     let targets = replay::targets(model, data, c)?;

@@ -2,7 +2,7 @@
 //! columns of a data file with the scenario's geometry.
 
 use super::IdentifyError;
-use crate::dataset::reconstruct::complete;
+use crate::dataset::complete;
 use crate::dataset::Dataset;
 use crate::indicators::{contact_history, event_spans};
 use crate::scenario::Model;

@@ -27,8 +27,6 @@ use hcm_core::model::ContactModel;
 pub struct LsqFit {
     /// The identified law.
     pub(crate) law: AnyNormalLaw<f64>,
-    /// RMS force residual (N).
-    pub force_rms: f64,
     /// What the data fix and what they do not.
     pub(crate) notes: Vec<String>,
     /// One-sigma standard errors of the free parameters, by name (from LM's covariance).
@@ -250,7 +248,6 @@ fn refine(
     }
     Ok(LsqFit {
         law: fitted,
-        force_rms: (2.0 * result.cost / samples.len() as f64).sqrt(),
         notes,
         standard_errors,
     })

@@ -12,7 +12,7 @@
 use super::Indicators;
 use crate::dataset::{BodyTrack, Run};
 use crate::numerics::linear_least_squares;
-use crate::scenario::geometry::pair_kinematics;
+use crate::scenario::pair_kinematics;
 use crate::scenario::Model;
 use hcm_core::integrate::hermite_zero;
 use nalgebra::Vector3;

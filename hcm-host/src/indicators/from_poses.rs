@@ -12,8 +12,8 @@
 
 use super::{IndicatorError, WrenchIndicators};
 use crate::dataset::{Run, Sample};
-use crate::scenario::geometry::{pair_separation, Pose};
 use crate::scenario::Model;
+use crate::scenario::{pair_separation, Pose};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 /// One 3D contact event found in a run's data.

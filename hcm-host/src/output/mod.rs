@@ -13,7 +13,7 @@
 //!   run writing to the same directory (see [`signals`](remove_temporaries_on_signals)).
 //! - [`ensure_space`]: refuses long work whose output will not fit on the disk.
 
-pub mod destination;
+mod destination;
 mod directory;
 mod registry;
 mod signals;

@@ -6,7 +6,7 @@ use crate::dataset::Dataset;
 use crate::evaluate::{evaluate, ConditionTable};
 use crate::export::Blobs;
 use crate::figure::{Band, Colour, Figure, NamedFigure, Series, Stroke};
-use crate::identify::replay::{curve, simulate_target_with, targets, Target};
+use crate::identify::{curve, simulate_target_with, targets, Target};
 use crate::progress::in_stage;
 use crate::scenario::Model;
 

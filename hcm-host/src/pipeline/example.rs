@@ -3,7 +3,7 @@
 use super::preset::{ScenarioChoice, Shipped};
 use super::results::PaperErrors;
 use crate::evaluate::IndicatorErrors;
-use crate::identify::evolve::Fitness;
+use crate::identify::Fitness;
 use crate::identify::Method;
 use crate::numerics::optimize::genetic::GeneticSettings;
 use serde::Serialize;

@@ -18,17 +18,21 @@
 //! intermediate values come back in the [`Reproduction`] for the caller to write.
 
 mod artifacts;
-pub mod cube;
+mod cube;
 mod evaluate;
 mod example;
 mod identify;
-pub mod peg;
+mod peg;
 mod preset;
 mod quantity;
 mod report;
 mod results;
 mod setup;
 mod train;
+pub use cube::{reproduce_cube, CubeReproduction, CubeSettings};
+pub use peg::PegReproduction;
+pub use peg::PegSettings;
+pub use peg::{evaluate_peg, reproduce_peg, CONTACT as PEG_CONTACT};
 
 pub use crate::figure::NamedFigure;
 pub use crate::progress::{Fold, Progress, Silent, Stage};
@@ -47,8 +51,8 @@ pub use train::train_residual;
 
 use crate::experiment::{generate_split, ExperimentError, Split};
 use crate::export::{export_blobs, Blobs, ExportError};
-use crate::identify::physics::PhysicsError;
 use crate::identify::IdentifyError;
+use crate::identify::PhysicsError;
 use crate::scenario::{Scenario, ScenarioError};
 use std::borrow::Cow;
 
@@ -82,7 +86,7 @@ pub enum PipelineError {
     Export(#[from] ExportError),
     /// The rigid-body stages (peg-in-hole): PM2 or the S2 comparison failed.
     #[error(transparent)]
-    Rigid(#[from] crate::identify::rigid::RigidIdentifyError),
+    Rigid(#[from] crate::identify::RigidIdentifyError),
     /// The cube tosses' stages (boxed: the other stages' results stay small).
     #[error(transparent)]
     Cube(Box<cube::CubeError>),

@@ -8,12 +8,13 @@
 
 mod assignment;
 mod exact;
-pub mod geometry;
-pub mod overrides;
+mod geometry;
+mod overrides;
 mod residual_fit;
 mod resolve;
 mod rigid;
-pub mod validate;
+mod validate;
+pub use geometry::{pair_contacts, pair_kinematics, pair_rate, pair_separation, Pose};
 
 pub use assignment::{Assignment, IntoAssignment};
 pub use resolve::{Body, Contact, Model, Shape};

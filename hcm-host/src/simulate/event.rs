@@ -7,7 +7,7 @@ use super::layout::StateVector;
 use super::stepper::RigidStepper;
 use super::system::RigidSystem;
 use crate::indicators::{Indicators, WrenchIndicators};
-use crate::scenario::geometry::{pair_rate, pair_separation, Pose};
+use crate::scenario::{pair_rate, pair_separation, Pose};
 use crate::scenario::{Contact, Model};
 use hcm_core::integrate::{locate_crossing, DenseOutput};
 use nalgebra::Vector3;

@@ -46,6 +46,6 @@ pub fn memory_budget() -> f64 {
 }
 
 /// `bytes` (B) for people.
-pub fn shown(bytes: f64) -> String {
+pub fn shown_bytes(bytes: f64) -> String {
     crate::output::bytes(bytes.min(u64::MAX as f64) as u64)
 }

@@ -1,8 +1,8 @@
 //! The simulator's state vector: where each rigid body's state and each contact's
 //! running integrals sit in it, and the pose of a body read back from it.
 
-use crate::scenario::geometry::Pose;
 use crate::scenario::Model;
+use crate::scenario::Pose;
 use hcm_core::integrate::OdeState;
 use hcm_core::rigid::RigidState;
 use nalgebra::Vector3;

@@ -18,13 +18,14 @@
 //! sampling only.
 
 mod event;
-pub mod footprint;
+mod footprint;
 mod jacobian;
 mod layout;
 mod memory;
 mod record;
 mod stepper;
 mod system;
+pub use footprint::{memory_budget, record_bytes, shown_bytes};
 
 pub use event::{ContactEvent, EventTracker};
 pub use layout::{RigidLayout, StateVector};
@@ -79,8 +80,8 @@ pub enum SimulationError {
          simulation.end_time {end_time} s at a record period of {period} s), more than the \
          {} of memory available; raise record.contact_sample_period and \
          record.flight_sample_period or shorten simulation.end_time",
-        footprint::shown(*bytes),
-        footprint::shown(*budget)
+        footprint::shown_bytes(*bytes),
+        footprint::shown_bytes(*budget)
     )]
     TooLarge {
         /// The scenario's name.

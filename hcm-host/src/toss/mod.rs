@@ -20,17 +20,23 @@
 //!   and scored each on its own width); [`partner`]: a fixed body's clearance and the shift and tilt a
 //!   tracker's calibration error makes to it.
 
-pub mod baseline;
-pub mod ensemble;
-pub mod evaluation;
-pub mod face;
-pub mod initial_state;
-pub mod partner;
-pub mod predict;
-pub mod score;
-pub mod scores_file;
-pub mod setup;
-pub mod window;
+mod baseline;
+mod ensemble;
+mod evaluation;
+mod face;
+mod initial_state;
+mod partner;
+mod predict;
+mod score;
+mod scores_file;
+mod setup;
+mod window;
+pub use initial_state::orientation;
+pub use partner::{shift_surface, tilt_surface};
+pub(crate) use predict::prepare;
+pub(crate) use predict::simulate_toss;
+pub use predict::{replay_model, PreparedToss};
+pub use score::rotation_angle;
 
 pub use baseline::frozen_pose;
 pub use ensemble::{

@@ -9,7 +9,7 @@ use super::{
     TrainedResidual,
 };
 use crate::dataset::Dataset;
-use crate::identify::samples::force_samples;
+use crate::identify::force_samples;
 use crate::identify::IdentifyError;
 use crate::progress::Progress;
 use crate::residual::{HIDDEN, WIDTH};

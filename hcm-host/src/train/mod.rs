@@ -26,25 +26,31 @@
 //! chunk sums are added in chunk order, so a seed gives bit-identical weights whatever
 //! the number of threads.
 
-pub mod adam;
-pub mod envelope;
-pub mod explained;
+mod adam;
+mod envelope;
+mod explained;
 mod force_residual;
 mod int8;
-pub mod motion_residual;
-pub mod motion_samples;
-pub mod network;
-pub mod per_output;
-pub mod point_residual;
-pub mod point_samples;
-pub mod quantise;
+mod motion_residual;
+mod motion_samples;
+mod network;
+mod per_output;
+mod point_residual;
+mod point_samples;
+mod quantise;
 mod reported;
-pub mod samples;
-pub mod summed;
-pub mod trained;
-pub mod wrench_residual;
-pub mod wrench_samples;
-pub mod wrench_settings;
+mod samples;
+mod summed;
+mod trained;
+mod wrench_residual;
+mod wrench_samples;
+mod wrench_settings;
+pub use explained::{explained_variance, silence_outputs, EXPLAINED_MIN};
+pub use motion_residual::{train_motion_residual, HORIZON};
+pub use motion_samples::motion_rows;
+pub use network::Layout;
+pub use wrench_residual::pairs_before_event;
+pub use wrench_samples::{contact_wrench, moving_body, state_input};
 
 pub use envelope::envelope_tolerance;
 pub use force_residual::{
@@ -62,7 +68,6 @@ pub use wrench_samples::{wrench_pairs, WrenchPairs};
 pub use wrench_settings::wrench_settings;
 
 use adam::Adam;
-use network::Layout;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;

@@ -16,7 +16,7 @@
 use super::summed::SummedRow;
 use super::wrench_samples::WrenchSampleError;
 use crate::dataset::Dataset;
-use crate::identify::rigid::recorded::{RecordedContact, RecordedSample};
+use crate::identify::{RecordedContact, RecordedSample};
 use crate::residual::HostContactModel;
 use crate::scenario::Model;
 use hcm_core::model::point_residual::{point_features, tangential_correction};

@@ -28,13 +28,13 @@
 
 pub use crate::dataset::state_input;
 use crate::dataset::Dataset;
-use crate::identify::rigid::RecordedContact;
+use crate::identify::RecordedContact;
 use crate::scenario::Model;
 use crate::simulate::RigidSystem;
 use nalgebra::Vector3;
 
 /// Residual inputs of a rigid contact: the moving body's 13 state components.
-pub(crate) use crate::dataset::state::STATE_INPUTS;
+pub(crate) use crate::dataset::STATE_INPUTS;
 
 /// The training pairs of one contact, one row per touching sample, runs in file
 /// order and samples in time order.

@@ -9,7 +9,7 @@
 use crate::dataset::Dataset;
 use crate::numerics::optimize::Bound;
 use crate::scenario::{Model, Shape};
-use crate::toss::partner::{shift_surface, tilt_surface};
+use crate::toss::{shift_surface, tilt_surface};
 use hcm_core::effect::{ContactEffect, HysteresisDamping};
 use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};
 
@@ -156,11 +156,6 @@ impl MotionEffect {
             }
             MotionEffect::InertiaScale | MotionEffect::EdgeRounding => Family::Body,
         }
-    }
-
-    /// Whether it changes how the data are read rather than the model.
-    pub fn transforms_data(self) -> bool {
-        self == MotionEffect::LengthScale
     }
 
     /// The box its parameters are searched in, scaled by the body's `mass` (kg) and

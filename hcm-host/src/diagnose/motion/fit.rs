@@ -7,13 +7,13 @@
 
 use super::catalogue::MotionEffect;
 use crate::dataset::Dataset;
-use crate::identify::motion::MotionTarget;
+use crate::identify::MotionTarget;
 use crate::numerics::optimize::minimize_scalar;
 use crate::numerics::optimize::nelder_mead::polish;
 use crate::numerics::optimize::Bound;
 use crate::scenario::Model;
-use crate::toss::predict::{simulate_toss, PreparedToss};
 use crate::toss::TossError;
+use crate::toss::{simulate_toss, PreparedToss};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 

@@ -19,8 +19,8 @@
 //! none. A named cause is added to the model, and the search repeats on what is left
 //! (at most [`MAX_ROUNDS`] causes). Nothing helping: the answer is "none".
 
-pub mod catalogue;
-pub mod fit;
+mod catalogue;
+mod fit;
 
 pub use super::paired::Paired;
 pub use super::verdict::GAIN_T;
@@ -28,10 +28,10 @@ use super::verdict::{decide_with, Margins, Verdict};
 /// Standard errors the best candidate must beat each rival by on the held-out tosses
 /// ([`Margins::TOSSES`]).
 pub const RIVAL_T: f64 = Margins::TOSSES.rival_t;
-pub use catalogue::{Family, MotionEffect};
+pub use catalogue::MotionEffect;
 
 use crate::dataset::Dataset;
-use crate::identify::motion::{split_tosses, MotionParameters};
+use crate::identify::{split_tosses, MotionParameters};
 use crate::progress::{in_stage, Progress, Stage as ProgressStage};
 use crate::scenario::Model;
 use crate::toss::{TossError, TossSetup};
@@ -343,7 +343,7 @@ pub enum MotionBase {
     /// As the user wrote it: every candidate is a possible cause.
     #[default]
     Given,
-    /// Fitted from these poses ([`crate::identify::motion`], a physics file with a fit
+    /// Fitted from these poses ([`crate::identify::identify_motion`], a physics file with a fit
     /// record): its own parameters are first polished on the training tosses (a
     /// Nelder–Mead of [`BASE_POLISH`] replays, kept where it trains better), and the
     /// candidates that fit frees ([`MotionEffect::within_motion_fit`]) are left out —
@@ -524,9 +524,9 @@ fn polished_base(
     training: &Dataset,
 ) -> Result<Model, MotionDiagnoseError> {
     use crate::numerics::optimize::{nelder_mead, Parameters};
-    let target = crate::identify::motion::MotionTarget::new(model, training)?;
+    let target = crate::identify::MotionTarget::new(model, training)?;
     let score =
-        |genes: &[f64]| crate::identify::motion::fitness(&target, &parameters.apply(model, genes));
+        |genes: &[f64]| crate::identify::motion_fitness(&target, &parameters.apply(model, genes));
     let start = parameters.values(model);
     let start_fitness = score(&start);
     if !start_fitness.is_finite() {

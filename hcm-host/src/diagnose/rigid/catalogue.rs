@@ -26,8 +26,8 @@
 //! already: a scale or a Coulomb law of them changes nothing the fit cannot, and they
 //! are not candidates then.
 
-use crate::identify::bounds::BoundsOverrides;
-use crate::identify::rigid::{with_law, ContactScales, RecordedContact, RigidParameters};
+use crate::identify::BoundsOverrides;
+use crate::identify::{with_law, ContactScales, RecordedContact, RigidParameters};
 use crate::numerics::optimize::{Bound, Parameters};
 use crate::scenario::Model;
 use hcm_core::effect::{Adhesion, ContactEffect, HysteresisDamping, Plasticity, ViscousDamping};

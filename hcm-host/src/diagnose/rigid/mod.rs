@@ -20,15 +20,15 @@
 //! - **Intervals**: the extended model fitted on every run ([`fit_samples`]): each
 //!   parameter with the standard error that holds run scatter.
 
-pub mod catalogue;
+mod catalogue;
 
-pub use catalogue::{law_label, Extended, Family, ForceEffect, LawSwap, Scales};
+pub use catalogue::{law_label, Extended, Family, ForceEffect, Scales};
 
 use super::paired::Paired;
 use super::verdict::{decide_with, Margins, Verdict};
 use crate::dataset::Dataset;
-use crate::identify::bounds::BoundsOverrides;
-use crate::identify::rigid::{
+use crate::identify::BoundsOverrides;
+use crate::identify::{
     fit_samples, least_squares, RecordedContact, RigidIdentifyError, RigidParameters, SampleFit,
 };
 use crate::numerics::optimize::Parameters;

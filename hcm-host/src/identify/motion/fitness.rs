@@ -6,7 +6,7 @@
 
 use crate::dataset::Dataset;
 use crate::scenario::Model;
-use crate::toss::predict::{prepare, simulate_toss, PreparedToss};
+use crate::toss::{prepare, simulate_toss, PreparedToss};
 use crate::toss::{TossError, TossScore, TossSetup};
 use rayon::prelude::*;
 
@@ -46,7 +46,7 @@ pub fn toss_scores(target: &MotionTarget<'_>, candidate: &Model) -> Option<Vec<T
 
 /// Mean position error (%) + mean rotation error (°) of `candidate` over the target's
 /// tosses, summed in the tosses' order; +∞ if a replay fails.
-pub fn fitness(target: &MotionTarget<'_>, candidate: &Model) -> f64 {
+pub fn motion_fitness(target: &MotionTarget<'_>, candidate: &Model) -> f64 {
     let Some(scores) = toss_scores(target, candidate) else {
         return f64::INFINITY;
     };

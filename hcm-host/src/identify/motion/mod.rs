@@ -6,15 +6,16 @@
 //! the box of [`parameters`]; Nelder–Mead ([`crate::numerics::optimize::nelder_mead`]) refines its best. The tosses are
 //! split by [`split`]: the fit never sees the held-out part.
 
-pub mod combined;
-pub mod fitness;
-pub mod identifiability;
-pub mod parameters;
-pub mod physics_file;
-pub mod scenario_file;
-pub mod split;
+mod combined;
+mod fitness;
+mod identifiability;
+mod parameters;
+mod physics_file;
+mod scenario_file;
+mod split;
 
-pub use fitness::{fitness, toss_scores, MotionTarget};
+pub use combined::ForceData;
+pub use fitness::{motion_fitness, MotionTarget};
 pub use identifiability::Sensitivity;
 pub use parameters::MotionParameters;
 pub use physics_file::{fitted_physics, set_options};
@@ -65,7 +66,7 @@ pub fn identify_motion(
     fold: Fold,
     progress: &dyn Progress,
 ) -> Result<MotionFit, GeneticError> {
-    let score = |candidate: &Model| fitness(target, candidate);
+    let score = |candidate: &Model| motion_fitness(target, candidate);
     let search = Search {
         settings,
         polish_budget,
@@ -86,9 +87,9 @@ pub fn identify_motion_and_force(
     search: &Search<'_>,
     progress: &dyn Progress,
 ) -> Result<MotionFit, GeneticError> {
-    let (motion_start, force_start) = (fitness(target, model), force.cost(model));
+    let (motion_start, force_start) = (motion_fitness(target, model), force.cost(model));
     let score = |candidate: &Model| {
-        fitness(target, candidate) / motion_start + force.cost(candidate) / force_start
+        motion_fitness(target, candidate) / motion_start + force.cost(candidate) / force_start
     };
     search.run(model, parameters, score, progress)
 }

@@ -18,7 +18,7 @@
 
 use crate::numerics::optimize::{Bound, Parameters};
 use crate::scenario::{Model, Shape};
-use crate::toss::partner::shift_surface;
+use crate::toss::shift_surface;
 use crate::toss::{TossError, TossSetup};
 
 /// Factor on each side of the scenario's stiffness or damping its box spans (–).

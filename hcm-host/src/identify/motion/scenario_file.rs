@@ -6,7 +6,7 @@
 
 use super::MotionParameters;
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError, Shape};
-use crate::toss::partner::shift_surface;
+use crate::toss::shift_surface;
 
 /// The assignments that turn `model`'s scenario into the fitted one, from the
 /// fit's `MotionParameters::named` values: the law's two parameters, `mu_static`,

@@ -13,7 +13,7 @@ const MISSING: f64 = 1.0;
 
 /// The completed events of contact `c` when `model` is simulated: touch-down time (s)
 /// and indicators; `None` if the simulation fails.
-pub fn replay(model: &Model, c: usize) -> Option<Vec<(f64, WrenchIndicators)>> {
+pub fn replay_events(model: &Model, c: usize) -> Option<Vec<(f64, WrenchIndicators)>> {
     let simulation = simulate(model).ok()?;
     Some(
         simulation
@@ -27,8 +27,8 @@ pub fn replay(model: &Model, c: usize) -> Option<Vec<(f64, WrenchIndicators)>> {
 
 /// Mean squared relative error of `candidate` (a model started like `target.model`)
 /// against the target's events; +∞ if its simulation fails.
-pub fn fitness(target: &WrenchTarget, candidate: &Model) -> f64 {
-    let Some(events) = replay(candidate, target.contact) else {
+pub fn event_fitness(target: &WrenchTarget, candidate: &Model) -> f64 {
+    let Some(events) = replay_events(candidate, target.contact) else {
         return f64::INFINITY;
     };
     let first = events.first().map_or(0.0, |e| e.0);

@@ -3,20 +3,21 @@
 //! replay from S1's mean pre-contact state makes S1's contact events — peak force and
 //! torque, linear and angular impulse, timing — event by event.
 
-pub mod events;
-pub mod fitness;
-pub mod parameters;
-pub mod quality;
-pub mod recorded;
-pub mod sample_fit;
-pub mod scaled;
-pub mod start;
-pub mod target;
+mod events;
+mod fitness;
+mod parameters;
+mod quality;
+mod recorded;
+mod sample_fit;
+mod scaled;
+mod start;
+mod target;
 
-pub use events::{identify_events, EventFit};
-pub use fitness::{event_errors, fitness, replay};
+pub use events::identify_events;
+pub use fitness::{event_errors, event_fitness, replay_events};
 pub use parameters::RigidParameters;
-pub use recorded::RecordedContact;
+pub use quality::warnings as rigid_warnings;
+pub use recorded::{RecordedContact, RecordedSample};
 pub use sample_fit::{
     fit_samples, identify_from_samples, least_squares, SampleFit, SampleIdentification,
 };
@@ -100,7 +101,7 @@ pub fn identify_rigid(
         minimize(
             &parameters.bounds(),
             settings,
-            |genes| fitness(target, &parameters.apply(&target.model, genes)),
+            |genes| event_fitness(target, &parameters.apply(&target.model, genes)),
             |done: usize, best: f64| {
                 progress.advance(done as u64, generations);
                 progress.status(&format!("best {best:.4e}"));

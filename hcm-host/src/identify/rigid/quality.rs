@@ -6,7 +6,7 @@
 //! the best candidate's replay made none of the data's events — and a stiffness at its
 //! search bound, and `hcm identify` wrote the physics file without a word.
 
-use super::fitness::{event_errors, replay};
+use super::fitness::{event_errors, replay_events};
 use super::target::WrenchTarget;
 use crate::indicators::WrenchIndicators;
 use crate::numerics::optimize::Bound;
@@ -34,7 +34,7 @@ pub fn warnings(
     candidate: &Model,
 ) -> Vec<String> {
     let mut out = at_bounds(bounds, genes);
-    match replay(candidate, target.contact) {
+    match replay_events(candidate, target.contact) {
         None => out.push(
             "the best candidate's replay fails to simulate: no parameter set was judged; \
              check the scenario's start and the data's pre-contact states"

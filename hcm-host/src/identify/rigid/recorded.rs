@@ -27,8 +27,8 @@
 //! [`ContactModel::pair_load`]: hcm_core::model::ContactModel::pair_load
 
 use super::RigidIdentifyError;
-use crate::dataset::state::Frames;
 use crate::dataset::state_input;
+use crate::dataset::Frames;
 use crate::dataset::{BodyTrack, Channel, Dataset, Run, Sample};
 use crate::experiment::{read_by_sensor, sensor_is_exact};
 use crate::scenario::Model;
@@ -57,7 +57,7 @@ pub struct RecordedSample {
     pub measured: [f64; 6],
     /// The mover's recorded state as the integrator holds it (the residual's Eq 12
     /// input, [`state_input`]).
-    pub state: [f64; crate::dataset::state::STATE_INPUTS],
+    pub state: [f64; crate::dataset::STATE_INPUTS],
     /// Whether that state was read between the mover's frames rather than recorded at
     /// this instant.
     pub between_frames: bool,

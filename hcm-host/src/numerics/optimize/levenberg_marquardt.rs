@@ -1,7 +1,7 @@
 //! Levenberg–Marquardt for small bounded nonlinear least-squares problems.
 //!
 //! Minimises ½‖r(p)‖² over a handful of parameters (≤ 8 in practice) and up to about a
-//! million residuals: after the separable search of [`crate::identify::separable`] has found
+//! million residuals: after the separable search of `identify` has found
 //! a good start, this refines every parameter of a contact law jointly and reports
 //! their covariance.
 //!

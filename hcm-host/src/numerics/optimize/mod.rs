@@ -20,6 +20,7 @@ pub mod nelder_mead;
 pub mod search;
 
 pub use bound::Bound;
+pub use genetic::{GeneticError, GeneticSettings};
 pub use search::{minimize_box2, minimize_scalar, LeastSquaresError};
 
 /// Receives an optimiser's progress: after each step, the steps done so far (the

@@ -5,8 +5,8 @@
 
 use super::phases::{phases, Phase};
 use crate::dataset::{Dataset, Sample};
-use crate::toss::score::rotation_angle;
-use crate::toss::{initial_state::orientation, TossError, TossEvaluation, TossSetup};
+use crate::toss::rotation_angle;
+use crate::toss::{orientation, TossError, TossEvaluation, TossSetup};
 use nalgebra::Vector3;
 use serde::Serialize;
 

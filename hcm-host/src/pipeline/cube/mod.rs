@@ -9,21 +9,21 @@
 //! Nothing here prints or writes a file: progress goes to a [`Progress`], and the
 //! caller writes what comes back.
 
-pub mod errors;
+mod errors;
 mod faces;
 mod figures;
-pub mod phases;
+mod phases;
 mod report;
 mod results;
 mod stages;
 
 pub use figures::toss_figures;
-pub use results::{CubeResults, ModelScores, Published, TossRow, PUBLISHED};
-pub use stages::{ErrorProfile, Predictions, SecondFold, Timeline};
+pub use results::CubeResults;
+pub use stages::{Predictions, SecondFold};
 
 use crate::dataset::{DataError, Dataset};
-use crate::diagnose::motion::{diagnose_motion_split, MotionDiagnoseError, MotionDiagnosis};
-use crate::identify::motion::{split_tosses, MotionFit};
+use crate::diagnose::{diagnose_motion_split, MotionDiagnoseError, MotionDiagnosis};
+use crate::identify::{split_tosses, MotionFit};
 use crate::numerics::optimize::genetic::GeneticError;
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
 use crate::toss::{TossError, TossSetup};
@@ -33,7 +33,7 @@ use super::{
     Artifact, Fold, NamedFigure, Progress, Reproduced, ScenarioChoice, Shipped, StageClock,
     StageTiming,
 };
-use crate::identify::motion::fitted_physics;
+use crate::identify::fitted_physics;
 use crate::toss::predicted_dataset;
 use std::borrow::Cow;
 
@@ -297,7 +297,7 @@ fn read_split(
     let name = settings.data.display().to_string();
     setup.check_data(&name, model, &data)?;
     let (training, held_out) = split_tosses(&data);
-    let least = crate::diagnose::motion::MIN_HELD_OUT;
+    let least = crate::diagnose::MIN_HELD_OUT;
     if training.runs.len() < least || held_out.runs.len() < least {
         return Err(CubeError::Split {
             data: name,

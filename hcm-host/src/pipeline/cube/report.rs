@@ -3,8 +3,8 @@
 
 use super::phases::{IMPACT_AFTER, REST_ANGLE, REST_DISTANCE, REST_SPAN};
 use super::results::CubeResults;
-use crate::diagnose::motion::{GAIN_T, MIN_GAIN, RIVAL_T};
-use crate::identify::motion::set_options;
+use crate::diagnose::{GAIN_T, MIN_GAIN, RIVAL_T};
+use crate::identify::set_options;
 use std::fmt::Write;
 
 impl CubeResults {

@@ -3,8 +3,8 @@
 use super::faces::FaceResults;
 use super::stages::{Predictions, SecondFold, Timeline};
 use super::CubeSettings;
-use crate::diagnose::motion::MotionDiagnosis;
-use crate::identify::motion::MotionFit;
+use crate::diagnose::MotionDiagnosis;
+use crate::identify::MotionFit;
 use crate::pipeline::StageTiming;
 use crate::scenario::Assignment;
 use crate::toss::{summarize, Summary, TossEvaluation};

@@ -5,9 +5,7 @@
 use super::errors::{frame_errors, over_time, per_phase, PhaseErrors, TimePoint};
 use super::{CubeError, CubeSettings};
 use crate::dataset::Dataset;
-use crate::identify::motion::{
-    beside_physics, identify_motion, MotionFit, MotionParameters, MotionTarget,
-};
+use crate::identify::{beside_physics, identify_motion, MotionFit, MotionParameters, MotionTarget};
 use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::pipeline::{Fold, Progress, Stage};
 use crate::progress::in_stage;

@@ -6,8 +6,8 @@
 use super::curves::{mean_curve, replay_curve, WrenchCurve};
 use super::figures::{event_spans, figures};
 use crate::dataset::Dataset;
-use crate::identify::replay::with_physics;
-use crate::identify::rigid::{mover_name, replay, RigidIdentifyError, WrenchTarget};
+use crate::identify::with_physics;
+use crate::identify::{mover_name, replay_events, RigidIdentifyError, WrenchTarget};
 use crate::pipeline::NamedFigure;
 use crate::scenario::Model;
 use serde::Serialize;
@@ -115,7 +115,7 @@ pub fn evaluate_peg(
     let target = WrenchTarget::from_data(reference, validation, c, Some(events))?;
     let replays: Vec<_> = models
         .iter()
-        .map(|(_, m)| replay(&with_physics(&target.model, m), c).unwrap_or_default())
+        .map(|(_, m)| replay_events(&with_physics(&target.model, m), c).unwrap_or_default())
         .collect();
     let mut rows = Vec::new();
     for (k, event) in target.events.iter().enumerate() {

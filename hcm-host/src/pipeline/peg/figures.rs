@@ -6,9 +6,9 @@
 //! in greyscale too.
 
 use super::curves::WrenchCurve;
-use crate::figure::events::{event_figure, EventSpan, Quantity};
+use crate::figure::{event_figure, EventSpan, Quantity};
 use crate::figure::{Colour, Figure, Series, Stroke};
-use crate::identify::rigid::EventTarget;
+use crate::identify::EventTarget;
 use crate::pipeline::NamedFigure;
 
 /// Colours: S2 mean, then the models.

@@ -8,8 +8,7 @@ mod evaluate;
 mod figures;
 mod report;
 
-pub use curves::{mean_curve, replay_curve, WrenchCurve};
-pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS, PAPER};
+pub use evaluate::{evaluate_peg, PegEvaluation, PegRow, INDICATORS};
 
 use super::{
     Artifact, PipelineError, Progress, Reproduced, ScenarioChoice, Shipped, Stage, StageClock,
@@ -18,7 +17,7 @@ use super::{
 use crate::evaluate::{evaluate_rigid, RigidEvaluation};
 use crate::experiment::{generate_split, Split};
 use crate::export::{export_blobs, Blobs};
-use crate::identify::rigid::{identify_events, with_law, RigidIdentification};
+use crate::identify::{identify_events, with_law, RigidIdentification};
 use crate::identify::{FitRecord, Physics};
 use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::progress::in_stage;

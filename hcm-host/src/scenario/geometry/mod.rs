@@ -9,6 +9,6 @@ mod kinematics;
 mod manifold;
 mod pose;
 
-pub use kinematics::{pair_kinematics, PairKinematics};
+pub use kinematics::pair_kinematics;
 pub use manifold::{pair_contacts, pair_rate, pair_separation};
 pub use pose::Pose;
