@@ -411,6 +411,38 @@ fn numeric_options_say_what_they_take() {
 }
 
 #[test]
+fn identify_on_force_data_needs_a_law_and_a_method_for_force() {
+    let hcm = Hcm::new();
+    let (s1, _) = ball_data(&hcm);
+    let out = hcm.path("pm2.toml");
+    let ball = scenario("bouncing_ball.toml");
+    // Only a fit from poses defaults to the scenario's law.
+    let no_law = hcm
+        .run("identify")
+        .opt("--scenario", &ball)
+        .opt("--data", &s1)
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, no_law),
+        &["data.s1.csv", "--law", "`hcm laws`"],
+    );
+    // A fit from poses on a 1D scene: refused, naming the methods that apply.
+    for method in ["motion", "both"] {
+        let from_poses = hcm
+            .run("identify")
+            .opt("--scenario", &ball)
+            .opt("--data", &s1)
+            .opt("--law", "hertz")
+            .opt("--method", method)
+            .opt("--out", &out);
+        says(
+            &refused(&hcm, &out, from_poses),
+            &[&format!("--method {method}"), "is 1D", "--method lsq or ga"],
+        );
+    }
+}
+
+#[test]
 fn a_reproduce_option_the_example_does_not_read_is_refused() {
     let hcm = Hcm::new();
     let out = hcm.path("peg");

@@ -10,13 +10,30 @@ use hcm_host::progress::{Progress, Silent};
 use hcm_host::scenario::{Model, Scenario};
 use std::path::PathBuf;
 
-/// Identify a physics model (PM2) from data.
+/// Identify a physics model (PM2) from data: force samples, or filmed poses alone.
 ///
 /// Example: `hcm identify --scenario scenarios/bouncing_ball.toml --data data.s1.csv --law lankarani_nikravesh --out pm2.toml`
 ///
-/// Fits the chosen law's free parameters to the data's contacts, prints them with
-/// their uncertainty and the fit's force error, and writes a physics file that
-/// `hcm simulate --physics`, `hcm train` and `hcm evaluate` read.
+/// Example: `hcm identify --scenario scenarios/cube_toss.toml --data data/contactnets-cube/tosses.csv --out fitted.toml --held-out held_out.csv --scenario-out fitted_scenario.toml`
+///
+/// What is fitted follows from the scenario and the data's channels:
+///   1D scene        the law's free parameters to the force samples (least squares, or
+///                   the paper's GA on simulated against measured force curves)
+///   3D, with force  the law (and the friction) to the wrench at the recorded poses
+///                   (least squares from several starts; `--method ga`: replayed events)
+///   3D, poses only  (`--method motion` on data with force) the law's stiffness and
+///                   damping, μ_s and μ_d, the table offset and the body's inertia, by
+///                   replaying every toss from its window start (as `hcm predict`) and
+///                   minimising the mean position error (% of the body's width) plus the
+///                   mean rotation error (°): GA, then a Nelder–Mead polish. The runs are
+///                   split by toss number (the digits ending a run id): even numbers
+///                   train, odd ones are held out and only scored. The table offset and
+///                   the inertia, which a physics file cannot carry, are kept in its
+///                   `sets`; --scenario-out writes a scenario with all of them in.
+/// Prints the parameters with their uncertainty (or, from poses, which ones the
+/// training tosses leave loose) and writes a physics file that `hcm simulate
+/// --physics`, `hcm train`, `hcm evaluate`, `hcm diagnose` and `hcm predict` read.
+/// `hcm identify-motion` is this command with `--method motion`.
 ///
 /// Terms:
 ///   PM2           physics model 2: a contact law with parameters identified on data
@@ -25,44 +42,76 @@ use std::path::PathBuf;
 ///   GA            the paper's genetic algorithm (`--method ga`): it simulates candidate
 ///                 parameters and compares them with the data
 ///   indicators    of one contact: maximum force, impulse, energy loss and duration
+///   window        a toss's frames from 3 frames before the body first comes within its
+///                 circumscribed radius of a fixed body to its last frame
+///   fitness       from poses: mean position error + mean rotation error per toss
+///   force error   with --method both: the mean square, over the instants with a
+///                 measured force, of the law's wrench at the recorded poses minus the
+///                 measured one, each component over its RMS
+///   frozen pose   the baseline: the body held at its recorded window-start pose
 #[derive(clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
     #[command(flatten)]
     scenario: super::ScenarioArgs,
-    /// Training data (measured-data CSV), e.g. the S1 file of `hcm generate`.
+    /// Training data (measured-data CSV), e.g. the S1 file of `hcm generate`, or filmed
+    /// tosses (position and orientation in every frame).
     #[arg(long)]
     data: PathBuf,
-    /// Law to identify (see `hcm laws`).
+    /// Law to identify (see `hcm laws`); needed on force data. From poses: fitted in
+    /// place of the scenario's, its parameters starting from the scenario's where they
+    /// share names (default: the scenario's own law).
     #[arg(long)]
-    law: String,
+    law: Option<String>,
     /// `lsq`: least squares on the force samples (fast; 1D: separable + Levenberg–
     /// Marquardt; 3D: Levenberg–Marquardt on the wrench at the recorded poses, from
     /// several starts). `ga`: the paper's genetic algorithm on simulated vs measured
-    /// data (3D: replayed contact events).
-    /// `both` (rigid, force and poses): the fit from motion (`hcm identify-motion`'s
-    /// replays) with the force at the recorded poses in the same objective.
-    #[arg(long, value_parser = ["lsq", "ga", "both"], default_value = "lsq")]
+    /// data (3D: replayed contact events). `motion`: from the poses alone, by
+    /// replays (what data without force get whatever this says). `both` (3D, force and
+    /// poses): the fit from motion with the force at the recorded poses in the same
+    /// objective: (motion fitness / its value at the scenario's parameters) + (force
+    /// error / its value there), so each starts at 1.
+    #[arg(long, value_parser = ["lsq", "ga", "motion", "both"], default_value = "lsq")]
     method: String,
     /// GA fitness: `curve` (force curves, default) or `indicators`.
     #[arg(long, value_parser = ["curve", "indicators"], default_value = "curve")]
     fitness: String,
-    /// Which contact of the scenario (index of its `[[contact]]`).
-    #[arg(long, default_value_t = 0)]
+    /// Which contact of the scenario (index of its `[[contact]]`). Default: the first;
+    /// from poses, the moving body's first.
+    #[arg(long)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
-    contact: usize,
+    contact: Option<usize>,
     /// Seed of the genetic algorithm.
     #[arg(long, default_value_t = 1)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
     seed: u64,
-    /// GA population size.
-    #[arg(long, default_value_t = 60)]
+    /// GA population size (default 60; from poses 20).
+    #[arg(long)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::population)]
-    population: usize,
-    /// GA generations (it stops earlier when the best has stalled for 30).
-    #[arg(long, default_value_t = 150)]
+    population: Option<usize>,
+    /// GA generations (default 150, stopping earlier when the best has stalled for 30;
+    /// from poses 10).
+    #[arg(long)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::generations)]
-    generations: usize,
+    generations: Option<usize>,
+    /// From poses: fitness evaluations of the Nelder–Mead polish after the GA (0: none).
+    #[arg(long, default_value_t = 40)]
+    polish: usize,
+    /// From poses: use only the first N runs of --data (before the split).
+    #[arg(long, value_name = "N")]
+    first: Option<usize>,
+    /// From poses: also write the held-out tosses (measured-data CSV), for `hcm predict
+    /// --data`.
+    #[arg(long, value_name = "FILE")]
+    held_out: Option<PathBuf>,
+    /// From poses: also write the fitted scenario (TOML): the scenario with the fitted
+    /// law parameters, friction, table offset and inertia in it, for `hcm predict
+    /// --scenario`.
+    #[arg(long, value_name = "FILE")]
+    scenario_out: Option<PathBuf>,
+    /// The same as `--method both` (the name `hcm identify-motion` gave it).
+    #[arg(long, hide = true)]
+    with_force: bool,
     /// Rigid contacts: fix the law's exponent at this value (PM2's; default: the
     /// scenario's) and identify the rest. With `--method lsq` and without it, the
     /// exponent is fitted too.
@@ -78,16 +127,55 @@ pub struct Args {
 }
 
 impl Args {
+    /// The fit from poses, whatever else the data hold (`hcm identify-motion`); its
+    /// `--with-force` still asks for `--method both`.
+    pub fn fitting_poses(mut self) -> Self {
+        if self.method != "both" {
+            self.method = "motion".into();
+        }
+        self
+    }
+
+    /// The law named by --law: required on force data.
+    fn law(&self) -> anyhow::Result<String> {
+        self.law.clone().ok_or_else(|| {
+            anyhow::anyhow!(
+                "{}: name the law to fit with --law (see `hcm laws`), e.g. --law hertz; \
+                 only a fit from poses defaults to the scenario's own law",
+                self.data.display()
+            )
+        })
+    }
+
     /// What the rigid path needs.
-    fn into_rigid(self) -> super::identify_rigid::RigidArgs {
+    fn into_rigid(self, law: String, contact: usize) -> super::identify_rigid::RigidArgs {
         super::identify_rigid::RigidArgs {
             data: self.data,
-            law: self.law,
+            law,
             method: self.method,
-            contact: self.contact,
+            contact,
             exponent: self.exponent,
             events: self.events,
             out: self.out,
+        }
+    }
+
+    /// What the fit from poses needs: its own GA size (20 × 10) unless given.
+    fn into_motion(self, with_force: bool) -> super::identify_motion::Args {
+        super::identify_motion::Args {
+            scenario: self.scenario,
+            data: self.data,
+            out: self.out,
+            first: self.first,
+            held_out: self.held_out,
+            scenario_out: self.scenario_out,
+            seed: self.seed,
+            population: self.population.unwrap_or(20),
+            generations: self.generations.unwrap_or(10),
+            polish: self.polish,
+            law: self.law,
+            contact: self.contact,
+            with_force,
         }
     }
 }
@@ -95,39 +183,44 @@ impl Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
     let model = scenario.model()?;
-    super::check_contact(args.contact, &model)?;
+    let contact = args.contact.unwrap_or(0);
+    super::check_contact(contact, &model)?;
     let data = Dataset::read(&args.data)?;
-    let evidence = Evidence::of(&model, &data, args.contact);
+    let evidence = Evidence::of(&model, &data, contact);
     if evidence != Evidence::LineForce {
-        println!("{}", inventory_summary(&data, &model, args.contact));
+        println!("{}", inventory_summary(&data, &model, contact));
     }
+    let with_force = args.with_force || args.method == "both";
     anyhow::ensure!(
-        !(evidence == Evidence::Poses && args.method == "both"),
+        !(evidence == Evidence::Poses && with_force),
         "{}: --method both fits the force with the motion, and the data hold no force \
          (fx, fy, fz); drop --method to fit from the poses alone",
         args.data.display()
     );
-    if evidence == Evidence::Poses || (evidence == Evidence::Wrench && args.method == "both") {
+    let from_poses = evidence == Evidence::Poses
+        || (evidence == Evidence::Wrench && (with_force || args.method == "motion"));
+    if from_poses {
         println!(
-            "fitting from the poses{}, as `hcm identify-motion` does (GA 20 × 10, polish 40)",
-            if evidence == Evidence::Poses {
-                ""
-            } else {
+            "fitting from the poses{} (GA {} × {}, polish {})",
+            if with_force {
                 " and the force at them"
-            }
+            } else {
+                ""
+            },
+            args.population.unwrap_or(20),
+            args.generations.unwrap_or(10),
+            args.polish
         );
-        let with_force = args.method == "both";
-        let motion = super::identify_motion::Args::from_identify(
-            args.scenario,
-            args.data,
-            args.out,
-            args.seed,
-            args.law,
-            args.contact,
-            with_force,
-        );
-        return super::identify_motion::run(motion);
+        return super::identify_motion::run(args.into_motion(with_force));
     }
+    anyhow::ensure!(
+        matches!(args.method.as_str(), "lsq" | "ga"),
+        "--method {}: fits a rigid (3D) contact from its poses; scenario `{}` is 1D, fit \
+         it with --method lsq or ga",
+        args.method,
+        scenario.name
+    );
+    let law = args.law()?;
     let by_events = args.method == "ga";
     let needs = evidence.requirement(if by_events {
         DataUse::IdentifyEvents
@@ -135,21 +228,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         DataUse::Identify
     });
     if let Some(needs) = needs {
-        data.require(
-            &args.data.display().to_string(),
-            &model,
-            &[args.contact],
-            needs,
-        )?;
+        data.require(&args.data.display().to_string(), &model, &[contact], needs)?;
     }
     let settings = GeneticSettings {
         seed: args.seed,
-        population: args.population,
-        generations: args.generations,
+        population: args.population.unwrap_or(60),
+        generations: args.generations.unwrap_or(150),
         ..GeneticSettings::default()
     };
     if evidence == Evidence::Wrench {
-        return super::identify_rigid::run(&args.into_rigid(), &scenario, &model, &data, settings);
+        let rigid = args.into_rigid(law, contact);
+        return super::identify_rigid::run(&rigid, &scenario, &model, &data, settings);
     }
     anyhow::ensure!(
         args.exponent.is_none() && args.events.is_none(),
@@ -157,13 +246,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
          exponent with [identify.bounds.<law>] exponent = [lo, hi] instead",
         scenario.name
     );
-    identify_one_dimensional(&args, &scenario, &model, &data, settings)
+    identify_one_dimensional(&args, &law, contact, &scenario, &model, &data, settings)
 }
 
-/// The 1D path: fits `--law` to the force samples by the method asked for, prints the
+/// The 1D path: fits `law` to contact `contact`'s force samples by the method asked for, prints the
 /// result and writes the physics file.
 fn identify_one_dimensional(
     args: &Args,
+    law: &str,
+    contact: usize,
     scenario: &Scenario,
     model: &Model,
     data: &Dataset,
@@ -180,19 +271,11 @@ fn identify_one_dimensional(
         Method::Lsq => &Silent,
         Method::Ga(..) => &bars,
     };
-    let result = identify(
-        scenario,
-        model,
-        data,
-        args.contact,
-        &args.law,
-        method,
-        progress,
-    )?;
+    let result = identify(scenario, model, data, contact, law, method, progress)?;
     let mut fit = result.fit.clone();
     fit.data = args.data.display().to_string();
-    print_identification(&args.law, &result, &fit);
-    let physics = Physics::for_contact(model, args.contact, &result.law, fit);
+    print_identification(law, &result, &fit);
+    let physics = Physics::for_contact(model, contact, &result.law, fit);
     write_physics(&physics, &scenario.name, &args.out)
 }
 

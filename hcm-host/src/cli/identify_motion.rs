@@ -1,5 +1,6 @@
-//! `hcm identify-motion`: a tossed body's contact law, friction and table height fitted
-//! to filmed tosses (poses, no force), judged on tosses the fit never saw.
+//! `hcm identify` from poses (the data hold no force, or `--method motion`/`both`): a
+//! tossed body's contact law, friction, table height and inertia fitted to filmed tosses
+//! by replaying them, judged on tosses the fit never saw.
 
 use super::progress::Bars;
 use anyhow::Context;
@@ -18,124 +19,22 @@ use hcm_host::scenario::{Assignment, Model};
 use hcm_host::toss::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};
 use std::path::PathBuf;
 
-/// Fit a thrown body's contact to filmed throws (motion only) and judge it on held-out ones.
-///
-/// Example: `hcm identify-motion --scenario scenarios/cube_toss.toml --data data/contactnets-cube/tosses.csv --out fitted.toml`
-///
-/// The scenario has one moving body (a box or a sphere) and its contacts with fixed
-/// bodies (planes, boxes, spheres, compounds); its first contact is fitted. Splits the
-/// runs of --data by toss number (the digits ending a run id): even numbers are the
-/// training part, odd numbers the held-out part, which the fit never sees. On the
-/// training part, fits the contact law's stiffness and damping (or restitution), the
-/// friction's μ_s and μ_d, the table offset and the body's inertia (a scale on the
-/// scenario's) — in the scenario's [identify.bounds.<law>] box where it gives one, else
-/// in one scaled from the scenario's own values — by
-/// replaying every toss from its window start (as `hcm predict` does) and minimising
-/// the mean position error (%) plus the mean rotation error (°): the genetic
-/// algorithm, then a Nelder–Mead polish, each candidate's tosses simulated in
-/// parallel. Writes the physics file (law and friction; the table offset and the
-/// inertia, which a physics file cannot carry, are printed as the `--set`s that apply
-/// them, and kept in the file's notes; --scenario-out writes a scenario with all of
-/// them in), and prints the scores of the scenario's parameters, the fitted ones and
-/// the frozen pose on both parts, and which parameters the training tosses leave
-/// loose (moving one ×/÷ 1.25, or by 10 % of its box, costs under 1 % of the fitness).
-///
-/// Terms:
-///   window         a toss's frames from 3 frames before the body's centre first comes
-///                  within its circumscribed radius of a fixed body (or bounces off it
-///                  between two frames) to its last frame
-///   position error mean over the window's frames of |p_pred − p| / the body's width, %
-///   rotation error mean over the window's frames of the angle of R_predᵀ·R, degrees
-///   fitness        mean position error + mean rotation error over the training tosses
-///   force error    with --with-force: the mean square, over the instants with a
-///                  measured force, of the law's wrench at the recorded poses minus the
-///                  measured one, each component over its RMS
-///   table offset   the fixed partner's surface moved (m): a plane along its normal,
-///                  another shape along the up direction; the tracker's table height
-///   inertia scale  the factor (–) on the scenario's inertia tensor of the tossed body
-///   frozen pose    the baseline: the body held at its recorded window-start pose
-///   physics file   the fitted law with its parameters and friction, which
-///                  `hcm predict --physics` and `hcm simulate --physics` read
-#[derive(clap::Args)]
-#[command(verbatim_doc_comment)]
+/// What the fit from poses reads of `hcm identify`'s options (the GA's size and the
+/// polish already at their defaults for poses).
 pub struct Args {
-    #[command(flatten)]
-    scenario: super::ScenarioArgs,
-    /// Filmed tosses (measured-data CSV): position and orientation in every frame.
-    #[arg(long)]
-    data: PathBuf,
-    /// Where to write the physics file (TOML).
-    #[arg(long)]
-    out: PathBuf,
-    /// Use only the first N runs of --data (before the split).
-    #[arg(long, value_name = "N")]
-    first: Option<usize>,
-    /// Also write the held-out tosses (measured-data CSV), for `hcm predict --data`.
-    #[arg(long, value_name = "FILE")]
-    held_out: Option<PathBuf>,
-    /// Also write the fitted scenario (TOML): the scenario with the fitted law
-    /// parameters, friction and table offset in it, for `hcm predict --scenario`.
-    #[arg(long, value_name = "FILE")]
-    scenario_out: Option<PathBuf>,
-    /// Seed of the genetic algorithm.
-    #[arg(long, default_value_t = 1)]
-    #[arg(allow_negative_numbers = true, value_parser = super::numbers::seed)]
-    seed: u64,
-    /// GA population size.
-    #[arg(long, default_value_t = 20)]
-    #[arg(allow_negative_numbers = true, value_parser = super::numbers::population)]
-    population: usize,
-    /// GA generations.
-    #[arg(long, default_value_t = 10)]
-    #[arg(allow_negative_numbers = true, value_parser = super::numbers::generations)]
-    generations: usize,
-    /// Fitness evaluations of the Nelder–Mead polish after the GA (0: none).
-    #[arg(long, default_value_t = 40)]
-    polish: usize,
-    /// Law to fit in place of the scenario's (see `hcm laws`); its parameters start
-    /// from the scenario's where they share names.
-    #[arg(long)]
-    law: Option<String>,
-    /// Which contact to fit (index of its `[[contact]]`; one of the moving body's).
-    /// Default: its first.
-    #[arg(long)]
-    #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
-    contact: Option<usize>,
-    /// Fit the force measured at the recorded poses too, in one objective with the
-    /// motion: (motion fitness / its value at the scenario's parameters) + (force
-    /// error / its value there), so each starts at 1 (`hcm identify --method both`).
-    #[arg(long)]
-    with_force: bool,
-}
-
-impl Args {
-    /// `hcm identify` on a camera's poses: this fit with its own defaults (GA 20 × 10,
-    /// polish 40), the given seed and law.
-    pub fn from_identify(
-        scenario: super::ScenarioArgs,
-        data: PathBuf,
-        out: PathBuf,
-        seed: u64,
-        law: String,
-        contact: usize,
-        with_force: bool,
-    ) -> Args {
-        Args {
-            scenario,
-            data,
-            out,
-            first: None,
-            held_out: None,
-            scenario_out: None,
-            seed,
-            population: 20,
-            generations: 10,
-            polish: 40,
-            law: Some(law),
-            contact: Some(contact),
-            with_force,
-        }
-    }
+    pub scenario: super::ScenarioArgs,
+    pub data: PathBuf,
+    pub out: PathBuf,
+    pub first: Option<usize>,
+    pub held_out: Option<PathBuf>,
+    pub scenario_out: Option<PathBuf>,
+    pub seed: u64,
+    pub population: usize,
+    pub generations: usize,
+    pub polish: usize,
+    pub law: Option<String>,
+    pub contact: Option<usize>,
+    pub with_force: bool,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -194,7 +93,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(path) = &args.scenario_out {
         let header = format!(
             "Scenario `{}` ({}) with the contact, table height and inertia fitted by\n\
-             hcm identify-motion to the even-numbered tosses of {}: {}",
+             hcm identify from poses to the even-numbered tosses of {}: {}",
             scenario.name,
             args.scenario.scenario.display(),
             args.data.display(),
@@ -250,7 +149,7 @@ fn write_physics(
     fitted_physics(fit, parameters.contact, sets, method, &data, runs)
         .write(
             &args.out,
-            &format!("contact of scenario `{name}` fitted to tosses by hcm identify-motion"),
+            &format!("contact of scenario `{name}` fitted to tosses by hcm identify from poses"),
         )
         .with_context(|| format!("writing {}", args.out.display()))?;
     println!("wrote {}", args.out.display());

@@ -44,7 +44,7 @@ use std::process::ExitCode;
 ///   hcm simulate    simulate a scenario (bodies, materials, contact laws) to a trajectory
 ///   hcm indicators  the four indicators of every contact in a data file
 ///   hcm generate    make PM1's noisy runs and split them into S1 and S2
-///   hcm identify    fit a physics law (PM2) to data
+///   hcm identify    fit a physics law (PM2) to data: force samples, or filmed poses alone
 ///   hcm train       train the residual network on S1 (the force PM2 gets wrong)
 ///   hcm export      write the trained network as a blob for the core (f32 or int8)
 ///   hcm evaluate    the paper's table: PM2 (and the HCM) against S2
@@ -52,7 +52,8 @@ use std::process::ExitCode;
 ///                   real cube tosses), with a report
 ///   hcm diagnose    name what a physics law misses in data, and extend it
 ///   hcm predict     replay measured tosses from their window start and score them
-///   hcm identify-motion  fit a tossed body's contact to filmed tosses, judge it held out
+///   hcm identify-motion  `hcm identify --method motion`: from the poses, whatever else
+///                   the data hold
 ///   hcm diagnose-motion  name what a tossed body's simulation misses, from motion alone
 ///
 /// `hcm COMMAND --help` defines each command's terms; the README has the details.
@@ -72,13 +73,14 @@ enum Command {
     Indicators(indicators::Args),
     Generate(generate::Args),
     Identify(identify::Args),
+    // `hcm identify --method motion`, with identify's help (which says so).
+    IdentifyMotion(identify::Args),
     Evaluate(evaluate::Args),
     Train(train::Args),
     Export(export::Args),
     Reproduce(reproduce::Args),
     Diagnose(diagnose::Args),
     Predict(predict::Args),
-    IdentifyMotion(identify_motion::Args),
     DiagnoseMotion(diagnose_motion::Args),
 }
 
@@ -99,13 +101,13 @@ pub fn main() -> ExitCode {
         Command::Indicators(args) => indicators::run(args),
         Command::Generate(args) => generate::run(args),
         Command::Identify(args) => identify::run(args),
+        Command::IdentifyMotion(args) => identify::run(args.fitting_poses()),
         Command::Evaluate(args) => evaluate::run(args),
         Command::Train(args) => train::run(args),
         Command::Export(args) => export::run(args),
         Command::Reproduce(args) => reproduce::run(args),
         Command::Diagnose(args) => diagnose::run(args),
         Command::Predict(args) => predict::run(args),
-        Command::IdentifyMotion(args) => identify_motion::run(args),
         Command::DiagnoseMotion(args) => diagnose_motion::run(args),
     };
     match result {
