@@ -443,6 +443,34 @@ fn identify_on_force_data_needs_a_law_and_a_method_for_force() {
 }
 
 #[test]
+fn diagnose_on_force_data_needs_a_base_model_and_refuses_poses_on_a_1d_scene() {
+    let hcm = Hcm::new();
+    let (s1, _) = ball_data(&hcm);
+    let out = hcm.path("diagnosis");
+    let ball = scenario("bouncing_ball.toml");
+    // Only a diagnosis from poses defaults to the scenario's own model.
+    let no_base = hcm
+        .run("diagnose")
+        .opt("--scenario", &ball)
+        .opt("--data", &s1)
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, no_base),
+        &["data.s1.csv", "needs the base model", "--physics"],
+    );
+    // `diagnose-motion` is `diagnose --from-poses`: a 1D scene has no poses to replay.
+    let motion = hcm
+        .run("diagnose-motion")
+        .opt("--scenario", &ball)
+        .opt("--data", &s1)
+        .opt("--out", &out);
+    says(
+        &refused(&hcm, &out, motion),
+        &["--from-poses", "`bouncing_ball` is 1D", "drop --from-poses"],
+    );
+}
+
+#[test]
 fn a_reproduce_option_the_example_does_not_read_is_refused() {
     let hcm = Hcm::new();
     let out = hcm.path("peg");

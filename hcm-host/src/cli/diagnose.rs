@@ -11,7 +11,7 @@ use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
 use hcm_host::identify::PhysicsBody;
 use hcm_host::identify::{FitRecord, Physics};
 use hcm_host::output::{write_bytes, StagedDirectory};
-use hcm_host::scenario::Model;
+use hcm_host::scenario::{Model, Scenario};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 
@@ -31,8 +31,25 @@ use std::path::{Path, PathBuf};
 /// against odd); OUT/report.md, diagnosis.json, extended.toml (`--seed` and `--holdout`
 /// are not used there).
 ///
+/// From poses (a rigid scenario and data without force, or `--from-poses`; `hcm
+/// diagnose-motion` is this command with `--from-poses`): the runs are split by toss
+/// number (even numbers train, odd ones are held out) and every candidate change of the
+/// model — the friction's coefficient, Coulomb's law, viscous friction, torsional and
+/// rolling resistance, a restitution falling with speed, the table's height and tilt,
+/// the tracker's length scale, the body's inertia, a box's edge rounding — is fitted on
+/// the training tosses by replaying them (as `hcm predict`) and judged on the held-out
+/// ones, toss by toss, by how much it lowers their score. A candidate helps when its
+/// mean held-out gain is at least 3 standard errors above zero and at least 1 % of the
+/// model's held-out score; the best is named only if it beats every other helping
+/// candidate by 2 standard errors on the same tosses, else the answer is "ambiguous".
+/// A named cause is added and the search repeats once. Writes the diagnosis as JSON.
+///
 /// Terms:
-///   base model      the physics file given with `--physics` (e.g. from `hcm identify`)
+///   base model      the physics file given with `--physics` (e.g. from `hcm identify`);
+///                   from poses without it, the scenario's own model
+///   score           per toss: mean position error (% of the body's width) + mean
+///                   rotation error (°) over its window's frames, as `hcm predict`
+///   held-out gain   the model's score minus the candidate's, per held-out toss
 ///   extended model  the base model plus the effects found
 ///   noise floor     the data's own force noise σ, from its second differences
 ///   held-out runs   runs never fitted, on which the gain is measured
@@ -47,12 +64,23 @@ pub struct Args {
     /// Measured data (measured-data CSV).
     #[arg(long)]
     data: PathBuf,
-    /// Physics file of the base model (as written by `hcm identify`).
+    /// Physics file of the base model (as written by `hcm identify`); needed on force
+    /// data. From poses, without it: the scenario's own model, as given.
     #[arg(long)]
-    physics: PathBuf,
+    physics: Option<PathBuf>,
     /// Output directory (created): report.md, diagnosis.json, extended.toml, figures.
+    /// From poses only the diagnosis is written: OUT/diagnosis.json, or OUT itself
+    /// when it ends in `.json`.
     #[arg(long, value_hint = clap::ValueHint::DirPath)]
     out: PathBuf,
+    /// Use only the first N runs of --data.
+    #[arg(long, value_name = "N")]
+    first: Option<usize>,
+    /// Diagnose by replaying the recorded poses alone, whatever else the data hold
+    /// (what data without force get anyway): the tosses split by toss number, every
+    /// candidate fitted on the even ones and judged on the odd ones.
+    #[arg(long)]
+    from_poses: bool,
     /// Which contact of the scenario.
     #[arg(long, default_value_t = 0)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
@@ -70,6 +98,61 @@ pub struct Args {
     holdout: f64,
 }
 
+impl Args {
+    /// The diagnosis from poses, whatever else the data hold (`hcm diagnose-motion`).
+    pub fn fitting_poses(mut self) -> Self {
+        self.from_poses = true;
+        self
+    }
+}
+
+/// The base model read for a diagnosis: the scenario with `--physics` applied (if given),
+/// whether that file holds a fit, and the data (their first `--first` runs).
+struct Inputs {
+    scenario: Scenario,
+    base: Model,
+    has_physics: bool,
+    fitted: bool,
+    data: Dataset,
+}
+
+impl Inputs {
+    fn read(args: &Args) -> anyhow::Result<Inputs> {
+        let scenario = args.scenario.load()?;
+        let physics = args.physics.as_deref().map(Physics::read).transpose()?;
+        let base = match (&physics, &args.physics) {
+            (Some(physics), Some(path)) => physics.apply(&scenario, path)?.model()?,
+            _ => scenario.model()?,
+        };
+        super::check_contact(args.contact, &base)?;
+        let mut data = Dataset::read(&args.data)?;
+        if let Some(first) = args.first {
+            anyhow::ensure!(first > 0, "--first 0: give at least one run");
+            data.runs.truncate(first);
+        }
+        Ok(Inputs {
+            scenario,
+            base,
+            has_physics: physics.is_some(),
+            fitted: physics.as_ref().is_some_and(Physics::fitted),
+            data,
+        })
+    }
+
+    /// The evidence the diagnosis works from: the data's, or poses with `--from-poses`.
+    fn evidence(&self, args: &Args) -> anyhow::Result<Evidence> {
+        Ok(match Evidence::of(&self.base, &self.data, args.contact) {
+            Evidence::LineForce if args.from_poses => anyhow::bail!(
+                "--from-poses replays a rigid (3D) body's poses; scenario `{}` is 1D: drop \
+                 --from-poses to diagnose its force",
+                self.scenario.name
+            ),
+            _ if args.from_poses => Evidence::Poses,
+            evidence => evidence,
+        })
+    }
+}
+
 pub fn run(args: Args) -> anyhow::Result<()> {
     if !(args.holdout > 0.0 && args.holdout < 1.0) {
         anyhow::bail!(
@@ -77,12 +160,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             args.holdout
         );
     }
-    let scenario = args.scenario.load()?;
-    let physics = Physics::read(&args.physics)?;
-    let base = physics.apply(&scenario, &args.physics)?.model()?;
-    super::check_contact(args.contact, &base)?;
-    let data = Dataset::read(&args.data)?;
-    let evidence = Evidence::of(&base, &data, args.contact);
+    let inputs = Inputs::read(&args)?;
+    let evidence = inputs.evidence(&args)?;
+    let (base, data) = (&inputs.base, &inputs.data);
     if evidence != Evidence::LineForce && (args.seed != 1 || args.holdout != 0.25) {
         eprintln!(
             "note: --seed and --holdout shape the 1D diagnosis's hold-out draw; a 3D \
@@ -91,22 +171,32 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
     }
     if evidence != Evidence::LineForce {
-        println!("{}", inventory_summary(&data, &base, args.contact));
+        println!("{}", inventory_summary(data, base, args.contact));
     }
     if evidence == Evidence::Poses {
         // A camera's poses: the diagnosis from motion, its answer in OUT/diagnosis.json.
-        let json = args.out.join("diagnosis.json");
-        let freedom = if physics.fitted() {
+        let json = if args.out.extension().is_some_and(|e| e == "json") {
+            args.out.clone()
+        } else {
+            args.out.join("diagnosis.json")
+        };
+        let freedom = if inputs.fitted {
             MotionBase::Fitted
         } else {
             MotionBase::Given
         };
-        return super::diagnose_motion::diagnose_into(&base, &data, freedom, &args.data, &json);
+        return super::diagnose_motion::diagnose_into(base, data, freedom, &args.data, &json);
     }
+    anyhow::ensure!(
+        inputs.has_physics,
+        "{}: diagnosing the force needs the base model: give --physics (a physics file \
+         from `hcm identify`)",
+        args.data.display()
+    );
     if let Some(needs) = evidence.requirement(DataUse::Diagnose) {
         data.require(
             &args.data.display().to_string(),
-            &base,
+            base,
             &[args.contact],
             needs,
         )?;
@@ -116,10 +206,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             data: &args.data,
             out: &args.out,
             contact: args.contact,
-            fitted: physics.fitted(),
+            fitted: inputs.fitted,
         };
-        return super::diagnose_rigid::run(&rigid, &scenario, &base, &data);
+        return super::diagnose_rigid::run(&rigid, &inputs.scenario, base, data);
     }
+    diagnose_line_force(&args, &inputs)
+}
+
+/// The 1D diagnosis, written whole to `--out` (report.md, diagnosis.json,
+/// extended.toml and the figures) and its report printed.
+fn diagnose_line_force(args: &Args, inputs: &Inputs) -> anyhow::Result<()> {
     // Built as a hidden directory beside --out and renamed into place when complete:
     // a failure (too few runs, a failed fit) leaves no --out behind.
     let staged = StagedDirectory::create(&args.out, "diagnosis.json")?;
@@ -129,19 +225,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         contact: args.contact,
         seed: args.seed,
         holdout_fraction: args.holdout,
-        base_freedom: if physics.fitted() {
+        base_freedom: if inputs.fitted {
             BaseFreedom::Fitted
         } else {
             BaseFreedom::Given
         },
         ..DiagnoseSettings::default()
     };
-    let diagnosis = diagnose(&base, &data, &settings)?;
+    let diagnosis = diagnose(&inputs.base, &inputs.data, &settings)?;
     bar.finish_and_clear();
 
-    extended_physics(&base, &args, &diagnosis).write(
+    extended_physics(&inputs.base, args, &diagnosis).write(
         &out.join("extended.toml"),
-        &format!("extended model of `{}` from hcm diagnose", scenario.name),
+        &format!(
+            "extended model of `{}` from hcm diagnose",
+            inputs.scenario.name
+        ),
     )?;
     write_bytes(
         &out.join("diagnosis.json"),

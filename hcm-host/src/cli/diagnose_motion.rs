@@ -1,5 +1,6 @@
-//! `hcm diagnose-motion`: what a tossed or sliding body's simulation gets wrong, from
-//! filmed motion alone.
+//! `hcm diagnose` from poses (the data hold no force, or `--from-poses`, which
+//! `hcm diagnose-motion` implies): what a tossed or sliding body's simulation gets
+//! wrong, from filmed motion alone.
 
 use super::progress::Bars;
 use anyhow::Context;
@@ -7,53 +8,6 @@ use hcm_host::diagnose::{
     diagnose_motion_with, MotionBase, MotionDiagnosis, GAIN_T, MIN_GAIN, RIVAL_T,
 };
 use hcm_host::output::write_bytes;
-use std::path::PathBuf;
-
-/// Name what a tossed body's simulation misses, from filmed motion alone (no force).
-///
-/// Example: `hcm diagnose-motion --scenario scenarios/cube_toss.toml --data data/contactnets-cube/tosses.csv --out diagnosis.json`
-///
-/// Splits the runs of --data by toss number (even numbers train, odd ones are held
-/// out), and tries every candidate change of the model: the friction's coefficient,
-/// Coulomb's law for its shape (when μ_s ≠ μ_d), viscous friction, torsional and
-/// rolling resistance, the table's height and tilt, the tracker's length scale, the
-/// body's inertia. Each is
-/// fitted on the training tosses with the rest of the model fixed (replaying them as
-/// `hcm predict` does) and judged on the held-out tosses, toss by toss, by how much it
-/// lowers their score. A candidate helps when its mean held-out gain is at least 3
-/// standard errors above zero and at least 1 % of the model's held-out score; the best
-/// is named only if it beats every other helping candidate by 2 standard errors on the
-/// same tosses, otherwise the answer is "ambiguous" and names none. A named cause is
-/// added and the search repeats once on what is left. Writes the whole diagnosis as
-/// JSON to --out and prints each candidate's gain.
-///
-/// Terms:
-///   score          per toss: mean position error (% of the body's width) + mean
-///                  rotation error (°) over its window's frames, as `hcm predict`
-///   held-out gain  the model's score minus the candidate's, per held-out toss; its
-///                  mean, standard error and 95 % interval over the tosses
-///   physics file   `--physics`: a law with its parameters and friction, as `hcm
-///                  identify-motion` writes it; without it, the scenario's own
-#[derive(clap::Args)]
-#[command(verbatim_doc_comment)]
-pub struct Args {
-    #[command(flatten)]
-    tosses: super::tosses::TossArgs,
-    /// Where to write the diagnosis (JSON).
-    #[arg(long)]
-    out: PathBuf,
-}
-
-pub fn run(args: Args) -> anyhow::Result<()> {
-    let (model, _, data) = args.tosses.load()?;
-    diagnose_into(
-        &model,
-        &data,
-        MotionBase::Given,
-        &args.tosses.data,
-        &args.out,
-    )
-}
 
 /// Diagnoses `model` on `data` (read from `path`), writes the diagnosis as JSON to
 /// `json` (creating the directory it is in, once there is something to write)

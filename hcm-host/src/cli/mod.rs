@@ -54,7 +54,8 @@ use std::process::ExitCode;
 ///   hcm predict     replay measured tosses from their window start and score them
 ///   hcm identify-motion  `hcm identify --method motion`: from the poses, whatever else
 ///                   the data hold
-///   hcm diagnose-motion  name what a tossed body's simulation misses, from motion alone
+///   hcm diagnose-motion  `hcm diagnose --from-poses`: what a tossed body's simulation
+///                   misses, from motion alone
 ///
 /// `hcm COMMAND --help` defines each command's terms; the README has the details.
 #[derive(Parser)]
@@ -81,7 +82,8 @@ enum Command {
     Reproduce(reproduce::Args),
     Diagnose(diagnose::Args),
     Predict(predict::Args),
-    DiagnoseMotion(diagnose_motion::Args),
+    // `hcm diagnose --from-poses`, with diagnose's help (which says so).
+    DiagnoseMotion(diagnose::Args),
 }
 
 /// Parses the command line, runs the subcommand, and reports errors in plain words.
@@ -108,7 +110,7 @@ pub fn main() -> ExitCode {
         Command::Reproduce(args) => reproduce::run(args),
         Command::Diagnose(args) => diagnose::run(args),
         Command::Predict(args) => predict::run(args),
-        Command::DiagnoseMotion(args) => diagnose_motion::run(args),
+        Command::DiagnoseMotion(args) => diagnose::run(args.fitting_poses()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,7 +4,8 @@
 //! that is a device, a pipe or a socket is refused by `hcm_host::output` itself.) An
 //! existing output of the other kind — a file where a directory is written (the
 //! options marked `ValueHint::DirPath`), a directory where a file is — is refused too,
-//! before a long run finds it at its end.
+//! before a long run finds it at its end. A directory option given a path ending in
+//! `.json` writes that one file (`hcm diagnose` from poses writes only its diagnosis).
 
 use clap::ArgMatches;
 use std::path::{Path, PathBuf};
@@ -89,7 +90,8 @@ pub fn check(command: &clap::Command, matches: &ArgMatches) -> anyhow::Result<()
         for value in values {
             let path = Path::new(value);
             if OUTPUTS.contains(&id) {
-                same_kind(id, path, writes_directory(id))?;
+                let json = path.extension().is_some_and(|e| e == "json");
+                same_kind(id, path, writes_directory(id) && !json)?;
                 outputs.push((id, path));
             } else if path.is_file() {
                 inputs.push((id, path));
