@@ -9,30 +9,13 @@
 //! the peak by a local degree-4 least-squares fit around the maximum (see [`peak`]),
 //! which removes the upward bias a noisy maximum has.
 
-use super::Indicators;
+use super::{Indicators, RecordedEvent};
 use crate::dataset::{BodyTrack, Run};
 use crate::numerics::linear_least_squares;
 use crate::scenario::pair_kinematics;
 use crate::scenario::Model;
 use hcm_core::integrate::hermite_zero;
 use nalgebra::Vector3;
-
-/// One contact event found in a run's data.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DataEvent {
-    /// Run id.
-    pub run: String,
-    /// Contact label, `body1–body2`.
-    pub contact: String,
-    /// Event number within this contact and run (0 = first).
-    pub event: usize,
-    /// Interpolated touch-down time (s).
-    pub touch_down: f64,
-    /// Interpolated lift-off time (s).
-    pub lift_off: f64,
-    /// The indicators.
-    pub indicators: Indicators,
-}
 
 /// Why indicators could not be read from a run.
 #[derive(Debug, thiserror::Error)]
@@ -109,7 +92,10 @@ impl EventSpan {
 
 /// Every completed contact event of every contact of `model` in `run`. Events still
 /// open at the end of the data are left out.
-pub fn from_run(model: &Model, run: &Run) -> Result<Vec<DataEvent>, IndicatorError> {
+pub fn from_run(
+    model: &Model,
+    run: &Run,
+) -> Result<Vec<RecordedEvent<Indicators>>, IndicatorError> {
     let mut events = Vec::new();
     for (c, contact) in model.contacts.iter().enumerate() {
         let label = format!(
@@ -118,7 +104,7 @@ pub fn from_run(model: &Model, run: &Run) -> Result<Vec<DataEvent>, IndicatorErr
         );
         let history = contact_history(model, run, c)?;
         for (event, span) in event_spans(&history).into_iter().enumerate() {
-            events.push(DataEvent {
+            events.push(RecordedEvent {
                 run: run.id.clone(),
                 contact: label.clone(),
                 event,

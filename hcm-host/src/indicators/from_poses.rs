@@ -10,35 +10,18 @@
 //! is the body's total contact load, so two pairs of one body touching at once share
 //! it: each pair is credited with the whole load over its own events.
 
-use super::{IndicatorError, WrenchIndicators};
+use super::{IndicatorError, RecordedEvent, WrenchIndicators};
 use crate::dataset::{Run, Sample};
 use crate::scenario::Model;
 use crate::scenario::{pair_separation, Pose};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
-
-/// One 3D contact event found in a run's data.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PairDataEvent {
-    /// Run id.
-    pub run: String,
-    /// Contact label, `body1–body2`.
-    pub contact: String,
-    /// Event number within this contact and run (0 = first).
-    pub event: usize,
-    /// Interpolated touch-down time (s).
-    pub touch_down: f64,
-    /// Interpolated lift-off time (s).
-    pub lift_off: f64,
-    /// The indicators.
-    pub indicators: WrenchIndicators,
-}
 
 /// Every completed 3D contact event of every contact of `model` in `run`; events
 /// still open at the end of the data are left out.
 pub fn pair_events_from_run(
     model: &Model,
     run: &Run,
-) -> Result<Vec<PairDataEvent>, IndicatorError> {
+) -> Result<Vec<RecordedEvent<WrenchIndicators>>, IndicatorError> {
     let mut found = Vec::new();
     for contact in &model.contacts {
         let (b1, b2) = (&model.bodies[contact.body_1], &model.bodies[contact.body_2]);
@@ -93,7 +76,7 @@ pub fn pair_events_from_run(
         for (event, (touch_down, lift_off, inside)) in
             spans(moving, &separation).into_iter().enumerate()
         {
-            found.push(PairDataEvent {
+            found.push(RecordedEvent {
                 run: run.id.clone(),
                 contact: label.clone(),
                 event,

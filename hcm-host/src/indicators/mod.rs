@@ -6,16 +6,18 @@
 //! impulse ∫f_n dt, the relative-motion energy loss ½·m_e·(δ̇_in² − δ̇_out²), and the
 //! duration.
 
+mod event;
 mod from_data;
 mod from_poses;
 mod summary;
 mod wrench;
 mod wrench_summary;
 
+pub use event::RecordedEvent;
 pub use from_data::{
-    contact_history, event_spans, from_run, ContactHistory, DataEvent, EventSpan, IndicatorError,
+    contact_history, event_spans, from_run, ContactHistory, EventSpan, IndicatorError,
 };
-pub use from_poses::{pair_events_from_run, PairDataEvent};
+pub use from_poses::pair_events_from_run;
 pub use summary::{summarize, EventSummary, Statistic};
 pub use wrench::WrenchIndicators;
 pub use wrench_summary::{

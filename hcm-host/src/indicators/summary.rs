@@ -1,6 +1,6 @@
 //! Mean and standard deviation of the indicators over runs.
 
-use super::{DataEvent, Indicators};
+use super::{Indicators, RecordedEvent};
 use serde::Serialize;
 
 /// Mean and sample standard deviation of one quantity over runs.
@@ -62,7 +62,7 @@ impl EventSummary {
 
 /// Groups events by (contact, event number) in order of first appearance and
 /// summarises each group.
-pub fn summarize(events: &[DataEvent]) -> Vec<EventSummary> {
+pub fn summarize(events: &[RecordedEvent<Indicators>]) -> Vec<EventSummary> {
     let mut keys: Vec<(String, usize)> = Vec::new();
     for e in events {
         let key = (e.contact.clone(), e.event);

@@ -10,7 +10,7 @@
 //! only runs with exactly that count enter its statistics, and every other run is
 //! listed with its count — counted and reported, never silently misaligned.
 
-use super::{PairDataEvent, WrenchIndicators};
+use super::{RecordedEvent, WrenchIndicators};
 use serde::Serialize;
 
 /// The mean of a quantity over runs with its standard error (the quantity's unit).
@@ -110,7 +110,10 @@ pub struct ContactStatistics {
 /// The statistics of every contact found in `events`, over the runs `runs` (every run
 /// of the set, in order: a run without any event of a contact counts as 0 events).
 /// Contacts in order of first appearance.
-pub fn wrench_statistics(runs: &[String], events: &[PairDataEvent]) -> Vec<ContactStatistics> {
+pub fn wrench_statistics(
+    runs: &[String],
+    events: &[RecordedEvent<WrenchIndicators>],
+) -> Vec<ContactStatistics> {
     let mut contacts: Vec<&str> = Vec::new();
     for e in events {
         if !contacts.contains(&e.contact.as_str()) {
@@ -126,13 +129,13 @@ pub fn wrench_statistics(runs: &[String], events: &[PairDataEvent]) -> Vec<Conta
 fn contact_statistics(
     contact: &str,
     runs: &[String],
-    events: &[PairDataEvent],
+    events: &[RecordedEvent<WrenchIndicators>],
 ) -> ContactStatistics {
     // Each run's events of this contact, in event order.
     let per_run: Vec<Vec<&WrenchIndicators>> = runs
         .iter()
         .map(|run| {
-            let mut own: Vec<&PairDataEvent> = (events.iter())
+            let mut own: Vec<&RecordedEvent<WrenchIndicators>> = (events.iter())
                 .filter(|e| e.contact == contact && &e.run == run)
                 .collect();
             own.sort_by_key(|e| e.event);
@@ -192,8 +195,8 @@ fn most_common(counts: impl Iterator<Item = usize>) -> usize {
 mod tests {
     use super::*;
 
-    fn event(run: &str, event: usize, value: f64) -> PairDataEvent {
-        PairDataEvent {
+    fn event(run: &str, event: usize, value: f64) -> RecordedEvent<WrenchIndicators> {
+        RecordedEvent {
             run: run.into(),
             contact: "peg–block".into(),
             event,

@@ -10,8 +10,8 @@ use super::RigidIdentifyError;
 use crate::dataset::{Dataset, Sample};
 use crate::experiment::{pre_contact_states, replay_model, PreContact};
 use crate::indicators::{
-    pair_events_from_run, wrench_statistics, EventCountMismatch, PairDataEvent,
-    WrenchEventStatistics,
+    pair_events_from_run, wrench_statistics, EventCountMismatch, RecordedEvent,
+    WrenchEventStatistics, WrenchIndicators,
 };
 use crate::scenario::Model;
 use nalgebra::Vector4;
@@ -58,7 +58,7 @@ impl WrenchTarget {
             "{}–{}",
             model.bodies[contact.body_1].name, model.bodies[contact.body_2].name
         );
-        let mut found: Vec<PairDataEvent> = Vec::new();
+        let mut found: Vec<RecordedEvent<WrenchIndicators>> = Vec::new();
         for run in &data.runs {
             found.extend(
                 pair_events_from_run(model, run)?
