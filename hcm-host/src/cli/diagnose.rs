@@ -301,7 +301,7 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
         .map(|c| {
             json!({
                 "effect": c.effect,
-                "kind": c.kind,
+                "kind": c.family.kind(),
                 "parameters": c.parameters.iter().map(|p| (p.name.clone(), json!(p.value))).collect::<serde_json::Map<_, _>>(),
                 "ci": c.parameters.iter().map(|p| (p.name.clone(), json!([p.ci.0, p.ci.1]))).collect::<serde_json::Map<_, _>>(),
                 "share": c.share,

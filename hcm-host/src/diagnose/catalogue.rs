@@ -21,22 +21,12 @@
 //! Air drag lives in the flight motion, not in the force, and is read from the
 //! recorded velocities (not part of this force library).
 
-use super::ContactSamples;
+use super::{ContactSamples, Family};
 use hcm_core::effect::{
     Adhesion, ContactEffect, ExtendedLaw, HysteresisDamping, Plasticity, StiffnessExponent,
     ViscousDamping,
 };
 use hcm_core::model::ContactModel;
-
-/// Physical (a law term) or measurement (a data correction).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Kind {
-    /// Added to the contact law.
-    Physical,
-    /// Corrects the measured signal.
-    Measurement,
-}
 
 /// One catalogued effect.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -92,13 +82,13 @@ impl Candidate {
         }
     }
 
-    /// Physical or measurement.
-    pub fn kind(self) -> Kind {
+    /// Its family: the normal law's, or the sensor's (a measurement).
+    pub fn family(self) -> Family {
         match self {
             Candidate::ForceOffset | Candidate::SensorDelay | Candidate::SensorFilter => {
-                Kind::Measurement
+                Family::Measurement
             }
-            _ => Kind::Physical,
+            _ => Family::Normal,
         }
     }
 
@@ -261,7 +251,7 @@ mod tests {
         for candidate in CATALOGUE {
             let shape = candidate.shapes()[0];
             let Some(effect) = candidate.effect(0.5, shape, 1e-5) else {
-                assert_eq!(candidate.kind(), Kind::Measurement);
+                assert_eq!(candidate.family(), Family::Measurement);
                 continue;
             };
             assert_eq!(effect.name(), candidate.name());

@@ -294,7 +294,7 @@ fn named_causes(
     if let Some(d) = drag.filter(|d| d.significant) {
         causes.push(Cause {
             effect: "air_drag",
-            kind: super::catalogue::Kind::Physical,
+            family: super::Family::Body,
             parameters: vec![Fitted {
                 name: "coefficient".into(),
                 value: d.coefficient,

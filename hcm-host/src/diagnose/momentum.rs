@@ -19,9 +19,9 @@
 //! through Newton's law ([`crate::dataset::newton`]) would give the force's own impulse
 //! back. No gain is estimated without three events with flight samples on both sides.
 
-use super::catalogue::Kind;
 use super::select::{Cause, Fitted, Refit};
 use super::ContactSamples;
+use super::Family;
 use serde::Serialize;
 
 /// Events a gain is estimated from at least.
@@ -324,7 +324,7 @@ pub(crate) fn with_gain(fit: &mut Refit, corrected: &ContactSamples, gain: &Sens
     fit.sensor.gain = g;
     Cause {
         effect: "sensor_gain",
-        kind: Kind::Measurement,
+        family: Family::Measurement,
         parameters: vec![Fitted {
             name: "gain".into(),
             value: g,

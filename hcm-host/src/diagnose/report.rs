@@ -2,7 +2,6 @@
 //! wrong, the cause, the extended model and its gain), and the one-line answer
 //! diagnosis.json carries.
 
-use super::catalogue::Kind;
 use super::gain::{self, GainTable};
 use super::naming::RIVAL_T;
 use super::naming::{EVIDENCE, FAMILY_T};
@@ -314,14 +313,7 @@ fn the_cause(md: &mut String, d: &Diagnosis) {
                     md,
                     "| {} | {} | {} | {:.4e} | [{:.4e}, {:.4e}] | {} |",
                     if k == 0 { c.effect } else { "" },
-                    if k == 0 {
-                        match c.kind {
-                            Kind::Physical => "physical",
-                            Kind::Measurement => "measurement",
-                        }
-                    } else {
-                        ""
-                    },
+                    if k == 0 { c.family.kind() } else { "" },
                     p.name,
                     p.value,
                     p.ci.0,

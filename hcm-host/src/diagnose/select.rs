@@ -30,9 +30,10 @@
 //! interval; each cause's share of the structured residual is the RSS it leaves when
 //! removed from the re-fitted model.
 
-use super::catalogue::{reference_depth, Candidate, Kind, CATALOGUE};
+use super::catalogue::{reference_depth, Candidate, CATALOGUE};
 use super::sensor::Sensor;
 use super::ContactSamples;
+use super::Family;
 use crate::identify::Bounds;
 use crate::numerics::optimize::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use crate::numerics::optimize::Bound;
@@ -562,8 +563,10 @@ pub struct Fitted {
 pub struct Cause {
     /// Catalogue name.
     pub effect: &'static str,
-    /// Physical (in the extended law) or measurement (a data correction).
-    pub kind: Kind,
+    /// Its family; serialised as its kind, physical (in the extended law) or
+    /// measurement (a data correction).
+    #[serde(rename = "kind", serialize_with = "super::family::serialize_kind")]
+    pub family: Family,
     /// Its parameters.
     pub parameters: Vec<Fitted>,
     /// Share of the structured residual variance it explains: the RSS increase when it
@@ -918,7 +921,7 @@ impl RefitModel<'_> {
             without[slot] = 0.0;
             causes.push(Cause {
                 effect: candidate.name(),
-                kind: candidate.kind(),
+                family: candidate.family(),
                 parameters,
                 share: (self.rss(&without) - rss).max(0.0),
             });

@@ -6,6 +6,7 @@
 //! of how the data are read) with its own parameters, every one of which has a neutral
 //! value that changes nothing.
 
+use super::super::Family;
 use crate::dataset::Dataset;
 use crate::numerics::optimize::Bound;
 use crate::scenario::{Model, Shape};
@@ -44,35 +45,6 @@ fn box_rounding(body: &crate::scenario::Body) -> f64 {
     match body.shape {
         Shape::Box { rounding, .. } => rounding,
         _ => 0.0,
-    }
-}
-
-/// What kind of cause a candidate is: a diagnosis calls two candidates of different
-/// kinds that explain the data equally well ambiguous rather than pick one.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Family {
-    /// The friction law's coefficient or shape.
-    Friction,
-    /// A couple against the bodies' relative rotation.
-    Resistance,
-    /// The normal impact's dissipation.
-    Impact,
-    /// How the data were measured, not the physics.
-    Measurement,
-    /// The body's own properties.
-    Body,
-}
-
-impl Family {
-    /// The family's name in a report (`friction`, `resistance`, `measurement`, `body`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Family::Friction => "friction",
-            Family::Resistance => "resistance",
-            Family::Impact => "impact",
-            Family::Measurement => "measurement",
-            Family::Body => "body",
-        }
     }
 }
 
@@ -150,7 +122,7 @@ impl MotionEffect {
             MotionEffect::TorsionalResistance | MotionEffect::RollingResistance => {
                 Family::Resistance
             }
-            MotionEffect::SpeedDependentRestitution => Family::Impact,
+            MotionEffect::SpeedDependentRestitution => Family::Normal,
             MotionEffect::TableOffset | MotionEffect::TableTilt | MotionEffect::LengthScale => {
                 Family::Measurement
             }

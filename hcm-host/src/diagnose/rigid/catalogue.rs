@@ -26,6 +26,7 @@
 //! already: a scale or a Coulomb law of them changes nothing the fit cannot, and they
 //! are not candidates then.
 
+use super::super::Family;
 use crate::identify::BoundsOverrides;
 use crate::identify::{with_law, ContactScales, RecordedContact, RigidParameters};
 use crate::numerics::optimize::{Bound, Parameters};
@@ -37,21 +38,6 @@ use std::sync::Arc;
 
 /// Rotation rate (rad/s) below which the resistance couples fade.
 const RESISTANCE_RATE: f64 = 0.1;
-
-/// A candidate's family: two candidates of different families that explain the data
-/// equally well make the answer ambiguous.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Family {
-    /// The friction law.
-    Friction,
-    /// Couples against the relative rotation.
-    Resistance,
-    /// The normal law.
-    Normal,
-    /// The sensor, not the physics.
-    Measurement,
-}
 
 /// One candidate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -22,7 +22,8 @@
 
 mod catalogue;
 
-pub use catalogue::{law_label, Extended, Family, ForceEffect, Scales};
+use super::Family;
+pub use catalogue::{law_label, Extended, ForceEffect, Scales};
 
 use super::paired::Paired;
 use super::verdict::{decide_with, Margins, Verdict};

@@ -1,0 +1,56 @@
+//! The one classification of every catalogue's candidates: what part of the model (or
+//! of the measurement) a candidate changes.
+
+use serde::Serialize;
+
+/// What kind of cause a candidate is. Two candidates of different families that
+/// explain the data equally well make an answer ambiguous rather than pick one; a
+/// measurement cause is reported, not added to the physics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Family {
+    /// The friction law's coefficients or shape.
+    Friction,
+    /// Couples against the bodies' relative rotation (torsional, rolling).
+    Resistance,
+    /// The normal law: its damping (the impact's dissipation), adhesion, plasticity,
+    /// stiffness, or another law in its place.
+    Normal,
+    /// How the data were measured (the sensor, the tracker, the table's calibration),
+    /// not the physics.
+    Measurement,
+    /// The body's own properties (inertia, shape, drag through the air).
+    Body,
+}
+
+impl Family {
+    /// The family's name in a report (`friction`, `resistance`, `normal`,
+    /// `measurement`, `body`), as serialised.
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Friction => "friction",
+            Family::Resistance => "resistance",
+            Family::Normal => "normal",
+            Family::Measurement => "measurement",
+            Family::Body => "body",
+        }
+    }
+
+    /// `physical` (a term the extended model carries) or `measurement` (a correction of
+    /// the data): the kind the force diagnosis reports for each cause.
+    pub fn kind(self) -> &'static str {
+        if self == Family::Measurement {
+            "measurement"
+        } else {
+            "physical"
+        }
+    }
+}
+
+/// Serialises a family as its [`Family::kind`].
+pub(crate) fn serialize_kind<S: serde::Serializer>(
+    family: &Family,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(family.kind())
+}
