@@ -3,7 +3,8 @@
 use super::report;
 use hcm_host::dataset::{complete, DataUse, Dataset, Evidence};
 use hcm_host::indicators::{
-    from_run, pair_events_from_run, summarize, wrench_statistics, ContactStatistics,
+    events_of_runs, from_run, pair_events_from_run, summarize, wrench_statistics,
+    ContactStatistics, RecordedEvent,
 };
 use hcm_host::scenario::Model;
 use std::path::PathBuf;
@@ -48,29 +49,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // Camera frames and force rows on their own clocks: the motion at the force samples.
     let completed = complete(&model, &dataset)?;
     let dataset = completed.data.as_ref();
-    let mut events = Vec::new();
-    let mut without_contact = Vec::new();
-    for run in &dataset.runs {
-        let found = from_run(&model, run)?;
-        if found.is_empty() {
-            without_contact.push(run.id.clone());
-        }
-        events.extend(found);
-    }
+    let (events, without_contact) = events_of_runs(&dataset.runs, |run| from_run(&model, run))?;
     let summary = summarize(&events);
     if args.json {
-        let per_event: Vec<_> = events
-            .iter()
-            .map(|e| {
-                serde_json::json!({
-                    "run": e.run, "contact": e.contact, "event": e.event,
-                    "touch_down": e.touch_down, "lift_off": e.lift_off, "indicators": e.indicators,
-                })
-            })
-            .collect();
-        let json = serde_json::json!({ "events": per_event, "summary": summary, "runs_without_contact": without_contact });
-        println!("{}", serde_json::to_string_pretty(&json)?);
-        return Ok(());
+        return print_json(&events, &summary, &without_contact);
     }
     if events.is_empty() {
         println!(
@@ -106,32 +88,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 /// the runs with its standard error; runs whose event count differs from the expected
 /// are listed, not averaged (see `hcm_host::indicators::wrench_statistics`).
 fn run_rigid(model: &Model, dataset: &Dataset, json: bool) -> anyhow::Result<()> {
-    let mut events = Vec::new();
-    let mut without_contact = Vec::new();
-    for run in &dataset.runs {
-        let found = pair_events_from_run(model, run)?;
-        if found.is_empty() {
-            without_contact.push(run.id.clone());
-        }
-        events.extend(found);
-    }
+    let (events, without_contact) =
+        events_of_runs(&dataset.runs, |run| pair_events_from_run(model, run))?;
     let ids: Vec<String> = dataset.runs.iter().map(|r| r.id.clone()).collect();
     let summary = wrench_statistics(&ids, &events);
     if json {
-        let per_event: Vec<_> = events
-            .iter()
-            .map(|e| {
-                serde_json::json!({
-                    "run": e.run, "contact": e.contact, "event": e.event,
-                    "touch_down": e.touch_down, "lift_off": e.lift_off, "indicators": e.indicators,
-                })
-            })
-            .collect();
-        let json = serde_json::json!({
-            "events": per_event, "summary": summary, "runs_without_contact": without_contact,
-        });
-        println!("{}", serde_json::to_string_pretty(&json)?);
-        return Ok(());
+        return print_json(&events, &summary, &without_contact);
     }
     if events.is_empty() {
         println!(
@@ -162,6 +124,19 @@ fn run_rigid(model: &Model, dataset: &Dataset, json: bool) -> anyhow::Result<()>
     if !without_contact.is_empty() {
         println!("{}", without_contact_line(&without_contact));
     }
+    Ok(())
+}
+
+/// `--json`: every event with its indicators, the summary and the runs without contact.
+fn print_json<I: serde::Serialize, S: serde::Serialize>(
+    events: &[RecordedEvent<I>],
+    summary: &S,
+    without_contact: &[String],
+) -> anyhow::Result<()> {
+    let json = serde_json::json!({
+        "events": events, "summary": summary, "runs_without_contact": without_contact,
+    });
+    println!("{}", serde_json::to_string_pretty(&json)?);
     Ok(())
 }
 

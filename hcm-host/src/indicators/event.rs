@@ -4,7 +4,7 @@
 //! [`super::pair_events_from_run`]).
 
 /// One contact event found in a run's data, with its indicators `I`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct RecordedEvent<I> {
     /// Run id.
     pub run: String,
@@ -18,4 +18,22 @@ pub struct RecordedEvent<I> {
     pub lift_off: f64,
     /// The indicators.
     pub indicators: I,
+}
+
+/// Every run's events found by `find` (the 1D [`super::from_run`] or the 3D
+/// [`super::pair_events_from_run`]), in run order, and the ids of the runs without a
+/// completed contact.
+pub fn events_of_runs<I, E>(
+    runs: &[crate::dataset::Run],
+    mut find: impl FnMut(&crate::dataset::Run) -> Result<Vec<RecordedEvent<I>>, E>,
+) -> Result<(Vec<RecordedEvent<I>>, Vec<String>), E> {
+    let (mut events, mut without_contact) = (Vec::new(), Vec::new());
+    for run in runs {
+        let found = find(run)?;
+        if found.is_empty() {
+            without_contact.push(run.id.clone());
+        }
+        events.extend(found);
+    }
+    Ok((events, without_contact))
 }
