@@ -54,7 +54,7 @@ pub fn pipeline(scenario: &Scenario, law: &str, runs: usize, inputs: &[Inputs]) 
                 Inputs::Contact => train_point_residual,
             };
             let trained = train(&pm2, &sets.training, 0, usize::MAX, &settings, &Silent).unwrap();
-            let blobs = export_blobs(trained.residual()).unwrap();
+            let blobs = export_blobs(&trained.residual).unwrap();
             let label = match (inputs.len(), kind) {
                 (1, _) => "HCM".to_owned(),
                 (_, Inputs::State) => "HCM (state)".to_owned(),

@@ -142,7 +142,7 @@ fn the_hcm_over_another_law_beats_it_on_another_solvers_held_out_throws() {
         seed: 3,
     };
     let trained = train_point_residual(&pm2, &training, 0, usize::MAX, &settings, &Silent).unwrap();
-    let hcm = export_blobs(trained.residual())
+    let hcm = export_blobs(&trained.residual)
         .unwrap()
         .hybrid_models(&pm2, 0)
         .0;

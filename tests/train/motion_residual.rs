@@ -63,14 +63,13 @@ fn a_hidden_friction_is_learned_from_poses_alone() {
     )
     .unwrap();
     let blob =
-        hcm_host::export::blob(trained.residual(), hcm_core::residual::Quantisation::F32).unwrap();
+        hcm_host::export::blob(&trained.residual, hcm_core::residual::Quantisation::F32).unwrap();
     let mut hcm = physics.clone();
     hcm.contacts[0].model.residual = Some(ContactResidual::decode(&blob.bytes).unwrap());
     let (alone, hybrid) = (score(&physics, &held_out), score(&hcm, &held_out));
     println!(
         "{} rows, R² {:?}; held out (% + °): physics {alone:.3}, HCM {hybrid:.3}",
-        trained.rows,
-        trained.explained()
+        trained.rows, trained.explained
     );
     assert!(hybrid < 0.75 * alone, "HCM {hybrid} vs physics {alone}");
 }

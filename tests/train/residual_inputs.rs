@@ -135,7 +135,7 @@ fn the_contact_frame_blob_runs_in_the_core_as_the_host_simulated_it() {
     };
     let trained =
         train_point_residual(&pm2, &sets.training, 0, usize::MAX, &settings, &Silent).unwrap();
-    let blobs = export_blobs(trained.residual()).unwrap();
+    let blobs = export_blobs(&trained.residual).unwrap();
     let f32_net: Mlp<POINT_INPUTS, 16, POINT_OUTPUTS, HIDDEN, F32Weights> =
         decode(&blobs.f32.bytes).unwrap();
     let int8_net: Mlp<POINT_INPUTS, 16, POINT_OUTPUTS, HIDDEN, Int8Weights> =

@@ -81,7 +81,7 @@ pub struct Args {
 
 /// What the contact-frame network's training leaves to say: the outputs no sample
 /// felt, and a warning when it explains nothing.
-fn warn_contact(trained: &hcm_host::train::WrenchTrained) {
+fn warn_contact(trained: &hcm_host::train::Trained) {
     let outputs = ["k_n", "r_f", "c_t", "c_n", "c_r"];
     if !trained.silenced.is_empty() {
         let silenced: Vec<&str> = (trained.silenced.iter())
@@ -152,7 +152,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let (report, tuned) = (&trained.report, &trained.int8);
     println!(
         "trained on {} samples from {} runs: {} epochs (best {}), train RMS {:.3} N, validation RMS {:.3} N, {:.2} s",
-        trained.samples,
+        trained.rows,
         data.runs.len(),
         report.epochs,
         report.best_epoch,
@@ -200,7 +200,7 @@ fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> an
         report.seconds
     );
     let names = ["fx", "fy", "fz", "tx", "ty", "tz"];
-    let explained: Vec<String> = (names.iter().zip(trained.explained()))
+    let explained: Vec<String> = (names.iter().zip(&trained.explained))
         .map(|(n, r2)| format!("{n} {r2:.2}"))
         .collect();
     println!(
@@ -224,7 +224,7 @@ fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> an
             silenced.join(", ")
         );
     }
-    trained.residual().write(&args.out)?;
+    trained.residual.write(&args.out)?;
     println!(
         "→ {} (export with `hcm export --residual {0} --out residual.bin`)",
         args.out.display()

@@ -163,7 +163,7 @@ impl ReproduceResults {
             validation: evaluation.table.clone(),
             paper: settings.example.paper(),
             residual: ResidualSummary {
-                training_samples: trained.samples,
+                training_samples: trained.rows,
                 epochs: trained.report.epochs,
                 best_epoch: trained.report.best_epoch,
                 validation_rms: trained.report.validation_loss.sqrt(),

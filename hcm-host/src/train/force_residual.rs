@@ -5,8 +5,7 @@
 
 use super::reported::{int8_twin_in_stage, train_in_stage};
 use super::{
-    residual_pairs, Network, QuantiseReport, TrainError, TrainReport, TrainSettings,
-    TrainedResidual,
+    residual_pairs, Network, TrainError, TrainReport, TrainSettings, Trained, TrainedResidual,
 };
 use crate::dataset::Dataset;
 use crate::identify::force_samples;
@@ -24,19 +23,6 @@ pub struct ResidualSettings {
     pub int8_epochs: usize,
     /// Seed of the initial weights, the shuffles and the validation split.
     pub seed: u64,
-}
-
-/// The trained residual and how its training went.
-#[derive(Clone, Debug)]
-pub struct Trained {
-    /// The network and its int8 twin (`residual.json`).
-    pub residual: TrainedResidual,
-    /// Training rows: the force samples inside the contact.
-    pub samples: usize,
-    /// The f32 network's training.
-    pub report: TrainReport,
-    /// The int8 twin's fine-tuning.
-    pub int8: QuantiseReport,
 }
 
 /// Why the stage failed.
@@ -99,8 +85,10 @@ pub fn train_force_residual(
     )?;
     Ok(Trained {
         residual: TrainedResidual::new(c, network, int8),
-        samples: inputs.len(),
+        rows: inputs.len(),
         report,
         int8: tuned,
+        explained: Vec::new(),
+        silenced: Vec::new(),
     })
 }

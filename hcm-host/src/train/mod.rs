@@ -54,7 +54,7 @@ pub use wrench_samples::{contact_wrench, moving_body, state_input};
 
 pub use envelope::envelope_tolerance;
 pub use force_residual::{
-    train_force_network, train_force_residual, ResidualError, ResidualSettings, Trained,
+    train_force_network, train_force_residual, ResidualError, ResidualSettings,
 };
 pub use int8::int8_row;
 pub use network::{Activation, Network};
@@ -62,8 +62,8 @@ pub use per_output::OutputNets;
 pub use point_residual::{explains_nothing, train_point_residual};
 pub use quantise::{quantisation_aware, QuantiseReport};
 pub use samples::residual_pairs;
-pub use trained::TrainedResidual;
-pub use wrench_residual::{train_wrench_residual, WrenchResidualError, WrenchTrained};
+pub use trained::{Trained, TrainedResidual};
+pub use wrench_residual::{train_wrench_residual, WrenchResidualError};
 pub use wrench_samples::{wrench_pairs, WrenchPairs};
 pub use wrench_settings::wrench_settings;
 

@@ -6,8 +6,9 @@
 
 use super::motion_samples::motion_rows;
 use super::point_residual::train_point_rows;
-use super::wrench_residual::{WrenchResidualError, WrenchTrained};
+use super::wrench_residual::WrenchResidualError;
 use super::ResidualSettings;
+use super::Trained;
 use crate::dataset::Dataset;
 use crate::progress::Progress;
 use crate::scenario::Model;
@@ -30,7 +31,7 @@ pub fn train_motion_residual(
     horizon: usize,
     settings: &ResidualSettings,
     progress: &dyn Progress,
-) -> Result<WrenchTrained, WrenchResidualError> {
+) -> Result<Trained, WrenchResidualError> {
     let (rows, _) = motion_rows(physics, training, c, horizon)?;
     train_point_rows(&rows, c, settings, MOTION_UNITS, progress)
 }

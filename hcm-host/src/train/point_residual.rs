@@ -12,7 +12,8 @@ use super::explained::EXPLAINED_MIN;
 use super::point_samples::point_rows;
 use super::reported::int8_twin_in_stage;
 use super::summed::{point_inputs, train_summed, SummedRow};
-use super::wrench_residual::{event_ends, WrenchResidualError, WrenchTrained};
+use super::wrench_residual::{event_ends, WrenchResidualError};
+use super::Trained;
 use super::{ResidualSettings, TrainSettings, TrainedResidual};
 use crate::dataset::Dataset;
 use crate::progress::{in_stage, Progress, Stage};
@@ -39,7 +40,7 @@ const LEARNING_RATE: f64 = 3e-3;
 /// The contact-frame residual of contact `c` of `pm2` (the scenario with PM2 in
 /// place) on the samples of the first `events` contact events of `training`, then its
 /// int8 twin, seeded with `settings.seed`. Reports [`Stage::Train`] and
-/// [`Stage::Int8Twin`] to `progress`. The returned [`WrenchTrained`]'s `silenced` lists
+/// [`Stage::Int8Twin`] to `progress`. The returned [`Trained`]'s `silenced` lists
 /// the outputs the fit does not need (k_n, r_f, c_t, c_n, c_r: 0 to 4;
 /// [`super::summed::train_summed`]), fixed at 0; its R² is per component of the body's
 /// wrench.
@@ -50,7 +51,7 @@ pub fn train_point_residual(
     events: usize,
     settings: &ResidualSettings,
     progress: &dyn Progress,
-) -> Result<WrenchTrained, WrenchResidualError> {
+) -> Result<Trained, WrenchResidualError> {
     let (rows, at) = point_rows(pm2, training, c)?;
     let ends = event_ends(pm2, training, events)?;
     let rows: Vec<SummedRow> = (rows.into_iter().zip(&at))
@@ -69,7 +70,7 @@ pub fn train_point_rows(
     settings: &ResidualSettings,
     units: &str,
     progress: &dyn Progress,
-) -> Result<WrenchTrained, WrenchResidualError> {
+) -> Result<Trained, WrenchResidualError> {
     let train_settings = TrainSettings {
         hidden_layers: HIDDEN,
         width: POINT_WIDTH,
@@ -103,7 +104,7 @@ pub fn train_point_rows(
         progress,
     )?;
     let explained = summed_explained(&network, rows);
-    Ok(WrenchTrained {
+    Ok(Trained {
         residual: TrainedResidual::new(c, network, int8),
         rows: rows.len(),
         report,
@@ -168,6 +169,6 @@ fn summed_explained(network: &super::Network, rows: &[SummedRow]) -> Vec<f64> {
 
 /// Whether a trained wrench residual explains under [`EXPLAINED_MIN`] of PM2's error
 /// in every component: no better than a zero output.
-pub fn explains_nothing(trained: &WrenchTrained) -> bool {
-    trained.explained().iter().all(|r2| *r2 < EXPLAINED_MIN)
+pub fn explains_nothing(trained: &Trained) -> bool {
+    trained.explained.iter().all(|r2| *r2 < EXPLAINED_MIN)
 }

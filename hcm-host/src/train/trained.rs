@@ -10,7 +10,7 @@
 //! `network` is the f64 network as trained; `int8_network` its quantisation-aware twin
 //! ([`super::quantise`]), whose weights the int8 blob stores exactly.
 
-use super::Network;
+use super::{Network, QuantiseReport, TrainReport};
 use crate::input;
 use crate::output::write_atomically;
 use serde::{Deserialize, Serialize};
@@ -105,4 +105,27 @@ impl TrainedResidual {
             Ok(w.write_all(b"\n")?)
         })
     }
+}
+
+/// A trained residual and how its training went, whichever the residual's kind (the
+/// 1D normal force, the wrench from the body's state, the contact-frame points, from
+/// motion).
+#[derive(Clone, Debug)]
+pub struct Trained {
+    /// The f32 network and its int8 twin (`residual.json`).
+    pub residual: TrainedResidual,
+    /// Training rows: the force samples inside the contact (1D), the contact samples of
+    /// the first events (3D).
+    pub rows: usize,
+    /// The f32 network's training.
+    pub report: TrainReport,
+    /// The int8 twin's fine-tuning.
+    pub int8: QuantiseReport,
+    /// R² of each output on the training rows (3D: force x y z, torque x y z); empty
+    /// where it is not computed (the 1D network's one output).
+    pub explained: Vec<f64>,
+    /// Outputs fixed at zero: for the body-state network, wrench components whose R²
+    /// is below [`super::EXPLAINED_MIN`]; for the contact-frame network, the point
+    /// outputs the fit does not need ([`super::summed::train_summed`]).
+    pub silenced: Vec<usize>,
 }

@@ -18,8 +18,8 @@ use super::explained::{explained_variance, silence_outputs, EXPLAINED_MIN};
 use super::reported::{int8_twin_in_stage, train_in_stage};
 use super::wrench_samples::WrenchSampleError;
 use super::{
-    wrench_pairs, wrench_settings, OutputNets, QuantiseReport, ResidualSettings, TrainError,
-    TrainReport, TrainSettings, TrainedResidual, WrenchPairs,
+    wrench_pairs, wrench_settings, OutputNets, ResidualSettings, TrainError, TrainSettings,
+    Trained, TrainedResidual, WrenchPairs,
 };
 use crate::dataset::Dataset;
 use crate::indicators::{pair_events_from_run, IndicatorError};
@@ -28,37 +28,6 @@ use crate::scenario::Model;
 
 /// The units of the wrench's outputs, force and torque, as a status names them.
 const WRENCH_UNITS: &str = "N, N·m";
-
-/// The trained wrench residual.
-pub struct WrenchTrained {
-    /// The f32 network and its int8 twin.
-    pub(crate) residual: TrainedResidual,
-    /// Training rows (contact samples of the first events).
-    pub rows: usize,
-    /// The f32 network's training.
-    pub report: TrainReport,
-    /// The int8 twin's fine-tuning.
-    pub(crate) int8: QuantiseReport,
-    /// R² of each output on the training rows (force x y z, torque x y z).
-    pub(crate) explained: Vec<f64>,
-    /// Outputs fixed at zero: for the body-state network, wrench components whose R²
-    /// is below [`EXPLAINED_MIN`] (see [`super::explained`]); for the contact-frame
-    /// network, the point outputs the fit does not need
-    /// ([`super::summed::train_summed`]).
-    pub silenced: Vec<usize>,
-}
-
-impl WrenchTrained {
-    /// The f32 network and its int8 twin, to write or export.
-    pub fn residual(&self) -> &TrainedResidual {
-        &self.residual
-    }
-
-    /// R² of each output on the training rows (force x y z, torque x y z).
-    pub fn explained(&self) -> &[f64] {
-        &self.explained
-    }
-}
 
 /// Why the stage failed.
 #[derive(Debug, thiserror::Error)]
@@ -92,7 +61,7 @@ pub fn train_wrench_residual(
     events: usize,
     settings: &ResidualSettings,
     progress: &dyn Progress,
-) -> Result<WrenchTrained, WrenchResidualError> {
+) -> Result<Trained, WrenchResidualError> {
     let pairs = pairs_before_event(pm2, training, c, events)?;
     let train_settings = TrainSettings {
         max_epochs: settings.epochs,
@@ -118,7 +87,7 @@ pub fn train_wrench_residual(
         WRENCH_UNITS,
         progress,
     )?;
-    Ok(WrenchTrained {
+    Ok(Trained {
         residual: TrainedResidual::new(c, network, int8),
         rows: pairs.inputs.len(),
         report,

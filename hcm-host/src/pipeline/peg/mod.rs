@@ -22,9 +22,7 @@ use crate::identify::{FitRecord, Physics};
 use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::progress::in_stage;
 use crate::scenario::Scenario;
-use crate::train::{
-    train_wrench_residual, wrench_settings, OutputNets, ResidualSettings, WrenchTrained,
-};
+use crate::train::{train_wrench_residual, wrench_settings, OutputNets, ResidualSettings, Trained};
 use std::borrow::Cow;
 
 /// The peg's one contact (peg–block).
@@ -83,7 +81,7 @@ pub struct PegReproduction {
     /// PM2.
     pub pm2: RigidIdentification,
     /// The error model and its int8 twin.
-    pub trained: WrenchTrained,
+    pub trained: Trained,
     /// Their blobs, decoded back by the core.
     pub blobs: Blobs,
     /// The comparison on S2: the paper's Table 15, every model replayed from S2's mean
