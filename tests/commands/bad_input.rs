@@ -191,6 +191,25 @@ fn physics_file(hcm: &Hcm, name: &str, law: &str, parameters: &str) -> PathBuf {
 const LN: &str = "stiffness = 6.86e9, exponent = 1.489, restitution = 0.929";
 
 #[test]
+fn a_malformed_set_in_a_physics_file_is_refused_where_it_is_read() {
+    let hcm = Hcm::new();
+    let (_, s2) = ball_data(&hcm);
+    let path = hcm.path("sets.toml");
+    let contact =
+        std::fs::read_to_string(physics_file(&hcm, "pm2.toml", "lankarani_nikravesh", LN)).unwrap();
+    std::fs::write(&path, format!("sets = [\"body.ball.velocity\"]\n{contact}")).unwrap();
+    let evaluate = hcm
+        .run("evaluate")
+        .opt("--scenario", scenario("bouncing_ball.toml"))
+        .opt("--data", &s2)
+        .opt("--physics", &path);
+    says(
+        &refused(&hcm, &hcm.path("none"), evaluate),
+        &["physics file", "sets.toml", "line 1", "expected key=value"],
+    );
+}
+
+#[test]
 fn a_physics_file_error_names_the_physics_file_and_its_key() {
     let hcm = Hcm::new();
     let (s1, s2) = ball_data(&hcm);

@@ -83,11 +83,12 @@ pub struct Physics {
     /// Body effects (air drag); none for a plain identified law.
     #[serde(default, rename = "body", skip_serializing_if = "Vec::is_empty")]
     pub bodies: Vec<PhysicsBody>,
-    /// What the fit found beside the contacts, as scenario assignments (`key=value`, as
-    /// `--set` takes them) applied with the file: the shift of the fixed body a thrown
-    /// one lands on, the thrown body's inertia (the fit from motion). None otherwise.
+    /// What the fit found beside the contacts, as scenario assignments applied with the
+    /// file (written `key=value`, as `--set` takes them): the shift of the fixed body a
+    /// thrown one lands on, the thrown body's inertia (the fit from motion). None
+    /// otherwise.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub sets: Vec<String>,
+    pub sets: Vec<Assignment>,
     /// How the fit went.
     #[serde(default)]
     pub(crate) fit: FitRecord,
@@ -251,14 +252,7 @@ impl Physics {
             let drag = float_table(&[("coefficient", body.air_drag.coefficient)]);
             assignments.push(Assignment::body(&body.name, &["air_drag"], drag));
         }
-        for (i, text) in self.sets.iter().enumerate() {
-            let set = Assignment::parse(text).map_err(|e| PhysicsError::Key {
-                path: path.display().to_string(),
-                key: format!("sets[{i}]"),
-                message: e.to_string(),
-            })?;
-            assignments.push(set);
-        }
+        assignments.extend(self.sets.iter().cloned());
         let misfit = |scenario_error| PhysicsError::Misfit {
             path: path.display().to_string(),
             scenario_error,

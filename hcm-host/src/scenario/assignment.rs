@@ -98,6 +98,23 @@ pub trait IntoAssignment: fmt::Display {
     fn assignment(&self) -> Result<Assignment, ScenarioError>;
 }
 
+/// Written as its `key.path=value` text ([`fmt::Display`]), as a physics file's `sets`
+/// hold it.
+impl serde::Serialize for Assignment {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_str(self)
+    }
+}
+
+/// Read from its `key.path=value` text ([`Assignment::parse`]): a malformed one is an
+/// error where the file is read, naming it.
+impl<'de> serde::Deserialize<'de> for Assignment {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let text = String::deserialize(deserializer)?;
+        Assignment::parse(&text).map_err(serde::de::Error::custom)
+    }
+}
+
 impl IntoAssignment for Assignment {
     fn assignment(&self) -> Result<Assignment, ScenarioError> {
         Ok(self.clone())

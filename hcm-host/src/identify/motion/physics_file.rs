@@ -40,7 +40,7 @@ pub fn fitted_physics(
     };
     let law = fit.model.contacts[contact].law();
     let mut physics = Physics::for_contact(&fit.model, contact, law, record);
-    physics.sets = sets.iter().map(ToString::to_string).collect();
+    physics.sets = sets.to_vec();
     physics
 }
 
