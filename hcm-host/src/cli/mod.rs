@@ -15,7 +15,6 @@ mod indicators;
 mod laws;
 mod numbers;
 mod paths;
-mod peers;
 mod predict;
 mod progress;
 mod report;

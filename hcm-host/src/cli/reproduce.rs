@@ -6,7 +6,7 @@
 use super::progress::Bars;
 use hcm_host::output::StagedDirectory;
 use hcm_host::pipeline::PegSettings;
-use hcm_host::pipeline::{reproduce_cube, CubeSettings};
+use hcm_host::pipeline::{reproduce_cube, CubeSettings, Peers};
 use hcm_host::pipeline::{
     write_reproduction, Example, Pm2Method, Preset, ReproduceSettings, Reproduced, ScenarioChoice,
     Shipped,
@@ -129,12 +129,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // that --out appears complete or not at all; made before the minutes of work, so
     // that an unwritable place or an --out that may not be replaced fails at once.
     let peers = match (&preset, args.peers) {
-        (Preset::CubeToss(_), true) => Some(super::peers::Peers::locate()?),
+        (Preset::CubeToss(_), true) => Some(Peers::locate()?),
         _ => None,
     };
     let staged = StagedDirectory::create(&args.out, "results.json")?;
     if let (Some(peers), Preset::CubeToss(settings)) = (&peers, &preset) {
         let mut reproduction = reproduce_cube(settings, &Bars::default())?;
+        eprintln!(
+            "peers: {} (MuJoCo and PyBullet fitted on the training tosses)",
+            peers.command_line()
+        );
         reproduction.appendix = Some(peers.run(staged.path(), &reproduction, settings)?);
         return finish(staged, Box::new(reproduction));
     }

@@ -29,7 +29,7 @@ mod report;
 mod results;
 mod setup;
 mod train;
-pub use cube::{reproduce_cube, CubeReproduction, CubeSettings};
+pub use cube::{reproduce_cube, CubeReproduction, CubeSettings, Peers};
 pub use peg::PegReproduction;
 pub use peg::PegSettings;
 pub use peg::{evaluate_peg, reproduce_peg, CONTACT as PEG_CONTACT};

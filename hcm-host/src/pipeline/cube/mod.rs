@@ -12,12 +12,14 @@
 mod errors;
 mod faces;
 mod figures;
+mod peers;
 mod phases;
 mod report;
 mod results;
 mod stages;
 
 pub use figures::toss_figures;
+pub use peers::Peers;
 pub use results::CubeResults;
 pub use stages::{Predictions, SecondFold};
 

@@ -1,10 +1,11 @@
-//! `hcm reproduce cube-toss --peers`: MuJoCo and PyBullet fitted and scored beside hcm
-//! on the same tosses, by the repository's `benches/peers/peers.py` in its own virtual
-//! environment (pinned versions; `bash benches/peers/run.sh OUT --quick` installs them).
-//! Its table joins the report; hcm itself never needs Python.
+//! The cube preset's comparison with its peers (`hcm reproduce cube-toss --peers`):
+//! MuJoCo and PyBullet fitted and scored beside hcm on the same tosses, by the
+//! repository's `benches/peers/peers.py` in its own virtual environment (pinned
+//! versions; `bash benches/peers/run.sh OUT --quick` installs them). Its table joins the
+//! report; hcm itself never needs Python. The script's own progress goes to stderr.
 
+use super::{CubeReproduction, CubeSettings};
 use anyhow::Context;
-use hcm_host::pipeline::{CubeReproduction, CubeSettings};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -40,6 +41,11 @@ impl Peers {
         Ok(Peers { python, script })
     }
 
+    /// What runs: the interpreter and the script, for a status line.
+    pub fn command_line(&self) -> String {
+        format!("{} {SCRIPT}", self.python.display())
+    }
+
     /// Writes the peers' inputs into `dir/peers/`, runs the script there (its progress
     /// on stderr) and returns its table, a section of the report.
     pub fn run(
@@ -70,10 +76,6 @@ impl Peers {
         if let Some(first) = settings.first {
             command.arg("--first").arg(first.to_string());
         }
-        eprintln!(
-            "peers: {} {SCRIPT} (MuJoCo and PyBullet fitted on the training tosses)",
-            self.python.display()
-        );
         let status = (command.status())
             .with_context(|| format!("starting {} {SCRIPT}", self.python.display()))?;
         anyhow::ensure!(
