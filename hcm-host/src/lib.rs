@@ -19,6 +19,11 @@
 //! 11. [`export`] — the blob a controller embeds;
 //! 12. [`diagnose`] — what the simulation gets wrong, and why;
 //! 13. [`pipeline`] — `hcm reproduce`'s presets over the stages.
+//!
+//! Each module is a facade: its submodules are private and what the other layers, the
+//! CLI and the tests use is re-exported at its top (`hcm_host::diagnose::BaseFreedom`).
+//! The regime a data file puts a stage in — 1D force, 3D wrench at poses, poses alone —
+//! is [`dataset::Evidence`], decided once from the model and the data.
 
 #![warn(missing_docs)]
 // Module docs name the private submodules that hold each part, for readers of the source
