@@ -13,7 +13,7 @@
 //! 5. [`dataset`] — measured data;
 //! 6. [`indicators`] — the paper's indicators of contact events;
 //! 7. [`simulate`] — the simulator;
-//! 8. [`experiment`], [`toss`], [`figure`] — noisy experiments, toss replays, figures;
+//! 8. [`experiment`], [`replay`], [`figure`] — noisy experiments, replays of recorded motion (tosses), figures;
 //! 9. [`identify`] — physics parameters (PM2);
 //! 10. [`train`], [`evaluate`] — the residual network, held-out evaluation;
 //! 11. [`export`] — the blob a controller embeds;
@@ -44,8 +44,8 @@ pub mod numerics;
 pub mod output;
 pub mod pipeline;
 pub mod progress;
+pub mod replay;
 pub mod residual;
 pub mod scenario;
 pub mod simulate;
-pub mod toss;
 pub mod train;

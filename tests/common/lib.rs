@@ -110,7 +110,7 @@ pub fn motion_fit(
     seed: u64,
 ) -> hcm_host::identify::MotionFit {
     use hcm_host::identify::{identify_motion, MotionParameters, MotionTarget};
-    let setup = hcm_host::toss::TossSetup::new(model).unwrap();
+    let setup = hcm_host::replay::TossSetup::new(model).unwrap();
     let target = MotionTarget::new(model, training).unwrap();
     let parameters = MotionParameters::new(model, &setup).unwrap();
     let settings = hcm_host::numerics::optimize::GeneticSettings {

@@ -8,8 +8,8 @@
 
 use hcm_host::dataset::{Dataset, Run};
 use hcm_host::identify::{split_tosses, MotionFit};
+use hcm_host::replay::{evaluate_tosses, summarize};
 use hcm_host::scenario::{Model, Scenario};
-use hcm_host::toss::{evaluate_tosses, summarize};
 
 /// The shipped cube-toss scenario with `sets` applied.
 fn cube_toss(sets: &[String]) -> Model {

@@ -9,8 +9,8 @@
 
 use hcm_host::dataset::{Dataset, Run};
 use hcm_host::identify::{split_tosses, MotionFit};
+use hcm_host::replay::{evaluate_tosses, summarize};
 use hcm_host::scenario::{Model, Scenario};
-use hcm_host::toss::{evaluate_tosses, summarize};
 
 /// A test scene (`tests/common/scenes/`) filmed at 200 Hz for 0.45 s, with `sets`
 /// applied.
@@ -251,7 +251,7 @@ fn force_and_motion_are_fitted_in_one_objective() {
     let data = hcm_host::experiment::generate(&truth, 16, 2, &hcm_host::progress::Silent).unwrap();
     let (training, held_out) = split_tosses(&data);
     let model = Scenario::load(&path, &[]).unwrap().model().unwrap();
-    let setup = hcm_host::toss::TossSetup::new(&model).unwrap();
+    let setup = hcm_host::replay::TossSetup::new(&model).unwrap();
     let target = MotionTarget::new(&model, &training).unwrap();
     let parameters = MotionParameters::new(&model, &setup).unwrap();
     let force = ForceData {

@@ -72,7 +72,7 @@ fn truth_model(truth: &[String]) -> hcm_host::scenario::Model {
 #[test]
 fn poses_alone_of_two_moving_bodies_fit_the_contact_between_them() {
     use hcm_host::identify::{split_tosses, MotionParameters, MotionTarget};
-    use hcm_host::toss::{evaluate_tosses, summarize, TossSetup};
+    use hcm_host::replay::{evaluate_tosses, summarize, TossSetup};
     let truth = [
         "contact.0.parameters.damping=1.2".to_owned(),
         "contact.0.friction.mu_static=0.3".to_owned(),
@@ -163,7 +163,7 @@ fn a_body_without_a_frame_at_the_window_start_is_refused() {
     let block = run.bodies.iter_mut().find(|b| b.body == "block").unwrap();
     block.samples.retain(|s| s.time > 0.25);
     let data = hcm_host::dataset::Dataset { runs: vec![run] };
-    let error = hcm_host::toss::evaluate_tosses(&filmed(&sets[..1]), &data, || {})
+    let error = hcm_host::replay::evaluate_tosses(&filmed(&sets[..1]), &data, || {})
         .unwrap_err()
         .to_string();
     assert!(

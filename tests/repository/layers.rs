@@ -17,7 +17,7 @@ const LAYERS: &[&[&str]] = &[
     &["dataset"],
     &["indicators"],
     &["simulate"],
-    &["experiment", "toss", "figure"],
+    &["experiment", "replay", "figure"],
     &["identify"],
     &["train", "evaluate"],
     &["export"],

@@ -1,14 +1,14 @@
-//! Predicting tosses (issue 17, `hcm_host::toss`): the window and the initial state on
+//! Predicting tosses (issue 17, `hcm_host::replay`): the window and the initial state on
 //! a toss made by the simulator (known truth), the scores on hand-computable cases, a
 //! simulated toss predicted back to near-zero error, bit-identical results on 1 and 2
 //! threads, and the errors of bad inputs. Run with `--nocapture` to see the figures.
 
 use hcm_host::dataset::{Dataset, Run, Sample};
-use hcm_host::scenario::{Model, Scenario};
-use hcm_host::toss::{
+use hcm_host::replay::{
     estimate_initial_state, evaluate_tosses, find_window, frozen_pose, predict_toss,
     rotation_angle, score_toss, StateSource, Summary, TossError, TossSetup, LEAD_FRAMES,
 };
+use hcm_host::scenario::{Model, Scenario};
 use hcm_tests::cli::Hcm;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::path::{Path, PathBuf};

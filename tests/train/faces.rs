@@ -1,4 +1,4 @@
-//! What decides the final face (issue 29, `hcm_host::toss::ensemble`): simulated
+//! What decides the final face (issue 29, `hcm_host::replay::ensemble`): simulated
 //! tosses whose contact differs from landing to landing (stiffness, damping and
 //! friction scattered by 30 % per toss, as a rig's do) are forecast by ensembles of
 //! replays of the nominal contact with a scatter chosen on the training tosses; held
@@ -7,8 +7,8 @@
 
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::split_tosses;
+use hcm_host::replay::{calibrate_scatter, forecast_faces, summarize_faces, Spread};
 use hcm_host::scenario::{Model, Scenario};
-use hcm_host::toss::{calibrate_scatter, forecast_faces, summarize_faces, Spread};
 use rand::SeedableRng;
 
 /// The shipped cube-toss scenario, 30 % of scatter per toss in its contact.

@@ -11,9 +11,9 @@
 
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::split_tosses;
+use hcm_host::replay::{evaluate_tosses, summarize};
 use hcm_host::residual::ContactResidual;
 use hcm_host::scenario::{Model, Scenario};
-use hcm_host::toss::{evaluate_tosses, summarize};
 use rand::SeedableRng;
 
 /// `count` tosses of `truth` from seeded random throws, recorded at the scenario's

@@ -1,5 +1,5 @@
 //! `hcm predict --faces`: each toss's final face forecast by an ensemble of replays
-//! (`hcm_host::toss::ensemble`), the contact's scatter chosen on the training tosses
+//! (`hcm_host::replay::ensemble`), the contact's scatter chosen on the training tosses
 //! unless given, scored per part.
 
 use super::progress_bar;
@@ -7,10 +7,10 @@ use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::{part_of, split_tosses, Part};
 use hcm_host::output::write_atomically;
-use hcm_host::scenario::Model;
-use hcm_host::toss::{
+use hcm_host::replay::{
     calibrate_scatter, forecast_faces, summarize_faces, FaceForecast, Spread, FACES, SCATTERS,
 };
+use hcm_host::scenario::Model;
 use std::path::{Path, PathBuf};
 
 /// The final-face forecast's options.
@@ -158,7 +158,7 @@ fn print_faces(forecasts: &[FaceForecast], data: &Dataset, spread: Spread) {
 fn write_faces(path: &Path, forecasts: &[FaceForecast], data: &Dataset) -> anyhow::Result<()> {
     write_atomically(path, |out| -> anyhow::Result<()> {
         let mut csv = csv::Writer::from_writer(out);
-        let probabilities = (0..FACES).map(|f| format!("p{}", hcm_host::toss::Face(f).name()));
+        let probabilities = (0..FACES).map(|f| format!("p{}", hcm_host::replay::Face(f).name()));
         let header = [
             "run",
             "part",

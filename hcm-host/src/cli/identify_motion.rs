@@ -15,8 +15,8 @@ use hcm_host::identify::{identify_motion_and_force, MotionSearch};
 use hcm_host::numerics::optimize::GeneticSettings;
 use hcm_host::output::write_bytes;
 use hcm_host::progress::{Fold, Stage};
+use hcm_host::replay::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};
 use hcm_host::scenario::{Assignment, Model};
-use hcm_host::toss::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};
 use std::path::PathBuf;
 
 /// What the fit from poses reads of `hcm identify`'s options (the GA's size and the

@@ -3,7 +3,7 @@
 
 use super::progress_bar;
 use anyhow::Context;
-use hcm_host::toss::{
+use hcm_host::replay::{
     evaluate_tosses, predicted_dataset, summarize, write_scores, StateSource, Summary,
     TossEvaluation, TossSetup,
 };

@@ -4,8 +4,8 @@
 use anyhow::Context;
 use hcm_host::dataset::Dataset;
 use hcm_host::identify::Physics;
+use hcm_host::replay::TossSetup;
 use hcm_host::scenario::Model;
-use hcm_host::toss::TossSetup;
 use std::path::PathBuf;
 
 /// Scenario, optional physics file, the tosses and how many of them.

@@ -6,8 +6,8 @@
 
 use super::rigid::{mean_se, verdict};
 use crate::dataset::Dataset;
+use crate::replay::{evaluate_tosses, summarize, EvaluationSummary, TossError};
 use crate::scenario::Model;
-use crate::toss::{evaluate_tosses, summarize, EvaluationSummary, TossError};
 use serde::Serialize;
 
 /// One model's scores.
@@ -68,7 +68,7 @@ pub fn motion_markdown(e: &MotionEvaluation) -> String {
         "| model | position error (% of width): mean ± std | median | rotation error (°): mean ± std | median |\n|---|---|---|---|---|\n",
     );
     let row =
-        |out: &mut String, label: &str, p: &crate::toss::Summary, r: &crate::toss::Summary| {
+        |out: &mut String, label: &str, p: &crate::replay::Summary, r: &crate::replay::Summary| {
             let _ = writeln!(
                 out,
                 "| {label} | {:.2} ± {:.2} | {:.2} | {:.2} ± {:.2} | {:.2} |",

@@ -8,7 +8,7 @@ use crate::dataset::Dataset;
 use crate::figure::NamedFigure;
 use crate::identify::Physics;
 use crate::output::write_bytes;
-use crate::toss::{write_scores, TossEvaluation};
+use crate::replay::{write_scores, TossEvaluation};
 use crate::train::TrainedResidual;
 use anyhow::Context;
 use std::borrow::Cow;

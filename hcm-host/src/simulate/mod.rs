@@ -161,7 +161,7 @@ fn stiction_hint(model: &Model) -> String {
 
 /// What a simulation keeps besides its sampled trajectory. Crate-private: the samples
 /// of [`Observed::Trajectory`] are [`Observed::Events`]' only under the conditions it
-/// states, which the toss replay sets up (`toss::predict::replay_model`).
+/// states, which the toss replay sets up (`replay::replay_model`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Observed {
     /// The contact events with their indicators (`Simulation::events`).

@@ -26,11 +26,11 @@ use super::point_samples::{touching_points, RowTimes};
 use super::summed::SummedRow;
 use crate::dataset::{Channel, Dataset, Run, Sample};
 use crate::identify::RecordedContact;
+use crate::replay::orientation;
+use crate::replay::prepare;
+use crate::replay::{TossError, TossSetup};
 use crate::scenario::Model;
 use crate::simulate::simulate;
-use crate::toss::orientation;
-use crate::toss::prepare;
-use crate::toss::{TossError, TossSetup};
 use nalgebra::{UnitQuaternion, Vector3};
 use rayon::prelude::*;
 
@@ -119,11 +119,11 @@ fn toss_rows(
 /// `horizon` frame periods of such samples, weighted as the frame rows are.
 fn sustained_rows(
     (model, setup, c): (&Model, &TossSetup, usize),
-    toss: &crate::toss::PreparedToss<'_>,
+    toss: &crate::replay::PreparedToss<'_>,
     horizon: usize,
 ) -> Result<Vec<(SummedRow, f64)>, TossError> {
     let step = toss.frame_period / SUBSTEPS as f64;
-    let mut replay = crate::toss::replay_model(model, setup, toss);
+    let mut replay = crate::replay::replay_model(model, setup, toss);
     replay.scenario.record.contact_sample_period = step;
     replay.scenario.record.flight_sample_period = step;
     let simulation = simulate(&replay).map_err(|error| TossError::Simulation {

@@ -43,7 +43,7 @@ pub enum WrenchResidualError {
     Train(#[from] TrainError),
     /// The tosses could not be replayed frame by frame (a residual from motion).
     #[error(transparent)]
-    Toss(#[from] crate::toss::TossError),
+    Toss(#[from] crate::replay::TossError),
 }
 
 /// The wrench residual of contact `c` of `pm2` (the scenario with PM2 in place) on the

@@ -9,8 +9,8 @@
 use super::super::Family;
 use crate::dataset::Dataset;
 use crate::numerics::optimize::Bound;
+use crate::replay::{shift_surface, tilt_surface};
 use crate::scenario::{Model, Shape};
-use crate::toss::{shift_surface, tilt_surface};
 use hcm_core::effect::{ContactEffect, HysteresisDamping};
 use hcm_core::friction::{RollingResistance, TorsionalResistance, ViscousFriction};
 

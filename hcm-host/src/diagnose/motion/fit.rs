@@ -11,9 +11,9 @@ use crate::identify::MotionTarget;
 use crate::numerics::optimize::minimize_scalar;
 use crate::numerics::optimize::nelder_mead::polish;
 use crate::numerics::optimize::Bound;
+use crate::replay::TossError;
+use crate::replay::{simulate_toss, PreparedToss};
 use crate::scenario::Model;
-use crate::toss::TossError;
-use crate::toss::{simulate_toss, PreparedToss};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 

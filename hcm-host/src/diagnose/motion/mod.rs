@@ -33,8 +33,8 @@ pub use catalogue::MotionEffect;
 use crate::dataset::Dataset;
 use crate::identify::{split_tosses, MotionParameters};
 use crate::progress::{in_stage, Progress, Stage as ProgressStage};
+use crate::replay::{TossError, TossSetup};
 use crate::scenario::Model;
-use crate::toss::{TossError, TossSetup};
 use fit::{Fitted, Part, Subject};
 use serde::Serialize;
 

@@ -5,9 +5,9 @@
 //! +∞.
 
 use crate::dataset::Dataset;
+use crate::replay::{prepare, simulate_toss, PreparedToss};
+use crate::replay::{TossError, TossScore, TossSetup};
 use crate::scenario::Model;
-use crate::toss::{prepare, simulate_toss, PreparedToss};
-use crate::toss::{TossError, TossScore, TossSetup};
 use rayon::prelude::*;
 
 /// The tosses a fit replays, each checked once: window, initial state and frame grid

@@ -1,6 +1,6 @@
 //! Identification from motion alone: a tossed body's contact law, friction
 //! and table height fitted to filmed tosses — poses, no force — by replaying each
-//! training toss from its window start ([`crate::toss`]) and minimising the mean score
+//! training toss from its window start ([`crate::replay`]) and minimising the mean score
 //! `hcm predict` prints ([`fitness`](mod@fitness)). The genetic algorithm
 //! ([`crate::numerics::optimize::genetic`], seeded, its generation evaluated in parallel) searches
 //! the box of [`parameters`]; Nelder–Mead ([`crate::numerics::optimize::nelder_mead`]) refines its best. The tosses are

@@ -17,9 +17,9 @@
 //! Friction is searched as μ_s and μ_d/μ_s ∈ [0.3, 1], so every candidate is a valid law.
 
 use crate::numerics::optimize::{Bound, Parameters};
+use crate::replay::shift_surface;
+use crate::replay::{TossError, TossSetup};
 use crate::scenario::{Model, Shape};
-use crate::toss::shift_surface;
-use crate::toss::{TossError, TossSetup};
 
 /// Factor on each side of the scenario's stiffness or damping its box spans (–).
 pub const SPAN: f64 = 30.0;

@@ -5,8 +5,8 @@
 //! original's comments are not kept).
 
 use super::MotionParameters;
+use crate::replay::shift_surface;
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError, Shape};
-use crate::toss::shift_surface;
 
 /// The assignments that turn `model`'s scenario into the fitted one, from the
 /// fit's `MotionParameters::named` values: the law's two parameters, `mu_static`,
@@ -106,7 +106,7 @@ pub fn fitted_scenario_text(
 mod tests {
     use super::*;
     use crate::numerics::optimize::Parameters;
-    use crate::toss::TossSetup;
+    use crate::replay::TossSetup;
     use nalgebra::Matrix3;
     use std::path::Path;
 

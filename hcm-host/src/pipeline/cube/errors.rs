@@ -5,8 +5,8 @@
 
 use super::phases::{phases, Phase};
 use crate::dataset::{Dataset, Sample};
-use crate::toss::rotation_angle;
-use crate::toss::{orientation, TossError, TossEvaluation, TossSetup};
+use crate::replay::rotation_angle;
+use crate::replay::{orientation, TossError, TossEvaluation, TossSetup};
 use nalgebra::Vector3;
 use serde::Serialize;
 

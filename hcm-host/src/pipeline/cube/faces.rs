@@ -1,13 +1,13 @@
-//! The final faces of the held-out tosses (`crate::toss::ensemble`): the fitted
+//! The final faces of the held-out tosses (`crate::replay::ensemble`): the fitted
 //! model's ensembles, their contact scatter chosen on the training tosses, scored
 //! against the single replays.
 
 use crate::dataset::Dataset;
 use crate::progress::{in_stage, Progress, Stage};
-use crate::scenario::Model;
-use crate::toss::{
+use crate::replay::{
     calibrate_scatter, forecast_faces, summarize_faces, FaceSummary, Spread, TossError, SCATTERS,
 };
+use crate::scenario::Model;
 use serde::Serialize;
 use std::sync::atomic::{AtomicU64, Ordering};
 

@@ -9,7 +9,7 @@ use super::CubeError;
 use crate::dataset::{Dataset, Sample};
 use crate::figure::{Colour, Dash, Figure, Series, Stroke};
 use crate::pipeline::NamedFigure;
-use crate::toss::{TossEvaluation, TossSetup};
+use crate::replay::{TossEvaluation, TossSetup};
 
 /// The three tosses shown, with their legend labels and colours (recorded dark,
 /// predicted light).

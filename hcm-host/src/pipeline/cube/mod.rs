@@ -27,8 +27,8 @@ use crate::dataset::{DataError, Dataset};
 use crate::diagnose::{diagnose_motion_split, MotionDiagnoseError, MotionDiagnosis};
 use crate::identify::{split_tosses, MotionFit};
 use crate::numerics::optimize::genetic::GeneticError;
+use crate::replay::{TossError, TossSetup};
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError};
-use crate::toss::{TossError, TossSetup};
 use std::path::{Path, PathBuf};
 
 use super::{
@@ -36,7 +36,7 @@ use super::{
     StageTiming,
 };
 use crate::identify::fitted_physics;
-use crate::toss::predicted_dataset;
+use crate::replay::predicted_dataset;
 use std::borrow::Cow;
 
 /// What [`reproduce_cube`] runs.
@@ -148,8 +148,9 @@ impl CubeReproduction {
     /// the first fold), and the scenario's predictions (`predicted_scenario.csv`).
     pub fn peer_inputs(&self) -> anyhow::Result<Vec<Artifact<'_>>> {
         let p = &self.predicted;
-        let both =
-            |a: &[crate::toss::TossEvaluation], b: &[crate::toss::TossEvaluation]| [a, b].concat();
+        let both = |a: &[crate::replay::TossEvaluation], b: &[crate::replay::TossEvaluation]| {
+            [a, b].concat()
+        };
         let scenario = both(&p.training_scenario, &p.held_out_scenario);
         let body = TossSetup::new(&self.fit.model)?.name;
         let predicted = predicted_dataset(&scenario, &body);

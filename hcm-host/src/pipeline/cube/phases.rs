@@ -16,8 +16,8 @@
 //! (a body still moving at the end of its recording never settles).
 
 use crate::dataset::Sample;
-use crate::toss::rotation_angle;
-use crate::toss::{orientation, TossError, TossSetup, Window};
+use crate::replay::rotation_angle;
+use crate::replay::{orientation, TossError, TossSetup, Window};
 use nalgebra::Vector3;
 use serde::Serialize;
 

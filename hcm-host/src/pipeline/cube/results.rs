@@ -6,8 +6,8 @@ use super::CubeSettings;
 use crate::diagnose::MotionDiagnosis;
 use crate::identify::MotionFit;
 use crate::pipeline::StageTiming;
+use crate::replay::{summarize, Summary, TossEvaluation};
 use crate::scenario::Assignment;
-use crate::toss::{summarize, Summary, TossEvaluation};
 use serde::Serialize;
 
 /// A simulator's published scores on this data set (fitted and scored on all 550

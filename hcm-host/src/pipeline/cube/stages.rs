@@ -9,8 +9,8 @@ use crate::identify::{beside_physics, identify_motion, MotionFit, MotionParamete
 use crate::numerics::optimize::genetic::GeneticSettings;
 use crate::pipeline::{Fold, Progress, Stage};
 use crate::progress::in_stage;
+use crate::replay::{evaluate_tosses, TossEvaluation, TossSetup};
 use crate::scenario::{Assignment, Model};
-use crate::toss::{evaluate_tosses, TossEvaluation, TossSetup};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The fit on the `training` tosses of `fold`, with a progress stage for the GA and

@@ -1,8 +1,8 @@
-//! Predicting measured tosses: a body filmed while it is tossed onto fixed
-//! bodies (a table, a ramp, a bin) — position and
-//! orientation per camera frame, no force — replayed in the 3D
-//! simulator from each toss's *window* start, and the prediction scored against the
-//! recorded poses.
+//! Replaying recorded motion: a body filmed while it is tossed onto (or slid over) fixed
+//! bodies (a table, a ramp, a bin) — position and orientation per camera frame, no
+//! force — replayed in the 3D simulator from each recording's *window* start, and the
+//! prediction scored against the recorded poses. A recording is called a toss here,
+//! whatever the motion.
 //!
 //! - [`window`]: where a toss's window starts — [`LEAD_FRAMES`] frames before the
 //!   body's centre first comes within its circumscribed radius of a partner (below
