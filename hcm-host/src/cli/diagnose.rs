@@ -193,14 +193,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
          from `hcm identify`)",
         args.data.display()
     );
-    if let Some(needs) = evidence.requirement(DataUse::Diagnose) {
-        data.require(
-            &args.data.display().to_string(),
-            base,
-            &[args.contact],
-            needs,
-        )?;
-    }
+    let file = args.data.display().to_string();
+    data.require_for(&file, base, args.contact, evidence, DataUse::Diagnose)?;
     if evidence == Evidence::Wrench {
         let rigid = super::diagnose_rigid::RigidArgs {
             data: &args.data,

@@ -68,14 +68,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if evidence == Evidence::Poses {
         return run_motion(&args, &pm2, &data);
     }
-    if let Some(needs) = evidence.requirement(DataUse::Evaluate) {
-        data.require(
-            &args.data.display().to_string(),
-            &pm2,
-            &[args.contact],
-            needs,
-        )?;
-    }
+    let file = args.data.display().to_string();
+    data.require_for(&file, &pm2, args.contact, evidence, DataUse::Evaluate)?;
     if evidence == Evidence::Wrench {
         return run_rigid(&args, &pm2, &data);
     }

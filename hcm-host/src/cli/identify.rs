@@ -221,15 +221,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         scenario.name
     );
     let law = args.law()?;
-    let by_events = args.method == "ga";
-    let needs = evidence.requirement(if by_events {
+    let what = if args.method == "ga" {
         DataUse::IdentifyEvents
     } else {
         DataUse::Identify
-    });
-    if let Some(needs) = needs {
-        data.require(&args.data.display().to_string(), &model, &[contact], needs)?;
-    }
+    };
+    let file = args.data.display().to_string();
+    data.require_for(&file, &model, contact, evidence, what)?;
     let settings = GeneticSettings {
         seed: args.seed,
         population: args.population.unwrap_or(60),

@@ -136,14 +136,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if evidence != Evidence::LineForce {
         println!("{}", inventory_summary(&data, &pm2, args.contact));
     }
-    if let Some(needs) = evidence.requirement(DataUse::Train) {
-        data.require(
-            &args.data.display().to_string(),
-            &pm2,
-            &[args.contact],
-            needs,
-        )?;
-    }
+    let file = args.data.display().to_string();
+    data.require_for(&file, &pm2, args.contact, evidence, DataUse::Train)?;
     if evidence != Evidence::LineForce {
         return run_rigid(&args, &pm2, &data);
     }

@@ -5,7 +5,7 @@
 
 use super::inventory::motion_only;
 use super::needs::Requirement;
-use super::Dataset;
+use super::{DataError, Dataset};
 use crate::scenario::Model;
 
 /// The kind of evidence a data file holds about one contact of a model.
@@ -84,5 +84,24 @@ impl Evidence {
             (_, U::Train) => &Requirement::TRAIN_RIGID,
             (_, U::Evaluate | U::Indicators) => &Requirement::INDICATORS_RIGID,
         })
+    }
+}
+
+impl Dataset {
+    /// Checks that these data (read from `file`) hold what `what` needs of `evidence` on
+    /// contact `c` of `model` ([`Evidence::requirement`]); nothing to check where the
+    /// path checks the data itself.
+    pub fn require_for(
+        &self,
+        file: &str,
+        model: &Model,
+        c: usize,
+        evidence: Evidence,
+        what: DataUse,
+    ) -> Result<(), DataError> {
+        match evidence.requirement(what) {
+            Some(needs) => self.require(file, model, &[c], needs),
+            None => Ok(()),
+        }
     }
 }
