@@ -1,4 +1,4 @@
-//! Evaluation cost of the peg-in-hole's HCM (issue 15), all `f32`, at one peg state in
+//! Evaluation cost of the peg-in-hole's HCM, all `f32`, at one peg state in
 //! contact with the residual on (`wall_2_peak` of `hcm-firmware/src/peg/states.rs`:
 //! the peg against two walls, 4 contact points):
 //!

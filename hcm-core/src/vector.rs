@@ -2,8 +2,9 @@
 //! nalgebra's own operator (so to the same bits), for the geometry and the contact
 //! model's per-point work. The controller's size-optimised build keeps nalgebra's
 //! generic loops over the three components as loops, through copies on the stack:
-//! several times the instructions of the arithmetic itself (issue 31: Eq 1's wrench
-//! and its sum over the peg's 4 points, 18,221 → 16,885 instructions per peg HCM).
+//! several times the instructions of the arithmetic itself (Eq 1's wrench and its
+//! sum over the peg's 4 points, written out: 18,221 → 16,885 instructions per peg
+//! HCM).
 //! Public for a controller's own per-point work around the core (the firmware's peg
 //! manifold uses them).
 
@@ -51,7 +52,7 @@ pub fn neg<T: Real>(a: &Vector3<T>) -> Vector3<T> {
 
 /// q·v·q⁻¹ (`v` rotated by `q`), as nalgebra's `UnitQuaternion * Vector3`: t = 2 (q⃗ × v),
 /// then (t·w + q⃗ × t) + v. Its generic loops took 113 instructions more per peg
-/// manifold on the Cortex-M4F (issue 31).
+/// manifold on the Cortex-M4F.
 pub fn rotate<T: Real>(q: &UnitQuaternion<T>, v: &Vector3<T>) -> Vector3<T> {
     let u = Vector3::new(q.i, q.j, q.k);
     let c = cross(&u, v);

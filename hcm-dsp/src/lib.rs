@@ -83,7 +83,7 @@ pub fn dual_mac(sum: i32, a: u32, b: u32) -> i32 {
 /// rows (two loads of activation pairs, four of weight words with the row offsets as
 /// immediates, eight `sxtb16`, eight `smlad`, the loop's compare and branch). The
 /// compiler's loop over [`mac4`] took 31: it kept moving pointers between registers
-/// and counting a separate index (issue 31). Measured and not kept: both pairs in one
+/// and counting a separate index. Measured and not kept: both pairs in one
 /// `ldm` (23 instructions; peg residual −64), since `ldm` faults on an address that is
 /// not a multiple of 4 and `&[i16; IN]` only promises 2, where `ldr` may be unaligned.
 #[inline(always)]

@@ -1,4 +1,4 @@
-//! Every bad input answered (issue 12): a value that parses but is physically
+//! Every bad input answered: a value that parses but is physically
 //! impossible, an error in a physics file, a `--set` or numeric option of the wrong
 //! kind, a damaged weights blob, a run without contact. Each message must name the
 //! file, key or option and what was expected, and a refused command must leave
@@ -644,7 +644,7 @@ fn runs_without_contact_are_named_apart_from_their_count() {
     );
 }
 
-/// Every command's outputs are checked against its inputs before any work (issue 30):
+/// Every command's outputs are checked against its inputs before any work:
 /// an output naming a file the command reads and two outputs naming one file are
 /// refused, naming the options, and the input is left as it was; an output that is a
 /// device is refused too (`tests/commands/outputs.rs` has the pipes and sockets).
@@ -702,7 +702,7 @@ fn an_output_that_is_an_input_or_a_device_is_refused_before_any_work() {
 }
 
 /// A record or a number of runs that memory cannot hold is refused before the work,
-/// with the figure and what lowers it — never an allocation failure (issue 30).
+/// with the figure and what lowers it — never an allocation failure.
 #[test]
 fn what_memory_cannot_hold_is_refused_with_the_figure() {
     let hcm = Hcm::new();
@@ -769,7 +769,7 @@ fn a_blob_of_the_wrong_kind_for_the_scenario_is_refused() {
 
 /// A data set too small for the command: the diagnosis fits on some runs and judges on
 /// others, so one run is refused with what it needs, before any work and with no
-/// report written (issue 30).
+/// report written.
 #[test]
 fn a_diagnosis_of_one_run_is_refused_with_what_it_needs() {
     let hcm = Hcm::new();

@@ -1,4 +1,4 @@
-//! `hcm reproduce cube-toss` as a test (issue 17's small version): the first 8 real
+//! `hcm reproduce cube-toss` as a test, in a small version: the first 8 real
 //! tosses of data/contactnets-cube/tosses.csv (toss numbers 0–9: 5 train, 3 held out),
 //! a tiny GA, through the binary. The fitted model must beat the frozen pose on the
 //! held-out tosses by a wide margin (5× in position; in rotation the frozen pose's

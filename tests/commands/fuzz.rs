@@ -1,4 +1,4 @@
-//! Fuzz targets over the library's readers of untrusted input (issue 30): whatever the
+//! Fuzz targets over the library's readers of untrusted input: whatever the
 //! bytes, each reader answers `Ok` or `Err` — it never panics and never hangs — and
 //! every refusal is a real message: non-empty and at most [`MESSAGE_LIMIT`] bytes (a
 //! message quotes a short excerpt of the input, never the input).

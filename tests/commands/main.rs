@@ -1,6 +1,6 @@
 //! The `hcm` binary as a user meets it: every command end to end, help, bad input, outputs, the data format, reproduce, and fuzzed readers.
 //!
-//! One test binary per area (issue 46): each file below was a test binary of its own;
+//! One test binary per area: each file below was a test binary of its own;
 //! as modules of one crate the host library is linked once for all of them.
 //! Run one file's tests with `cargo test -p hcm-tests --test commands <module>::`.
 

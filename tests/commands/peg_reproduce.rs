@@ -1,4 +1,4 @@
-//! `hcm reproduce peg-in-hole` as a test (issue 15): the shipped pipeline (400 runs)
+//! `hcm reproduce peg-in-hole` as a test: the shipped pipeline (400 runs)
 //! makes an HCM that beats PM2 on the linear and angular impulse of both wall contacts
 //! with blobs that round-trip through the core within 1e-6; and a smaller one (20
 //! runs) is bit-identical on 1 and 2 threads.
@@ -45,9 +45,10 @@ fn the_shipped_pipeline_makes_an_hcm_that_beats_pm2_on_both_wall_contacts() {
             assert!(row.beats(1, 0), "HCM not better than PM2: {row:?}");
             assert!(row.beats(2, 0), "HCM int8 not better than PM2: {row:?}");
         }
-        // The true physics of a mean run meets the issue's bounds on every cell but
-        // contact 2's maximum force, whose S2 mean (of each run's peak) lies above
-        // the peak of a mean run by more than two standard errors (README).
+        // The true physics of a mean run meets the bounds (the paper's HCM error or two
+        // S2 standard errors) on every cell but contact 2's maximum force, whose S2 mean
+        // (of each run's peak) lies above the peak of a mean run by more than two
+        // standard errors (README).
         let floor = (row.contact, row.indicator) == (2, "max_force");
         assert_eq!(r.evaluation.models[3], "PM1 nominal");
         assert_eq!(row.verdict(3) == "neither", floor, "PM1 nominal: {row:?}");

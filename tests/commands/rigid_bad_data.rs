@@ -1,4 +1,4 @@
-//! A bad 3D data set (issue 28) is answered with what is wrong — the file, the column
+//! A bad 3D data set is answered with what is wrong — the file, the column
 //! or line, and what to do — before any fit runs: a channel missing, a body named
 //! otherwise than in the scenario, frames out of order, a sensor on a body the
 //! scenario lacks.

@@ -1,4 +1,4 @@
-//! A rigid scene through the commands' stages as a user runs them (issue 28):
+//! A rigid scene through the commands' stages as a user runs them:
 //! generate → identify (least squares, a law other than the data's) → train (the
 //! wrench residual) → export → evaluate on held-out runs. The HCM must beat PM2 on the
 //! held-out events, run by run, when PM2's law is not the data's; on `cube_drop` and

@@ -58,7 +58,7 @@ fn friction_and_orientation_errors_name_the_scenario_keys() {
 }
 
 /// STEP friction falls from μ_s at v_s to μ_d at v_d: the keys in the other order, or
-/// a step of no width, are a user's mistake, named (issue 30).
+/// a step of no width, are a user's mistake, named.
 #[test]
 fn friction_out_of_step_order_is_refused() {
     assert_says(

@@ -62,7 +62,7 @@ pub fn measured(truth: &Model, runs: usize, seed: u64) -> Dataset {
 
 /// What `hcm diagnose` makes of `runs` runs with `effect` hidden (see [`hidden`]): the
 /// linear stepwise selection (its first-order ranking) and the re-fit of the causes the
-/// decision names (`diagnose::naming`: nonlinear steps, named only if the residual
+/// decision names (the naming rule, `hcm-host/src/diagnose/naming.rs`: nonlinear steps, named only if the residual
 /// left is noise).
 pub fn selected(effect: &str, runs: usize, seed: u64) -> (Selection, Refit) {
     let (base, data) = hidden(effect, runs, seed);

@@ -1,5 +1,5 @@
 //! An independent reference solver for a rigid box falling on the fixed plane z = 0, to
-//! check hcm's 3D simulator against (issue 13, `scenarios/cube_drop.toml`).
+//! check hcm's 3D simulator against (`scenarios/cube_drop.toml`).
 //!
 //! Independent on purpose: it uses only nalgebra and std — none of `hcm_core`'s laws,
 //! geometry, rigid bodies or integrator — and a different formulation from the core's.
@@ -72,7 +72,7 @@ pub struct Case {
     pub sample_period: f64,
 }
 
-/// The case of issue 13 (`scenarios/cube_drop.toml`): a 0.1 m cube of 0.37 kg dropped
+/// The shipped cube drop (`scenarios/cube_drop.toml`): a 0.1 m cube of 0.37 kg dropped
 /// tilted and spinning onto the plane, simulated for 0.4 s and sampled every 1 ms.
 pub fn cube_drop() -> Case {
     let (mass, side) = (0.37, 0.1);
@@ -105,7 +105,7 @@ pub fn cube_drop() -> Case {
     }
 }
 
-/// Another body and parameter set, as the issue's unseen check will bring: a flat box
+/// Another body and parameter set, as an unseen check will bring: a flat box
 /// with a full (non-diagonal) inertia tensor, thrown harder onto softer, more damped and
 /// more frictional contact.
 pub fn tossed_plate() -> Case {

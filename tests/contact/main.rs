@@ -1,6 +1,6 @@
 //! The contact laws, effects, geometry, rigid-body dynamics, integrator and residual blob of `hcm-core`, against closed forms and independent oracles.
 //!
-//! One test binary per area (issue 46): each file below was a test binary of its own;
+//! One test binary per area: each file below was a test binary of its own;
 //! as modules of one crate the host library is linked once for all of them.
 //! Run one file's tests with `cargo test -p hcm-tests --test contact <module>::`.
 

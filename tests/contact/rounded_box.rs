@@ -1,5 +1,5 @@
-//! A box with rounded edges and corners (`shape = { box = { half_extents, rounding } }`,
-//! issue 29: real cubes are not knife-edged): dropped without spin, a rounded cube
+//! A box with rounded edges and corners (`shape = { box = { half_extents, rounding } }`;
+//! real cubes are not knife-edged): dropped without spin, a rounded cube
 //! touches the ground exactly when its lowest corner sphere reaches it — later than
 //! the sharp cube, by the geometry — and the keys a rounded box cannot take are
 //! refused, naming the field.

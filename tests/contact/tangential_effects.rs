@@ -1,4 +1,4 @@
-//! The contact's tangential effects (`hcm_core::friction::TangentialEffects`, issue 17)
+//! The contact's tangential effects (`hcm_core::friction::TangentialEffects`)
 //! in the 3D simulator against closed forms: a box resting flat and spinning on a
 //! frictionless plane is stopped by torsional resistance at the rate a_t·m·g / I_zz;
 //! one sliding on it slows under viscous friction as v₀·exp(−4·c_v·t/m) (four

@@ -32,30 +32,30 @@ const POW_ULPS: i64 = 2;
 /// an ulp; measured 6 (ball.final[1], 0.0868 m: 4.6e-8 m), so 16 (1e-6 relative).
 const RUN_ULPS: i64 = 16;
 
-/// The issue's budget for one HCM f32 evaluation (law + 3-16-16-1 residual) on the
+/// The budget for one HCM f32 evaluation (law + 3-16-16-1 residual) on the
 /// Cortex-M4F (instructions).
 const HCM_F32_BUDGET: u32 = 2_000;
 
-/// Issue 31's budget for one HCM int8 evaluation of the ball (instructions): no slower
-/// than the 1,993 it cost when the issue was filed (through the dequantising kernel).
+/// The budget for one HCM int8 evaluation of the ball (instructions): no slower than
+/// the 1,993 it cost through the dequantising kernel.
 /// The integer kernel cost 2,403 when introduced; 1,959 once its loop was written out
 /// (`hcm_dsp::four_row_sums`), the quantised tanh's interpolation became one `smlad`
 /// and the scales took the table's factor.
 const HCM_INT8_BUDGET: u32 = 1_993;
 
-/// The issue's flash budget for the whole firmware (B).
+/// The flash budget for the whole firmware (B).
 const FLASH_BUDGET: u32 = 32 * 1024;
 
-/// Issue 31's flash budget for each peg image (B): measured 24,168 (f32) and 21,228
+/// The flash budget for each peg image (B): measured 24,168 (f32) and 21,228
 /// (int8) once the network is decoded when the image is built (`hcm-firmware/build.rs`).
 const PEG_FLASH_BUDGET: u32 = 24 * 1024;
 
-/// Issue 31's budget for one peg HCM in f32 on the Cortex-M4F, its contact manifold
-/// (the peg's box against the block's five) included (instructions): 38,475 when the
-/// issue was filed, 14,686 once met.
+/// The budget for one peg HCM in f32 on the Cortex-M4F, its contact manifold (the
+/// peg's box against the block's five) included (instructions): 38,475 at first,
+/// 14,686 once met.
 const PEG_HCM_F32_BUDGET: u32 = 15_000;
 
-/// Issue 31's budget for the peg's int8 HCM, held here for the contact model at its 4
+/// The budget for the peg's int8 HCM, held here for the contact model at its 4
 /// points (`pair_load`, instructions). With the box–box manifold that computes the points
 /// (5,307 instructions alone) the HCM is over it: docs/controller.md.
 const PEG_PAIR_INT8_BUDGET: u32 = 8_000;
@@ -305,7 +305,7 @@ fn the_firmware_fits_its_flash_budget_and_reports_its_costs() {
             "{name}: {cost} instructions is not a measurement"
         );
     }
-    // The issue's targets on the Cortex-M4F. Instruction counts under `-icount` are a
+    // The budgets on the Cortex-M4F. Instruction counts under `-icount` are a
     // property of the code, not of the machine's load: the same build counts the same.
     let cost = |name: &str| report.cost(name);
     assert!(
@@ -479,7 +479,7 @@ fn the_peg_int8_image_evaluates_the_peg_hcm_as_the_host_does() {
 
 /// What int8 buys the peg's controller: the network in less memory (levels, not `f32`
 /// weights, for its 32 × 32 layer; flash + static RAM + peak stack 25,104 B against
-/// 28,044 B when the network moved to flash), and issue 31's 8,000 instructions for
+/// 28,044 B when the network moved to flash), and the budget of 8,000 instructions for
 /// the peg's contact model at its points (`pair_load`: the laws, friction and the
 /// residual of Eq 1 over the 4 points; 10,924 when the integer kernel came, 7,174
 /// since). In instructions `f32` runs the peg's network in fewer since its loop loads

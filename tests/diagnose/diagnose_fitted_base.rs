@@ -1,5 +1,5 @@
-//! A diagnosis never names the bias of the user's own base fit as an effect (issue 27,
-//! class 1): when the base law was fitted with its exponent free (as `hcm identify`
+//! A diagnosis never names the bias of the user's own base fit as an effect:
+//! when the base law was fitted with its exponent free (as `hcm identify`
 //! fits it), the fit absorbs part of a missing effect in its exponent, and holding that
 //! exponent while judging effects named `stiffness_exponent` for a "change" that only
 //! undid the bias. With the base's freedom re-tuned ([`BaseFreedom::Fitted`]) the
@@ -90,7 +90,7 @@ fn a_fitted_base_never_has_its_exponent_named() {
     println!("named stiffness_exponent with the fitted exponent held: {held:?}");
 }
 
-/// A sensor delay the user's base fit absorbed (issue 27, class 5): least squares on
+/// A sensor delay the user's base fit absorbed: least squares on
 /// delayed data bends the base's damping — onto its bound 0 for the variable-stiffness
 /// law — and the re-fit, starting there, used to stop near 0.9 µs of a 2.5 µs delay
 /// with a singular covariance (the damping, started at 0, had a step scale of ~0 and
@@ -120,7 +120,7 @@ fn a_delay_a_fitted_base_absorbed_is_named_with_its_value() {
     }
 }
 
-/// A sensor reading 3 % high (issue 27, class 2), on 16 runs, against a base fitted
+/// A sensor reading 3 % high, on 16 runs, against a base fitted
 /// by least squares to the same readings: the fit took the gain into its stiffness
 /// (and bent the rest of the law to it), and the diagnosis named `stiffness_exponent`.
 /// The momentum balance gives the gain first, within 0.3 %; the physics is judged on

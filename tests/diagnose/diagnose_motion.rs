@@ -1,4 +1,4 @@
-//! Diagnosis from motion alone (issue 17, `hcm_host::diagnose::motion`): tosses of a
+//! Diagnosis from motion alone (`hcm_host::diagnose::diagnose_motion`): tosses of a
 //! cube and slides of a box to rest, simulated with a tangential effect the user's
 //! model lacks and recorded as a 148 Hz tracker would (poses, no force); the diagnosis
 //! must name exactly the hidden effect — a different friction coefficient, Coulomb's
@@ -455,7 +455,7 @@ fn tracker_noise_names_nothing_when_nothing_is_hidden_in_tosses() {
 }
 
 #[test]
-#[ignore = "issue 17: below the power with tracker noise: rolling 5 mm fits 4.5 mm and gains 15.3 ± 6.1 % + ° on 10 held-out tosses (t 2.5 < 3), heavy-tailed over the tosses; not named (no wrong name either)"]
+#[ignore = "below the power with tracker noise: rolling 5 mm fits 4.5 mm and gains 15.3 ± 6.1 % + ° on 10 held-out tosses (t 2.5 < 3), heavy-tailed over the tosses; not named (no wrong name either)"]
 fn rolling_resistance_is_named_through_tracker_noise() {
     let user = cube_toss(&[]);
     let truth = with_hidden(&user, Hidden::Rolling(5e-3));
@@ -468,7 +468,7 @@ fn rolling_resistance_is_named_through_tracker_noise() {
 fn hcm_diagnose_motion_writes_its_answer_and_refuses_too_few_tosses() {
     let hcm = hcm_tests::cli::Hcm::new();
     // The data set of `rolling_resistance_is_named_from_tosses`: the command must write
-    // what the library found. (Seed 9's set, used before issue 28's windows, now starts
+    // what the library found. (Seed 9's set, used before the toss windows changed, now starts
     // one toss's window before a corner bounce the frames straddle, and its 5 held-out
     // tosses no longer carry rolling past t = 3: 12.5 ± 5.5, t 2.3, nothing named.)
     let data = recorded(

@@ -1,4 +1,4 @@
-//! Power curves of `hcm diagnose`'s naming rule (issue 16, `diagnose::naming`): for each
+//! Power curves of `hcm diagnose`'s naming rule (`hcm_host::diagnose`): for each
 //! catalogued effect hidden in the bouncing ball's data at strengths from 0.25 % to 5 %
 //! of the peak force, 10 seeds each, the fraction of seeds in which it is named
 //! exactly — that effect and nothing else — and the false-alarm rate with nothing

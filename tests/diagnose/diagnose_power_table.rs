@@ -1,5 +1,5 @@
-//! The naming rule's power table across base laws, with run-to-run scatter on and off
-//! (issue 27, "Must show"): for each catalogued effect hidden at 0.5 %, 1 % and 3 % of the peak
+//! The naming rule's power table across base laws, with run-to-run scatter on and off:
+//! for each catalogued effect hidden at 0.5 %, 1 % and 3 % of the peak
 //! force in the ball's data generated with each base law — the data's own law as the
 //! base, its parameters scattered 2 % run to run as `hcm generate` does — the share of
 //! data sets in which it is named exactly, the false alarms with nothing hidden, the

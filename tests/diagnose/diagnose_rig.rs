@@ -1,7 +1,7 @@
 //! `hcm diagnose` on data from an independent rig (tests/common/rig.rs: its own laws,
 //! fixed-step RK4, a force sensor at its own rate, motion at the force rows or at a
-//! camera's frames) — issue 16's must-show list. The rig is first checked against hcm's
-//! own simulator; then each case says what diagnose must answer.
+//! camera's frames) — the cases it must be shown to answer. The rig is first checked
+//! against hcm's own simulator; then each case says what diagnose must answer.
 
 use hcm_host::dataset::Dataset;
 use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
@@ -379,7 +379,7 @@ fn scaled(gain: f64) -> Rig {
     rig
 }
 
-/// Issue 27, class 2: a sensor reading 3 % high was named `stiffness_exponent`. The
+/// A sensor reading 3 % high used to be named `stiffness_exponent`. The
 /// read impulse over the motion's momentum change gives the gain whatever the law:
 /// named alone, within 0.3 %, its interval holding it; the physics judged on the
 /// corrected readings names nothing.
@@ -439,7 +439,7 @@ fn a_ringing_sensor_mount_is_unexplained_and_nothing_is_named() {
         "unexplained {}",
         d.unexplained_share
     );
-    // One verdict (issue 27, class 6): not "ambiguous (a or b) + unexplained".
+    // One verdict: not "ambiguous (a or b) + unexplained".
     let answer = hcm_host::diagnose::answer(&d);
     assert!(
         answer.starts_with("unexplained (") && !answer.contains('+'),
@@ -490,7 +490,7 @@ fn a_mount_ringing_at_any_rate_is_never_a_gain() {
 }
 
 // ---------------------------------------------------------------------------------
-// A sensor's lag: a delay or a first-order low-pass filter (issue 27, the measurement
+// A sensor's lag: a delay or a first-order low-pass filter (the measurement
 // family).
 
 /// Asserts that `d` answers a sensor lag: `effect` (`sensor_delay` or
@@ -593,7 +593,7 @@ fn a_sensor_whose_gain_grows_with_the_force_is_never_a_stiffness_change() {
 }
 
 // ---------------------------------------------------------------------------------
-// Close to the catalogue, not equal (issue 27, class 4): partial answers.
+// Close to the catalogue, not equal: partial answers.
 
 /// The plain ball's peak force (N).
 fn peak_force(rig: &Rig) -> f64 {

@@ -1,4 +1,4 @@
-//! The force diagnosis of a rigid contact (issue 28) on scenes of the tests' own, each
+//! The force diagnosis of a rigid contact on scenes of the tests' own, each
 //! generated with an effect its PM2 lacks — or none — and diagnosed from PM2 fitted on
 //! the same data by `hcm identify`'s least squares: the effect named, or an honest
 //! "ambiguous"/"none", never a wrong name. Run with `--nocapture` for the rounds.

@@ -1,5 +1,5 @@
-//! Run-to-run scatter is the data's own variability, not structure (issue 27, class
-//! 3): with `hcm generate`'s own parameter scatter (2 % on the ball's surface loading
+//! Run-to-run scatter is the data's own variability, not structure:
+//! with `hcm generate`'s own parameter scatter (2 % on the ball's surface loading
 //! and damping, Eq 18) and a quiet sensor, nothing hidden must name nothing, and a
 //! hidden effect must still be named.
 
@@ -47,7 +47,7 @@ fn scatter_alone_names_nothing_and_an_effect_is_still_named() {
     }
 }
 
-/// The report states the rule the decision applied (issue 27, class 6): every cause's
+/// The report states the rule the decision applied: every cause's
 /// held-out gain always; with scattered runs, the held-out rival test and its
 /// thresholds too; without scatter, not.
 #[test]

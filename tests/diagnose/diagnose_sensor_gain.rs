@@ -1,5 +1,5 @@
-//! The force sensor's gain from the momentum balance (`diagnose::momentum`, issue 27,
-//! class 2): named where the sensor reads high or low, by the right factor, and never
+//! The force sensor's gain from the momentum balance (`hcm_host::diagnose::sensor_gain`):
+//! named where the sensor reads high or low, by the right factor, and never
 //! where anything else is wrong — a lag, an offset, a physical effect, run-to-run
 //! scatter, noisy velocities — on hcm's generator (its 2 % parameter scatter on) and on
 //! the independent rig.

@@ -1,6 +1,6 @@
 //! The diagnosis: hidden effects named, none named where none is hidden, and the naming rule's power.
 //!
-//! One test binary per area (issue 46): each file below was a test binary of its own;
+//! One test binary per area: each file below was a test binary of its own;
 //! as modules of one crate the host library is linked once for all of them.
 //! Run one file's tests with `cargo test -p hcm-tests --test diagnose <module>::`.
 

@@ -1,4 +1,4 @@
-//! Identification from motion alone (`hcm_host::identify::motion`, issue 17) on tosses
+//! Identification from motion alone (`hcm_host::identify::identify_motion`) on tosses
 //! made by the simulator with hidden parameters — friction μ = 0.4, a softer landing,
 //! the table 1 mm low — that the shipped scenario does not have: the fit, started from
 //! the scenario, must cut the training fitness, predict the held-out tosses better than

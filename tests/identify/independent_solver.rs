@@ -1,4 +1,4 @@
-//! Data from another solver (issue 28: "data from independent solvers"): cube drops
+//! Data from an independent solver: cube drops
 //! made by the tests' own reference solver (`tests/common/rigid_reference.rs`: the
 //! IMPACT and STEP laws written again with nalgebra alone, the box's rotation matrix
 //! and angular momentum advanced by fixed-step RK4 — nothing of hcm's core), 24 throws

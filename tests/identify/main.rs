@@ -1,6 +1,6 @@
 //! Identification: PM1 generation, PM2 by least squares and the genetic algorithm, from force, from motion, from other solvers' and rigs' data.
 //!
-//! One test binary per area (issue 46): each file below was a test binary of its own;
+//! One test binary per area: each file below was a test binary of its own;
 //! as modules of one crate the host library is linked once for all of them.
 //! Run one file's tests with `cargo test -p hcm-tests --test identify <module>::`.
 

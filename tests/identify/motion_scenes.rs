@@ -1,6 +1,6 @@
-//! The fit from motion alone (`hcm identify-motion`, issue 28: "motion data → the
-//! replay fit, generalised beyond one tossed body") on scenes it was not shaped
-//! around: a ball thrown onto a tilted plate (a sphere on a fixed box) and a block
+//! The fit from motion alone (`hcm identify` on poses, `--method motion`): the replay
+//! fit, generalised beyond one tossed body, on scenes it was not shaped around: a ball
+//! thrown onto a tilted plate (a sphere on a fixed box) and a block
 //! dropped onto a larger block (a box on a box), filmed at 200 Hz — poses only. The
 //! hidden physics differ from the scene as written (friction 0.6×, another damping or
 //! restitution, the fixed body 1 mm lower than the scene puts it); started from the

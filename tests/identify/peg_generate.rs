@@ -1,4 +1,4 @@
-//! PM1 on a 3D scenario (issue 15): `hcm generate` on the peg-in-hole. Each run
+//! PM1 on a 3D scenario: `hcm generate` on the peg-in-hole. Each run
 //! scatters IMPACT's and the friction's parameters (Eq 18) and adds noise to the
 //! recorded force and torque (Eq 19); the files are bit-identical at 1 and 2 threads and
 //! read back exactly; bad data are named by file, line and column, or by run. The

@@ -1,4 +1,4 @@
-//! PM2 on the peg-in-hole (issue 15): the target built from S1 (events matched by
+//! PM2 on the peg-in-hole: the target built from S1 (events matched by
 //! order, their delays, the mean pre-contact state), a fitness that tells the
 //! generating physics from a wrong one, and the genetic algorithm fitting IMPACT with
 //! a fixed exponent other than PM1's, plus STEP friction.
@@ -174,7 +174,7 @@ fn hcm_identify_fits_a_rigid_contact_and_writes_its_friction() {
     assert_eq!(law.dynamic_speed, friction.v_dynamic);
 }
 
-/// A fit is never silent (issue 28): the generating physics, replayed, misses no event's
+/// A fit is never silent: the generating physics, replayed, misses no event's
 /// indicator; ten times its stiffness misses them by more than the runs scatter, and a
 /// stiffness at either end of its search interval is said.
 #[test]

@@ -1,4 +1,4 @@
-//! The peg-in-hole's generated runs as later stages use them (issue 15): each run
+//! The peg-in-hole's generated runs as later stages use them: each run
 //! replays from its recorded pre-contact state, and the S2 statistics of the wrench
 //! indicators (mean and standard error per contact event) equal a direct computation,
 //! with a run whose event count differs reported, not averaged.

@@ -1,4 +1,4 @@
-//! `hcm identify --method lsq` on a rigid contact (issue 28): the law, its exponent and
+//! `hcm identify --method lsq` on a rigid contact: the law, its exponent and
 //! the STEP friction fitted to the wrench measured at the recorded poses, on the shipped
 //! `cube_drop` and on two scenes no example was shaped around — a ball thrown spinning
 //! onto a tilted plate (Hunt–Crossley, sphere on box) and a block dropped on a block

@@ -1,4 +1,4 @@
-//! Contacts between two moving bodies (issue 28: "several moving bodies"): a ball
+//! Contacts between two moving bodies: a ball
 //! dropped and rolling into a block that rests on a fixed table
 //! (`tests/common/scenes/ball_hits_block.toml`). The ball's sensor feels both its
 //! contacts, the block's and the table's; the ball–block contact is fitted on what is
@@ -61,8 +61,8 @@ fn truth_model(truth: &[String]) -> hcm_host::scenario::Model {
     filmed(&sets)
 }
 
-/// Poses alone of two moving bodies (issue 28: "several moving bodies", "only a
-/// camera"): the ball rolled along the table at eight speeds into the block, which
+/// Poses alone of two moving bodies, as only a camera records them: the ball rolled
+/// along the table at eight speeds into the block, which
 /// slides off; the ball–block contact hidden with another damping (1.2 s/m against the
 /// scene's 0.3) and friction (0.3/0.25 against 0.2/0.15). Both bodies are replayed from
 /// their own frames — both start on the table, so their states are fitted without

@@ -1,8 +1,8 @@
-//! The independent reference solver for the cube drop of issue 13
-//! (`hcm_tests::rigid_reference`) checked on its own: it converges when its step is
+//! The independent reference solver for the cube drop (`scenarios/cube_drop.toml`,
+//! `hcm_tests::rigid_reference`) checked on its own: it converges when its step is
 //! halved, flies the exact parabola with constant angular momentum until touch-down,
 //! never gains energy, and brings the cube to rest on a face at the static indentation
-//! (by 1.2 s: at the issue's 0.4 s it is still tumbling). Convergence and energy are
+//! (by 1.2 s: at the scenario's 0.4 s it is still tumbling). Convergence and energy are
 //! also checked on a second body with a full inertia tensor and other parameters. Also
 //! unit tests of `compare`, the helper that measures hcm's output against the reference.
 //!
@@ -24,7 +24,7 @@ use std::time::Instant;
 /// 160 000 steps, about 45 ms in the test profile (opt-level 1).
 const STEP: f64 = 2.5e-6;
 
-/// When the dropped cube rests (s), found by running on past the issue's 0.4 s.
+/// When the dropped cube rests (s), found by running on past the scenario's 0.4 s.
 const SETTLED: f64 = 1.2;
 
 /// Largest energy rise between samples that rounding may cause, relative to the
@@ -42,7 +42,7 @@ fn run(case: &Case, step: f64) -> Trajectory {
     trajectory
 }
 
-/// The issue's cube drop at the reference step, run once for all the tests.
+/// The cube drop at the reference step, run once for all the tests.
 fn reference() -> &'static Trajectory {
     static TRAJECTORY: OnceLock<Trajectory> = OnceLock::new();
     TRAJECTORY.get_or_init(|| run(&cube_drop(), STEP))
@@ -222,7 +222,7 @@ fn resting_indentation(case: &Case) -> f64 {
 
 #[test]
 fn the_cube_comes_to_rest_on_a_face_at_the_static_indentation() {
-    // At the issue's 0.4 s the cube is still tumbling (it bounces on its corners: the
+    // At the scenario's 0.4 s the cube is still tumbling (it bounces on its corners: the
     // IMPACT damping of 50 N·s/m returns most of the energy); it rests from about 0.85 s.
     let mut case = cube_drop();
     case.end_time = SETTLED;

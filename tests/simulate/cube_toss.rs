@@ -1,4 +1,4 @@
-//! Predicting tosses (issue 17, `hcm_host::replay`): the window and the initial state on
+//! Predicting tosses (`hcm_host::replay`): the window and the initial state on
 //! a toss made by the simulator (known truth), the scores on hand-computable cases, a
 //! simulated toss predicted back to near-zero error, bit-identical results on 1 and 2
 //! threads, and the errors of bad inputs. Run with `--nocapture` to see the figures.

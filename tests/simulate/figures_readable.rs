@@ -1,4 +1,4 @@
-//! Figures people read (issue 30): contacts of a millisecond tens of milliseconds apart
+//! Figures people read: contacts of a millisecond tens of milliseconds apart
 //! each get a panel on their own time scale, windowed from the detected events; every
 //! curve of a figure is told apart by its dashes as well as its colour (greyscale); a
 //! curve given its own stroke is drawn as asked. Read from the SVG text: each panel is a

@@ -1,4 +1,4 @@
-//! The shipped peg-in-hole (`scenarios/peg_in_hole.toml`, issue 13): `hcm simulate`
+//! The shipped peg-in-hole (`scenarios/peg_in_hole.toml`): `hcm simulate`
 //! and `hcm indicators` both find two wall contacts before the bottom contact, each with
 //! the four 3D indicators, and the indicators read back from the recorded data agree
 //! with the simulator's own.

@@ -1,4 +1,4 @@
-//! What decides the final face (issue 29, `hcm_host::replay::ensemble`): simulated
+//! What decides the final face (the toss ensemble, `hcm_host::replay`): simulated
 //! tosses whose contact differs from landing to landing (stiffness, damping and
 //! friction scattered by 30 % per toss, as a rig's do) are forecast by ensembles of
 //! replays of the nominal contact with a scatter chosen on the training tosses; held

@@ -1,6 +1,6 @@
 //! The residual network and the hybrid contact model: training, inputs, motion residual, the peg's HCM, ensembles' final faces.
 //!
-//! One test binary per area (issue 46): each file below was a test binary of its own;
+//! One test binary per area: each file below was a test binary of its own;
 //! as modules of one crate the host library is linked once for all of them.
 //! Run one file's tests with `cargo test -p hcm-tests --test train <module>::`.
 

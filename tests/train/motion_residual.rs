@@ -1,4 +1,4 @@
-//! The residual learned from motion alone (issue 29, `hcm_host::train::motion_residual`):
+//! The residual learned from motion alone (`hcm_host::train::train_motion_residual`):
 //! no force, only the poses a tracker records. Simulated cube tosses hide a friction
 //! 1.5 times the shipped scenario's; the contact-frame residual trained on what the
 //! scenario's physics misses two frames after each recorded state must replay

@@ -1,4 +1,4 @@
-//! The peg's error model and hybrid model (issue 15, Eq 12): training pairs measured −
+//! The peg's error model and hybrid model (Eq 12): training pairs measured −
 //! PM2 wrench at the peg's 13 state components, the wrench residual exported and
 //! decoded in the core (f32 and int8), six single-output networks against one
 //! six-output network, and the HCM simulated with the residual wrench inside the
@@ -306,13 +306,13 @@ fn the_blob_decoded_in_the_core_gives_the_host_wrench_f32_and_int8() {
                  f32 inputs with f32 constants",
                 blob.len()
             );
-            // Issue 15: the core's wrench within 1e-6 of the host's over the training
+            // f32: the core's wrench within 1e-6 of the host's over the training
             // envelope (force and torque each relative to their largest magnitude).
             // It holds because the core normalises an f64 input before rounding it to
             // f32 (Mlp::normalise) and training uses the f32-rounded normalisation the
             // blob stores (measured 5.8e-7 joint f32, 6.5e-7 six networks; before:
             // 7.2e-5 and 3.9e-4).
-            // int8 (issue 31): the core carries its activations as Q15 integers from the
+            // int8: the core carries its activations as Q15 integers from the
             // quantised tanh of its f32 pre-activations, the host computes the same
             // function of f64 ones; where the two straddle a step an activation lands
             // one unit (2⁻¹⁵ = 3.1e-5) apart. Measured 2.3e-5; held to 1e-4.

@@ -1,4 +1,4 @@
-//! Where the peg HCM's last tenths of a per cent go (issue 15, README "Why not all eight
+//! Where the peg HCM's last tenths of a per cent go (README "Why not all eight
 //! within the S2 noise"): the shipped error model trained on the *exact* residual of the
 //! true physics — PM1 at its nominal parameters minus PM2, evaluated at S1's recorded
 //! states, no sensor noise and no run-to-run scatter — replayed like the HCM.

@@ -1,5 +1,5 @@
-//! Which residual inputs carry a correction to conditions the training never saw
-//! (issue 28): the body-state residual of Eq 12 (13 inputs: the moving body's position,
+//! Which residual inputs carry a correction to conditions the training never saw:
+//! the body-state residual of Eq 12 (13 inputs: the moving body's position,
 //! quaternion, velocity, angular velocity) against the contact-frame residual (5
 //! inputs per touching point: δ, δ̇, slip speed, spin and rolling rates), each scene
 //! generated, PM2 of another law fitted by least squares, both residuals trained on

@@ -70,7 +70,7 @@ impl<T: Real> VelocityStepFriction<T> {
     ) -> Vector3<T> {
         // Written out per component (`crate::vector`, nalgebra's operation order, the
         // same bits): nalgebra's generic loops took the controller several times the
-        // arithmetic (issue 31).
+        // arithmetic.
         let along = vector::dot(relative_velocity, normal);
         let slip = vector::sub(relative_velocity, &vector::scale(normal, along));
         // ‖slip‖ as nalgebra's `norm`: √((x² + y²) + z²).

@@ -267,8 +267,8 @@ impl<T: Real, R: Residual<T>> ContactModel<T, R> {
             return load;
         };
         // Added as the points' wrenches are (`ContactWrench::accumulate`, written out
-        // per component: nalgebra's operators took 204 instructions more per peg HCM,
-        // issue 31). Subtracting the reaction is adding its negation, bit for bit.
+        // per component: nalgebra's operators took 204 instructions more per peg
+        // HCM). Subtracting the reaction is adding its negation, bit for bit.
         let extra = match correction {
             Correction::Wrench { force, torque } => {
                 let arm = vector::sub(reference_1, reference_2);

@@ -511,7 +511,7 @@ fn affine<const OUT: usize, A: Fn(f32) -> f32>(
         first += BLOCK;
     }
     // Then four at a time (a 6-output wrench layer: 4 + 2), then two, then one: the
-    // remainder kept in named registers too (issue 31: one by one, the peg's 32-6
+    // remainder kept in named registers too (one by one, the peg's 32-6
     // output layer took 8 instructions per multiply-add on the Cortex-M4F). Each sum
     // still starts from its bias and adds its inputs in order: the same bits.
     remainder(weights, bias, x, &mut z, activation);

@@ -50,7 +50,7 @@ impl<T: Real> RigidState<T> {
         let (w, i, j, k) = (c[3], c[4], c[5], c[6]);
         // ‖q‖ as nalgebra's `Quaternion::norm` sums its coordinates (i, j, k, w):
         // √((i² + k²) + (j² + w²)), written out (its generic code cost the controller
-        // 30 instructions more per call, issue 31).
+        // 30 instructions more per call).
         let norm = ((i * i + k * k) + (j * j + w * w)).square_root();
         // Dividing by exactly 1 changes nothing: skipped (the common case while a
         // body does not turn).

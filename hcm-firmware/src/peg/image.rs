@@ -164,7 +164,8 @@ fn costs(
     );
 }
 
-/// Sub-parts of the peg's HCM (issue 31 breakdown; `--features breakdown`).
+/// Sub-parts of the peg's HCM, each one's instructions counted on its own
+/// (`--features breakdown`).
 #[cfg(feature = "breakdown")]
 fn breakdown(
     counter: &cost::Counter,

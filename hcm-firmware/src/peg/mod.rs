@@ -1,4 +1,4 @@
-//! The peg-in-hole's hybrid model (issue 15) on the controller, compiled twice like the
+//! The peg-in-hole's hybrid model on the controller, compiled twice like the
 //! ball's table (`../cases`): into the peg's firmware images and into the host test
 //! `tests/controller/firmware.rs`, which evaluates the same states in f32 on the host and requires
 //! every printed bit pattern to match.
@@ -12,7 +12,7 @@
 //!
 //! One image per weight format (`cargo run --release --bin peg-f32`, `--bin
 //! peg-int8`), as a controller ships the one network it runs: with both blobs (11.3 kB)
-//! one image was 38,968 B, over the 32 KiB the issue allows a firmware; each alone fits
+//! one image was 38,968 B, over the 32 KiB a firmware is allowed; each alone fits
 //! (the README's controller section has the sizes).
 
 mod states;
@@ -144,7 +144,7 @@ static BLOCK: [Cuboid<f32>; 5] = {
 
 /// [`BLOCK`] prepared when the image is built ([`compound::Part::of_f32`]): each
 /// part's frame, bounds and sums read from flash rather than worked out at every
-/// manifold (issue 31: 6,126 → 5,307 instructions per manifold, and 40 B less flash:
+/// manifold (6,126 → 5,307 instructions per manifold, and 40 B less flash:
 /// the code dropped outweighs the 480 B table).
 static PREPARED: [compound::Part<f32>; 5] = {
     let mut parts = [compound::Part::of_f32(BLOCK[0]); 5];

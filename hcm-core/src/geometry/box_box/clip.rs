@@ -159,7 +159,7 @@ fn incident_face<T: Real>(
 /// One side plane of the reference face: across the unit tangent `axis` (–) of the
 /// face's box (centre `center` (m), half extent `half` (m) along it), on its − side if
 /// `negative` (then `sign` is −1, else +1); boundary line `line` (4–7). The sign and
-/// half extent are looked up once per plane rather than at every corner (issue 31:
+/// half extent are looked up once per plane rather than at every corner (saving
 /// 129 instructions per peg manifold).
 struct Side<'a, T: Real> {
     center: &'a Vector3<T>,

@@ -62,7 +62,7 @@ pub fn contacts<T: Real>(box_1: &Cuboid<T>, box_2: &Cuboid<T>) -> Contacts<T> {
 }
 
 /// [`contacts`] of box 1 and box 2, already [`Shape`]s (a compound's parts share the
-/// moving box's, and a prepared part brings its own, issue 31), each point handed to
+/// moving box's, and a prepared part brings its own), each point handed to
 /// `emit` in order.
 pub(crate) fn each_contact<T: Real>(
     one: &Shape<T>,

@@ -69,8 +69,8 @@ impl PegRow {
         }
     }
 
-    /// How model `m`'s error compares with what the issue asks (at or below the paper's
-    /// HCM error, or within two S2 standard errors): `"≤ paper"`, `"≤ 2 SE"`,
+    /// How model `m`'s error compares with the two bounds the HCM is held to (at or
+    /// below the paper's HCM error, or within two S2 standard errors): `"≤ paper"`, `"≤ 2 SE"`,
     /// `"neither"`, or `"no contact"`.
     pub fn verdict(&self, m: usize) -> &'static str {
         let Some(error) = self.errors.get(m).copied().flatten() else {

@@ -25,7 +25,8 @@ struct Results<'a> {
     figures: Vec<String>,
 }
 
-/// Per row: the two checks of the HCM.
+/// Per row: the two checks of the HCM (at or below the paper's error, within two S2
+/// standard errors).
 #[derive(Serialize)]
 struct Check {
     contact: usize,
