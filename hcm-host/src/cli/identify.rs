@@ -211,7 +211,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             args.generations.unwrap_or(10),
             args.polish
         );
-        return super::identify_motion::run(args.into_motion(with_force));
+        return super::identify_motion::run(args.into_motion(with_force), &scenario, data);
     }
     anyhow::ensure!(
         matches!(args.method.as_str(), "lsq" | "ga"),

@@ -16,7 +16,7 @@ use hcm_host::numerics::optimize::GeneticSettings;
 use hcm_host::output::write_bytes;
 use hcm_host::progress::{Fold, Stage};
 use hcm_host::replay::{evaluate_tosses, summarize, EvaluationSummary, TossSetup};
-use hcm_host::scenario::{Assignment, Model};
+use hcm_host::scenario::{Assignment, Model, Scenario};
 use std::path::PathBuf;
 
 /// What the fit from poses reads of `hcm identify`'s options (the GA's size and the
@@ -37,8 +37,8 @@ pub struct Args {
     pub with_force: bool,
 }
 
-pub fn run(args: Args) -> anyhow::Result<()> {
-    let scenario = args.scenario.load()?;
+/// Fits `scenario`'s contact to `data` (both as `hcm identify` read them).
+pub fn run(args: Args, scenario: &Scenario, data: Dataset) -> anyhow::Result<()> {
     let mut model = scenario.model()?;
     let setup = TossSetup::new(&model)?;
     let mut parameters = MotionParameters::for_contact(&model, &setup, args.contact)?;
@@ -46,7 +46,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         model = with_law(&model, parameters.contact, law, None)?;
         parameters = MotionParameters::for_contact(&model, &setup, args.contact)?;
     }
-    let (training, held_out) = read_split(&args, &model, &setup)?;
+    let (training, held_out) = read_split(&args, data, &model, &setup)?;
     let target = MotionTarget::new(&model, &training)?;
     let settings = GeneticSettings {
         seed: args.seed,
@@ -101,17 +101,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .collect::<Vec<_>>()
                 .join(" ")
         );
-        let text = fitted_scenario_text(&scenario, &assignments, &header)?;
+        let text = fitted_scenario_text(scenario, &assignments, &header)?;
         write_bytes(path, text.as_bytes())?;
         println!("wrote {}", path.display());
     }
     Ok(())
 }
 
-/// Reads --data (its first N runs with --first), checks the poses and splits it into
+/// Takes --data's first N runs (with --first), checks the poses and splits them into
 /// (training, held out); writes the held-out part with --held-out.
-fn read_split(args: &Args, model: &Model, setup: &TossSetup) -> anyhow::Result<(Dataset, Dataset)> {
-    let mut data = Dataset::read(&args.data)?;
+fn read_split(
+    args: &Args,
+    mut data: Dataset,
+    model: &Model,
+    setup: &TossSetup,
+) -> anyhow::Result<(Dataset, Dataset)> {
     if let Some(first) = args.first {
         anyhow::ensure!(first > 1, "--first {first}: give at least 2 runs to split");
         data.runs.truncate(first);
