@@ -42,6 +42,7 @@ fn fitted_and_diagnosed(
         contact: 0,
         fitted_base: true,
         overrides: bounds.clone(),
+        catalogue: Default::default(),
     };
     diagnose_rigid(&pm2, data, &settings, &Silent).unwrap()
 }

@@ -14,3 +14,4 @@ mod diagnose_rig;
 mod diagnose_rigid;
 mod diagnose_scatter;
 mod diagnose_sensor_gain;
+mod effect_recipe;

@@ -119,6 +119,7 @@ fn the_fit_recovers_another_solvers_parameters_and_the_diagnosis_names_its_law()
         contact: 0,
         fitted_base: true,
         overrides: bounds.clone(),
+        catalogue: Default::default(),
     };
     let d = diagnose_rigid(&pm2, &data, &settings, &Silent).unwrap();
     println!("{}", d.answer);

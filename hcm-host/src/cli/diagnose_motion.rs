@@ -5,7 +5,7 @@
 use super::progress::Bars;
 use anyhow::Context;
 use hcm_host::diagnose::{
-    diagnose_motion_with, MotionBase, MotionDiagnosis, GAIN_T, MIN_GAIN, RIVAL_T,
+    diagnose_motion_with, Catalogue, MotionBase, MotionDiagnosis, GAIN_T, MIN_GAIN, RIVAL_T,
 };
 use hcm_host::output::write_bytes;
 
@@ -21,7 +21,7 @@ pub fn diagnose_into(
     json: &std::path::Path,
 ) -> anyhow::Result<()> {
     let bars = Bars::with_status(|_| "candidates");
-    let diagnosis = diagnose_motion_with(model, data, base, &bars)
+    let diagnosis = diagnose_motion_with(model, data, (base, &Catalogue::default()), &bars)
         .with_context(|| format!("diagnosing the runs of {} from their poses", path.display()))?;
     let text = serde_json::to_string_pretty(&diagnosis)?;
     if let Some(dir) = json.parent().filter(|d| !d.as_os_str().is_empty()) {

@@ -30,6 +30,7 @@ pub fn run(
         contact: args.contact,
         fitted_base: args.fitted,
         overrides: scenario.identify.bounds.clone(),
+        catalogue: Default::default(),
     };
     let bars = Bars::with_status(|_| "candidates fitted");
     let diagnosis = diagnose_rigid(base, data, &settings, &bars)?;

@@ -1,5 +1,7 @@
-//! The catalogue of effects a diagnosis can name, each as the column it adds to a
-//! linear model of the residual (measured − model force) at small strength.
+//! How an effect of the one catalogue ([`super::CATALOGUE`]) is judged on a line of
+//! force (1D): as the column it adds to a linear model of the residual (measured −
+//! model force) at small strength, the fast pre-ranking the 1D selection runs before
+//! its joint re-fit. An effect that has one names it ([`super::Effect::column`]).
 //!
 //! Physical effects are core law terms (`hcm_core::effect`), so an extended model runs
 //! in a controller; measurement effects (a sensor offset or lag) correct the data and
@@ -28,7 +30,7 @@ use hcm_core::effect::{
 };
 use hcm_core::model::ContactModel;
 
-/// One catalogued effect.
+/// The linear column of an effect judged on a line of force.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Candidate {
     /// f += c·δ̇.
@@ -49,17 +51,13 @@ pub enum Candidate {
     SensorFilter,
 }
 
-/// Every candidate, in report order.
-pub const CATALOGUE: [Candidate; 8] = [
-    Candidate::ViscousDamping,
-    Candidate::HysteresisDamping,
-    Candidate::StiffnessExponent,
-    Candidate::Adhesion,
-    Candidate::Plasticity,
-    Candidate::ForceOffset,
-    Candidate::SensorDelay,
-    Candidate::SensorFilter,
-];
+/// The columns of the effects of the one catalogue ([`super::CATALOGUE`]) judged on a
+/// line of force, in its order.
+pub fn line_candidates() -> impl Iterator<Item = Candidate> {
+    (super::CATALOGUE.iter())
+        .filter(|e| e.evidence(crate::dataset::Evidence::LineForce))
+        .filter_map(|e| e.column())
+}
 
 /// Grid of the hysteresis exponent p searched by the selection (the joint re-fit then
 /// refines it); p = 0 is viscous damping, a candidate of its own.
@@ -248,7 +246,7 @@ mod tests {
     /// own parameter names, and its catalogue name the effect's name.
     #[test]
     fn reported_names_are_the_core_effects_names() {
-        for candidate in CATALOGUE {
+        for candidate in line_candidates() {
             let shape = candidate.shapes()[0];
             let Some(effect) = candidate.effect(0.5, shape, 1e-5) else {
                 assert_eq!(candidate.family(), Family::Measurement);
@@ -262,6 +260,22 @@ mod tests {
             }
             if candidate == Candidate::StiffnessExponent {
                 assert_eq!(effect.get("reference_depth"), Ok(1e-5));
+            }
+        }
+    }
+
+    /// Each column is the linearisation of the catalogue's effect of the same name and
+    /// family, and the line's catalogue keeps its order.
+    #[test]
+    fn every_column_is_its_effects() {
+        let line: Vec<Candidate> = line_candidates().collect();
+        assert_eq!(line.len(), 8);
+        assert_eq!(line[0], Candidate::ViscousDamping);
+        assert_eq!(line[7], Candidate::SensorFilter);
+        for effect in super::super::CATALOGUE.iter() {
+            if let Some(column) = effect.column() {
+                assert_eq!(column.name(), effect.name());
+                assert_eq!(column.family(), effect.family());
             }
         }
     }

@@ -25,6 +25,8 @@ mod structure;
 mod verdict;
 pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};
 mod drag;
+mod effects;
+pub use effects::{Catalogue, Effect, Scales, Site, CATALOGUE};
 mod momentum;
 mod motion;
 mod rigid;

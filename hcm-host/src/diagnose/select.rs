@@ -30,7 +30,7 @@
 //! interval; each cause's share of the structured residual is the RSS it leaves when
 //! removed from the re-fitted model.
 
-use super::catalogue::{reference_depth, Candidate, CATALOGUE};
+use super::catalogue::{line_candidates, reference_depth, Candidate};
 use super::sensor::Sensor;
 use super::ContactSamples;
 use super::Family;
@@ -145,8 +145,7 @@ fn exponent_free(samples: &ContactSamples, freedom: BaseFreedom) -> bool {
 pub fn candidates(freedom: BaseFreedom, law: &AnyNormalLaw<f64>) -> Vec<Candidate> {
     let absorbed = freedom == BaseFreedom::Fitted
         && Bounds::for_law(law.name(), None).is_ok_and(|b| b.free().contains(&"exponent"));
-    CATALOGUE
-        .into_iter()
+    line_candidates()
         .filter(|c| !(absorbed && *c == Candidate::StiffnessExponent))
         .collect()
 }

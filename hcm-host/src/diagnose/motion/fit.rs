@@ -5,7 +5,7 @@
 //! parameters: the Nelder–Mead polish of the identification from motion, from the
 //! neutral values.
 
-use super::catalogue::MotionEffect;
+use super::super::{Effect, Site};
 use crate::dataset::Dataset;
 use crate::identify::MotionTarget;
 use crate::numerics::optimize::minimize_scalar;
@@ -32,10 +32,8 @@ const POLISH_2D: usize = 40;
 pub struct Subject<'a> {
     /// The model the candidates change.
     pub(crate) model: &'a Model,
-    /// Index of the body's contact with the partner.
-    pub(crate) contact: usize,
-    /// Index of the partner's body.
-    pub(crate) partner: usize,
+    /// The body's contact with the partner, and the partner's body.
+    pub(crate) site: Site,
 }
 
 /// One part of the tosses (training or held out) as every candidate of a round reads
@@ -70,21 +68,17 @@ impl Subject<'_> {
     /// cannot be read so, or a replay fails): see `toss_score`. A candidate that
     /// reads the data otherwise (a length scale) has them prepared afresh, from the
     /// subject's model.
-    pub fn scores(
-        &self,
-        effect: MotionEffect,
-        values: &[f64],
-        part: &Part<'_>,
-    ) -> Option<Vec<f64>> {
-        let model = effect.apply(self.model, self.contact, self.partner, values);
-        match effect.transform(part.data, values) {
+    pub fn scores(&self, effect: &dyn Effect, values: &[f64], part: &Part<'_>) -> Option<Vec<f64>> {
+        let mut model = self.model.clone();
+        effect.apply(&mut model, self.site, values);
+        match effect.read(part.data, values) {
             Some(read) => scores_of(&MotionTarget::new(self.model, &read).ok()?, &model),
             None => scores_of(&part.target, &model),
         }
     }
 
     /// Mean score over `part`'s tosses, +∞ if any replay fails.
-    pub fn fitness(&self, effect: MotionEffect, values: &[f64], part: &Part<'_>) -> f64 {
+    pub fn fitness(&self, effect: &dyn Effect, values: &[f64], part: &Part<'_>) -> f64 {
         mean_or_infinity(self.scores(effect, values, part).as_deref())
     }
 }
@@ -158,7 +152,7 @@ pub struct Fitted {
 /// polish from `neutral`. The neutral values win ties (no change unless it helps).
 pub fn fit(
     subject: &Subject<'_>,
-    effect: MotionEffect,
+    effect: &dyn Effect,
     bounds: &[Bound],
     neutral: &[f64],
     training: &Part<'_>,

@@ -19,7 +19,6 @@
 //! none. A named cause is added to the model, and the search repeats on what is left
 //! (at most [`MAX_ROUNDS`] causes). Nothing helping: the answer is "none".
 
-mod catalogue;
 mod fit;
 
 pub use super::paired::Paired;
@@ -28,9 +27,9 @@ use super::verdict::{decide_with, Margins, Verdict};
 /// Standard errors the best candidate must beat each rival by on the held-out tosses
 /// ([`Margins::TOSSES`]).
 pub const RIVAL_T: f64 = Margins::TOSSES.rival_t;
-pub use catalogue::MotionEffect;
 
-use crate::dataset::Dataset;
+use super::{Catalogue, Effect, Scales, Site};
+use crate::dataset::{Dataset, Evidence};
 use crate::identify::{split_tosses, MotionParameters};
 use crate::progress::{in_stage, Progress, Stage as ProgressStage};
 use crate::replay::{TossError, TossSetup};
@@ -131,7 +130,7 @@ fn mean(values: &[f64]) -> f64 {
 
 /// A candidate fitted in one round: its fit and its held-out scores, toss by toss
 /// (% + °; None where the replay failed).
-type Fit = (MotionEffect, Fitted, Option<Vec<f64>>);
+type Fit = (&'static dyn Effect, Fitted, Option<Vec<f64>>);
 
 /// What a round's candidates are fitted and judged on: the round's model and the
 /// tosses read through it.
@@ -144,10 +143,8 @@ struct Stage<'a> {
     held_out: Part<'a>,
     /// The round's model's held-out scores, toss by toss (% + °).
     base_held: Vec<f64>,
-    /// The body's mass (kg), which scales the candidates' bounds.
-    mass: f64,
-    /// The body's half width (m), which scales the candidates' bounds.
-    size: f64,
+    /// The body's mass and half width, which scale the candidates' bounds.
+    scales: Scales,
 }
 
 /// Every open candidate fitted on the training tosses and judged on the held-out ones,
@@ -155,7 +152,7 @@ struct Stage<'a> {
 /// status, before each fit.
 fn fit_candidates(
     stage: &Stage<'_>,
-    open: &[MotionEffect],
+    open: &[&'static dyn Effect],
     round: usize,
     progress: &dyn Progress,
 ) -> (Vec<CandidateResult>, Vec<Fit>) {
@@ -165,8 +162,8 @@ fn fit_candidates(
     for (k, &effect) in open.iter().enumerate() {
         progress.advance(k as u64, open.len() as u64);
         progress.status(&format!("round {}", round + 1));
-        let bounds = effect.bounds(stage.mass, stage.size);
-        let neutral = effect.neutral(subject.model, subject.contact);
+        let bounds = effect.bounds(Evidence::Poses, &stage.scales);
+        let neutral = effect.neutral(subject.model, subject.site);
         let fitted = fit::fit(subject, effect, &bounds, &neutral, &stage.training);
         let held = subject.scores(effect, &fitted.values, &stage.held_out);
         let result = judge(effect, &bounds, &fitted, held.as_deref());
@@ -187,12 +184,12 @@ struct Search {
     training: Dataset,
     /// The held-out tosses (likewise).
     held_out: Dataset,
-    /// The body's contact with its fixed partner, and the partner.
-    indices: MotionParameters,
-    /// The body's mass (kg).
-    mass: f64,
-    /// The body's half width (m).
-    size: f64,
+    /// The body's contact with its fixed partner.
+    site: Site,
+    /// The body's mass and half width.
+    scales: Scales,
+    /// The effects tried (those judged from poses).
+    catalogue: Catalogue,
     /// The rounds so far.
     rounds: Vec<Round>,
     /// Causes named, with their parameters.
@@ -213,11 +210,10 @@ impl Search {
         round: usize,
         progress: &dyn Progress,
     ) -> Result<bool, MotionDiagnoseError> {
-        let (contact, partner) = (self.indices.contact, self.indices.partner);
+        let site = self.site;
         let subject = Subject {
             model: &self.current,
-            contact,
-            partner,
+            site,
         };
         let (training_part, held_part) = (
             Part::new(&self.current, &self.training)?,
@@ -231,20 +227,17 @@ impl Search {
             return Err(MotionDiagnoseError::Replay { part: "training" });
         }
         let floor = MIN_GAIN * mean(self.first_scores.get_or_insert_with(|| base_held.clone()));
-        let open: Vec<MotionEffect> = (MotionEffect::ALL.iter().copied())
+        let open: Vec<&'static dyn Effect> = (self.catalogue.for_evidence(Evidence::Poses))
             .filter(|e| !self.named.iter().any(|(n, _)| n == e.name()))
-            .filter(|e| e.changes(&self.current, contact))
-            .filter(|e| {
-                self.base == MotionBase::Given || !e.within_motion_fit(&self.current, contact)
-            })
+            .filter(|e| e.applies(&self.current, site))
+            .filter(|e| self.base == MotionBase::Given || !e.within_base_fit(&self.current, site))
             .collect();
         let stage = Stage {
             subject,
             training: training_part,
             held_out: held_part,
             base_held,
-            mass: self.mass,
-            size: self.size,
+            scales: self.scales,
         };
         let (mut results, held_scores) = fit_candidates(&stage, &open, round, progress);
         // Whether the best adds beyond a rival: the best fitted on top of the rival.
@@ -271,14 +264,15 @@ impl Search {
     /// measurement effect): the model with both, for the rule's test whether the best
     /// candidate (`second`) adds beyond a rival (`first`). None where `second` cannot change that model or a
     /// replay fails.
-    fn stacked(&self, first: &Fit, second: MotionEffect) -> Option<Vec<f64>> {
-        let (contact, partner) = (self.indices.contact, self.indices.partner);
+    fn stacked(&self, first: &Fit, second: &'static dyn Effect) -> Option<Vec<f64>> {
+        let site = self.site;
         let (effect, fitted, _) = first;
-        let model = effect.apply(&self.current, contact, partner, &fitted.values);
-        if !second.changes(&model, contact) {
+        let mut model = self.current.clone();
+        effect.apply(&mut model, site, &fitted.values);
+        if !second.applies(&model, site) {
             return None;
         }
-        let read = |data: &Dataset| effect.transform(data, &fitted.values);
+        let read = |data: &Dataset| effect.read(data, &fitted.values);
         let training = read(&self.training).unwrap_or_else(|| self.training.clone());
         let held_out = read(&self.held_out).unwrap_or_else(|| self.held_out.clone());
         let (training, held_out) = (
@@ -287,11 +281,10 @@ impl Search {
         );
         let subject = Subject {
             model: &model,
-            contact,
-            partner,
+            site,
         };
-        let bounds = second.bounds(self.mass, self.size);
-        let neutral = second.neutral(&model, contact);
+        let bounds = second.bounds(Evidence::Poses, &self.scales);
+        let neutral = second.neutral(&model, site);
         let fitted = fit::fit(&subject, second, &bounds, &neutral, &training);
         subject.scores(second, &fitted.values, &held_out)
     }
@@ -299,18 +292,17 @@ impl Search {
     /// Names candidate `index` of the round `this`: adds it to the model, reads the
     /// tosses through it where it is a measurement effect, and records the round.
     fn name(&mut self, mut this: Round, mut held_scores: Vec<Fit>, index: usize) {
-        let (contact, partner) = (self.indices.contact, self.indices.partner);
         let (effect, fitted, held) = held_scores.swap_remove(index);
         this.named = Some(effect.name());
         self.named.push((
             effect.name().to_owned(),
             this.candidates[index].parameters.clone(),
         ));
-        self.current = effect.apply(&self.current, contact, partner, &fitted.values);
-        if let Some(read) = effect.transform(&self.training, &fitted.values) {
+        effect.apply(&mut self.current, self.site, &fitted.values);
+        if let Some(read) = effect.read(&self.training, &fitted.values) {
             self.training = read;
         }
-        if let Some(read) = effect.transform(&self.held_out, &fitted.values) {
+        if let Some(read) = effect.read(&self.held_out, &fitted.values) {
             self.held_out = read;
         }
         self.last_scores = held;
@@ -346,7 +338,7 @@ pub enum MotionBase {
     /// Fitted from these poses ([`crate::identify::identify_motion`], a physics file with a fit
     /// record): its own parameters are first polished on the training tosses (a
     /// Nelder–Mead of [`BASE_POLISH`] replays, kept where it trains better), and the
-    /// candidates that fit frees ([`MotionEffect::within_motion_fit`]) are left out —
+    /// candidates that fit frees ([`Effect::within_base_fit`]) are left out —
     /// their gain would be a better optimum of the base, not a missing effect.
     Fitted,
 }
@@ -362,14 +354,20 @@ pub fn diagnose_motion(
     data: &Dataset,
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
-    diagnose_motion_with(model, data, MotionBase::Given, progress)
+    diagnose_motion_with(
+        model,
+        data,
+        (MotionBase::Given, &Catalogue::default()),
+        progress,
+    )
 }
 
-/// [`diagnose_motion`] of a base that is `base` (given, or fitted from these poses).
+/// [`diagnose_motion`] of a base that is `base` (given, or fitted from these poses),
+/// trying the effects of `catalogue` judged from poses.
 pub fn diagnose_motion_with(
     model: &Model,
     data: &Dataset,
-    base: MotionBase,
+    base: (MotionBase, &Catalogue),
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     let (training, held_out) = split_tosses(data);
@@ -387,7 +385,13 @@ pub fn diagnose_motion_split(
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     in_stage(progress, ProgressStage::Diagnose, 0, || {
-        search(model, training, held_out, MotionBase::Given, progress)
+        search(
+            model,
+            training,
+            held_out,
+            (MotionBase::Given, &Catalogue::default()),
+            progress,
+        )
     })
 }
 
@@ -396,7 +400,7 @@ fn search(
     model: &Model,
     training: Dataset,
     held_out: Dataset,
-    base: MotionBase,
+    (base, catalogue): (MotionBase, &Catalogue),
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     let setup = TossSetup::new(model)?;
@@ -414,9 +418,12 @@ fn search(
         current,
         training,
         held_out,
-        indices,
-        mass: model.bodies[setup.body].mass,
-        size: setup.width / 2.0,
+        site: Site {
+            contact: indices.contact,
+            partner: indices.partner,
+        },
+        scales: Scales::of_body(model.bodies[setup.body].mass, setup.width / 2.0),
+        catalogue: catalogue.clone(),
         rounds: Vec::new(),
         named: Vec::new(),
         ambiguous: Vec::new(),
@@ -434,7 +441,7 @@ fn search(
 /// A candidate's result from its fit and held-out scores (its gain and whether it
 /// helps filled in by [`decided`]).
 fn judge(
-    effect: MotionEffect,
+    effect: &dyn Effect,
     bounds: &[crate::numerics::optimize::Bound],
     fitted: &Fitted,
     held: Option<&[f64]>,

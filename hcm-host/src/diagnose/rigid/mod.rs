@@ -20,10 +20,12 @@
 //! - **Intervals**: the extended model fitted on every run ([`fit_samples`]): each
 //!   parameter with the standard error that holds run scatter.
 
-mod catalogue;
+mod parameters;
 
 use super::Family;
-pub use catalogue::{law_label, Extended, ForceEffect, Scales};
+use super::{Catalogue, Effect, Scales, Site};
+use crate::dataset::Evidence;
+pub use parameters::{law_label, Extended};
 
 use super::paired::Paired;
 use super::verdict::{decide_with, Margins, Verdict};
@@ -76,6 +78,8 @@ pub struct RigidDiagnoseSettings {
     pub fitted_base: bool,
     /// The scenario's `[identify.bounds]`.
     pub overrides: BoundsOverrides,
+    /// The effects tried (those judged from a wrench).
+    pub catalogue: Catalogue,
 }
 
 /// One candidate of one round.
@@ -161,8 +165,11 @@ pub fn diagnose_rigid(
     };
     let judge = Judge::new(base, &recorded, data.runs.len());
     let own_law = base.contacts[c].law().kind();
-    let catalogue: Vec<Candidate> = (ForceEffect::ALL.iter().copied())
-        .filter(|e| e.applies(base, c, settings.fitted_base))
+    let site = Site::of(base, c);
+    let catalogue: Vec<Candidate> = (settings.catalogue.for_evidence(Evidence::Wrench))
+        .filter(|e| {
+            e.applies(base, site) && !(settings.fitted_base && e.within_base_fit(base, site))
+        })
         .map(Candidate::Effect)
         .chain(
             (LawKind::ALL.iter().copied())
@@ -212,9 +219,9 @@ pub fn diagnose_rigid(
 
 /// What a round may add: an effect of the catalogue, or another law in the model's
 /// place (the normal-law family; with a fitted base only, at most one swap).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug)]
 enum Candidate {
-    Effect(ForceEffect),
+    Effect(&'static dyn Effect),
     Law(LawKind),
 }
 
@@ -292,7 +299,7 @@ impl Search<'_> {
     /// than its own when none has been swapped in.
     fn open(&self, model: &Extended, candidate: Candidate) -> bool {
         match candidate {
-            Candidate::Effect(e) => !model.effects.iter().any(|(n, _)| *n == e),
+            Candidate::Effect(e) => !model.effects.iter().any(|(n, _)| n.name() == e.name()),
             Candidate::Law(_) => model.law.is_none(),
         }
     }

@@ -374,6 +374,28 @@ impl Space {
         iterations: usize,
         held: &[(usize, f64)],
     ) -> Result<crate::numerics::optimize::levenberg_marquardt::LmResult, RigidIdentifyError> {
+        use crate::numerics::optimize::levenberg_marquardt::{LmResult, Termination};
+        let m = 6 * recorded.samples.len();
+        if start.is_empty() {
+            // Nothing free (a model diagnosed as given, before any effect): the cost
+            // where the model stands.
+            let mut out = vec![0.0; m];
+            recorded.residuals(&parameters.apply(model, &[]), &mut out);
+            let cost = 0.5 * out.iter().map(|r| r * r).sum::<f64>();
+            return match cost.is_finite() {
+                true => Ok(LmResult {
+                    parameters: Vec::new(),
+                    cost,
+                    iterations: 0,
+                    evaluations: 1,
+                    covariance: None,
+                    termination: Termination::HeldByBounds,
+                }),
+                false => Err(RigidIdentifyError::Setup(
+                    "the model's wrench is not finite".into(),
+                )),
+            };
+        }
         let (mut boxed, scales) = self.lm_box();
         let mut start = start.to_vec();
         for &(j, value) in held {
@@ -390,7 +412,6 @@ impl Space {
             let candidate = parameters.apply(model, &self.genes(z));
             recorded.residuals(&candidate, out);
         };
-        let m = 6 * recorded.samples.len();
         levenberg_marquardt(residuals, m, &start, &scales, Some(&boxed), &settings)
             .map_err(|e| RigidIdentifyError::Setup(format!("least squares: {e}")))
     }
