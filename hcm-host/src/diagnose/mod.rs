@@ -19,6 +19,7 @@ mod nonlinearity;
 mod paired;
 mod quality;
 mod report;
+mod rounds;
 mod select;
 mod sensor;
 mod structure;

@@ -22,8 +22,9 @@
 mod fit;
 
 pub use super::paired::Paired;
+use super::rounds::{self, Outcome, Trials};
 pub use super::verdict::GAIN_T;
-use super::verdict::{decide_with, Margins, Verdict};
+use super::verdict::{Decision, Margins};
 /// Standard errors the best candidate must beat each rival by on the held-out tosses
 /// ([`Margins::TOSSES`]).
 pub const RIVAL_T: f64 = Margins::TOSSES.rival_t;
@@ -141,8 +142,6 @@ struct Stage<'a> {
     training: Part<'a>,
     /// The held-out tosses, prepared from the round's model.
     held_out: Part<'a>,
-    /// The round's model's held-out scores, toss by toss (% + °).
-    base_held: Vec<f64>,
     /// The body's mass and half width, which scale the candidates' bounds.
     scales: Scales,
 }
@@ -175,7 +174,7 @@ fn fit_candidates(
 
 /// The search under way: the model with every cause named so far, the tosses as read
 /// through it, and what the rounds found.
-struct Search {
+struct Search<'p> {
     /// What the user's model is: given, or fitted from these poses.
     base: MotionBase,
     /// The user's model with the causes named so far.
@@ -200,65 +199,14 @@ struct Search {
     first_scores: Option<Vec<f64>>,
     /// The extended model's held-out scores after the last cause named.
     last_scores: Option<Vec<f64>>,
+    /// Where each candidate's fit is reported.
+    progress: &'p dyn Progress,
+    /// The round under way and its candidates' fits.
+    this: Option<Round>,
+    held_scores: Vec<Fit>,
 }
 
-impl Search {
-    /// One round: every open candidate fitted and judged against the current model,
-    /// and the one chosen (if any) named. Whether one was named.
-    fn round(
-        &mut self,
-        round: usize,
-        progress: &dyn Progress,
-    ) -> Result<bool, MotionDiagnoseError> {
-        let site = self.site;
-        let subject = Subject {
-            model: &self.current,
-            site,
-        };
-        let (training_part, held_part) = (
-            Part::new(&self.current, &self.training)?,
-            Part::new(&self.current, &self.held_out)?,
-        );
-        let base_held = subject
-            .base_scores(&held_part)
-            .ok_or(MotionDiagnoseError::Replay { part: "held-out" })?;
-        let base_training = fit::mean_or_infinity(subject.base_scores(&training_part).as_deref());
-        if !base_training.is_finite() {
-            return Err(MotionDiagnoseError::Replay { part: "training" });
-        }
-        let floor = MIN_GAIN * mean(self.first_scores.get_or_insert_with(|| base_held.clone()));
-        let open: Vec<&'static dyn Effect> = (self.catalogue.for_evidence(Evidence::Poses))
-            .filter(|e| !self.named.iter().any(|(n, _)| n == e.name()))
-            .filter(|e| e.applies(&self.current, site))
-            .filter(|e| self.base == MotionBase::Given || !e.within_base_fit(&self.current, site))
-            .collect();
-        let stage = Stage {
-            subject,
-            training: training_part,
-            held_out: held_part,
-            base_held,
-            scales: self.scales,
-        };
-        let (mut results, held_scores) = fit_candidates(&stage, &open, round, progress);
-        // Whether the best adds beyond a rival: the best fitted on top of the rival.
-        let both = |b: usize, r: usize| self.stacked(&held_scores[r], held_scores[b].0);
-        let (chosen, tied) = decided(&mut results, &held_scores, (&stage.base_held, floor), both);
-        let this = Round {
-            training: base_training,
-            held_out: mean(&stage.base_held),
-            candidates: results,
-            named: None,
-            ambiguous: tied.clone(),
-        };
-        let Some(index) = chosen else {
-            self.ambiguous = tied;
-            self.rounds.push(this);
-            return Ok(false);
-        };
-        self.name(this, held_scores, index);
-        Ok(true)
-    }
-
+impl Search<'_> {
     /// The held-out scores of the current model with `first` as fitted, then `second`
     /// fitted on top of it on the training tosses (read through `first` where it is a
     /// measurement effect): the model with both, for the rule's test whether the best
@@ -326,6 +274,84 @@ impl Search {
             answer,
             extended: self.current,
         }
+    }
+}
+
+impl rounds::Judge for Search<'_> {
+    type Error = MotionDiagnoseError;
+
+    /// Every open candidate fitted and judged against the current model.
+    fn trials(&mut self, round: usize) -> Result<Option<Trials>, MotionDiagnoseError> {
+        let site = self.site;
+        let subject = Subject {
+            model: &self.current,
+            site,
+        };
+        let (training_part, held_part) = (
+            Part::new(&self.current, &self.training)?,
+            Part::new(&self.current, &self.held_out)?,
+        );
+        let base_held = subject
+            .base_scores(&held_part)
+            .ok_or(MotionDiagnoseError::Replay { part: "held-out" })?;
+        let base_training = fit::mean_or_infinity(subject.base_scores(&training_part).as_deref());
+        if !base_training.is_finite() {
+            return Err(MotionDiagnoseError::Replay { part: "training" });
+        }
+        let floor = MIN_GAIN * mean(self.first_scores.get_or_insert_with(|| base_held.clone()));
+        let open: Vec<&'static dyn Effect> = (self.catalogue.for_evidence(Evidence::Poses))
+            .filter(|e| !self.named.iter().any(|(n, _)| n == e.name()))
+            .filter(|e| e.applies(&self.current, site))
+            .filter(|e| self.base == MotionBase::Given || !e.within_base_fit(&self.current, site))
+            .collect();
+        let stage = Stage {
+            subject,
+            training: training_part,
+            held_out: held_part,
+            scales: self.scales,
+        };
+        let (results, held_scores) = fit_candidates(&stage, &open, round, self.progress);
+        let scores = held_scores.iter().map(|h| h.2.clone()).collect();
+        self.this = Some(Round {
+            training: base_training,
+            held_out: mean(&base_held),
+            candidates: results,
+            named: None,
+            ambiguous: Vec::new(),
+        });
+        self.held_scores = held_scores;
+        Ok(Some(Trials {
+            reference: base_held,
+            floor,
+            scores,
+        }))
+    }
+
+    /// The best fitted on top of the rival.
+    fn both(&self, best: usize, rival: usize) -> Option<Vec<f64>> {
+        self.stacked(&self.held_scores[rival], self.held_scores[best].0)
+    }
+
+    fn record(&mut self, decision: &Decision, outcome: &Outcome) {
+        let Some(mut this) = self.this.take() else {
+            return;
+        };
+        let scored = decision.gains.iter().zip(&decision.helps);
+        for (r, (gain, helps)) in this.candidates.iter_mut().zip(scored) {
+            (r.gain, r.helps) = (*gain, *helps);
+        }
+        match outcome {
+            Outcome::Named(index, _) => {
+                let held_scores = std::mem::take(&mut self.held_scores);
+                return self.name(this, held_scores, *index);
+            }
+            Outcome::Ambiguous(tied) => {
+                this.ambiguous = tied.iter().map(|&i| this.candidates[i].name).collect();
+            }
+            Outcome::Nothing => {}
+        }
+        self.ambiguous.clone_from(&this.ambiguous);
+        self.rounds.push(this);
     }
 }
 
@@ -429,12 +455,11 @@ fn search(
         ambiguous: Vec::new(),
         first_scores: None,
         last_scores: None,
+        progress,
+        this: None,
+        held_scores: Vec::new(),
     };
-    for round in 0..MAX_ROUNDS {
-        if !search.round(round, progress)? {
-            break;
-        }
-    }
+    rounds::search(&mut search, Margins::TOSSES, MAX_ROUNDS)?;
     Ok(search.diagnosis())
 }
 
@@ -458,31 +483,6 @@ fn judge(
         gain: Paired::of(&[], &[]),
         helps: false,
         evaluations: fitted.evaluations,
-    }
-}
-
-/// The one rule ([`decide_with`]) on the round's candidates: each result's gain over
-/// `base_held` and whether it helps (gain ≥ `floor`) filled in; the candidate named,
-/// if any, else the tied names (best first). `both(best, rival)` scores the model with
-/// both on the held-out tosses.
-fn decided(
-    results: &mut [CandidateResult],
-    held: &[Fit],
-    (base_held, floor): (&[f64], f64),
-    both: impl Fn(usize, usize) -> Option<Vec<f64>>,
-) -> (Option<usize>, Vec<&'static str>) {
-    let scores: Vec<Option<&[f64]>> = held.iter().map(|h| h.2.as_deref()).collect();
-    let decision = decide_with(base_held, &scores, (floor, Margins::TOSSES), both);
-    for (r, (gain, helps)) in results
-        .iter_mut()
-        .zip(decision.gains.iter().zip(&decision.helps))
-    {
-        (r.gain, r.helps) = (*gain, *helps);
-    }
-    match decision.verdict {
-        Verdict::Named(i) => (Some(i), Vec::new()),
-        Verdict::Ambiguous(tied) => (None, tied.iter().map(|&i| results[i].name).collect()),
-        Verdict::Nothing => (None, Vec::new()),
     }
 }
 

@@ -28,7 +28,8 @@ use crate::dataset::Evidence;
 pub use parameters::{law_label, Extended};
 
 use super::paired::Paired;
-use super::verdict::{decide_with, Margins, Verdict};
+use super::rounds::{self, Outcome, Trials};
+use super::verdict::{Decision, Margins};
 use crate::dataset::Dataset;
 use crate::identify::BoundsOverrides;
 use crate::identify::{
@@ -157,33 +158,32 @@ pub fn diagnose_rigid(
     } else {
         None
     };
-    let mut model = Extended {
+    let model = Extended {
         base: base_parameters,
         contact: c,
         effects: Vec::new(),
         law: None,
     };
     let judge = Judge::new(base, &recorded, data.runs.len());
-    let own_law = base.contacts[c].law().kind();
-    let site = Site::of(base, c);
-    let catalogue: Vec<Candidate> = (settings.catalogue.for_evidence(Evidence::Wrench))
-        .filter(|e| {
-            e.applies(base, site) && !(settings.fitted_base && e.within_base_fit(base, site))
-        })
-        .map(Candidate::Effect)
-        .chain(
-            (LawKind::ALL.iter().copied())
-                .filter(|k| settings.fitted_base && *k != own_law)
-                .map(Candidate::Law),
-        )
-        .collect();
-    let search = Search {
-        judge: &judge,
-        scales: &scales,
-        catalogue: &catalogue,
-        overrides: &settings.overrides,
-    };
-    let (rounds, named, ambiguous, first) = search.rounds(&mut model, progress);
+    let catalogue = candidates(base, settings);
+    let mut search = Search::new(
+        (&judge, &scales, &catalogue),
+        &settings.overrides,
+        model,
+        progress,
+    );
+    let steps = (catalogue.len() * MAX_ROUNDS) as u64;
+    let Ok(()) = in_stage(progress, Stage::Diagnose, steps, || {
+        rounds::search(&mut search, Margins::RUNS, MAX_ROUNDS)
+    });
+    let Search {
+        model,
+        rounds,
+        named,
+        ambiguous,
+        first,
+        ..
+    } = search;
     let fit = fit_samples(
         base,
         &recorded.part(|_| true),
@@ -196,14 +196,10 @@ pub fn diagnose_rigid(
     };
     let left = leftover(&recorded, &fit.model);
     let same: Vec<String> = (rounds.iter())
-        .filter_map(|r| Some((r.named?, &r.same_as)))
-        .filter(|(_, same)| !same.is_empty())
+        .filter_map(|r| Some((r.named?, &r.same_as)).filter(|(_, s)| !s.is_empty()))
         .map(|(n, same)| format!("{n} is {}", same.join(", ")))
         .collect();
-    let mut answer = answer(&named, &ambiguous, left);
-    if !same.is_empty() {
-        answer += &format!(" (one model written another way: {})", same.join("; "));
-    }
+    let answer = answer(&named, &ambiguous, left, &same);
     Ok(RigidDiagnosis {
         runs: judge.runs,
         rows: recorded.samples.len(),
@@ -215,6 +211,23 @@ pub fn diagnose_rigid(
         left,
         answer,
     })
+}
+
+/// What the rounds may add to contact `settings.contact` of `base`: the catalogue's
+/// effects judged from a wrench that change it (and are not freed by a fitted base's own
+/// fit), then, on a fitted base, every other law of the core.
+fn candidates(base: &Model, settings: &RigidDiagnoseSettings) -> Vec<Candidate> {
+    let (site, fitted) = (Site::of(base, settings.contact), settings.fitted_base);
+    let own_law = base.contacts[settings.contact].law().kind();
+    (settings.catalogue.for_evidence(Evidence::Wrench))
+        .filter(|e| e.applies(base, site) && !(fitted && e.within_base_fit(base, site)))
+        .map(Candidate::Effect)
+        .chain(
+            (LawKind::ALL.iter().copied())
+                .filter(|k| fitted && *k != own_law)
+                .map(Candidate::Law),
+        )
+        .collect()
 }
 
 /// What a round may add: an effect of the catalogue, or another law in the model's
@@ -271,21 +284,28 @@ fn enough_runs(data: &Dataset, recorded: &RecordedContact) -> Result<(), RigidId
     Ok(())
 }
 
-/// The rounds of one diagnosis.
+/// The rounds of one diagnosis: its fixed inputs, the model extended so far and the
+/// current round's candidates.
 struct Search<'a> {
     judge: &'a Judge<'a>,
     scales: &'a Scales,
     catalogue: &'a [Candidate],
     overrides: &'a BoundsOverrides,
+    progress: &'a dyn Progress,
+    /// The base with the causes named so far.
+    model: Extended,
+    /// The fit of the last cause named, the next round's seed.
+    seed: Option<Folds>,
+    /// The first round's reference scores.
+    first: Option<Vec<f64>>,
+    rounds: Vec<RigidRound>,
+    named: Vec<&'static str>,
+    ambiguous: Vec<&'static str>,
+    /// This round's reference score (mean), open candidates and their fits.
+    score: f64,
+    left: Vec<(Candidate, Extended)>,
+    fits: Vec<Option<Folds>>,
 }
-
-/// Rounds, causes named, the last tie, and the first round's reference scores.
-type Rounds = (
-    Vec<RigidRound>,
-    Vec<&'static str>,
-    Vec<&'static str>,
-    Option<Vec<f64>>,
-);
 
 /// The seed a candidate's fit starts from beside its own starts: the reference's fit
 /// for an effect (its genes a prefix of the candidate's), none for another law (whose
@@ -294,13 +314,38 @@ fn seed_of(candidate: Candidate, reference: &Folds) -> Option<&Folds> {
     matches!(candidate, Candidate::Effect(_)).then_some(reference)
 }
 
-impl Search<'_> {
-    /// Whether `candidate` may still join `model`: an effect not in it yet, another law
-    /// than its own when none has been swapped in.
-    fn open(&self, model: &Extended, candidate: Candidate) -> bool {
+impl<'a> Search<'a> {
+    /// The search of `model`'s extensions, nothing tried yet.
+    fn new(
+        (judge, scales, catalogue): (&'a Judge<'a>, &'a Scales, &'a [Candidate]),
+        overrides: &'a BoundsOverrides,
+        model: Extended,
+        progress: &'a dyn Progress,
+    ) -> Search<'a> {
+        Search {
+            judge,
+            scales,
+            catalogue,
+            overrides,
+            progress,
+            model,
+            seed: None,
+            first: None,
+            rounds: Vec::new(),
+            named: Vec::new(),
+            ambiguous: Vec::new(),
+            score: f64::NAN,
+            left: Vec::new(),
+            fits: Vec::new(),
+        }
+    }
+
+    /// Whether `candidate` may still join the model: an effect not in it yet, another
+    /// law than its own when none has been swapped in.
+    fn open(&self, candidate: Candidate) -> bool {
         match candidate {
-            Candidate::Effect(e) => !model.effects.iter().any(|(n, _)| n.name() == e.name()),
-            Candidate::Law(_) => model.law.is_none(),
+            Candidate::Effect(e) => !(self.model.effects.iter()).any(|(n, _)| n.name() == e.name()),
+            Candidate::Law(_) => self.model.law.is_none(),
         }
     }
 
@@ -313,111 +358,103 @@ impl Search<'_> {
         }
     }
 
-    /// Every candidate still open to `model`, extended, and its fit on the folds (the
+    /// Every candidate still open to the model, extended, and its fit on the folds (the
     /// reference's fit `fitted` as an effect's seed); `done` (steps so far, steps in
-    /// all) counts on in `progress`. In parallel, collected in catalogue order: the
+    /// all) counts on in the progress. In parallel, collected in catalogue order: the
     /// same answer whatever the thread count.
     fn fit_candidates(
         &self,
-        model: &Extended,
         fitted: &Folds,
         (done, steps): (usize, u64),
-        progress: &dyn Progress,
     ) -> (Vec<(Candidate, Extended)>, Vec<Option<Folds>>) {
         let left: Vec<(Candidate, Extended)> = (self.catalogue.iter().copied())
-            .filter(|c| self.open(model, *c))
-            .filter_map(|c| Some((c, self.extend(model, c)?)))
+            .filter(|c| self.open(*c))
+            .filter_map(|c| Some((c, self.extend(&self.model, c)?)))
             .collect();
         let done = std::sync::atomic::AtomicUsize::new(done);
         let fits = (left.par_iter())
             .map(|(c, extended)| {
                 let fit = self.judge.fit_folds(extended, seed_of(*c, fitted));
                 let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                progress.advance(k as u64 + 1, steps);
+                self.progress.advance(k as u64 + 1, steps);
                 fit
             })
             .collect();
         (left, fits)
     }
+}
 
-    /// Up to [`MAX_ROUNDS`] rounds from `model` (its held-out scores `first`), each
-    /// named cause added to it.
-    fn rounds(&self, model: &mut Extended, progress: &dyn Progress) -> Rounds {
-        let (judge, catalogue) = (self.judge, self.catalogue);
-        let mut first: Option<Vec<f64>> = None;
-        let mut seed: Option<Folds> = None;
-        let mut rounds = Vec::new();
-        let mut named = Vec::new();
-        let mut ambiguous = Vec::new();
-        let steps = (catalogue.len() * MAX_ROUNDS) as u64;
-        in_stage(progress, Stage::Diagnose, steps, || {
-            for round in 0..MAX_ROUNDS {
-                let Some(mut fitted) = judge.fit_folds(model, seed.as_ref()) else {
-                    break;
-                };
-                let done = (round * catalogue.len(), steps);
-                let (left, fits) = self.fit_candidates(model, &fitted, done, progress);
-                // Only an effect's fit holds a fit of the reference (the same law).
-                let nested: Vec<Option<Folds>> = (left.iter().zip(&fits))
-                    .map(|((c, _), f)| f.clone().filter(|_| matches!(c, Candidate::Effect(_))))
-                    .collect();
-                judge.improve(model, &mut fitted, &nested);
-                let reference = judge.held_out(model, &fitted);
-                if round == 0 {
-                    first = Some(reference.clone());
-                }
-                let scored: Vec<Option<Vec<f64>>> = (left.iter().zip(&fits))
-                    .map(|((_, extended), f)| f.as_ref().map(|f| judge.held_out(extended, f)))
-                    .collect();
-                let candidates: Vec<Option<&[f64]>> = scored.iter().map(|s| s.as_deref()).collect();
-                let floor = MIN_GAIN * mean(&reference);
-                let both = |a: usize, b: usize| {
-                    let pair = self.extend(&left[a].1, left[b].0)?;
-                    let seed = fits[a]
-                        .as_ref()
-                        .filter(|_| matches!(left[b].0, Candidate::Effect(_)));
-                    let fit = judge.fit_folds(&pair, seed)?;
-                    Some(judge.held_out(&pair, &fit))
-                };
-                let decision = decide_with(&reference, &candidates, (floor, Margins::RUNS), both);
-                let mut this = RigidRound {
-                    score: mean(&reference),
-                    candidates: (left.iter().zip(&decision.gains).zip(&decision.helps))
-                        .map(|(((c, _), g), h)| c.scored(*g, *h))
-                        .collect(),
-                    named: None,
-                    ambiguous: Vec::new(),
-                    same_as: Vec::new(),
-                };
-                let (i, same_as) = match decision.verdict {
-                    Verdict::Named(i) => (i, Vec::new()),
-                    // One model written two ways: the first in catalogue order is named,
-                    // the others said to be the same.
-                    Verdict::Ambiguous(tied) if judge.one_model(&left, &fits, &tied) => {
-                        let i = tied.iter().copied().min().unwrap_or(0);
-                        let others = tied.iter().filter(|&&j| j != i);
-                        (i, others.map(|&j| left[j].0.name()).collect())
-                    }
-                    Verdict::Ambiguous(tied) => {
-                        this.ambiguous = tied.iter().map(|&i| left[i].0.name()).collect();
-                        ambiguous.clone_from(&this.ambiguous);
-                        rounds.push(this);
-                        break;
-                    }
-                    Verdict::Nothing => {
-                        rounds.push(this);
-                        break;
-                    }
-                };
-                seed.clone_from(&fits[i]);
-                this.named = Some(left[i].0.name());
-                this.same_as = same_as;
-                named.push(left[i].0.name());
-                *model = left[i].1.clone();
-                rounds.push(this);
+impl rounds::Judge for Search<'_> {
+    type Error = std::convert::Infallible;
+
+    fn trials(&mut self, round: usize) -> Result<Option<Trials>, Self::Error> {
+        let judge = self.judge;
+        let Some(mut fitted) = judge.fit_folds(&self.model, self.seed.as_ref()) else {
+            return Ok(None);
+        };
+        let steps = (self.catalogue.len() * MAX_ROUNDS) as u64;
+        let (left, fits) = self.fit_candidates(&fitted, (round * self.catalogue.len(), steps));
+        let nested: Vec<Option<Folds>> = (left.iter().zip(&fits))
+            .map(|((c, _), f)| f.clone().filter(|_| matches!(c, Candidate::Effect(_))))
+            .collect();
+        judge.improve(&self.model, &mut fitted, &nested);
+        let reference = judge.held_out(&self.model, &fitted);
+        if round == 0 {
+            self.first = Some(reference.clone());
+        }
+        let scores = (left.iter().zip(&fits))
+            .map(|((_, extended), f)| f.as_ref().map(|f| judge.held_out(extended, f)))
+            .collect();
+        (self.score, self.left, self.fits) = (mean(&reference), left, fits);
+        Ok(Some(Trials {
+            floor: MIN_GAIN * self.score,
+            reference,
+            scores,
+        }))
+    }
+
+    fn both(&self, a: usize, b: usize) -> Option<Vec<f64>> {
+        let pair = self.extend(&self.left[a].1, self.left[b].0)?;
+        let seed =
+            (self.fits[a].as_ref()).filter(|_| matches!(self.left[b].0, Candidate::Effect(_)));
+        let fit = self.judge.fit_folds(&pair, seed)?;
+        Some(self.judge.held_out(&pair, &fit))
+    }
+
+    fn one_model(&self, tied: &[usize]) -> Option<(usize, Vec<&'static str>)> {
+        if !self.judge.one_model(&self.left, &self.fits, tied) {
+            return None;
+        }
+        let i = tied.iter().copied().min().unwrap_or(0);
+        let others = tied.iter().filter(|&&j| j != i);
+        Some((i, others.map(|&j| self.left[j].0.name()).collect()))
+    }
+
+    fn record(&mut self, decision: &Decision, outcome: &Outcome) {
+        let mut this = RigidRound {
+            score: self.score,
+            candidates: (self.left.iter().zip(&decision.gains).zip(&decision.helps))
+                .map(|(((c, _), g), h)| c.scored(*g, *h))
+                .collect(),
+            named: None,
+            ambiguous: Vec::new(),
+            same_as: Vec::new(),
+        };
+        match outcome {
+            Outcome::Named(i, same_as) => {
+                self.seed.clone_from(&self.fits[*i]);
+                this.named = Some(self.left[*i].0.name());
+                this.same_as.clone_from(same_as);
+                self.named.push(self.left[*i].0.name());
+                self.model = self.left[*i].1.clone();
             }
-        });
-        (rounds, named, ambiguous, first)
+            Outcome::Ambiguous(tied) => {
+                this.ambiguous = tied.iter().map(|&i| self.left[i].0.name()).collect();
+                self.ambiguous.clone_from(&this.ambiguous);
+            }
+            Outcome::Nothing => {}
+        }
+        self.rounds.push(this);
     }
 }
 
@@ -460,7 +497,12 @@ fn leftover(recorded: &RecordedContact, model: &Model) -> (f64, f64) {
 }
 
 /// The one sentence.
-fn answer(named: &[&str], ambiguous: &[&str], (contact, flight): (f64, f64)) -> String {
+fn answer(
+    named: &[&str],
+    ambiguous: &[&str],
+    (contact, flight): (f64, f64),
+    same: &[String],
+) -> String {
     let mut out = if named.is_empty() && ambiguous.is_empty() {
         "none: no candidate of the catalogue gains on held-out runs".to_owned()
     } else if named.is_empty() {
@@ -478,6 +520,9 @@ fn answer(named: &[&str], ambiguous: &[&str], (contact, flight): (f64, f64)) -> 
     out += &format!(
         ". Left in contact: {contact:.3e} N RMS (the sensor in flight: {flight:.3e} N RMS)"
     );
+    if !same.is_empty() {
+        out += &format!(" (one model written another way: {})", same.join("; "));
+    }
     out
 }
 
