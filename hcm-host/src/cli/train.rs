@@ -5,10 +5,7 @@ use super::progress::Bars;
 use hcm_host::dataset::{inventory_summary, DataUse, Dataset, Evidence};
 use hcm_host::identify::Physics;
 use hcm_host::progress::Stage;
-use hcm_host::train::{
-    explains_nothing, train_force_residual, train_point_residual, train_wrench_residual,
-    ResidualSettings,
-};
+use hcm_host::train::{explains_nothing, ResidualKind, ResidualSettings};
 use std::path::PathBuf;
 
 /// Train the residual network of the HCM on S1 (and its int8 twin).
@@ -138,11 +135,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let file = args.data.display().to_string();
     data.require_for(&file, &pm2, args.contact, evidence, DataUse::Train)?;
-    if evidence != Evidence::LineForce {
-        return run_rigid(&args, &pm2, &data);
+    let kind = ResidualKind::of(evidence, args.inputs == Inputs::State);
+    if kind != ResidualKind::Force {
+        return run_rigid(&args, kind, &pm2, &data);
     }
     let (settings, bars) = settings_and_bars(&args);
-    let trained = train_force_residual(&pm2, &data, args.contact, &settings, &bars)?;
+    let trained = kind.train((&pm2, &data, args.contact), usize::MAX, &settings, &bars)?;
     let (report, tuned) = (&trained.report, &trained.int8);
     println!(
         "trained on {} samples from {} runs: {} epochs (best {}), train RMS {:.3} N, validation RMS {:.3} N, {:.2} s",
@@ -168,19 +166,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
 /// The rigid path: the wrench residual of Eq 12 on every touching sample (or those
 /// before `--events`), its outputs' R², and a warning when it explains nothing.
-fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> anyhow::Result<()> {
+fn run_rigid(
+    args: &Args,
+    kind: ResidualKind,
+    pm2: &hcm_host::scenario::Model,
+    data: &Dataset,
+) -> anyhow::Result<()> {
     let (settings, bars) = settings_and_bars(args);
     let events = args.events.unwrap_or(usize::MAX);
-    let (trained, what) = match args.inputs {
-        Inputs::State => (
-            train_wrench_residual(pm2, data, args.contact, events, &settings, &bars)?,
-            "the wrench residual (13 state inputs → force and torque on the moving body)",
-        ),
-        Inputs::Contact => (
-            train_point_residual(pm2, data, args.contact, events, &settings, &bars)?,
-            "the contact-frame residual (5 inputs per touching point → its force and couple)",
-        ),
-    };
+    let trained = kind.train((pm2, data, args.contact), events, &settings, &bars)?;
+    let what = kind.describe();
     let report = &trained.report;
     println!(
         "trained {what} on {} touching samples of {} runs: {} epochs (best {}), train MSE \

@@ -536,7 +536,7 @@ fn hcm_contact(
     let network = match trained {
         Ok((network, _, _)) => network,
         Err(ResidualError::Samples(error)) => return Err(error),
-        Err(ResidualError::Train(_)) => return Ok(None),
+        Err(_) => return Ok(None),
     };
     let Ok(bytes) = encode(&network, Quantisation::F32) else {
         return Ok(None);

@@ -75,12 +75,9 @@ pub enum PipelineError {
     /// Stage 2: the identified law does not fit back into the scenario.
     #[error(transparent)]
     Physics(#[from] PhysicsError),
-    /// Stage 3: the 1D residual's rows or training failed.
+    /// Stage 3: the residual's rows, events or training failed.
     #[error(transparent)]
     Residual(#[from] crate::train::ResidualError),
-    /// Stage 3: the peg's wrench residual's rows, events or training failed.
-    #[error(transparent)]
-    WrenchResidual(#[from] crate::train::WrenchResidualError),
     /// Stage 4: a network could not be encoded as a blob, or its blob does not decode.
     #[error(transparent)]
     Export(#[from] ExportError),

@@ -25,15 +25,25 @@ pub struct ResidualSettings {
     pub seed: u64,
 }
 
-/// Why the stage failed.
+/// Why the stage failed, whatever residual it trains.
 #[derive(Debug, thiserror::Error)]
 pub enum ResidualError {
-    /// The data's force samples of the contact could not be read against the model.
+    /// The data's force samples of the contact could not be read against the model
+    /// (a residual of the line force).
     #[error(transparent)]
     Samples(#[from] IdentifyError),
-    /// The network could not be trained on them.
+    /// The training rows at the recorded poses could not be built.
+    #[error(transparent)]
+    Rows(#[from] super::wrench_samples::WrenchSampleError),
+    /// A run's contact events could not be located.
+    #[error(transparent)]
+    Events(#[from] crate::indicators::IndicatorError),
+    /// The network or its twin could not be trained.
     #[error(transparent)]
     Train(#[from] TrainError),
+    /// The tosses could not be replayed frame by frame (a residual from motion).
+    #[error(transparent)]
+    Toss(#[from] crate::replay::TossError),
 }
 
 /// The shipped architecture trained on contact `c`'s measured − `pm2` force in `data`,

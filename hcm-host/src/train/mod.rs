@@ -31,6 +31,7 @@ mod envelope;
 mod explained;
 mod force_residual;
 mod int8;
+mod kind;
 mod motion_residual;
 mod motion_samples;
 mod network;
@@ -57,13 +58,14 @@ pub use force_residual::{
     train_force_network, train_force_residual, ResidualError, ResidualSettings,
 };
 pub use int8::int8_row;
+pub use kind::ResidualKind;
 pub use network::{Activation, Network};
 pub use per_output::OutputNets;
 pub use point_residual::{explains_nothing, train_point_residual};
 pub use quantise::{quantisation_aware, QuantiseReport};
 pub use samples::residual_pairs;
 pub use trained::{Trained, TrainedResidual};
-pub use wrench_residual::{train_wrench_residual, WrenchResidualError};
+pub use wrench_residual::train_wrench_residual;
 pub use wrench_samples::{wrench_pairs, WrenchPairs};
 pub use wrench_settings::wrench_settings;
 

@@ -6,7 +6,7 @@
 
 use super::motion_samples::motion_rows;
 use super::point_residual::train_point_rows;
-use super::wrench_residual::WrenchResidualError;
+use super::ResidualError;
 use super::ResidualSettings;
 use super::Trained;
 use crate::dataset::Dataset;
@@ -31,7 +31,7 @@ pub fn train_motion_residual(
     horizon: usize,
     settings: &ResidualSettings,
     progress: &dyn Progress,
-) -> Result<Trained, WrenchResidualError> {
+) -> Result<Trained, ResidualError> {
     let (rows, _) = motion_rows(physics, training, c, horizon)?;
     train_point_rows(&rows, c, settings, MOTION_UNITS, progress)
 }

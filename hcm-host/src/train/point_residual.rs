@@ -12,7 +12,8 @@ use super::explained::EXPLAINED_MIN;
 use super::point_samples::point_rows;
 use super::reported::int8_twin_in_stage;
 use super::summed::{point_inputs, train_summed, SummedRow};
-use super::wrench_residual::{event_ends, WrenchResidualError};
+use super::wrench_residual::event_ends;
+use super::ResidualError;
 use super::Trained;
 use super::{ResidualSettings, TrainSettings, TrainedResidual};
 use crate::dataset::Dataset;
@@ -51,7 +52,7 @@ pub fn train_point_residual(
     events: usize,
     settings: &ResidualSettings,
     progress: &dyn Progress,
-) -> Result<Trained, WrenchResidualError> {
+) -> Result<Trained, ResidualError> {
     let (rows, at) = point_rows(pm2, training, c)?;
     let ends = event_ends(pm2, training, events)?;
     let rows: Vec<SummedRow> = (rows.into_iter().zip(&at))
@@ -70,7 +71,7 @@ pub fn train_point_rows(
     settings: &ResidualSettings,
     units: &str,
     progress: &dyn Progress,
-) -> Result<Trained, WrenchResidualError> {
+) -> Result<Trained, ResidualError> {
     let train_settings = TrainSettings {
         hidden_layers: HIDDEN,
         width: POINT_WIDTH,

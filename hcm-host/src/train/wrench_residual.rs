@@ -16,10 +16,10 @@
 
 use super::explained::{explained_variance, silence_outputs, EXPLAINED_MIN};
 use super::reported::{int8_twin_in_stage, train_in_stage};
-use super::wrench_samples::WrenchSampleError;
+use super::ResidualError;
 use super::{
-    wrench_pairs, wrench_settings, OutputNets, ResidualSettings, TrainError, TrainSettings,
-    Trained, TrainedResidual, WrenchPairs,
+    wrench_pairs, wrench_settings, OutputNets, ResidualSettings, TrainSettings, Trained,
+    TrainedResidual, WrenchPairs,
 };
 use crate::dataset::Dataset;
 use crate::indicators::{pair_events_from_run, IndicatorError};
@@ -28,23 +28,6 @@ use crate::scenario::Model;
 
 /// The units of the wrench's outputs, force and torque, as a status names them.
 const WRENCH_UNITS: &str = "N, N·m";
-
-/// Why the stage failed.
-#[derive(Debug, thiserror::Error)]
-pub enum WrenchResidualError {
-    /// The training rows could not be built.
-    #[error(transparent)]
-    Samples(#[from] WrenchSampleError),
-    /// A run's contact events could not be located.
-    #[error(transparent)]
-    Events(#[from] IndicatorError),
-    /// The network or its twin could not be trained.
-    #[error(transparent)]
-    Train(#[from] TrainError),
-    /// The tosses could not be replayed frame by frame (a residual from motion).
-    #[error(transparent)]
-    Toss(#[from] crate::replay::TossError),
-}
 
 /// The wrench residual of contact `c` of `pm2` (the scenario with PM2 in place) on the
 /// samples of the first `events` contact events of `training` (S1): the joint network
@@ -61,7 +44,7 @@ pub fn train_wrench_residual(
     events: usize,
     settings: &ResidualSettings,
     progress: &dyn Progress,
-) -> Result<Trained, WrenchResidualError> {
+) -> Result<Trained, ResidualError> {
     let pairs = pairs_before_event(pm2, training, c, events)?;
     let train_settings = TrainSettings {
         max_epochs: settings.epochs,
@@ -104,7 +87,7 @@ pub fn pairs_before_event(
     data: &Dataset,
     c: usize,
     events: usize,
-) -> Result<WrenchPairs, WrenchResidualError> {
+) -> Result<WrenchPairs, ResidualError> {
     let all = wrench_pairs(pm2, data, c)?;
     let ends = event_ends(pm2, data, events)?;
     let mut walls = WrenchPairs::default();
