@@ -18,7 +18,7 @@
 //! | measurement | `force_gain`: the sensor reads g × the wrench | wrench | g ∈ [0.5, 2] |
 //! | measurement | `force_offset`: the sensor reads F + b | line, wrench | b ∈ [−F̂/10, F̂/10]³ N |
 //! | measurement | `sensor_delay`: the sensor reads the force at t − τ | line, wrench | τ ∈ [0, 20·Δt] s |
-//! | measurement | `sensor_filter`: a first-order low-pass of time constant T | line | – |
+//! | measurement | `sensor_filter`: a first-order low-pass of time constant T | line | T ∈ [0, 20·Δt] s |
 //! | measurement | `table_offset`, `table_tilt`: the fixed surface moved or tilted | poses | Δz ∈ ±L/20 m; ±0.05 rad |
 //! | measurement | `length_scale`: the tracker's lengths × s | poses | s ∈ [0.9, 1.1] |
 //! | body | `inertia_scale`: the inertia tensor × k | poses | k ∈ [0.5, 2] |
@@ -31,23 +31,19 @@
 //! force (1D) an effect is judged through its linear column at small strength
 //! ([`Effect::column`], the fast pre-ranking of `select`).
 
-mod adhesion;
 mod coulomb_friction;
 mod edge_rounding;
 mod force_gain;
 mod force_offset;
 mod friction_coefficient;
-mod hysteresis_damping;
 mod inertia_scale;
+mod law_term;
 mod length_scale;
-mod plasticity;
 mod resistance;
-mod sensor_delay;
-mod sensor_filter;
+mod sensor_lag;
 mod speed_dependent_restitution;
 mod stiffness_exponent;
 mod table;
-mod viscous_damping;
 mod viscous_friction;
 
 use super::{Candidate, Family};
@@ -193,15 +189,15 @@ pub static CATALOGUE: [&dyn Effect; 20] = [
     &viscous_friction::ViscousFriction,
     &resistance::TORSIONAL,
     &resistance::ROLLING,
-    &viscous_damping::ViscousDamping,
-    &hysteresis_damping::HysteresisDamping,
+    &law_term::VISCOUS_DAMPING,
+    &law_term::HYSTERESIS_DAMPING,
     &stiffness_exponent::StiffnessExponent,
-    &adhesion::Adhesion,
-    &plasticity::Plasticity,
+    &law_term::ADHESION,
+    &law_term::PLASTICITY,
     &force_gain::ForceGain,
     &force_offset::ForceOffset,
-    &sensor_delay::SensorDelay,
-    &sensor_filter::SensorFilter,
+    &sensor_lag::DELAY,
+    &sensor_lag::FILTER,
     &speed_dependent_restitution::SpeedDependentRestitution,
     &table::OFFSET,
     &table::TILT,
