@@ -3,7 +3,7 @@
 
 use hcm_core::law::{AnyNormalLaw, Indentation, LankaraniNikravesh, NormalLaw};
 use hcm_core::model::ContactModel;
-use hcm_host::identify::ForceSample;
+use hcm_host::dataset::ForceSample;
 use hcm_host::train::{residual_pairs, train, Network, TrainError, TrainReport, TrainSettings};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -35,11 +35,11 @@ pub use rigid::{
     EventTarget, RecordedContact, RecordedSample, RigidIdentification, RigidIdentifyError,
     RigidParameters, SampleFit, WrenchTarget,
 };
-pub use samples::{force_samples, ForceSample};
+pub use samples::force_samples;
 
 pub use physics::{FitRecord, Physics};
 
-use crate::dataset::Dataset;
+use crate::dataset::{Dataset, ForceSample};
 use crate::indicators::IndicatorError;
 use crate::progress::{in_stage, Progress, Stage};
 use crate::scenario::{Assignment, Model, Scenario, ScenarioError};

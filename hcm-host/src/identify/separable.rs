@@ -14,8 +14,8 @@
 //! | impact | e, δ_max | k (δ^e), d_max (step(δ, 0, 0, δ_max, 1)·δ̇) |
 
 use super::bounds::Bounds;
-use super::samples::ForceSample;
 use super::IdentifyError;
+use crate::dataset::ForceSample;
 use crate::numerics::linear_least_squares;
 use crate::numerics::optimize::levenberg_marquardt::{levenberg_marquardt, LmSettings};
 use crate::numerics::optimize::{minimize_box2, minimize_scalar, LeastSquaresError, Parameters};

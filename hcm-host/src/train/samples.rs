@@ -1,6 +1,6 @@
 //! The residual's training pairs: what PM2 misses at each measured contact sample.
 
-use crate::identify::ForceSample;
+use crate::dataset::ForceSample;
 use hcm_core::model::ContactModel;
 
 /// Residual training pairs of the 1D normal contact: inputs [δ (m), δ̇ (m/s), δ̇0 (m/s)],
