@@ -1,13 +1,11 @@
 //! Diagnosis: where a physics model departs from measured data, which physical effect
 //! is missing, the model extended with it, and what the extension gains.
 //!
-//! The data path: [`samples`] (the measured contact, sample by sample) → noise floor
+//! The data path: [`ContactSamples`] (the measured contact, sample by sample) → noise floor
 //! and residual structure (what is wrong) → catalogue of candidate effects → sparse
 //! selection → joint re-fit (the extended model) → gain on held-out runs.
 
-mod samples;
-
-pub use samples::{contact_samples, ContactSamples};
+pub use crate::identify::{contact_samples, ContactSamples};
 mod catalogue;
 mod diagnosis;
 mod family;

@@ -971,6 +971,7 @@ mod tests {
             measured: vec![1.0, 2.0],
             depth_sd: vec![0.0, depth_sd],
             rate_sd: vec![0.0, 0.0],
+            events: 1,
         }
     }
 

@@ -2,6 +2,7 @@
 //! least squares ([`separable`]) or by the paper's genetic algorithm ([`evolve`]).
 
 mod bounds;
+mod contact_samples;
 mod evolve;
 mod motion;
 mod physics;
@@ -10,6 +11,7 @@ mod rigid;
 mod samples;
 mod separable;
 pub use bounds::{Bounds, BoundsOverrides};
+pub use contact_samples::{contact_samples, contact_samples_of, ContactSamples};
 pub use evolve::Fitness;
 pub use motion::{
     beside_physics, fitted_physics, identify_motion, motion_fitness, set_options, split_tosses,

@@ -1,10 +1,11 @@
-//! The measured data of one contact as the diagnosis reads it: every sample of every
-//! run, in contact or not, with the motion state a contact law needs and the force
-//! the sensor recorded.
+//! The measured data of one contact on its line of centres: every sample of every run,
+//! in contact or not, with the motion state a contact law needs and the force the
+//! sensor recorded. The diagnosis reads all of it; a law is fitted to its in-contact
+//! rows ([`super::force_samples`]).
 
+use super::IdentifyError;
 use crate::dataset::Dataset;
 use crate::dataset::{complete, Completed, TrackReconstruction};
-use crate::identify::IdentifyError;
 use crate::indicators::{contact_history, event_spans};
 use crate::scenario::Model;
 use hcm_core::effect::{ContactMemory, ExtendedLaw};
@@ -37,6 +38,8 @@ pub struct ContactSamples {
     pub depth_sd: Vec<f64>,
     /// Standard deviation of `rate` from its reconstruction (m/s), as `depth_sd`.
     pub rate_sd: Vec<f64>,
+    /// Completed contact events over all runs.
+    pub events: usize,
 }
 
 impl ContactSamples {
@@ -236,6 +239,7 @@ pub fn contact_samples_of(
                 to: history.time.last().copied().unwrap_or(f64::NAN),
             });
         }
+        out.events += spans.len();
         let mut event = vec![None; history.time.len()];
         for (e, span) in spans.iter().enumerate() {
             for i in span.inside.clone() {
