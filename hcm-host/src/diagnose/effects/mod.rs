@@ -224,12 +224,6 @@ impl Catalogue {
         self
     }
 
-    /// This catalogue without the effect named `name`.
-    pub fn without(mut self, name: &str) -> Catalogue {
-        self.0.retain(|e| e.name() != name);
-        self
-    }
-
     /// The effects judged from `evidence`, in order.
     pub fn for_evidence(
         &self,
