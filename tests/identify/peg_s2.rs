@@ -89,14 +89,14 @@ fn s2_statistics_equal_a_direct_computation_and_a_shorter_run_is_reported() {
     let mut data = generate(&scenario, 8, 2, &hcm_host::progress::Silent).unwrap();
     // Cut run 5 after its second contact: 2 events where the others have 3.
     let events_5 = pair_events_from_run(&model, &data.runs[5]).unwrap();
-    let cut = events_5[1].lift_off + 1e-4;
+    let cut = events_5[1].event.lift_off.unwrap() + 1e-4;
     data.runs[5].bodies[0].samples.retain(|s| s.time < cut);
     let ids: Vec<String> = data.runs.iter().map(|r| r.id.clone()).collect();
     let mut events = Vec::new();
     let mut per_run = Vec::new();
     for run in &data.runs {
         let found = pair_events_from_run(&model, run).unwrap();
-        per_run.push(found.iter().map(|e| e.indicators).collect::<Vec<_>>());
+        per_run.push(found.iter().map(|e| e.wrench()).collect::<Vec<_>>());
         events.extend(found);
     }
     let stats = wrench_statistics(&ids, &events);

@@ -144,7 +144,7 @@ fn indicators_from_the_written_csv_agree_with_the_simulation() {
         let data = Dataset::read(&path).unwrap();
         let events = from_run(&m, &data.runs[0]).unwrap();
         assert_eq!(events.len(), 1);
-        let (from_csv, exact) = (events[0].indicators, first_event(&simulation));
+        let (from_csv, exact) = (events[0].line(), first_event(&simulation));
         let samples_in_contact =
             (exact.duration / m.scenario.record.contact_sample_period) as usize;
         assert!(
@@ -204,7 +204,7 @@ fn the_peak_of_noisy_data_is_not_biased_upwards() {
             .iter()
             .map(|s| s.force[2])
             .fold(f64::MIN, f64::max);
-        smoothed += from_run(&m, &run).unwrap()[0].indicators.max_force;
+        smoothed += from_run(&m, &run).unwrap()[0].event.max_force;
     }
     let (raw, smoothed) = (raw / trials as f64, smoothed / trials as f64);
     let bias = |v: f64| (v - exact) / exact;

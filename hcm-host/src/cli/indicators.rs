@@ -52,7 +52,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let (events, without_contact) = events_of_runs(&dataset.runs, |run| from_run(&model, run))?;
     let summary = summarize(&events);
     if args.json {
-        return print_json(&events, &summary, &without_contact);
+        return print_json(&events, RecordedEvent::line, &summary, &without_contact);
     }
     if events.is_empty() {
         println!(
@@ -64,11 +64,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let rows: Vec<_> = events
                 .iter()
                 .map(|e| {
-                    (
-                        format!("run `{}` {}", e.run, e.contact),
-                        e.touch_down,
-                        Some(e.indicators),
-                    )
+                    let label = format!("run `{}` {}", e.run, e.label);
+                    (label, e.touch_down(), Some(e.line()))
                 })
                 .collect();
             print!("{}", report::event_table(&rows));
@@ -93,7 +90,7 @@ fn run_rigid(model: &Model, dataset: &Dataset, json: bool) -> anyhow::Result<()>
     let ids: Vec<String> = dataset.runs.iter().map(|r| r.id.clone()).collect();
     let summary = wrench_statistics(&ids, &events);
     if json {
-        return print_json(&events, &summary, &without_contact);
+        return print_json(&events, RecordedEvent::wrench, &summary, &without_contact);
     }
     if events.is_empty() {
         println!(
@@ -105,8 +102,8 @@ fn run_rigid(model: &Model, dataset: &Dataset, json: bool) -> anyhow::Result<()>
             let rows: Vec<_> = events
                 .iter()
                 .map(|e| {
-                    let label = format!("run `{}` {} #{}", e.run, e.contact, e.event + 1);
-                    (label, e.touch_down, e.indicators, false)
+                    let label = format!("run `{}` {} #{}", e.run, e.label, e.number + 1);
+                    (label, e.touch_down(), e.wrench(), false)
                 })
                 .collect();
             print!("{}", report::pair_event_table(&rows));
@@ -127,12 +124,23 @@ fn run_rigid(model: &Model, dataset: &Dataset, json: bool) -> anyhow::Result<()>
     Ok(())
 }
 
-/// `--json`: every event with its indicators, the summary and the runs without contact.
+/// `--json`: every event with its indicators (the `view` of it the data support), the
+/// summary and the runs without contact.
 fn print_json<I: serde::Serialize, S: serde::Serialize>(
-    events: &[RecordedEvent<I>],
+    events: &[RecordedEvent],
+    view: impl Fn(&RecordedEvent) -> I,
     summary: &S,
     without_contact: &[String],
 ) -> anyhow::Result<()> {
+    let events: Vec<serde_json::Value> = (events.iter())
+        .map(|e| {
+            serde_json::json!({
+                "run": e.run, "contact": e.label, "event": e.number,
+                "touch_down": e.event.touch_down, "lift_off": e.event.lift_off,
+                "indicators": view(e),
+            })
+        })
+        .collect();
     let json = serde_json::json!({
         "events": events, "summary": summary, "runs_without_contact": without_contact,
     });

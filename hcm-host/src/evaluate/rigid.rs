@@ -141,8 +141,8 @@ fn score_run(
     let events = |model: &Model, run: &Run| -> Result<Vec<(f64, [f64; 5])>, String> {
         let found = pair_events_from_run(model, run).map_err(|e| e.to_string())?;
         Ok((found.into_iter())
-            .filter(|e| e.contact == label)
-            .map(|e| (e.touch_down, e.indicators.values()))
+            .filter(|e| e.label == label)
+            .map(|e| (e.touch_down(), e.wrench().values()))
             .collect())
     };
     let data = events(reference, run)?;

@@ -102,7 +102,7 @@ pub fn pre_contact_states(model: &Model, runs: &[Run]) -> Result<Vec<PreContact>
 /// The pre-contact state of one run.
 fn pre_contact(model: &Model, run: &Run) -> Result<PreContact, PreContactError> {
     let events = pair_events_from_run(model, run)?;
-    let touch_down = (events.iter().map(|e| e.touch_down))
+    let touch_down = (events.iter().map(|e| e.event.touch_down))
         .min_by(f64::total_cmp)
         .ok_or_else(|| PreContactError::NoContact {
             run: run.id.clone(),

@@ -47,7 +47,7 @@ pub fn curve(
     let Some(span) = event_spans(&history).into_iter().next() else {
         return Ok(None);
     };
-    let indicators = span.indicators(&history, model.contacts[c].effective_mass);
+    let indicators = (span.event(&history, c, model.contacts[c].effective_mass)).line_indicators();
     let (t_in, t_out) = (span.touch_down.0, span.lift_off.0);
     let mut i = span.inside.start;
     let values = (0..len)

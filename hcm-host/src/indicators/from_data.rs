@@ -9,7 +9,7 @@
 //! the peak by a local degree-4 least-squares fit around the maximum (see [`peak`]),
 //! which removes the upward bias a noisy maximum has.
 
-use super::{Indicators, RecordedEvent};
+use super::{ContactEvent, RecordedEvent};
 use crate::dataset::{BodyTrack, Run};
 use crate::numerics::linear_least_squares;
 use crate::scenario::pair_kinematics;
@@ -77,25 +77,31 @@ impl EventSpan {
         self.touch_down.1
     }
 
-    /// The four indicators of the event; `effective_mass` m_e (kg) for the energy loss.
-    pub fn indicators(&self, h: &ContactHistory, effective_mass: f64) -> Indicators {
+    /// The event of contact `contact` (its index in the model), `effective_mass` m_e
+    /// (kg) for the energy loss: the peak of the smoothed normal force, the normal
+    /// impulse closed at the crossings (its vector along the normal at the first sample
+    /// inside), the crossings' δ̇ as the approach and separation speeds.
+    pub fn event(&self, h: &ContactHistory, contact: usize, effective_mass: f64) -> ContactEvent {
         let ((t_in, rate_in, force_in), (t_out, rate_out, force_out)) =
             (self.touch_down, self.lift_off);
-        Indicators {
+        let normal_impulse = impulse(h, self.inside.clone(), (t_in, force_in), (t_out, force_out));
+        let normal = h.normal.get(self.inside.start).copied();
+        ContactEvent {
+            lift_off: Some(t_out),
             max_force: peak(h, self.inside.clone()),
-            impulse: impulse(h, self.inside.clone(), (t_in, force_in), (t_out, force_out)),
-            energy_loss: 0.5 * effective_mass * (rate_in * rate_in - rate_out * rate_out),
-            duration: t_out - t_in,
+            linear_impulse: normal.unwrap_or_else(Vector3::zeros) * normal_impulse,
+            normal_impulse,
+            approach_speed: rate_in,
+            separation_speed: -rate_out,
+            effective_mass,
+            ..ContactEvent::starting(contact, t_in)
         }
     }
 }
 
 /// Every completed contact event of every contact of `model` in `run`. Events still
 /// open at the end of the data are left out.
-pub fn from_run(
-    model: &Model,
-    run: &Run,
-) -> Result<Vec<RecordedEvent<Indicators>>, IndicatorError> {
+pub fn from_run(model: &Model, run: &Run) -> Result<Vec<RecordedEvent>, IndicatorError> {
     let mut events = Vec::new();
     for (c, contact) in model.contacts.iter().enumerate() {
         let label = format!(
@@ -103,14 +109,12 @@ pub fn from_run(
             model.bodies[contact.body_1].name, model.bodies[contact.body_2].name
         );
         let history = contact_history(model, run, c)?;
-        for (event, span) in event_spans(&history).into_iter().enumerate() {
+        for (number, span) in event_spans(&history).into_iter().enumerate() {
             events.push(RecordedEvent {
                 run: run.id.clone(),
-                contact: label.clone(),
-                event,
-                touch_down: span.touch_down.0,
-                lift_off: span.lift_off.0,
-                indicators: span.indicators(&history, contact.effective_mass),
+                label: label.clone(),
+                number,
+                event: span.event(&history, c, contact.effective_mass),
             });
         }
     }

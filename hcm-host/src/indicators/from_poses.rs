@@ -10,7 +10,7 @@
 //! is the body's total contact load, so two pairs of one body touching at once share
 //! it: each pair is credited with the whole load over its own events.
 
-use super::{IndicatorError, RecordedEvent, WrenchIndicators};
+use super::{ContactEvent, IndicatorError, RecordedEvent};
 use crate::dataset::{Run, Sample};
 use crate::scenario::Model;
 use crate::scenario::{pair_separation, Pose};
@@ -21,9 +21,9 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 pub fn pair_events_from_run(
     model: &Model,
     run: &Run,
-) -> Result<Vec<RecordedEvent<WrenchIndicators>>, IndicatorError> {
+) -> Result<Vec<RecordedEvent>, IndicatorError> {
     let mut found = Vec::new();
-    for contact in &model.contacts {
+    for (c, contact) in model.contacts.iter().enumerate() {
         let (b1, b2) = (&model.bodies[contact.body_1], &model.bodies[contact.body_2]);
         let label = format!("{}–{}", b1.name, b2.name);
         let mover = if b1.fixed { b2 } else { b1 };
@@ -73,16 +73,18 @@ pub fn pair_events_from_run(
                 pair_separation(model, contact, &pose_of(b1, s1), &pose_of(b2, s2))
             })
             .collect();
-        for (event, (touch_down, lift_off, inside)) in
+        for (number, (touch_down, lift_off, inside)) in
             spans(moving, &separation).into_iter().enumerate()
         {
+            let event = wrench_event(c, moving, inside, (touch_down, lift_off));
             found.push(RecordedEvent {
                 run: run.id.clone(),
-                contact: label.clone(),
-                event,
-                touch_down,
-                lift_off,
-                indicators: indicators(moving, inside, touch_down, lift_off),
+                label: label.clone(),
+                number,
+                event: ContactEvent {
+                    effective_mass: contact.effective_mass,
+                    ..event
+                },
             });
         }
     }
@@ -132,13 +134,14 @@ fn spans(samples: &[Sample], separation: &[f64]) -> Vec<(f64, f64, std::ops::Ran
     found
 }
 
-/// The indicators of one event from the samples `inside` it and its crossing times.
-fn indicators(
+/// One event of contact `c` from the samples `inside` it and its crossing times (s);
+/// its effective mass left unknown (NaN).
+fn wrench_event(
+    c: usize,
     samples: &[Sample],
     inside: std::ops::Range<usize>,
-    touch_down: f64,
-    lift_off: f64,
-) -> WrenchIndicators {
+    (touch_down, lift_off): (f64, f64),
+) -> ContactEvent {
     let wrench = |s: &Sample| {
         let mut w = [0.0; 6];
         w[..3].copy_from_slice(&s.force);
@@ -160,13 +163,14 @@ fn indicators(
     let times: Vec<f64> = inner.iter().map(|s| s.time).collect();
     let forces: Vec<f64> = inner.iter().map(|s| norm(&s.force)).collect();
     let torques: Vec<f64> = inner.iter().map(|s| norm(&s.torque)).collect();
-    WrenchIndicators::new(
-        local_peak(&times, &forces),
-        local_peak(&times, &torques),
-        [impulse[0], impulse[1], impulse[2]],
-        [impulse[3], impulse[4], impulse[5]],
-        lift_off - touch_down,
-    )
+    ContactEvent {
+        lift_off: Some(lift_off),
+        max_force: local_peak(&times, &forces),
+        max_torque: local_peak(&times, &torques),
+        linear_impulse: Vector3::new(impulse[0], impulse[1], impulse[2]),
+        angular_impulse: Vector3::new(impulse[3], impulse[4], impulse[5]),
+        ..ContactEvent::starting(c, touch_down)
+    }
 }
 
 /// Half-width of the peak fit, in samples (±50 µs at the contact rate of 10 µs).

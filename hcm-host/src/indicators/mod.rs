@@ -13,7 +13,7 @@ mod summary;
 mod wrench;
 mod wrench_summary;
 
-pub use event::{events_of_runs, RecordedEvent};
+pub use event::{events_of_runs, ContactEvent, RecordedEvent};
 pub use from_data::{
     contact_history, event_spans, from_run, ContactHistory, EventSpan, IndicatorError,
 };

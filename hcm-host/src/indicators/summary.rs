@@ -62,23 +62,23 @@ impl EventSummary {
 
 /// Groups events by (contact, event number) in order of first appearance and
 /// summarises each group.
-pub fn summarize(events: &[RecordedEvent<Indicators>]) -> Vec<EventSummary> {
+pub fn summarize(events: &[RecordedEvent]) -> Vec<EventSummary> {
     let mut keys: Vec<(String, usize)> = Vec::new();
     for e in events {
-        let key = (e.contact.clone(), e.event);
+        let key = (e.label.clone(), e.number);
         if !keys.contains(&key) {
             keys.push(key);
         }
     }
     keys.into_iter()
         .map(|(contact, event)| {
-            let group: Vec<&Indicators> = events
+            let group: Vec<Indicators> = events
                 .iter()
-                .filter(|e| e.contact == contact && e.event == event)
-                .map(|e| &e.indicators)
+                .filter(|e| e.label == contact && e.number == event)
+                .map(RecordedEvent::line)
                 .collect();
             let column = |f: fn(&Indicators) -> f64| {
-                Statistic::of(&group.iter().map(|i| f(i)).collect::<Vec<_>>())
+                Statistic::of(&group.iter().map(f).collect::<Vec<_>>())
             };
             EventSummary {
                 runs: group.len(),

@@ -110,14 +110,11 @@ pub struct ContactStatistics {
 /// The statistics of every contact found in `events`, over the runs `runs` (every run
 /// of the set, in order: a run without any event of a contact counts as 0 events).
 /// Contacts in order of first appearance.
-pub fn wrench_statistics(
-    runs: &[String],
-    events: &[RecordedEvent<WrenchIndicators>],
-) -> Vec<ContactStatistics> {
+pub fn wrench_statistics(runs: &[String], events: &[RecordedEvent]) -> Vec<ContactStatistics> {
     let mut contacts: Vec<&str> = Vec::new();
     for e in events {
-        if !contacts.contains(&e.contact.as_str()) {
-            contacts.push(&e.contact);
+        if !contacts.contains(&e.label.as_str()) {
+            contacts.push(&e.label);
         }
     }
     contacts
@@ -129,21 +126,21 @@ pub fn wrench_statistics(
 fn contact_statistics(
     contact: &str,
     runs: &[String],
-    events: &[RecordedEvent<WrenchIndicators>],
+    events: &[RecordedEvent],
 ) -> ContactStatistics {
     // Each run's events of this contact, in event order.
-    let per_run: Vec<Vec<&WrenchIndicators>> = runs
+    let per_run: Vec<Vec<WrenchIndicators>> = runs
         .iter()
         .map(|run| {
-            let mut own: Vec<&RecordedEvent<WrenchIndicators>> = (events.iter())
-                .filter(|e| e.contact == contact && &e.run == run)
+            let mut own: Vec<&RecordedEvent> = (events.iter())
+                .filter(|e| e.label == contact && &e.run == run)
                 .collect();
-            own.sort_by_key(|e| e.event);
-            own.into_iter().map(|e| &e.indicators).collect()
+            own.sort_by_key(|e| e.number);
+            own.into_iter().map(RecordedEvent::wrench).collect()
         })
         .collect();
     let expected = most_common(per_run.iter().map(Vec::len));
-    let matched: Vec<&Vec<&WrenchIndicators>> =
+    let matched: Vec<&Vec<WrenchIndicators>> =
         per_run.iter().filter(|e| e.len() == expected).collect();
     let mismatched_runs = (runs.iter().zip(&per_run))
         .filter(|(_, e)| e.len() != expected)
@@ -155,7 +152,7 @@ fn contact_statistics(
     let events = (0..expected)
         .map(|k| {
             let column = |f: fn(&WrenchIndicators) -> f64| {
-                Estimate::of(&matched.iter().map(|run| f(run[k])).collect::<Vec<_>>())
+                Estimate::of(&matched.iter().map(|run| f(&run[k])).collect::<Vec<_>>())
             };
             WrenchEventStatistics {
                 event: k + 1,
@@ -194,15 +191,21 @@ fn most_common(counts: impl Iterator<Item = usize>) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::indicators::ContactEvent;
 
-    fn event(run: &str, event: usize, value: f64) -> RecordedEvent<WrenchIndicators> {
+    fn event(run: &str, number: usize, value: f64) -> RecordedEvent {
+        let touch_down = number as f64;
         RecordedEvent {
             run: run.into(),
-            contact: "peg–block".into(),
-            event,
-            touch_down: event as f64,
-            lift_off: event as f64 + 0.5,
-            indicators: WrenchIndicators::new(value, 2.0 * value, [value, 0.0, 0.0], [0.0; 3], 1.0),
+            label: "peg–block".into(),
+            number,
+            event: ContactEvent {
+                lift_off: Some(touch_down + 1.0),
+                max_force: value,
+                max_torque: 2.0 * value,
+                linear_impulse: nalgebra::Vector3::new(value, 0.0, 0.0),
+                ..ContactEvent::starting(0, touch_down)
+            },
         }
     }
 

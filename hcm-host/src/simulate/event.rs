@@ -1,12 +1,11 @@
-//! Contact events of body pairs: touch-down and lift-off located where the pair's
-//! signed separation crosses zero, and each event's indicators — the 3D set (peak force
-//! and torque, linear and angular impulse, duration) and, for a pair touching on its
-//! line of centres (the 1D examples), the paper's four.
+//! The simulator's tracking of contact events ([`ContactEvent`]): touch-down and
+//! lift-off located where the pair's signed separation crosses zero on the solver's
+//! dense output, the peaks, impulses and work accumulated step by step.
 
 use super::layout::StateVector;
 use super::stepper::RigidStepper;
 use super::system::RigidSystem;
-use crate::indicators::{Indicators, WrenchIndicators};
+use crate::indicators::ContactEvent;
 use crate::scenario::{pair_rate, pair_separation, Pose};
 use crate::scenario::{Contact, Model};
 use hcm_core::integrate::{locate_crossing, DenseOutput};
@@ -22,123 +21,6 @@ const PEAK_SUBSTEPS: usize = 3;
 /// Boole's rule on the step's start and the peak grid (weights × 90/h): the contact's
 /// work per step, exact for a power polynomial of degree 5 in time.
 const BOOLE: [f64; PEAK_SUBSTEPS + 2] = [7.0, 32.0, 12.0, 32.0, 7.0];
-
-/// One contact event of a body pair: from the first point's touch-down to the last
-/// point's lift-off. Two events are equal when every number is bit for bit the same (a
-/// NaN — a speed a pair with a box does not have, a value of an open event — equals
-/// itself), so that two runs compare as identical or not.
-#[derive(Clone, Debug)]
-pub struct ContactEvent {
-    /// Index of the contact in the model.
-    pub contact: usize,
-    /// Touch-down time (s): the separation's zero crossing.
-    pub touch_down: f64,
-    /// Lift-off time (s); `None` if the run ended in contact.
-    pub lift_off: Option<f64>,
-    /// Largest ‖**F**‖ on the moving body (N): the maximum normal force of a
-    /// frictionless pair touching on its line of centres.
-    pub max_force: f64,
-    /// Largest ‖**T**‖ on the moving body about its centre of mass (N·m).
-    pub max_torque: f64,
-    /// ∫**F** dt over the event (N·s), world frame.
-    pub linear_impulse: Vector3<f64>,
-    /// ∫**T** dt over the event (N·m·s), world frame.
-    pub angular_impulse: Vector3<f64>,
-    /// Most points touching at once.
-    pub max_points: usize,
-    /// Indentation rate at touch-down, δ̇_in (m/s), of a pair touching on its line of
-    /// centres (a sphere against a plane or a sphere); NaN for a pair with a box.
-    pub approach_speed: f64,
-    /// −δ̇ at lift-off, δ̇_out (m/s); NaN while open and for a pair with a box.
-    pub separation_speed: f64,
-    /// Work the contact took from the bodies (J), ∫f_n·δ̇ dt for one point without
-    /// friction: the energy it dissipated. Boole's rule on each solver step.
-    pub work: f64,
-    /// Kinetic energy of the pair's moving bodies at touch-down (J).
-    pub kinetic_energy_in: f64,
-    /// Kinetic energy of the pair's moving bodies at lift-off (J); NaN while open.
-    pub kinetic_energy_out: f64,
-    /// Effective mass m_e of the pair (kg).
-    pub(crate) effective_mass: f64,
-}
-
-impl PartialEq for ContactEvent {
-    fn eq(&self, other: &Self) -> bool {
-        self.bits() == other.bits()
-    }
-}
-
-impl ContactEvent {
-    /// Every number of the event as its bits (the lift-off's presence first).
-    fn bits(&self) -> Vec<u64> {
-        let [l, a] = [self.linear_impulse, self.angular_impulse];
-        [
-            self.contact as u64,
-            self.lift_off.is_some().into(),
-            self.lift_off.unwrap_or(0.0).to_bits(),
-            self.max_points as u64,
-        ]
-        .into_iter()
-        .chain(
-            [
-                self.touch_down,
-                self.max_force,
-                self.max_torque,
-                l.x,
-                l.y,
-                l.z,
-                a.x,
-                a.y,
-                a.z,
-                self.approach_speed,
-                self.separation_speed,
-                self.work,
-                self.kinetic_energy_in,
-                self.kinetic_energy_out,
-                self.effective_mass,
-            ]
-            .map(f64::to_bits),
-        )
-        .collect()
-    }
-
-    /// The event's indicators; `None` while it has not ended.
-    pub fn indicators(&self) -> Option<WrenchIndicators> {
-        let lift_off = self.lift_off?;
-        Some(self.indicators_until(lift_off))
-    }
-
-    /// The indicators as if the event ended at `end` (s) (for an event still open).
-    pub fn indicators_until(&self, end: f64) -> WrenchIndicators {
-        WrenchIndicators::new(
-            self.max_force,
-            self.max_torque,
-            self.linear_impulse.into(),
-            self.angular_impulse.into(),
-            end - self.touch_down,
-        )
-    }
-
-    /// The paper's four indicators of a pair touching on its line of centres without
-    /// friction (the 1D examples), read off the normal component: maximum normal force
-    /// (max ‖**F**‖), normal impulse (‖∫**F** dt‖, the impulse lying along the fixed
-    /// normal), energy loss ½·m_e·(δ̇_in² − δ̇_out²) and duration. `None` if the contact
-    /// never ended or the pair has a box.
-    pub fn normal_indicators(&self) -> Option<Indicators> {
-        let lift_off = self.lift_off?;
-        if self.approach_speed.is_nan() {
-            return None;
-        }
-        Some(Indicators {
-            max_force: self.max_force,
-            impulse: self.linear_impulse.norm(),
-            energy_loss: 0.5
-                * self.effective_mass
-                * (self.approach_speed.powi(2) - self.separation_speed.powi(2)),
-            duration: lift_off - self.touch_down,
-        })
-    }
-}
 
 /// The events found so far and which are open.
 #[derive(Clone, Debug, Default)]
@@ -231,6 +113,9 @@ impl EventTracker {
         let i = system.layout.impulse_index(event.contact);
         event.linear_impulse = Vector3::from_fn(|k, _| y[i + k] - start[k]);
         event.angular_impulse = Vector3::from_fn(|k, _| y[i + 3 + k] - start[3 + k]);
+        if !event.approach_speed.is_nan() {
+            event.normal_impulse = event.linear_impulse.norm();
+        }
     }
 
     fn touch_down(&mut self, system: &RigidSystem<'_>, c: usize, time: f64, y: &[f64]) {
@@ -239,20 +124,11 @@ impl EventTracker {
         self.start_impulse.push(std::array::from_fn(|k| y[i + k]));
         self.end_power.push((f64::NAN, 0.0));
         self.events.push(ContactEvent {
-            contact: c,
-            touch_down: time,
-            lift_off: None,
-            max_force: 0.0,
-            max_torque: 0.0,
-            linear_impulse: Vector3::zeros(),
-            angular_impulse: Vector3::zeros(),
-            max_points: 0,
             approach_speed: rate(system, y, c),
-            separation_speed: f64::NAN,
             work: 0.0,
             kinetic_energy_in: kinetic_energy(system, y, c),
-            kinetic_energy_out: f64::NAN,
             effective_mass: system.model.contacts[c].effective_mass,
+            ..ContactEvent::starting(c, time)
         });
     }
 

@@ -27,7 +27,8 @@ mod stepper;
 mod system;
 pub use footprint::{memory_budget, record_bytes, shown_bytes};
 
-pub use event::{ContactEvent, EventTracker};
+pub use crate::indicators::ContactEvent;
+pub use event::EventTracker;
 pub use layout::{RigidLayout, StateVector};
 pub use stepper::RigidStepper;
 pub use system::{ContactLoad, PairManifold, RigidSystem};

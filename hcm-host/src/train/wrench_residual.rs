@@ -114,8 +114,8 @@ pub fn event_ends(pm2: &Model, data: &Dataset, events: usize) -> Result<Vec<f64>
         let found = pair_events_from_run(pm2, run)?;
         let next = found
             .iter()
-            .filter(|e| e.event == events)
-            .map(|e| e.touch_down);
+            .filter(|e| e.number == events)
+            .map(|e| e.touch_down());
         ends.push(next.fold(f64::INFINITY, f64::min));
     }
     Ok(ends)

@@ -11,7 +11,7 @@ use crate::dataset::{Dataset, Sample};
 use crate::experiment::{pre_contact_states, replay_model, PreContact};
 use crate::indicators::{
     pair_events_from_run, wrench_statistics, EventCountMismatch, RecordedEvent,
-    WrenchEventStatistics, WrenchIndicators,
+    WrenchEventStatistics,
 };
 use crate::scenario::Model;
 use nalgebra::Vector4;
@@ -50,20 +50,15 @@ impl WrenchTarget {
         c: usize,
         events: Option<usize>,
     ) -> Result<WrenchTarget, RigidIdentifyError> {
-        let contact = model
-            .contacts
-            .get(c)
-            .ok_or(RigidIdentifyError::NoSuchContact(c))?;
-        let label = format!(
-            "{}–{}",
-            model.bodies[contact.body_1].name, model.bodies[contact.body_2].name
-        );
-        let mut found: Vec<RecordedEvent<WrenchIndicators>> = Vec::new();
+        if c >= model.contacts.len() {
+            return Err(RigidIdentifyError::NoSuchContact(c));
+        }
+        let mut found: Vec<RecordedEvent> = Vec::new();
         for run in &data.runs {
             found.extend(
                 pair_events_from_run(model, run)?
                     .into_iter()
-                    .filter(|e| e.contact == label),
+                    .filter(|e| e.event.contact == c),
             );
         }
         let ids: Vec<String> = data.runs.iter().map(|r| r.id.clone()).collect();
@@ -91,8 +86,8 @@ impl WrenchTarget {
             let delays: Vec<f64> = matched
                 .iter()
                 .filter_map(|run| {
-                    let own = |n: usize| found.iter().find(|e| e.run == run.id && e.event == n);
-                    Some(own(k)?.touch_down - own(0)?.touch_down)
+                    let own = |n: usize| found.iter().find(|e| e.run == run.id && e.number == n);
+                    Some(own(k)?.touch_down() - own(0)?.touch_down())
                 })
                 .collect();
             delays.iter().sum::<f64>() / delays.len().max(1) as f64

@@ -64,7 +64,7 @@ pub fn mean_curve(
     for run in &data.runs {
         let first = pair_events_from_run(model, run)
             .ok()
-            .and_then(|events| events.iter().map(|e| e.touch_down).reduce(f64::min));
+            .and_then(|events| events.iter().map(|e| e.touch_down()).reduce(f64::min));
         let (Some(first), Some(track)) = (first, run.body(mover)) else {
             continue;
         };
