@@ -26,11 +26,6 @@ pub struct ContactEvent {
     pub linear_impulse: Vector3<f64>,
     /// ∫**T** dt over the event (N·m·s), world frame.
     pub angular_impulse: Vector3<f64>,
-    /// Normal impulse ∫f_n dt (N·s) of a pair touching on its line of centres: in the
-    /// simulator ‖∫**F** dt‖ (a frictionless pair's impulse lies along its fixed normal),
-    /// from data the recorded normal force's integral (so far, for an event still open
-    /// when a run ends); NaN for a pair with a box.
-    pub normal_impulse: f64,
     /// Most points touching at once; 0 for a recorded event (data do not say).
     pub max_points: usize,
     /// Indentation rate at touch-down, δ̇_in (m/s), of a pair touching on its line of
@@ -50,6 +45,11 @@ pub struct ContactEvent {
     pub kinetic_energy_out: f64,
     /// Effective mass m_e of the pair (kg).
     pub(crate) effective_mass: f64,
+    /// Normal impulse ∫f_n dt (N·s) of a pair touching on its line of centres: in the
+    /// simulator ‖∫**F** dt‖ (a frictionless pair's impulse lies along its fixed normal),
+    /// from data the recorded normal force's integral (so far, for an event still open
+    /// when a run ends); NaN for a pair with a box.
+    pub normal_impulse: f64,
 }
 
 impl PartialEq for ContactEvent {
