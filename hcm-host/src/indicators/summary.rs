@@ -77,9 +77,8 @@ pub fn summarize(events: &[RecordedEvent]) -> Vec<EventSummary> {
                 .filter(|e| e.label == contact && e.number == event)
                 .map(RecordedEvent::line)
                 .collect();
-            let column = |f: fn(&Indicators) -> f64| {
-                Statistic::of(&group.iter().map(f).collect::<Vec<_>>())
-            };
+            let column =
+                |f: fn(&Indicators) -> f64| Statistic::of(&group.iter().map(f).collect::<Vec<_>>());
             EventSummary {
                 runs: group.len(),
                 max_force: column(|i| i.max_force),

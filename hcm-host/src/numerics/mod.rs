@@ -10,6 +10,8 @@
 //!   toss scores' summaries).
 //! - [`sampled`]: a signal between its samples (cubic Hermite) and through a
 //!   first-order low-pass filter.
+//! - [`scores`]: proper scores of an ensemble forecast (CRPS, energy score, Brier, log)
+//!   and the coverage of its central bands.
 //! - [`optimize`]: the bounded minimisers (genetic algorithm, Levenberg–Marquardt,
 //!   scalar and two-variable searches, Nelder–Mead) behind one bounds type, one
 //!   progress observer and one trait for a vector of named parameters.
@@ -19,6 +21,7 @@ mod median;
 mod norm;
 pub mod optimize;
 pub mod sampled;
+pub mod scores;
 
 pub use linear_least_squares::{
     linear_least_squares, Covariance, LinearFit, LinearLeastSquaresError, Reduction,

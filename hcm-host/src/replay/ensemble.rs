@@ -113,9 +113,7 @@ impl FaceForecast {
 
 /// Σ_f (p_f − y_f)² for the recorded face `measured` (–).
 fn brier(p: &[f64; FACES], measured: Face) -> f64 {
-    (0..FACES)
-        .map(|f| (p[f] - f64::from(u8::from(f == measured.0))).powi(2))
-        .sum()
+    crate::numerics::scores::brier(p, measured.0)
 }
 
 /// ln((n + ½)/(N + 3)): the add-½ estimate of a face reached `n` times of `members`.
