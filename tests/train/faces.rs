@@ -5,45 +5,13 @@
 //! out, the ensembles' face probabilities must score better (Brier) than the single
 //! replays, and the forecast must not depend on the thread count.
 
-use hcm_host::dataset::Dataset;
 use hcm_host::identify::split_tosses;
 use hcm_host::replay::{calibrate_scatter, forecast_faces, summarize_faces, Spread};
-use hcm_host::scenario::{Model, Scenario};
-use rand::SeedableRng;
-
-/// The shipped cube-toss scenario, 30 % of scatter per toss in its contact.
-fn nominal() -> Model {
-    let sets = [
-        "contact.0.noise={ stiffness = 0.3, max_damping = 0.3, mu_static = 0.3, \
-                 mu_dynamic = 0.3 }"
-            .to_owned(),
-    ];
-    Scenario::load(&hcm_tests::scenario("cube_toss.toml"), &sets)
-        .unwrap()
-        .model()
-        .unwrap()
-}
-
-/// `count` seeded random tosses of `model`, each with its contact scattered (Eq 18),
-/// recorded at 148 Hz; run ids `toss_000`….
-fn tosses(model: &Model, count: usize, seed: u64) -> Dataset {
-    let mut throw = rand::rngs::StdRng::seed_from_u64(seed);
-    let mut scatter = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let mut data = Dataset::default();
-    for k in 0..count {
-        let mut toss = hcm_host::experiment::noisy_model(model, &mut scatter).unwrap();
-        hcm_tests::throw_cube(&mut toss.bodies[0], &mut throw);
-        let mut run = hcm_host::simulate::simulate(&toss).unwrap().run;
-        run.id = format!("toss_{k:03}");
-        data.runs.push(run);
-    }
-    data
-}
 
 #[test]
 fn ensembles_of_a_scattered_contact_forecast_the_face_better_than_one_replay() {
-    let model = nominal();
-    let (training, held_out) = split_tosses(&tosses(&model, 60, 5));
+    let model = hcm_tests::cube_toss_scattered(0.3);
+    let (training, held_out) = split_tosses(&hcm_tests::scattered_tosses(&model, 60, 5));
     let spread = Spread {
         members: 12,
         inflation: 1.0,

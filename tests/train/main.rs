@@ -7,6 +7,7 @@
 mod faces;
 mod hybrid_model;
 mod motion_residual;
+mod paths;
 mod peg_hcm;
 mod peg_oracle;
 mod residual_inputs;

@@ -50,15 +50,31 @@ pub fn energy_score<P: AsRef<[f64]>>(members: &[P], observed: &[f64]) -> f64 {
             .sum::<f64>()
             .sqrt()
     };
+    let points: Vec<&[f64]> = members.iter().map(AsRef::as_ref).collect();
+    energy_score_by(&points, observed, distance)
+}
+
+/// The energy score's form with any `distance` between two points (its unit):
+/// E d(X, y) − ½·E d(X, X′) over the members, (1/M)·Σᵢ d(xᵢ, y) − (1/M²)·Σ_{i<j} d(xᵢ, xⱼ).
+/// Proper where the distance is of negative type (Gneiting & Raftery 2007, §4.3; the
+/// Euclidean distance is); NaN for no members. O(M²) distances.
+pub fn energy_score_by<T: ?Sized, P: std::borrow::Borrow<T>>(
+    members: &[P],
+    observed: &T,
+    distance: impl Fn(&T, &T) -> f64,
+) -> f64 {
+    if members.is_empty() {
+        return f64::NAN;
+    }
     let m = members.len() as f64;
     let error = (members.iter())
-        .map(|p| distance(p.as_ref(), observed))
+        .map(|p| distance(p.borrow(), observed))
         .sum::<f64>()
         / m;
     let mut spread = 0.0;
     for (i, a) in members.iter().enumerate() {
         for b in &members[i + 1..] {
-            spread += distance(a.as_ref(), b.as_ref());
+            spread += distance(a.borrow(), b.borrow());
         }
     }
     // Each unordered pair once: the double sum is twice this.

@@ -302,7 +302,7 @@ const SCATTERED: [&str; 5] = [
 /// `model` with every contact's law parameters of [`SCATTERED`] and friction
 /// coefficients each × (1 + `scatter`·ζ), ζ ~ N(0, 1) clamped to ±2.5 (μ_s and μ_d
 /// by one ζ, so μ_d ≤ μ_s holds).
-fn scattered(model: &Model, scatter: f64, rng: &mut ChaCha8Rng) -> Model {
+pub(super) fn scattered(model: &Model, scatter: f64, rng: &mut ChaCha8Rng) -> Model {
     let mut out = model.clone();
     if scatter <= 0.0 {
         return out;
@@ -331,7 +331,7 @@ fn scattered(model: &Model, scatter: f64, rng: &mut ChaCha8Rng) -> Model {
 }
 
 /// `initial` moved by one draw from its fits' covariance (unchanged without fits).
-fn drawn(initial: &InitialState, inflation: f64, rng: &mut ChaCha8Rng) -> InitialState {
+pub(super) fn drawn(initial: &InitialState, inflation: f64, rng: &mut ChaCha8Rng) -> InitialState {
     let Some([flight, turning]) = &initial.fits else {
         return initial.clone();
     };

@@ -1,0 +1,178 @@
+//! A toss forecast as a distribution of paths: the members `ensemble.rs` draws (start
+//! states from the free-flight fits' covariance, the contact's parameters scattered),
+//! kept frame by frame rather than reduced to the final face, and scored against the
+//! recorded path by proper scores (`crate::numerics::scores`).
+//!
+//! Per toss, over the primary body's window frames:
+//! - position: the energy score of the members' centres for the recorded centre,
+//!   E‖X − y‖ − ½·E‖X − X′‖, in % of the body's width;
+//! - rotation: the same form with the rotation angle between two orientations as the
+//!   distance, in degrees;
+//!
+//! each the mean over the frames. With one member they are the toss's position and
+//! rotation errors ([`super::TossScore`]), so a single replay and an ensemble are scored
+//! by one rule and compare toss by toss. And the coverage: per frame and axis, whether
+//! the recorded coordinate lies inside the members' central 50 % and 90 % bands (an
+//! ensemble of M members drawn like the outcome holds it (M − 1)/(M + 1) of the level's
+//! share; [`crate::numerics::scores::central_band`]).
+//!
+//! The members are those of [`super::forecast_faces`] for the same spread: the same
+//! draws, in the same order, from the toss's own stream of the seed.
+
+use super::ensemble::{drawn, scattered, Spread};
+use super::initial_state::orientation;
+use super::predict::{prepare, simulate_toss, PreparedToss};
+use super::score::rotation_angle;
+use super::{Summary, TossError, TossSetup};
+use crate::dataset::{Dataset, Sample};
+use crate::numerics::scores::{energy_score, energy_score_by, Coverage};
+use crate::scenario::Model;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+
+/// The central bands whose coverage is counted (–).
+pub const BAND_LEVELS: [f64; 2] = [0.5, 0.9];
+
+/// One toss's path forecast and its scores.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathForecast {
+    /// Run id.
+    pub run: String,
+    /// Members whose replay ran (–).
+    pub members: usize,
+    /// Members whose replay failed, left out (–).
+    pub failed: usize,
+    /// Frames scored (the primary body's window) (–).
+    pub frames: usize,
+    /// Mean energy score of the centre over the frames, % of the body's width.
+    pub position: f64,
+    /// Mean energy score of the orientation over the frames (degrees).
+    pub rotation: f64,
+    /// The recorded coordinates inside the members' bands of [`BAND_LEVELS`], counted
+    /// per frame and axis.
+    pub coverage: Coverage,
+}
+
+impl PathForecast {
+    /// The toss's score: position plus rotation (% + °), the sum `hcm predict` ranks
+    /// by.
+    pub fn score(&self) -> f64 {
+        self.position + self.rotation
+    }
+}
+
+/// The path forecasts over tosses.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathSummary {
+    /// Tosses (–).
+    pub tosses: usize,
+    /// The per-toss position scores (% of the width).
+    pub position: Summary,
+    /// The per-toss rotation scores (°).
+    pub rotation: Summary,
+    /// Every toss's coverage counts pooled.
+    pub coverage: Coverage,
+}
+
+/// The path forecast of every toss of `data` under `model`, `spread.members` replays
+/// each (see the module documentation), in the data's order; tosses run in parallel,
+/// `done` called as each finishes. The same seed gives the same bits on any number of
+/// threads.
+pub fn forecast_paths(
+    model: &Model,
+    data: &Dataset,
+    spread: Spread,
+    done: impl Fn() + Sync,
+) -> Result<Vec<PathForecast>, TossError> {
+    let setup = TossSetup::new(model)?;
+    let tosses = (data.runs.iter())
+        .map(|run| prepare(&setup, run))
+        .collect::<Result<Vec<_>, _>>()?;
+    (tosses.par_iter().enumerate())
+        .map(|(index, toss)| {
+            let forecast = forecast_path(model, &setup, toss, &spread, index as u64);
+            done();
+            forecast
+        })
+        .collect()
+}
+
+/// The scores of `forecasts` over tosses.
+pub fn summarize_paths(forecasts: &[PathForecast]) -> PathSummary {
+    let of =
+        |f: fn(&PathForecast) -> f64| Summary::of(&forecasts.iter().map(f).collect::<Vec<_>>());
+    let mut coverage = Coverage::new(&BAND_LEVELS);
+    for f in forecasts {
+        coverage.scored += f.coverage.scored;
+        for (total, inside) in coverage.inside.iter_mut().zip(&f.coverage.inside) {
+            *total += inside;
+        }
+    }
+    PathSummary {
+        tosses: forecasts.len(),
+        position: of(|f| f.position),
+        rotation: of(|f| f.rotation),
+        coverage,
+    }
+}
+
+/// One toss's members, drawn from stream `stream` of the seed, and their scores.
+fn forecast_path(
+    model: &Model,
+    setup: &TossSetup,
+    toss: &PreparedToss<'_>,
+    spread: &Spread,
+    stream: u64,
+) -> Result<PathForecast, TossError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(spread.seed);
+    rng.set_stream(stream);
+    let (mut paths, mut failed) = (Vec::with_capacity(spread.members), 0);
+    for _ in 0..spread.members {
+        let mut member = toss.clone();
+        for body in &mut member.bodies {
+            body.initial = drawn(&body.initial, spread.inflation, &mut rng);
+        }
+        let scattered = scattered(model, spread.scatter, &mut rng);
+        match simulate_toss(&scattered, setup, &member) {
+            Ok(prediction) => paths.push(prediction.samples),
+            Err(_) => failed += 1,
+        }
+    }
+    score_paths(setup, toss, &paths, failed)
+}
+
+/// The scores of the primary body's member `paths` (each one sample per window frame)
+/// against its recorded frames.
+fn score_paths(
+    setup: &TossSetup,
+    toss: &PreparedToss<'_>,
+    paths: &[Vec<Sample>],
+    failed: usize,
+) -> Result<PathForecast, TossError> {
+    let mover = &setup.movers[0];
+    let recorded = toss.primary().measured();
+    let turn = |s: &Sample| orientation(&mover.name, toss.run, s);
+    let mut coverage = Coverage::new(&BAND_LEVELS);
+    let (mut position, mut rotation) = (0.0, 0.0);
+    for (i, frame) in recorded.iter().enumerate() {
+        let centres: Vec<[f64; 3]> = paths.iter().map(|p| p[i].position).collect();
+        position += energy_score(&centres, &frame.position);
+        let turns = (paths.iter().map(|p| turn(&p[i]))).collect::<Result<Vec<_>, _>>()?;
+        rotation += energy_score_by(&turns, &turn(frame)?, rotation_angle);
+        for axis in 0..3 {
+            let coordinate: Vec<f64> = centres.iter().map(|c| c[axis]).collect();
+            coverage.add(&coordinate, frame.position[axis]);
+        }
+    }
+    let n = recorded.len().max(1) as f64;
+    Ok(PathForecast {
+        run: toss.run.to_owned(),
+        members: paths.len(),
+        failed,
+        frames: recorded.len(),
+        position: 100.0 * position / n / mover.width,
+        rotation: rotation.to_degrees() / n,
+        coverage,
+    })
+}
