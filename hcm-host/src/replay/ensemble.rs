@@ -27,7 +27,7 @@
 
 use super::face::{Face, FACES};
 use super::initial_state::{orientation, InitialState};
-use super::predict::{prepare, simulate_toss, PreparedToss};
+use super::predict::{prepare, simulate_toss, PreparedToss, TossPrediction};
 use super::{Summary, TossError, TossSetup};
 use crate::dataset::{Dataset, FlightFit};
 use crate::scenario::{Model, Shape};
@@ -201,12 +201,26 @@ pub fn forecast_faces(
             ),
         });
     }
+    let forecast =
+        |toss: &PreparedToss<'_>, stream| forecast_toss(model, &setup, toss, &spread, stream);
+    each_toss(&setup, data, forecast, done)
+}
+
+/// Every toss of `data` prepared for `setup` (a data error before any simulation), then
+/// `forecast` of each with its index, the stream of the seed its members draw from;
+/// tosses in parallel, the results in the data's order, `done` called as each finishes.
+pub(super) fn each_toss<T: Send>(
+    setup: &TossSetup,
+    data: &Dataset,
+    forecast: impl Fn(&PreparedToss<'_>, u64) -> Result<T, TossError> + Sync,
+    done: impl Fn() + Sync,
+) -> Result<Vec<T>, TossError> {
     let tosses = (data.runs.iter())
-        .map(|run| prepare(&setup, run))
+        .map(|run| prepare(setup, run))
         .collect::<Result<Vec<_>, _>>()?;
     (tosses.par_iter().enumerate())
         .map(|(index, toss)| {
-            let forecast = forecast_toss(model, &setup, toss, &spread, index as u64);
+            let forecast = forecast(toss, index as u64);
             done();
             forecast
         })
@@ -252,13 +266,12 @@ fn forecast_toss(
         .map(|frame| orientation(&setup.name, toss.run, frame))
         .transpose()?
         .and_then(|q| Face::facing(&q, &down));
-    let final_face = |model: &Model, toss: &PreparedToss<'_>| -> Result<Option<Face>, TossError> {
-        let prediction = simulate_toss(model, setup, toss)?;
-        Ok(prediction.samples.last().and_then(|s| {
+    let final_face = |prediction: &TossPrediction| {
+        prediction.samples.last().and_then(|s| {
             let [w, x, y, z] = s.orientation;
             let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
             Face::facing(&q, &down)
-        }))
+        })
     };
     let undefined = || TossError::Frame {
         run: toss.run.to_owned(),
@@ -266,19 +279,13 @@ fn forecast_toss(
         problem: "no face points down in the window's last frame (no gravity?)".into(),
     };
     let measured = measured.ok_or_else(undefined)?;
-    let replay = final_face(model, toss)?.ok_or_else(undefined)?;
-    let mut rng = ChaCha8Rng::seed_from_u64(spread.seed);
-    rng.set_stream(stream);
+    let replay = final_face(&simulate_toss(model, setup, toss)?).ok_or_else(undefined)?;
     let (mut counts, mut failed) = ([0; FACES], 0);
-    for _ in 0..spread.members {
-        let mut member = toss.clone();
-        for body in &mut member.bodies {
-            body.initial = drawn(&body.initial, spread.inflation, &mut rng);
-        }
-        let scattered = scattered(model, spread.scatter, &mut rng);
-        match final_face(&scattered, &member) {
-            Ok(Some(face)) => counts[face.0] += 1,
-            _ => failed += 1,
+    for member in member_replays(model, setup, toss, spread, stream) {
+        let face = member.ok().and_then(|p| final_face(&p));
+        match face {
+            Some(face) => counts[face.0] += 1,
+            None => failed += 1,
         }
     }
     Ok(FaceForecast {
@@ -288,6 +295,30 @@ fn forecast_toss(
         counts,
         failed,
     })
+}
+
+/// The members' replays of one toss, in draw order: each member's start states drawn
+/// ([`drawn`]), then its contact scattered ([`scattered`]), from stream `stream` of the
+/// spread's seed.
+pub(super) fn member_replays(
+    model: &Model,
+    setup: &TossSetup,
+    toss: &PreparedToss<'_>,
+    spread: &Spread,
+    stream: u64,
+) -> Vec<Result<TossPrediction, TossError>> {
+    let mut rng = ChaCha8Rng::seed_from_u64(spread.seed);
+    rng.set_stream(stream);
+    (0..spread.members)
+        .map(|_| {
+            let mut member = toss.clone();
+            for body in &mut member.bodies {
+                body.initial = drawn(&body.initial, spread.inflation, &mut rng);
+            }
+            let scattered = scattered(model, spread.scatter, &mut rng);
+            simulate_toss(&scattered, setup, &member)
+        })
+        .collect()
 }
 
 /// Law parameters a member scatters, where the law has them.
@@ -302,7 +333,7 @@ const SCATTERED: [&str; 5] = [
 /// `model` with every contact's law parameters of [`SCATTERED`] and friction
 /// coefficients each × (1 + `scatter`·ζ), ζ ~ N(0, 1) clamped to ±2.5 (μ_s and μ_d
 /// by one ζ, so μ_d ≤ μ_s holds).
-pub(super) fn scattered(model: &Model, scatter: f64, rng: &mut ChaCha8Rng) -> Model {
+fn scattered(model: &Model, scatter: f64, rng: &mut ChaCha8Rng) -> Model {
     let mut out = model.clone();
     if scatter <= 0.0 {
         return out;
@@ -331,7 +362,7 @@ pub(super) fn scattered(model: &Model, scatter: f64, rng: &mut ChaCha8Rng) -> Mo
 }
 
 /// `initial` moved by one draw from its fits' covariance (unchanged without fits).
-pub(super) fn drawn(initial: &InitialState, inflation: f64, rng: &mut ChaCha8Rng) -> InitialState {
+fn drawn(initial: &InitialState, inflation: f64, rng: &mut ChaCha8Rng) -> InitialState {
     let Some([flight, turning]) = &initial.fits else {
         return initial.clone();
     };

@@ -19,17 +19,14 @@
 //! The members are those of [`super::forecast_faces`] for the same spread: the same
 //! draws, in the same order, from the toss's own stream of the seed.
 
-use super::ensemble::{drawn, scattered, Spread};
+use super::ensemble::{each_toss, member_replays, Spread};
 use super::initial_state::orientation;
-use super::predict::{prepare, simulate_toss, PreparedToss};
+use super::predict::PreparedToss;
 use super::score::rotation_angle;
 use super::{Summary, TossError, TossSetup};
 use crate::dataset::{Dataset, Sample};
 use crate::numerics::scores::{energy_score, energy_score_by, Coverage};
 use crate::scenario::Model;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rayon::prelude::*;
 
 /// The central bands whose coverage is counted (–).
 pub const BAND_LEVELS: [f64; 2] = [0.5, 0.9];
@@ -86,16 +83,17 @@ pub fn forecast_paths(
     done: impl Fn() + Sync,
 ) -> Result<Vec<PathForecast>, TossError> {
     let setup = TossSetup::new(model)?;
-    let tosses = (data.runs.iter())
-        .map(|run| prepare(&setup, run))
-        .collect::<Result<Vec<_>, _>>()?;
-    (tosses.par_iter().enumerate())
-        .map(|(index, toss)| {
-            let forecast = forecast_path(model, &setup, toss, &spread, index as u64);
-            done();
-            forecast
-        })
-        .collect()
+    let forecast = |toss: &PreparedToss<'_>, stream| {
+        let (mut paths, mut failed) = (Vec::with_capacity(spread.members), 0);
+        for member in member_replays(model, &setup, toss, &spread, stream) {
+            match member {
+                Ok(prediction) => paths.push(prediction.samples),
+                Err(_) => failed += 1,
+            }
+        }
+        score_paths(&setup, toss, &paths, failed)
+    };
+    each_toss(&setup, data, forecast, done)
 }
 
 /// The scores of `forecasts` over tosses.
@@ -115,31 +113,6 @@ pub fn summarize_paths(forecasts: &[PathForecast]) -> PathSummary {
         rotation: of(|f| f.rotation),
         coverage,
     }
-}
-
-/// One toss's members, drawn from stream `stream` of the seed, and their scores.
-fn forecast_path(
-    model: &Model,
-    setup: &TossSetup,
-    toss: &PreparedToss<'_>,
-    spread: &Spread,
-    stream: u64,
-) -> Result<PathForecast, TossError> {
-    let mut rng = ChaCha8Rng::seed_from_u64(spread.seed);
-    rng.set_stream(stream);
-    let (mut paths, mut failed) = (Vec::with_capacity(spread.members), 0);
-    for _ in 0..spread.members {
-        let mut member = toss.clone();
-        for body in &mut member.bodies {
-            body.initial = drawn(&body.initial, spread.inflation, &mut rng);
-        }
-        let scattered = scattered(model, spread.scatter, &mut rng);
-        match simulate_toss(&scattered, setup, &member) {
-            Ok(prediction) => paths.push(prediction.samples),
-            Err(_) => failed += 1,
-        }
-    }
-    score_paths(setup, toss, &paths, failed)
 }
 
 /// The scores of the primary body's member `paths` (each one sample per window frame)
