@@ -6,9 +6,9 @@ use super::{Indicators, WrenchIndicators};
 use nalgebra::Vector3;
 
 /// One contact event of a body pair, simulated or recorded: from the first point's
-/// touch-down to the last point's lift-off. Two events are equal when every number is bit for bit the same (a
-/// NaN — a speed a pair with a box does not have, a value of an open event — equals
-/// itself), so that two runs compare as identical or not.
+/// touch-down to the last point's lift-off. Two events are equal when every number is
+/// bit for bit the same (a NaN — a speed a pair with a box does not have, a value of an
+/// open event — equals itself), so that two runs compare as identical or not.
 #[derive(Clone, Debug)]
 pub struct ContactEvent {
     /// Index of the contact in the model.

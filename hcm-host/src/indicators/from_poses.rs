@@ -76,15 +76,16 @@ pub fn pair_events_from_run(
         for (number, (touch_down, lift_off, inside)) in
             spans(moving, &separation).into_iter().enumerate()
         {
-            let event = wrench_event(c, moving, inside, (touch_down, lift_off));
             found.push(RecordedEvent {
                 run: run.id.clone(),
                 label: label.clone(),
                 number,
-                event: ContactEvent {
-                    effective_mass: contact.effective_mass,
-                    ..event
-                },
+                event: wrench_event(
+                    (c, contact.effective_mass),
+                    moving,
+                    inside,
+                    (touch_down, lift_off),
+                ),
             });
         }
     }
@@ -134,10 +135,10 @@ fn spans(samples: &[Sample], separation: &[f64]) -> Vec<(f64, f64, std::ops::Ran
     found
 }
 
-/// One event of contact `c` from the samples `inside` it and its crossing times (s);
-/// its effective mass left unknown (NaN).
+/// One event of contact `c` (effective mass m_e, kg) from the samples `inside` it and
+/// its crossing times (s).
 fn wrench_event(
-    c: usize,
+    (c, effective_mass): (usize, f64),
     samples: &[Sample],
     inside: std::ops::Range<usize>,
     (touch_down, lift_off): (f64, f64),
@@ -169,6 +170,7 @@ fn wrench_event(
         max_torque: local_peak(&times, &torques),
         linear_impulse: Vector3::new(impulse[0], impulse[1], impulse[2]),
         angular_impulse: Vector3::new(impulse[3], impulse[4], impulse[5]),
+        effective_mass,
         ..ContactEvent::starting(c, touch_down)
     }
 }
