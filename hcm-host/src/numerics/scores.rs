@@ -117,6 +117,11 @@ pub fn central_band(members: &[f64], level: f64) -> (f64, f64) {
     }
     let mut sorted = members.to_vec();
     sorted.sort_by(f64::total_cmp);
+    band_of_sorted(&sorted, level)
+}
+
+/// [`central_band`] of members already sorted, at least one and none NaN.
+fn band_of_sorted(sorted: &[f64], level: f64) -> (f64, f64) {
     let level = level.clamp(0.0, 1.0);
     let quantile = |q: f64| {
         let h = (sorted.len() - 1) as f64 * q;
@@ -154,13 +159,23 @@ impl Coverage {
         if observed.is_nan() || members.is_empty() || members.iter().any(|x| x.is_nan()) {
             return;
         }
+        let mut sorted = members.to_vec();
+        sorted.sort_by(f64::total_cmp);
         for (level, inside) in self.levels.iter().zip(&mut self.inside) {
-            let (low, high) = central_band(members, *level);
+            let (low, high) = band_of_sorted(&sorted, *level);
             if (low..=high).contains(&observed) {
                 *inside += 1;
             }
         }
         self.scored += 1;
+    }
+
+    /// Adds the counts of `other`, of the same levels (another toss's, another fold's).
+    pub fn merge(&mut self, other: &Coverage) {
+        self.scored += other.scored;
+        for (total, inside) in self.inside.iter_mut().zip(&other.inside) {
+            *total += inside;
+        }
     }
 
     /// The observed share inside each level's band (0…1); NaN before any outcome.

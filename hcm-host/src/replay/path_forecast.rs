@@ -102,10 +102,7 @@ pub fn summarize_paths(forecasts: &[PathForecast]) -> PathSummary {
         |f: fn(&PathForecast) -> f64| Summary::of(&forecasts.iter().map(f).collect::<Vec<_>>());
     let mut coverage = Coverage::new(&BAND_LEVELS);
     for f in forecasts {
-        coverage.scored += f.coverage.scored;
-        for (total, inside) in coverage.inside.iter_mut().zip(&f.coverage.inside) {
-            *total += inside;
-        }
+        coverage.merge(&f.coverage);
     }
     PathSummary {
         tosses: forecasts.len(),
