@@ -12,6 +12,7 @@ mod dataset_format;
 mod diagnose_given;
 mod fuzz;
 mod help;
+mod members;
 mod outputs;
 mod peg_reproduce;
 mod results_json;

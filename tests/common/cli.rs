@@ -138,6 +138,12 @@ impl Call {
         self
     }
 
+    /// An environment variable of the call (`RAYON_NUM_THREADS`, `1`).
+    pub fn env(mut self, key: &str, value: &str) -> Self {
+        self.command.env(key, value);
+        self
+    }
+
     /// An option and its value (`--out`, path).
     pub fn opt(mut self, option: &str, value: impl AsRef<OsStr>) -> Self {
         self.command.arg(option).arg(value);

@@ -14,13 +14,16 @@ fn ensembles_of_a_scattered_contact_forecast_the_face_better_than_one_replay() {
     let (training, held_out) = split_tosses(&hcm_tests::scattered_tosses(&model, 60, 5));
     let spread = Spread {
         members: 12,
-        inflation: 1.0,
-        scatter: 0.0,
+        inflation: Some(1.0),
+        scatter: Some(0.0),
         seed: 1,
     };
     let (scatter, tried) =
         calibrate_scatter(&model, &training, spread, &[0.0, 0.15, 0.3, 0.5], || {}).unwrap();
-    let spread = Spread { scatter, ..spread };
+    let spread = Spread {
+        scatter: Some(scatter),
+        ..spread
+    };
     let forecasts = forecast_faces(&model, &held_out, spread, || {}).unwrap();
     let s = summarize_faces(&forecasts, spread.members);
     println!("training Brier per scatter {tried:?}; chosen {scatter}; held out {s:?}");

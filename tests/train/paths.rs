@@ -13,12 +13,7 @@ use hcm_host::replay::{evaluate_tosses, forecast_paths, summarize_paths, Spread}
 fn an_ensemble_of_a_scattered_contact_scores_better_than_the_replay_it_reduces_to() {
     let model = hcm_tests::cube_toss_scattered(0.3);
     let data = hcm_tests::scattered_tosses(&model, 30, 7);
-    let replay = Spread {
-        members: 1,
-        inflation: 0.0,
-        scatter: 0.0,
-        seed: 1,
-    };
+    let replay = Spread::replay();
     let single = forecast_paths(&model, &data, replay, || {}).unwrap();
     let evaluations = evaluate_tosses(&model, &data, || {}).unwrap();
     for (forecast, evaluation) in single.iter().zip(&evaluations) {
@@ -29,8 +24,8 @@ fn an_ensemble_of_a_scattered_contact_scores_better_than_the_replay_it_reduces_t
     }
     let spread = Spread {
         members: 16,
-        inflation: 1.0,
-        scatter: 0.3,
+        inflation: Some(1.0),
+        scatter: Some(0.3),
         seed: 1,
     };
     let ensemble = forecast_paths(&model, &data, spread, || {}).unwrap();

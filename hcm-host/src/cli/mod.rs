@@ -7,6 +7,7 @@ mod evaluate;
 mod export;
 mod faces;
 mod force;
+mod forecast;
 mod generate;
 mod identify;
 mod identify_motion;

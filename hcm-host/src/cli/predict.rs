@@ -45,17 +45,25 @@ use std::time::Instant;
 pub struct Args {
     #[command(flatten)]
     tosses: super::tosses::TossArgs,
-    /// Where to write the predicted trajectories (measured-data CSV, one run per toss).
+    /// Where to write the predicted trajectories (measured-data CSV, one run per toss;
+    /// with --members, every member's: the same columns and `member` last).
     #[arg(long)]
     out: PathBuf,
     /// Also write each toss's scores (CSV: run, frames, window start, how the initial
     /// state was found, position and rotation error of the prediction and of the frozen
     /// pose, then the initial state itself: p0x…p0z (m), q0w…q0z, v0x…v0z (m/s),
-    /// w0x…w0z (rad/s), world frame).
+    /// w0x…w0z (rad/s), world frame; with --members, then the forecast's scores:
+    /// energy_position (%), energy_rotation (°), crps_x…crps_z (%), inside_50 and
+    /// inside_90 (shares of the recorded coordinates), members, failed).
     #[arg(long, value_name = "FILE")]
     scores: Option<PathBuf>,
+    /// Also forecast each toss's final face (the primary body must be a box) by the
+    /// ensemble (16 members without --members), and write each toss's face
+    /// probabilities to FILE (CSV).
+    #[arg(long, value_name = "FILE")]
+    faces: Option<PathBuf>,
     #[command(flatten)]
-    faces: super::faces::FaceArgs,
+    ensemble: super::forecast::EnsembleArgs,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -67,22 +75,40 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let seconds = started.elapsed().as_secs_f64();
     // Every forecast made before anything is written: a failure leaves no output.
-    let faces = super::faces::forecast(&args.faces, &model, &data)?;
-    predicted_dataset(&evaluations, &setup.name)
-        .write(&args.out)
-        .with_context(|| format!("writing {}", args.out.display()))?;
+    let faces = args.faces.is_some();
+    let ensemble = super::forecast::forecast(&args.ensemble, faces, &model, &data)?;
+    let members = ensemble
+        .as_ref()
+        .filter(|_| args.ensemble.members.is_some());
+    match members {
+        Some(e) => super::forecast::write_members(&args.out, &e.forecasts, &setup.name)?,
+        None => predicted_dataset(&evaluations, &setup.name)
+            .write(&args.out)
+            .with_context(|| format!("writing {}", args.out.display()))?,
+    }
     if let Some(path) = &args.scores {
-        write_scores(path, &evaluations)?;
+        let paths: Option<Vec<_>> =
+            members.map(|e| e.forecasts.iter().map(|f| f.paths.clone()).collect());
+        write_scores(path, &evaluations, paths.as_deref())?;
     }
     print_summary(&model.scenario.name, &setup, &evaluations, seconds);
-    println!("wrote the predicted trajectories to {}", args.out.display());
+    if let Some(e) = members {
+        super::forecast::print_scores(e, setup.width);
+        println!(
+            "wrote every member's predicted trajectories to {} (column `member`)",
+            args.out.display()
+        );
+    } else {
+        println!("wrote the predicted trajectories to {}", args.out.display());
+    }
     if let Some(path) = &args.scores {
         println!("wrote each toss's scores to {}", path.display());
     }
-    match faces {
-        Some(faces) => faces.write(&data),
-        None => Ok(()),
+    if let (Some(path), Some(e)) = (&args.faces, &ensemble) {
+        let forecasts: Vec<_> = e.forecasts.iter().filter_map(|f| f.face.clone()).collect();
+        super::faces::write(path, &forecasts, &data, e.spread.members, &e.described)?;
     }
+    Ok(())
 }
 
 /// Prints what was predicted, how long it took and the scores over tosses.

@@ -114,7 +114,7 @@ pub(crate) use reconstruct::complete_with;
 pub use reconstruct::{complete, Checks, Completed, ReconstructError, TrackReconstruction};
 pub use state::state_input;
 pub use state::{Frames, STATE_INPUTS};
-pub use write::RunWriter;
+pub use write::{RunWriter, MEMBER_COLUMN};
 
 use std::fmt::Write as _;
 use std::path::Path;

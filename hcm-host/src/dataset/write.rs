@@ -10,6 +10,10 @@ use super::channel::Channel;
 use super::schema::{self, COLUMNS, FIRST_NUMERIC};
 use super::{DataError, Dataset, Run, Sample};
 
+/// The column an ensemble's file adds after the format's: which member a row belongs
+/// to (0, 1, …).
+pub const MEMBER_COLUMN: &str = "member";
+
 /// Refuses a dataset the reader would not read back as the same dataset: no samples,
 /// empty runs or bodies, empty, whitespace-padded or repeated names, non-finite values
 /// other than a whole channel not sampled (NaN), samples with no channel, time not
@@ -157,6 +161,8 @@ pub struct RunWriter<W: Write> {
     csv: csv::Writer<W>,
     destination: String,
     runs: usize,
+    /// The `member` column's value for the rows being written, when the file has one.
+    member: Option<usize>,
     /// A reused buffer for one number's text.
     number: String,
 }
@@ -164,20 +170,46 @@ pub struct RunWriter<W: Write> {
 impl<W: Write> RunWriter<W> {
     /// Starts the file with its header row. `destination` names the output in errors.
     pub fn new(writer: W, destination: &str) -> Result<Self, DataError> {
+        Self::started(writer, destination, None)
+    }
+
+    /// Starts a file of an ensemble's members: the format's columns and then
+    /// [`MEMBER_COLUMN`], the member's number (0, 1, …) on every row; runs are written
+    /// with [`Self::write_member`]. Such a file holds a run id once per member, so it
+    /// is not read back as one dataset.
+    pub fn with_members(writer: W, destination: &str) -> Result<Self, DataError> {
+        Self::started(writer, destination, Some(0))
+    }
+
+    fn started(writer: W, destination: &str, member: Option<usize>) -> Result<Self, DataError> {
         let mut out = RunWriter {
             csv: csv::Writer::from_writer(writer),
             destination: destination.to_owned(),
             runs: 0,
+            member,
             number: String::new(),
         };
-        out.csv
-            .write_record(COLUMNS.iter().map(|column| column.name))
-            .map_err(|e| out.failed(e))?;
+        let member_column = member.map(|_| MEMBER_COLUMN);
+        let header = (COLUMNS.iter().map(|column| column.name)).chain(member_column);
+        out.csv.write_record(header).map_err(|e| out.failed(e))?;
         Ok(out)
     }
 
+    /// Checks and writes one run as member `member` of a file started
+    /// [`Self::with_members`].
+    pub fn write_member(&mut self, run: &Run, member: usize) -> Result<(), DataError> {
+        if self.member.is_none() {
+            return Err(DataError::new(
+                &self.destination,
+                "cannot write a member's run: the file has no `member` column",
+            ));
+        }
+        self.member = Some(member);
+        self.write_run(run)
+    }
+
     /// Checks and writes one run.
-    pub(crate) fn write_run(&mut self, run: &Run) -> Result<(), DataError> {
+    pub fn write_run(&mut self, run: &Run) -> Result<(), DataError> {
         check_id(run, &self.destination)?;
         check_bodies(run, &self.destination)?;
         self.write_rows(run)
@@ -210,6 +242,9 @@ impl<W: Write> RunWriter<W> {
                     self.write_number(value)?;
                 }
             }
+        }
+        if let Some(member) = self.member {
+            self.csv.write_field(member.to_string())?;
         }
         self.csv.write_record(None::<&[u8]>)
     }

@@ -22,6 +22,11 @@ pub struct PhysicsContact {
     pub(crate) law: String,
     /// Every parameter of the law (SI).
     pub parameters: toml::Table,
+    /// The contact's parameter scatter from run to run (relative σ per parameter, –;
+    /// the scenario's `noise`, Eq 18), as `hcm diagnose` names it: what a forecast's
+    /// members draw. None: the contact is the same in every run.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub noise: std::collections::BTreeMap<String, f64>,
     /// Physical effects added to the law (as `hcm diagnose` writes them in
     /// `extended.toml`); none for a plain identified law.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -172,6 +177,7 @@ impl Physics {
                 ],
                 law: law.name().to_owned(),
                 parameters,
+                noise: Default::default(),
                 effects: Vec::new(),
                 friction: contact.model.friction.as_ref().map(FrictionSpec::of),
                 tangential: None,
@@ -202,8 +208,9 @@ impl Physics {
         })
     }
 
-    /// `scenario` with each contact's law and parameters replaced by this file's
-    /// (and its parameter noise removed: a physics model is deterministic).
+    /// `scenario` with each contact's law, parameters and parameter scatter replaced by
+    /// this file's (a contact without `noise` in the file has none: the scenario's
+    /// experiment noise is not part of a model).
     ///
     /// Errors name the physics file and its key (`contact.0.law`,
     /// `contact.0.parameters.restitution`), not the scenario it is applied to.
@@ -222,7 +229,10 @@ impl Physics {
             let set = |key: &str, value: toml::Value| Assignment::contact(index, &[key], value);
             assignments.push(set("law", contact.law.clone().into()));
             assignments.push(set("parameters", contact.parameters.clone().into()));
-            assignments.push(set("noise", toml::Table::new().into()));
+            let noise: toml::Table = (contact.noise.iter())
+                .map(|(name, b)| (name.clone(), toml::Value::Float(*b)))
+                .collect();
+            assignments.push(set("noise", noise.into()));
             // The physics file is the whole model of the contact: its effects replace
             // the scenario's (none clears them).
             let effects =

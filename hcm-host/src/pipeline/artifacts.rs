@@ -41,7 +41,9 @@ impl Artifact<'_> {
             Artifact::Residual(name, residual) => residual.write(&dir.join(name))?,
             Artifact::Bytes(name, bytes) => write_bytes(&dir.join(name), bytes)?,
             Artifact::Figures(figures) => write_figures(figures, dir)?,
-            Artifact::Scores(name, evaluations) => write_scores(&dir.join(name), evaluations)?,
+            Artifact::Scores(name, evaluations) => {
+                write_scores(&dir.join(name), evaluations, None)?
+            }
         }
         Ok(())
     }

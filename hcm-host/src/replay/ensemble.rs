@@ -13,8 +13,9 @@
 //! R' = exp(δaₓ)·R). Draws come from ChaCha8 seeded with the seed, one stream per
 //! toss: the same seed gives the same forecast on any number of threads.
 //!
-//! A member also scatters the contact's stiffness, damping and friction coefficients
-//! by a relative σ (`Spread::scatter`): a real table and cube are not the same at
+//! A member also draws every contact's parameter scatter (its `noise`, Eq 18, drawn
+//! as `experiment::Draw::Member` does; `Spread::scatter` puts one relative σ on the
+//! stiffness, damping and friction coefficient): a real table and cube are not the same at
 //! every spot and every landing, and with the fitted ContactNets physics the start
 //! state's own covariance, even ×30, moved no toss to another face
 //! ([`calibrate_scatter`] chooses the scatter on training tosses).
@@ -30,6 +31,7 @@ use super::initial_state::{orientation, InitialState};
 use super::predict::{prepare, simulate_toss, PreparedToss, TossPrediction};
 use super::{Summary, TossError, TossSetup};
 use crate::dataset::{Dataset, FlightFit};
+use crate::experiment::{member_model, FRICTION_COEFFICIENT};
 use crate::scenario::{Model, Shape};
 use nalgebra::{UnitQuaternion, Vector3};
 use rand::SeedableRng;
@@ -37,19 +39,54 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use rayon::prelude::*;
 
-/// How an ensemble is drawn.
+/// How an ensemble is drawn: the model's own variation (its contacts' `noise`, its
+/// `[variation]`), each part of it replaced where given.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Spread {
     /// Members per toss (–).
     pub members: usize,
     /// Factor on the fits' standard deviations (–): 1 draws from their covariance as
-    /// it is.
-    pub inflation: f64,
+    /// it is. None: the model's `variation.start_state`.
+    pub inflation: Option<f64>,
     /// Relative standard deviation (–) of every contact's stiffness, damping and
-    /// friction coefficients, drawn once per member (0: the model's own).
-    pub scatter: f64,
+    /// friction coefficient ([`scatter_all`]), drawn once per member, in place of the
+    /// contacts' own `noise` (0: none). None: the contacts' own.
+    pub scatter: Option<f64>,
     /// Seed of the draws.
     pub seed: u64,
+}
+
+impl Spread {
+    /// `members` members drawn with `seed` from the model's own variation.
+    pub fn of_model(members: usize, seed: u64) -> Spread {
+        Spread {
+            members,
+            inflation: None,
+            scatter: None,
+            seed,
+        }
+    }
+
+    /// One member, no draw: the single replay.
+    pub fn replay() -> Spread {
+        Spread {
+            members: 1,
+            inflation: Some(0.0),
+            scatter: Some(0.0),
+            seed: 0,
+        }
+    }
+
+    /// The model the members draw from (its contacts' noise replaced by the scatter,
+    /// where given) and the start-state factor.
+    pub fn applied(&self, model: &Model) -> (Model, f64) {
+        let mut model = model.clone();
+        if let Some(scatter) = self.scatter {
+            scatter_all(&mut model, scatter);
+        }
+        let inflation = (self.inflation).unwrap_or(model.scenario.variation.start_state);
+        (model, inflation)
+    }
 }
 
 /// One toss's final faces: recorded, replayed, and the ensemble's.
@@ -192,18 +229,26 @@ pub fn forecast_faces(
     done: impl Fn() + Sync,
 ) -> Result<Vec<FaceForecast>, TossError> {
     let setup = TossSetup::new(model)?;
-    if !matches!(model.bodies[setup.body].shape, Shape::Box { .. }) {
-        return Err(TossError::Setup {
-            scenario: model.scenario.name.clone(),
-            problem: format!(
-                "body `{}` is not a box: only a box has faces to land on",
-                setup.name
-            ),
-        });
-    }
-    let forecast =
-        |toss: &PreparedToss<'_>, stream| forecast_toss(model, &setup, toss, &spread, stream);
+    has_faces(model, &setup)?;
+    let forecast = |toss: &PreparedToss<'_>, stream| {
+        let members = member_replays(model, &setup, toss, &spread, stream);
+        forecast_face(model, &setup, toss, &members)
+    };
     each_toss(&setup, data, forecast, done)
+}
+
+/// Refuses a primary body that is not a box: only a box has faces to land on.
+pub(super) fn has_faces(model: &Model, setup: &TossSetup) -> Result<(), TossError> {
+    if matches!(model.bodies[setup.body].shape, Shape::Box { .. }) {
+        return Ok(());
+    }
+    Err(TossError::Setup {
+        scenario: model.scenario.name.clone(),
+        problem: format!(
+            "body `{}` is not a box: only a box has faces to land on",
+            setup.name
+        ),
+    })
 }
 
 /// Every toss of `data` prepared for `setup` (a data error before any simulation), then
@@ -243,7 +288,15 @@ pub fn calibrate_scatter(
 ) -> Result<(f64, Vec<(f64, f64)>), TossError> {
     let mut scores = Vec::with_capacity(scatters.len());
     for &scatter in scatters {
-        let forecasts = forecast_faces(model, training, Spread { scatter, ..spread }, &done)?;
+        let forecasts = forecast_faces(
+            model,
+            training,
+            Spread {
+                scatter: Some(scatter),
+                ..spread
+            },
+            &done,
+        )?;
         scores.push((scatter, summarize_faces(&forecasts, spread.members).brier.1));
     }
     let best = (scores.iter())
@@ -252,13 +305,13 @@ pub fn calibrate_scatter(
     Ok((best, scores))
 }
 
-/// One toss's forecast, the members' draws from stream `stream` of `seed`.
-fn forecast_toss(
+/// One toss's final-face forecast by `members` (failed ones counted), beside the
+/// single replay's.
+pub(super) fn forecast_face(
     model: &Model,
     setup: &TossSetup,
     toss: &PreparedToss<'_>,
-    spread: &Spread,
-    stream: u64,
+    members: &[Result<TossPrediction, TossError>],
 ) -> Result<FaceForecast, TossError> {
     let down = setup.gravity;
     let last = toss.primary().measured().last();
@@ -281,8 +334,8 @@ fn forecast_toss(
     let measured = measured.ok_or_else(undefined)?;
     let replay = final_face(&simulate_toss(model, setup, toss)?).ok_or_else(undefined)?;
     let (mut counts, mut failed) = ([0; FACES], 0);
-    for member in member_replays(model, setup, toss, spread, stream) {
-        let face = member.ok().and_then(|p| final_face(&p));
+    for member in members {
+        let face = member.as_ref().ok().and_then(final_face);
         match face {
             Some(face) => counts[face.0] += 1,
             None => failed += 1,
@@ -298,7 +351,7 @@ fn forecast_toss(
 }
 
 /// The members' replays of one toss, in draw order: each member's start states drawn
-/// ([`drawn`]), then its contact scattered ([`scattered`]), from stream `stream` of the
+/// ([`drawn`]), then its contacts' parameters ([`member_model`]), from stream `stream` of the
 /// spread's seed.
 pub(super) fn member_replays(
     model: &Model,
@@ -309,19 +362,23 @@ pub(super) fn member_replays(
 ) -> Vec<Result<TossPrediction, TossError>> {
     let mut rng = ChaCha8Rng::seed_from_u64(spread.seed);
     rng.set_stream(stream);
+    let (model, inflation) = spread.applied(model);
     (0..spread.members)
         .map(|_| {
             let mut member = toss.clone();
             for body in &mut member.bodies {
-                body.initial = drawn(&body.initial, spread.inflation, &mut rng);
+                body.initial = drawn(&body.initial, inflation, &mut rng);
             }
-            let scattered = scattered(model, spread.scatter, &mut rng);
-            simulate_toss(&scattered, setup, &member)
+            let drawn = member_model(&model, &mut rng).map_err(|error| TossError::Simulation {
+                run: toss.run.to_owned(),
+                error,
+            })?;
+            simulate_toss(&drawn, setup, &member)
         })
         .collect()
 }
 
-/// Law parameters a member scatters, where the law has them.
+/// Law parameters [`scatter_all`] scatters, where the law has them.
 const SCATTERED: [&str; 5] = [
     "stiffness",
     "effective_modulus",
@@ -330,35 +387,26 @@ const SCATTERED: [&str; 5] = [
     "restitution",
 ];
 
-/// `model` with every contact's law parameters of [`SCATTERED`] and friction
-/// coefficients each × (1 + `scatter`·ζ), ζ ~ N(0, 1) clamped to ±2.5 (μ_s and μ_d
-/// by one ζ, so μ_d ≤ μ_s holds).
-fn scattered(model: &Model, scatter: f64, rng: &mut ChaCha8Rng) -> Model {
-    let mut out = model.clone();
-    if scatter <= 0.0 {
-        return out;
-    }
-    let factor = |rng: &mut ChaCha8Rng| {
-        let z: f64 = StandardNormal.sample(rng);
-        (1.0 + scatter * z.clamp(-2.5, 2.5)).max(0.05)
-    };
-    for contact in &mut out.contacts {
-        for name in SCATTERED {
-            if let Ok(value) = contact.model.normal.base.get(name) {
-                let mut v = value * factor(rng);
-                if name == "restitution" {
-                    v = v.min(1.0);
-                }
-                let _ = contact.model.normal.base.set(name, v);
-            }
+/// Sets every contact's `noise` (Eq 18, as forecast members draw it) to relative σ
+/// `scatter` (–) on its law's parameters of [`SCATTERED`] and, with friction, on the
+/// friction coefficient (μ_s and μ_d by one ζ); `scatter` 0 clears it.
+pub fn scatter_all(model: &mut Model, scatter: f64) {
+    for contact in &mut model.contacts {
+        contact.noise.clear();
+        if scatter <= 0.0 {
+            continue;
         }
-        if let Some(friction) = contact.model.friction.as_mut() {
-            let k = factor(rng);
-            friction.static_coefficient *= k;
-            friction.dynamic_coefficient *= k;
+        let law = &contact.model.normal.base;
+        for name in SCATTERED.into_iter().filter(|name| law.get(name).is_ok()) {
+            contact.noise.push((name.to_owned(), scatter));
         }
+        if contact.model.friction.is_some() {
+            contact
+                .noise
+                .push((FRICTION_COEFFICIENT.to_owned(), scatter));
+        }
+        contact.noise.sort_by(|a, b| a.0.cmp(&b.0));
     }
-    out
 }
 
 /// `initial` moved by one draw from its fits' covariance (unchanged without fits).

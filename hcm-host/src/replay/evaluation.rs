@@ -4,7 +4,7 @@
 use super::score::score_movers;
 use super::{frozen_pose, predict_tosses, TossError, TossPrediction, TossScore};
 use super::{Summary, TossSetup};
-use crate::dataset::{BodyTrack, Dataset, Run, Sample};
+use crate::dataset::{Dataset, Sample};
 use crate::scenario::Model;
 
 /// One toss predicted and scored.
@@ -86,22 +86,8 @@ pub fn summarize(evaluations: &[TossEvaluation]) -> EvaluationSummary {
 /// (`body` the primary's name), the window's frames at their recorded times.
 pub fn predicted_dataset(evaluations: &[TossEvaluation], body: &str) -> Dataset {
     Dataset {
-        runs: evaluations
-            .iter()
-            .map(|e| {
-                let primary = BodyTrack {
-                    body: body.to_owned(),
-                    samples: e.prediction.samples.clone(),
-                };
-                let companions = e.prediction.companions.iter().map(|c| BodyTrack {
-                    body: c.name.clone(),
-                    samples: c.samples.clone(),
-                });
-                Run {
-                    id: e.prediction.run.clone(),
-                    bodies: std::iter::once(primary).chain(companions).collect(),
-                }
-            })
+        runs: (evaluations.iter())
+            .map(|e| e.prediction.to_run(body))
             .collect(),
     }
 }

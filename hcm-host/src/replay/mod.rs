@@ -24,6 +24,7 @@ mod baseline;
 mod ensemble;
 mod evaluation;
 mod face;
+mod forecast;
 mod initial_state;
 mod partner;
 mod path_forecast;
@@ -42,12 +43,14 @@ pub use score::rotation_angle;
 
 pub use baseline::frozen_pose;
 pub use ensemble::{
-    calibrate_scatter, forecast_faces, summarize_faces, FaceForecast, FaceSummary, Spread, SCATTERS,
+    calibrate_scatter, forecast_faces, scatter_all, summarize_faces, FaceForecast, FaceSummary,
+    Spread, SCATTERS,
 };
 pub use evaluation::{
     evaluate_tosses, predicted_dataset, summarize, EvaluationSummary, TossEvaluation,
 };
 pub use face::{Face, FACES};
+pub use forecast::{forecast_tosses, TossForecast};
 pub use initial_state::{estimate_initial_state, InitialState, StateSource};
 pub use predict::{predict_toss, predict_tosses, BodyPrediction, TossPrediction};
 pub use score::{score_movers, score_toss, Summary, TossScore};

@@ -21,11 +21,11 @@
 
 use super::ensemble::{each_toss, member_replays, Spread};
 use super::initial_state::orientation;
-use super::predict::PreparedToss;
+use super::predict::{PreparedToss, TossPrediction};
 use super::score::rotation_angle;
 use super::{Summary, TossError, TossSetup};
 use crate::dataset::{Dataset, Sample};
-use crate::numerics::scores::{energy_score, energy_score_by, Coverage};
+use crate::numerics::scores::{self, energy_score, energy_score_by, Coverage};
 use crate::scenario::Model;
 
 /// The central bands whose coverage is counted (–).
@@ -46,6 +46,9 @@ pub struct PathForecast {
     pub position: f64,
     /// Mean energy score of the orientation over the frames (degrees).
     pub rotation: f64,
+    /// Mean CRPS of the centre's x, y and z over the frames, % of the body's width
+    /// (with one member, the mean absolute error of each coordinate).
+    pub crps: [f64; 3],
     /// The recorded coordinates inside the members' bands of [`BAND_LEVELS`], counted
     /// per frame and axis.
     pub coverage: Coverage,
@@ -68,6 +71,8 @@ pub struct PathSummary {
     pub position: Summary,
     /// The per-toss rotation scores (°).
     pub rotation: Summary,
+    /// The per-toss CRPS of x, y and z, means over tosses (% of the width).
+    pub crps: [f64; 3],
     /// Every toss's coverage counts pooled.
     pub coverage: Coverage,
 }
@@ -84,14 +89,8 @@ pub fn forecast_paths(
 ) -> Result<Vec<PathForecast>, TossError> {
     let setup = TossSetup::new(model)?;
     let forecast = |toss: &PreparedToss<'_>, stream| {
-        let (mut paths, mut failed) = (Vec::with_capacity(spread.members), 0);
-        for member in member_replays(model, &setup, toss, &spread, stream) {
-            match member {
-                Ok(prediction) => paths.push(prediction.samples),
-                Err(_) => failed += 1,
-            }
-        }
-        score_paths(&setup, toss, &paths, failed)
+        let members: Vec<_> = member_replays(model, &setup, toss, &spread, stream);
+        score_paths(&setup, toss, &members)
     };
     each_toss(&setup, data, forecast, done)
 }
@@ -104,27 +103,32 @@ pub fn summarize_paths(forecasts: &[PathForecast]) -> PathSummary {
     for f in forecasts {
         coverage.merge(&f.coverage);
     }
+    let n = forecasts.len().max(1) as f64;
+    let crps = std::array::from_fn(|k| forecasts.iter().map(|f| f.crps[k]).sum::<f64>() / n);
     PathSummary {
         tosses: forecasts.len(),
         position: of(|f| f.position),
         rotation: of(|f| f.rotation),
+        crps,
         coverage,
     }
 }
 
-/// The scores of the primary body's member `paths` (each one sample per window frame)
-/// against its recorded frames.
-fn score_paths(
+/// The scores of the primary body's paths of `members` (each one sample per window
+/// frame; a failed member left out and counted) against its recorded frames.
+pub(super) fn score_paths(
     setup: &TossSetup,
     toss: &PreparedToss<'_>,
-    paths: &[Vec<Sample>],
-    failed: usize,
+    members: &[Result<TossPrediction, TossError>],
 ) -> Result<PathForecast, TossError> {
+    let paths: Vec<&[Sample]> = (members.iter().flatten())
+        .map(|m| m.samples.as_slice())
+        .collect();
     let mover = &setup.movers[0];
     let recorded = toss.primary().measured();
     let turn = |s: &Sample| orientation(&mover.name, toss.run, s);
     let mut coverage = Coverage::new(&BAND_LEVELS);
-    let (mut position, mut rotation) = (0.0, 0.0);
+    let (mut position, mut rotation, mut crps) = (0.0, 0.0, [0.0; 3]);
     for (i, frame) in recorded.iter().enumerate() {
         let centres: Vec<[f64; 3]> = paths.iter().map(|p| p[i].position).collect();
         position += energy_score(&centres, &frame.position);
@@ -132,17 +136,20 @@ fn score_paths(
         rotation += energy_score_by(&turns, &turn(frame)?, rotation_angle);
         for axis in 0..3 {
             let coordinate: Vec<f64> = centres.iter().map(|c| c[axis]).collect();
+            crps[axis] += scores::crps(&coordinate, frame.position[axis]);
             coverage.add(&coordinate, frame.position[axis]);
         }
     }
     let n = recorded.len().max(1) as f64;
+    let percent = |sum: f64| 100.0 * sum / n / mover.width;
     Ok(PathForecast {
         run: toss.run.to_owned(),
         members: paths.len(),
-        failed,
+        failed: members.len() - paths.len(),
         frames: recorded.len(),
-        position: 100.0 * position / n / mover.width,
+        position: percent(position),
         rotation: rotation.to_degrees() / n,
+        crps: crps.map(percent),
         coverage,
     })
 }

@@ -54,6 +54,24 @@ impl TossPrediction {
             .collect()
     }
 
+    /// The prediction as a run of the measured-data format: the toss's id, the primary
+    /// body (called `primary`) and then every other moving body, each the window's
+    /// frames at their recorded times.
+    pub fn to_run(&self, primary: &str) -> Run {
+        let primary = BodyTrack {
+            body: primary.to_owned(),
+            samples: self.samples.clone(),
+        };
+        let companions = self.companions.iter().map(|c| BodyTrack {
+            body: c.name.clone(),
+            samples: c.samples.clone(),
+        });
+        Run {
+            id: self.run.clone(),
+            bodies: std::iter::once(primary).chain(companions).collect(),
+        }
+    }
+
     /// Every moving body's window, the primary's first.
     pub fn windows(&self) -> Vec<Window> {
         let companions = self.companions.iter().map(|c| c.window);

@@ -59,6 +59,10 @@ pub struct Scenario {
     /// Identification (PM2) settings.
     #[serde(default)]
     pub identify: IdentifySpec,
+    /// How a run varies beyond its contacts' parameter scatter: what a forecast's
+    /// members draw besides the contacts' `noise`.
+    #[serde(default)]
+    pub variation: VariationSpec,
     /// The file and parsed document it came from, overrides applied, so that
     /// experimental conditions can be layered on top ([`Scenario::with`]).
     #[serde(skip)]
@@ -167,10 +171,12 @@ pub struct ContactSpec {
     /// `stiffness` (Eq 3) and `exponent` (3/2) of `hertz`.
     #[serde(default)]
     pub(crate) parameters: toml::Table,
-    /// Parameter noise of the noise-added experiment (Eq 18): for each named
-    /// parameter, b in η = a + a·b·ζ, ζ ~ N(0, 1) drawn once per run (dimensionless).
-    /// A name is a parameter of the law or, with `friction`, one of the friction's
-    /// (`mu_static`, `mu_dynamic`, `v_static`, `v_dynamic`).
+    /// Parameter scatter from run to run (Eq 18): for each named parameter, b in
+    /// η = a + a·b·ζ, ζ ~ N(0, 1) drawn once per run (dimensionless) — by the
+    /// noise-added experiment for each generated run, and by a forecast for each of its
+    /// members. A name is a parameter of the law or, with `friction`, one of the
+    /// friction's (`mu_static`, `mu_dynamic`, `v_static`, `v_dynamic`, or `mu`: both
+    /// coefficients by one ζ).
     #[serde(default)]
     pub(crate) noise: BTreeMap<String, f64>,
     /// Physical effects added to the law (`hcm_core::effect`), e.g.
@@ -228,6 +234,20 @@ pub struct RecordSpec {
     /// Bodies to record (default: all). Leaving out a fixed body halves a file.
     #[serde(default)]
     pub(crate) bodies: Vec<String>,
+}
+
+/// How a run differs from the model beyond its contacts' parameter scatter (each
+/// contact's `noise`): what the members of a forecast (`hcm predict --members`) draw.
+/// All zero (the default): the model forecasts one path per start.
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct VariationSpec {
+    /// Factor on the standard deviations of a replay's start state (–, ≥ 0), whose
+    /// covariance is its free-flight fit's (`replay::initial_state`): 1 draws the
+    /// state as uncertain as the tracker's noise left it; 0 starts every member from
+    /// the fitted state.
+    #[serde(default)]
+    pub start_state: f64,
 }
 
 /// The noise-added experiment (paper Section 4, Eq 14, 18, 19).

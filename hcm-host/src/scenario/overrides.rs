@@ -3,9 +3,10 @@
 //! The key is a dotted path. Arrays of tables (`[[body]]`, `[[contact]]`) take a
 //! selector after their name: a position (`contact.0.law`) or, for tables with a
 //! `name`, that name (`body.ball.velocity`). The value is TOML: `0.95`,
-//! `[0.0, 0.95, 0.0]`, `"hertz"` (a bare word is taken as a string). Every table on
-//! the path must exist; the last key may be new (typos are caught when the
-//! scenario is read, since unknown keys are rejected there).
+//! `[0.0, 0.95, 0.0]`, `"hertz"` (a bare word is taken as a string). Every list on
+//! the path must exist; a table or the last key may be new (`variation.start_state`
+//! on a scenario without `[variation]`): typos are caught when the scenario is read,
+//! since unknown keys are rejected there.
 
 use super::assignment::{Assignment, IntoAssignment};
 use super::ScenarioError;
@@ -29,7 +30,9 @@ pub fn apply(document: &mut toml::Table, assignment: &Assignment) -> Result<(), 
         } else {
             format!("in `{}`", parents[..i].join("."))
         };
-        let known = table.keys().cloned().collect::<Vec<_>>().join(", ");
+        if !table.contains_key(key) {
+            table.insert(key.to_owned(), toml::Table::new().into());
+        }
         table = match table.get_mut(key) {
             Some(toml::Value::Table(child)) => child,
             Some(toml::Value::Array(items)) => {
@@ -41,8 +44,7 @@ pub fn apply(document: &mut toml::Table, assignment: &Assignment) -> Result<(), 
                 i += 1;
                 select(items, selector).map_err(|m| fail(format!("{m} in `{key}`")))?
             }
-            Some(_) => return Err(fail(format!("`{key}` {at} is a value, not a table"))),
-            None => return Err(fail(format!("no key `{key}` {at} (keys there: {known})"))),
+            _ => return Err(fail(format!("`{key}` {at} is a value, not a table"))),
         };
         i += 1;
     }
@@ -186,13 +188,20 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("plate") && e.contains("ball"), "{e}");
-        let e = apply(
+        // A missing table is created (the scenario's reader refuses a misspelt one).
+        apply(
             &mut doc,
             &Assignment::parse("simulation.end_time=1").unwrap(),
         )
+        .unwrap();
+        assert_eq!(doc["simulation"]["end_time"].as_integer(), Some(1));
+        let e = apply(
+            &mut doc,
+            &Assignment::parse("simulation.end_time.x=1").unwrap(),
+        )
         .unwrap_err()
         .to_string();
-        assert!(e.contains("simulation") && e.contains("gravity"), "{e}");
+        assert!(e.contains("end_time") && e.contains("not a table"), "{e}");
         let e = Assignment::parse("gravity").unwrap_err().to_string();
         assert!(e.contains("key=value"), "{e}");
     }

@@ -383,7 +383,7 @@ impl Scenario {
 
     /// The `[experiment]` table: noise σ ≥ 0, sensor lag and filter ≥ 0 (s), a positive
     /// gain, a hold-out share in (0, 1), conditions named once and hold-out conditions
-    /// among them.
+    /// among them; and `[variation]`'s start-state factor ≥ 0.
     fn check_experiment(&self) -> Result<(), (String, String)> {
         let e = &self.experiment;
         let (sd, time) = ("a standard deviation ≥ 0", "a time ≥ 0 (s)");
@@ -398,6 +398,12 @@ impl Scenario {
             if !(value >= 0.0 && value.is_finite()) {
                 return Err((name.into(), format!("must be {what}, found {value}")));
             }
+        }
+        let start = self.variation.start_state;
+        if !(start >= 0.0 && start.is_finite()) {
+            let problem =
+                format!("must be a factor ≥ 0 on the fitted start state's σ, found {start}");
+            return Err(("variation.start_state".into(), problem));
         }
         if !e.force_nonlinearity.is_finite() {
             return Err((
@@ -667,20 +673,24 @@ fn check_noise(spec: &super::ContactSpec) -> Result<(), String> {
     let known = law_catalogue::entry(&spec.law)
         .map(|e| e.parameters)
         .unwrap_or(&[]);
-    let friction = &super::FrictionSpec::PARAMETERS;
+    let joint = crate::experiment::FRICTION_COEFFICIENT;
+    let friction: Vec<&str> = super::FrictionSpec::PARAMETERS
+        .into_iter()
+        .chain([joint])
+        .collect();
     for (name, b) in &spec.noise {
         let of_friction = friction.contains(&name.as_str());
         if of_friction && spec.friction.is_none() {
             return Err(format!(
                 "`{name}` is a friction parameter, and this contact has no `friction`; \
                  give it `friction = {{ mu_static, mu_dynamic, v_static, v_dynamic }}` \
-                 or leave `{name}` out of `noise`"
+                 or leave `{name}` out of `noise` (`{joint}` scatters μ_s and μ_d together)"
             ));
         }
         if !of_friction && !known.iter().any(|p| p.name == name) {
             let mut names: Vec<_> = known.iter().map(|p| p.name).collect();
             if spec.friction.is_some() {
-                names.extend(friction);
+                names.extend(&friction);
             }
             return Err(format!(
                 "`{name}` is not a parameter of `{}`{} ({})",

@@ -40,12 +40,15 @@ pub(crate) fn faces(
     in_stage(progress, Stage::Faces, steps, || {
         let spread = Spread {
             members,
-            inflation: 1.0,
-            scatter: 0.0,
+            inflation: Some(1.0),
+            scatter: Some(0.0),
             seed: SEED,
         };
         let (scatter, calibration) = calibrate_scatter(fitted, training, spread, &SCATTERS, tick)?;
-        let spread = Spread { scatter, ..spread };
+        let spread = Spread {
+            scatter: Some(scatter),
+            ..spread
+        };
         let forecasts = forecast_faces(fitted, held_out, spread, tick)?;
         Ok(FaceResults {
             scatter,
