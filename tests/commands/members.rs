@@ -94,12 +94,13 @@ fn crps(xs: &[f64], y: f64) -> f64 {
     near - 0.5 * spread
 }
 
-/// Whether `y` lies in the central `level` band of `xs` (type-7 quantiles).
+/// Whether `y` lies in the central `level` band of `xs` (type-6 quantiles, NumPy's
+/// "weibull": the k-th smallest of M is the k/(M + 1) quantile, held within the range).
 fn inside(xs: &[f64], y: f64, level: f64) -> bool {
     let mut s = xs.to_vec();
     s.sort_by(f64::total_cmp);
     let quantile = |p: f64| {
-        let h = (s.len() - 1) as f64 * p;
+        let h = ((s.len() + 1) as f64 * p).clamp(1.0, s.len() as f64) - 1.0;
         let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
         s[lo] + (h - lo as f64) * (s[hi] - s[lo])
     };

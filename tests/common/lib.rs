@@ -130,6 +130,39 @@ pub fn scattered_tosses(
     data
 }
 
+/// `data` as a tracker films it: each frame's centre moved by `noise.0` (m) per axis
+/// and its orientation turned by a rotation vector of `noise.1` (rad) per axis, drawn
+/// from `seed`; poses only (velocities, forces and torques not sampled).
+pub fn filmed_poses(
+    mut data: hcm_host::dataset::Dataset,
+    noise: (f64, f64),
+    seed: u64,
+) -> hcm_host::dataset::Dataset {
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, StandardNormal};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut normal = || -> f64 { StandardNormal.sample(&mut rng) };
+    for run in &mut data.runs {
+        for body in &mut run.bodies {
+            for s in &mut body.samples {
+                s.position = s.position.map(|p| p + noise.0 * normal());
+                let [w, x, y, z] = s.orientation;
+                let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                    w, x, y, z,
+                ));
+                let turn = nalgebra::Vector3::new(normal(), normal(), normal()) * noise.1;
+                let q = nalgebra::UnitQuaternion::from_scaled_axis(turn) * q;
+                s.orientation = [q.w, q.i, q.j, q.k];
+                s.velocity = [f64::NAN; 3];
+                s.angular_velocity = [f64::NAN; 3];
+                s.force = [f64::NAN; 3];
+                s.torque = [f64::NAN; 3];
+            }
+        }
+    }
+    data
+}
+
 /// The path of a scenario file in the workspace's `scenarios/`.
 pub fn scenario(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

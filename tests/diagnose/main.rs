@@ -5,6 +5,7 @@
 //! Run one file's tests with `cargo test -p hcm-tests --test diagnose <module>::`.
 
 mod diagnose;
+mod diagnose_chance;
 mod diagnose_fitted_base;
 mod diagnose_motion;
 mod diagnose_power;

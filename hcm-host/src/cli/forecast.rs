@@ -7,6 +7,7 @@ use super::progress_bar;
 use anyhow::Context;
 use hcm_host::dataset::{Dataset, RunWriter};
 use hcm_host::identify::split_tosses;
+use hcm_host::numerics::scores::calibrated_coverage;
 use hcm_host::output::write_atomically;
 use hcm_host::replay::{
     calibrate_scatter, forecast_tosses, summarize_paths, PathForecast, Spread, Summary,
@@ -59,13 +60,6 @@ pub struct Ensemble {
     pub replays: Vec<PathForecast>,
 }
 
-/// Whether `model` draws anything for a member: a contact's parameter scatter or the
-/// start state's.
-fn varies(model: &Model) -> bool {
-    let scatters = model.contacts.iter().any(|c| !c.noise.is_empty());
-    scatters || model.scenario.variation.start_state > 0.0
-}
-
 /// The ensemble forecast of `data` when --members or --faces (`faces`) asks for one.
 pub fn forecast(
     args: &EnsembleArgs,
@@ -108,7 +102,7 @@ pub fn forecast(
     // A model without variation, the faces asked for and nothing given: the faces'
     // ensemble as before the model could carry its scatter (start state as fitted,
     // contact scatter chosen on the training tosses).
-    if faces && !varies(model) && args.scatter.is_none() && args.start_spread.is_none() {
+    if faces && !model.varies() && args.scatter.is_none() && args.start_spread.is_none() {
         spread.inflation = Some(1.0);
         spread.scatter = Some(calibrated(model, data, spread)?);
     }
@@ -152,6 +146,13 @@ fn describe(model: &Model, spread: Spread) -> String {
     if inflation > 0.0 {
         parts.push(format!(
             "start states drawn with their free-flight fits' covariance, σ × {inflation}"
+        ));
+    }
+    let v = &drawn.scenario.variation;
+    if v.fixed_height > 0.0 || v.fixed_tilt > 0.0 {
+        parts.push(format!(
+            "fixed bodies' height σ {} m and tilt σ {} rad per run",
+            v.fixed_height, v.fixed_tilt
         ));
     }
     if parts.is_empty() {
@@ -259,10 +260,7 @@ pub fn print_scores(ensemble: &Ensemble, width: f64) {
     row("single replay", &ensemble.replays);
     row(&format!("ensemble of {members}"), &paths);
     let calibrated: Vec<String> = (BAND_LEVELS.iter())
-        .map(|level| {
-            let m = members as f64;
-            format!("{:.3}", (m - 1.0) / (m + 1.0) * level)
-        })
+        .map(|&level| format!("{:.3}", calibrated_coverage(members, level)))
         .collect();
     let gains: Vec<f64> = (ensemble.replays.iter().zip(&paths))
         .map(|(one, many)| one.score() - many.score())

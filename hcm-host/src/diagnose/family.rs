@@ -21,6 +21,9 @@ pub enum Family {
     Measurement,
     /// The body's own properties (inertia, shape, drag through the air).
     Body,
+    /// Chance: how a run varies from the next (the contact's parameters, the start
+    /// state, the fixed body's place), a spread the model carries and forecasts draw.
+    Chance,
 }
 
 impl Family {
@@ -33,16 +36,18 @@ impl Family {
             Family::Normal => "normal",
             Family::Measurement => "measurement",
             Family::Body => "body",
+            Family::Chance => "chance",
         }
     }
 
-    /// `physical` (a term the extended model carries) or `measurement` (a correction of
-    /// the data): the kind the force diagnosis reports for each cause.
+    /// `physical` (a term the extended model carries), `measurement` (a correction of
+    /// the data) or `chance` (a spread the extended model carries): the kind the force
+    /// diagnosis reports for each cause.
     pub fn kind(self) -> &'static str {
-        if self == Family::Measurement {
-            "measurement"
-        } else {
-            "physical"
+        match self {
+            Family::Measurement => "measurement",
+            Family::Chance => "chance",
+            _ => "physical",
         }
     }
 }

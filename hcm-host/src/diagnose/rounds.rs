@@ -44,18 +44,38 @@ pub(super) trait Judge {
     /// Records the round (every candidate's gain, what was decided) and, where one is
     /// named, extends the model with it.
     fn record(&mut self, decision: &Decision, outcome: &Outcome);
+    /// When a phase of the search ends (a round names nothing, or its rounds are
+    /// spent): whether the judge has another kind of candidate to try next on the
+    /// model as it stands (chance after the deterministic effects), with rounds of its
+    /// own.
+    fn next_phase(&mut self) -> bool {
+        false
+    }
 }
 
-/// Up to `max_rounds` rounds of `judge` under the rule's `margins`.
+/// Up to `max_rounds` rounds of `judge` under the rule's `margins` per phase
+/// ([`Judge::next_phase`]).
 pub(super) fn search<J: Judge>(
     judge: &mut J,
     margins: Margins,
     max_rounds: usize,
 ) -> Result<(), J::Error> {
-    for round in 0..max_rounds {
+    let (mut round, mut in_phase) = (0, 0);
+    loop {
+        if in_phase == max_rounds {
+            if !judge.next_phase() {
+                break;
+            }
+            in_phase = 0;
+        }
         let Some(trials) = judge.trials(round)? else {
-            break;
+            if !judge.next_phase() {
+                break;
+            }
+            in_phase = 0;
+            continue;
         };
+        (round, in_phase) = (round + 1, in_phase + 1);
         let scores: Vec<Option<&[f64]>> = trials.scores.iter().map(|s| s.as_deref()).collect();
         let both = |best: usize, rival: usize| judge.both(best, rival);
         let decision = decide_with(&trials.reference, &scores, (trials.floor, margins), both);
@@ -69,7 +89,10 @@ pub(super) fn search<J: Judge>(
         };
         judge.record(&decision, &outcome);
         if !matches!(outcome, Outcome::Named(..)) {
-            break;
+            if !judge.next_phase() {
+                break;
+            }
+            in_phase = 0;
         }
     }
     Ok(())

@@ -9,6 +9,7 @@
 
 use crate::dataset::{Run, Sample};
 use crate::numerics::sampled::{delayed, low_pass};
+use crate::replay::{shift_surface, tilt_surface};
 use crate::scenario::{Contact, ExperimentSpec, FrictionSpec, Model};
 use crate::simulate::{simulate, SimulationError};
 use hcm_core::LawError;
@@ -30,7 +31,8 @@ pub fn noisy_model(model: &Model, rng: &mut ChaCha8Rng) -> Result<Model, Simulat
     scattered(model, rng, Draw::Exact)
 }
 
-/// `model` with every contact's noise drawn by `draw`, in contact order.
+/// `model` with every contact's noise drawn by `draw`, in contact order, then every
+/// fixed body's height and tilt (`[variation]`), in body order.
 fn scattered(model: &Model, rng: &mut ChaCha8Rng, draw: Draw) -> Result<Model, SimulationError> {
     let mut model = model.clone();
     for (index, contact) in model.contacts.iter_mut().enumerate() {
@@ -38,6 +40,23 @@ fn scattered(model: &Model, rng: &mut ChaCha8Rng, draw: Draw) -> Result<Model, S
             contact: index,
             source,
         })?;
+    }
+    let variation = &model.scenario.variation;
+    let (height, tilt) = (variation.fixed_height, variation.fixed_tilt);
+    if height > 0.0 || tilt > 0.0 {
+        let fixed: Vec<usize> = (0..model.bodies.len())
+            .filter(|&b| model.bodies[b].fixed)
+            .collect();
+        for body in fixed {
+            if height > 0.0 {
+                let shift = draw.offset(height, normal(rng));
+                shift_surface(&mut model, body, shift);
+            }
+            if tilt > 0.0 {
+                let [x, y] = [0; 2].map(|_| draw.offset(tilt, normal(rng)));
+                tilt_surface(&mut model, body, x, y);
+            }
+        }
     }
     Ok(model)
 }
@@ -106,7 +125,7 @@ pub fn read_by_sensor(e: &ExperimentSpec, samples: &mut [Sample]) {
 pub enum Draw {
     /// The paper's: a′ = a + a·b·ζ, ζ ~ N(0, 1) as drawn (a generated experiment).
     Exact,
-    /// A forecast member's: ζ truncated to ±2.5 and the factor 1 + b·ζ held ≥ 0.05, so
+    /// A forecast member's: ζ truncated to ±2.5 (offsets too) and the factor 1 + b·ζ held ≥ 0.05, so
     /// a positive parameter stays positive; a value the law still refuses (a
     /// restitution above 1) has its offset from a halved until the law takes it. A
     /// member is a plausible run, never a run the model cannot simulate.
@@ -119,6 +138,14 @@ impl Draw {
         match self {
             Draw::Exact => a + a * b * zeta,
             Draw::Member => a * (1.0 + b * zeta.clamp(-2.5, 2.5)).max(0.05),
+        }
+    }
+
+    /// An offset of standard deviation σ for ζ: σ·ζ, ζ truncated as the draw truncates.
+    fn offset(self, sigma: f64, zeta: f64) -> f64 {
+        match self {
+            Draw::Exact => sigma * zeta,
+            Draw::Member => sigma * zeta.clamp(-2.5, 2.5),
         }
     }
 }

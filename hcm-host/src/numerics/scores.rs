@@ -44,14 +44,16 @@ pub fn energy_score<P: AsRef<[f64]>>(members: &[P], observed: &[f64]) -> f64 {
     if members.is_empty() || !valid(observed) || members.iter().any(|p| !valid(p.as_ref())) {
         return f64::NAN;
     }
-    let distance = |a: &[f64], b: &[f64]| {
-        (a.iter().zip(b))
-            .map(|(x, y)| (x - y) * (x - y))
-            .sum::<f64>()
-            .sqrt()
-    };
     let points: Vec<&[f64]> = members.iter().map(AsRef::as_ref).collect();
-    energy_score_by(&points, observed, distance)
+    energy_score_by(&points, observed, euclidean)
+}
+
+/// The Euclidean distance between two points of the same dimension (their unit).
+pub fn euclidean(a: &[f64], b: &[f64]) -> f64 {
+    (a.iter().zip(b))
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// The energy score's form with any `distance` between two points (its unit):
@@ -63,8 +65,22 @@ pub fn energy_score_by<T: ?Sized, P: std::borrow::Borrow<T>>(
     observed: &T,
     distance: impl Fn(&T, &T) -> f64,
 ) -> f64 {
+    let (error, half_spread) = energy_parts_by(members, observed, distance);
+    error - half_spread
+}
+
+/// The energy score's two terms: E d(X, y) and ½·E d(X, X′) with 1/M² ([`energy_score_by`]
+/// is their difference). The "fair" score, whose expectation is the score of the
+/// distribution the members are drawn from whatever their number, puts M/(M − 1) on
+/// the second (Ferro 2014); a search that chooses a spread by the score uses it, since
+/// 1/M² would favour ensembles narrower than the outcome. NaN for no members.
+pub fn energy_parts_by<T: ?Sized, P: std::borrow::Borrow<T>>(
+    members: &[P],
+    observed: &T,
+    distance: impl Fn(&T, &T) -> f64,
+) -> (f64, f64) {
     if members.is_empty() {
-        return f64::NAN;
+        return (f64::NAN, f64::NAN);
     }
     let m = members.len() as f64;
     let error = (members.iter())
@@ -78,7 +94,7 @@ pub fn energy_score_by<T: ?Sized, P: std::borrow::Borrow<T>>(
         }
     }
     // Each unordered pair once: the double sum is twice this.
-    error - spread / (m * m)
+    (error, spread / (m * m))
 }
 
 /// The Brier score Σ_k (p_k − [k = outcome])² of the probabilities `p` of each category
@@ -103,14 +119,13 @@ pub fn log_score(p: &[f64], outcome: usize) -> f64 {
 }
 
 /// The central band holding `level` (0…1) of the members (their unit): the members'
-/// (1 − level)/2 and (1 + level)/2 quantiles, linearly interpolated between order
-/// statistics (Hyndman & Fan's type 7, the sample quantile of R and NumPy). One member
-/// is a band of zero width; NaN for none or any NaN member.
-///
-/// A finite ensemble's band is narrower than its level: an outcome drawn like the M
-/// members falls inside with probability (M − 1)/(M + 1)·level (the band spans that
-/// share of the M + 1 gaps the outcome's rank can fall in), 0.82 for the 90 % band of
-/// 20 members. Coverage is judged against that, or with many members.
+/// (1 − level)/2 and (1 + level)/2 quantiles with the k-th smallest of M members taken
+/// as the k/(M + 1) quantile, linearly interpolated between (Hyndman & Fan's type 6,
+/// NumPy's `method="weibull"`). An outcome drawn like the members is as likely to fall
+/// in any of the M + 1 gaps between them, so this band holds it `level` of the time —
+/// down to the members' range, which it never leaves: with fewer than 2/(1 − level) − 1
+/// members (19 for 90 %, 3 for 50 %) the band is the range, holding (M − 1)/(M + 1).
+/// One member is a band of zero width; NaN for none or any NaN member.
 pub fn central_band(members: &[f64], level: f64) -> (f64, f64) {
     if members.is_empty() || members.iter().any(|x| x.is_nan()) {
         return (f64::NAN, f64::NAN);
@@ -120,11 +135,22 @@ pub fn central_band(members: &[f64], level: f64) -> (f64, f64) {
     band_of_sorted(&sorted, level)
 }
 
+/// The share of outcomes drawn like `members` members that their [`central_band`] of
+/// `level` holds (–): the level, or the members' range's (M − 1)/(M + 1) where the band
+/// is the range; 0 for one member.
+pub fn calibrated_coverage(members: usize, level: f64) -> f64 {
+    let m = members as f64;
+    f64::min(level, (m - 1.0).max(0.0) / (m + 1.0))
+}
+
 /// [`central_band`] of members already sorted, at least one and none NaN.
 fn band_of_sorted(sorted: &[f64], level: f64) -> (f64, f64) {
     let level = level.clamp(0.0, 1.0);
+    let last = (sorted.len() - 1) as f64;
     let quantile = |q: f64| {
-        let h = (sorted.len() - 1) as f64 * q;
+        // Zero-based position of the q quantile: member k (from 0) is the (k + 1)/(M + 1)
+        // quantile.
+        let h = ((sorted.len() + 1) as f64 * q - 1.0).clamp(0.0, last);
         let (below, above) = (h.floor() as usize, h.ceil() as usize);
         sorted[below] + (h - below as f64) * (sorted[above] - sorted[below])
     };
@@ -262,8 +288,9 @@ mod tests {
         );
     }
 
-    /// Outcomes drawn like the members fall inside the bands (M − 1)/(M + 1)·level of
-    /// the time: 0.49 and 0.882 for 99 members, 0.429 and 0.771 for 13.
+    /// Outcomes drawn like the members fall inside the bands their level of the time,
+    /// or the members' range's (M − 1)/(M + 1) where the band is the range: 0.5 and 0.9
+    /// for 99 members; 0.5 and 0.857 for 13 (the 90 % band of 13 is their range).
     #[test]
     fn bands_cover_their_level_of_outcomes_drawn_like_the_members() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
@@ -276,7 +303,8 @@ mod tests {
             assert_eq!(coverage.scored, 8000);
             let m = members as f64;
             for (share, level) in coverage.shares().iter().zip([0.5, 0.9]) {
-                let expected = (m - 1.0) / (m + 1.0) * level;
+                let expected = calibrated_coverage(members, level);
+                assert_eq!(expected, f64::min(level, (m - 1.0) / (m + 1.0)));
                 // 8000 outcomes: a standard error below 0.006.
                 assert!(
                     (share - expected).abs() < 0.02,
@@ -288,8 +316,10 @@ mod tests {
 
     #[test]
     fn the_band_interpolates_order_statistics_as_numpy_does() {
-        // numpy.quantile([1, 2, 3, 4], [0.25, 0.75]) = [1.75, 3.25].
-        assert_eq!(central_band(&[4.0, 1.0, 3.0, 2.0], 0.5), (1.75, 3.25));
+        // numpy.quantile([1, 2, 3, 4], [0.25, 0.75], method="weibull") = [1.25, 3.75].
+        assert_eq!(central_band(&[4.0, 1.0, 3.0, 2.0], 0.5), (1.25, 3.75));
+        // Beyond the members: their range.
+        assert_eq!(central_band(&[4.0, 1.0, 3.0, 2.0], 0.9), (1.0, 4.0));
     }
 
     #[test]

@@ -30,7 +30,7 @@ use super::face::{Face, FACES};
 use super::initial_state::{orientation, InitialState};
 use super::predict::{prepare, simulate_toss, PreparedToss, TossPrediction};
 use super::{Summary, TossError, TossSetup};
-use crate::dataset::{Dataset, FlightFit};
+use crate::dataset::{Dataset, FlightFit, Sample};
 use crate::experiment::{member_model, FRICTION_COEFFICIENT};
 use crate::scenario::{Model, Shape};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -363,6 +363,7 @@ pub(super) fn member_replays(
     let mut rng = ChaCha8Rng::seed_from_u64(spread.seed);
     rng.set_stream(stream);
     let (model, inflation) = spread.applied(model);
+    let tracker = model.scenario.variation.tracker;
     (0..spread.members)
         .map(|_| {
             let mut member = toss.clone();
@@ -373,9 +374,40 @@ pub(super) fn member_replays(
                 run: toss.run.to_owned(),
                 error,
             })?;
-            simulate_toss(&drawn, setup, &member)
+            let mut prediction = simulate_toss(&drawn, setup, &member)?;
+            if tracker > 0.0 {
+                let companions = prediction.companions.iter_mut().map(|c| &mut c.samples);
+                let tracks = std::iter::once(&mut prediction.samples).chain(companions);
+                for (samples, body) in tracks.zip(&toss.bodies) {
+                    filmed(samples, &body.initial, tracker, &mut rng);
+                }
+            }
+            Ok(prediction)
         })
         .collect()
+}
+
+/// `samples` as the tracker records them: each frame's centre moved by σ_k·ζ per axis
+/// and its orientation turned by σ_k·ζ per rotation-vector component (on the left), σ_k
+/// the residual σ of `initial`'s free-flight fits × `factor`, frame by frame, axis by
+/// axis; unchanged without fits.
+fn filmed(samples: &mut [Sample], initial: &InitialState, factor: f64, rng: &mut ChaCha8Rng) {
+    let Some([flight, turning]) = &initial.fits else {
+        return;
+    };
+    let sigma = |fit: &FlightFit| fit.noise.map(|v| factor * v.max(0.0).sqrt());
+    let (position, rotation) = (sigma(flight), sigma(turning));
+    let mut normal = || -> f64 { StandardNormal.sample(&mut *rng) };
+    for sample in samples {
+        for (p, s) in sample.position.iter_mut().zip(position) {
+            *p += s * normal();
+        }
+        let turn = Vector3::from_fn(|k, _| rotation[k] * normal());
+        let [w, x, y, z] = sample.orientation;
+        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+        let q = UnitQuaternion::from_scaled_axis(turn) * q;
+        sample.orientation = [q.w, q.i, q.j, q.k];
+    }
 }
 
 /// Law parameters [`scatter_all`] scatters, where the law has them.

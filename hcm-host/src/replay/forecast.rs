@@ -51,3 +51,18 @@ pub fn forecast_tosses(
     };
     each_toss(&setup, data, forecast, done)
 }
+
+/// The path forecast of one prepared toss by `spread`'s members of `model`, drawn from
+/// stream `stream` of its seed: what a diagnosis scores a model that varies by. None
+/// when every member's replay failed.
+pub(crate) fn forecast_toss_paths(
+    model: &Model,
+    setup: &TossSetup,
+    toss: &PreparedToss<'_>,
+    spread: &Spread,
+    stream: u64,
+) -> Option<PathForecast> {
+    let members = member_replays(model, setup, toss, spread, stream);
+    let paths = score_paths(setup, toss, &members).ok()?;
+    (paths.members > 0).then_some(paths)
+}

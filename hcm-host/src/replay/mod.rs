@@ -50,6 +50,7 @@ pub use evaluation::{
     evaluate_tosses, predicted_dataset, summarize, EvaluationSummary, TossEvaluation,
 };
 pub use face::{Face, FACES};
+pub(crate) use forecast::forecast_toss_paths;
 pub use forecast::{forecast_tosses, TossForecast};
 pub use initial_state::{estimate_initial_state, InitialState, StateSource};
 pub use predict::{predict_toss, predict_tosses, BodyPrediction, TossPrediction};

@@ -13,8 +13,8 @@
 //! rotation errors ([`super::TossScore`]), so a single replay and an ensemble are scored
 //! by one rule and compare toss by toss. And the coverage: per frame and axis, whether
 //! the recorded coordinate lies inside the members' central 50 % and 90 % bands (an
-//! ensemble of M members drawn like the outcome holds it (M − 1)/(M + 1) of the level's
-//! share; [`crate::numerics::scores::central_band`]).
+//! ensemble drawn like the outcome holds it the level's share, or (M − 1)/(M + 1) with
+//! fewer than 19 members for 90 %: [`crate::numerics::scores::central_band`]).
 //!
 //! The members are those of [`super::forecast_faces`] for the same spread: the same
 //! draws, in the same order, from the toss's own stream of the seed.
@@ -25,7 +25,7 @@ use super::predict::{PreparedToss, TossPrediction};
 use super::score::rotation_angle;
 use super::{Summary, TossError, TossSetup};
 use crate::dataset::{Dataset, Sample};
-use crate::numerics::scores::{self, energy_score, energy_score_by, Coverage};
+use crate::numerics::scores::{self, energy_parts_by, euclidean, Coverage};
 use crate::scenario::Model;
 
 /// The central bands whose coverage is counted (–).
@@ -46,6 +46,9 @@ pub struct PathForecast {
     pub position: f64,
     /// Mean energy score of the orientation over the frames (degrees).
     pub rotation: f64,
+    /// The energy scores' spread terms ½·E‖X − X′‖ (1/M²), means over the frames:
+    /// position (% of the width) and rotation (°); 0 for one member.
+    pub spread: [f64; 2],
     /// Mean CRPS of the centre's x, y and z over the frames, % of the body's width
     /// (with one member, the mean absolute error of each coordinate).
     pub crps: [f64; 3],
@@ -59,6 +62,17 @@ impl PathForecast {
     /// by.
     pub fn score(&self) -> f64 {
         self.position + self.rotation
+    }
+
+    /// The same sum with the "fair" spread term, M/(M − 1) on it
+    /// ([`crate::numerics::scores::energy_parts_by`]): an unbiased estimate of the
+    /// score of the distribution the members come from (% + °); the score itself for
+    /// one member. What a search choosing a spread compares.
+    pub fn fair_score(&self) -> f64 {
+        if self.members < 2 {
+            return self.score();
+        }
+        self.score() - (self.spread[0] + self.spread[1]) / (self.members - 1) as f64
     }
 }
 
@@ -129,11 +143,15 @@ pub(super) fn score_paths(
     let turn = |s: &Sample| orientation(&mover.name, toss.run, s);
     let mut coverage = Coverage::new(&BAND_LEVELS);
     let (mut position, mut rotation, mut crps) = (0.0, 0.0, [0.0; 3]);
+    let mut spread = [0.0; 2];
     for (i, frame) in recorded.iter().enumerate() {
         let centres: Vec<[f64; 3]> = paths.iter().map(|p| p[i].position).collect();
-        position += energy_score(&centres, &frame.position);
+        let points: Vec<&[f64]> = centres.iter().map(|c| &c[..]).collect();
+        let (error, half) = energy_parts_by(&points, &frame.position[..], euclidean);
+        (position, spread[0]) = (position + (error - half), spread[0] + half);
         let turns = (paths.iter().map(|p| turn(&p[i]))).collect::<Result<Vec<_>, _>>()?;
-        rotation += energy_score_by(&turns, &turn(frame)?, rotation_angle);
+        let (error, half) = energy_parts_by(&turns, &turn(frame)?, rotation_angle);
+        (rotation, spread[1]) = (rotation + (error - half), spread[1] + half);
         for axis in 0..3 {
             let coordinate: Vec<f64> = centres.iter().map(|c| c[axis]).collect();
             crps[axis] += scores::crps(&coordinate, frame.position[axis]);
@@ -149,6 +167,7 @@ pub(super) fn score_paths(
         frames: recorded.len(),
         position: percent(position),
         rotation: rotation.to_degrees() / n,
+        spread: [percent(spread[0]), spread[1].to_degrees() / n],
         crps: crps.map(percent),
         coverage,
     })

@@ -248,6 +248,21 @@ pub struct VariationSpec {
     /// the fitted state.
     #[serde(default)]
     pub start_state: f64,
+    /// σ of every fixed body's height from run to run (m, ≥ 0): its surface moved
+    /// along the up direction by σ·ζ per run (a table that is not where it was
+    /// calibrated, a tracker's frame that drifts).
+    #[serde(default)]
+    pub fixed_height: f64,
+    /// σ of every fixed body's tilt from run to run (rad, ≥ 0): its surface turned by
+    /// σ·ζ₁ about the world x axis and σ·ζ₂ about y per run.
+    #[serde(default)]
+    pub fixed_tilt: f64,
+    /// Factor on the tracker's noise each member's frames carry (–, ≥ 0): every frame's
+    /// centre and orientation moved by the residual σ of the toss's own free-flight
+    /// fits × this, per axis — a forecast of what the tracker records rather than of the
+    /// path. 0: the members are the simulated paths.
+    #[serde(default)]
+    pub tracker: f64,
 }
 
 /// The noise-added experiment (paper Section 4, Eq 14, 18, 19).

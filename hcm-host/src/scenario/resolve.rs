@@ -135,6 +135,18 @@ impl Model {
             .any(|c| c.model.friction.is_some() || !c.model.tangential.is_empty())
     }
 
+    /// Whether a run of the model varies by chance: a contact's parameter scatter
+    /// (`noise`) or a `[variation]` — what a forecast's members draw. Otherwise one
+    /// member is the whole forecast.
+    pub fn varies(&self) -> bool {
+        let v = &self.scenario.variation;
+        self.contacts.iter().any(|c| !c.noise.is_empty())
+            || v.start_state > 0.0
+            || v.fixed_height > 0.0
+            || v.fixed_tilt > 0.0
+            || v.tracker > 0.0
+    }
+
     /// Index of the body named `name`.
     pub fn body_index(&self, name: &str) -> Option<usize> {
         self.bodies.iter().position(|b| b.name == name)

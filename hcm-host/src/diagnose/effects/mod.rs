@@ -23,14 +23,20 @@
 //! | measurement | `length_scale`: the tracker's lengths × s | poses | s ∈ [0.9, 1.1] |
 //! | body | `inertia_scale`: the inertia tensor × k | poses | k ∈ [0.5, 2] |
 //! | body | `edge_rounding`: a box's edges rounded to r | poses | r ∈ [0, L/5] m |
+//! | chance | `contact_scatter`: stiffness, damping, friction × (1 + σ·ζ) per run | poses | σ ∈ [0, 0.6] |
+//! | chance | `start_uncertainty`: the start state's fit σ × k | poses | k ∈ [0, 2.2] |
+//! | chance | `fixed_height`, `fixed_tilt`: the fixed body moved or tilted by σ·ζ per run | poses | σ ∈ [0, L/20] m; [0, min(0.05, θ̄)] rad |
 //!
 //! F̂ the largest measured normal force, v̂ and δ̇̂ the fastest slip and approach of a
 //! point, δ̂ the deepest, L the largest lever arm of a point about the moving body's
-//! centre (poses: the body's largest half extent), m the body's mass, Δt the median sample
+//! centre (poses: the body's largest half extent), θ̄ the largest RMS tilt per run a
+//! box resting at the end of its recordings shows beyond the tracker's noise, m the
+//! body's mass, Δt the median sample
 //! interval: every box from the data ([`Scales`]), none from an example. On a line of
 //! force (1D) an effect is judged through its linear column at small strength
 //! ([`Effect::column`], the fast pre-ranking of `select`).
 
+mod chance;
 mod coulomb_friction;
 mod edge_rounding;
 mod force_gain;
@@ -92,6 +98,11 @@ pub struct Scales {
     pub exponent: f64,
     /// The moving body's mass (kg); NaN from force evidence, where no box needs it.
     pub mass: f64,
+    /// The largest RMS tilt (rad) a per-run tilt of the fixed body could have, as a box
+    /// resting at the end of its recordings shows it beyond the tracker's noise
+    /// (`diagnose::motion::rest`). NaN where none is known (no box, none at rest, force
+    /// evidence).
+    pub rest_tilt: f64,
 }
 
 impl Scales {
@@ -120,6 +131,7 @@ impl Scales {
             interval: gaps.get(gaps.len() / 2).copied().unwrap_or(0.0),
             exponent,
             mass: f64::NAN,
+            rest_tilt: f64::NAN,
         }
     }
 
@@ -139,6 +151,7 @@ impl Scales {
             interval: 0.0,
             exponent: f64::NAN,
             mass,
+            rest_tilt: f64::NAN,
         }
     }
 }
@@ -165,6 +178,11 @@ pub trait Effect: std::fmt::Debug + Sync + Send {
     }
     /// The box its parameters are searched in, from `scales`, for `evidence`.
     fn bounds(&self, evidence: Evidence, scales: &Scales) -> Vec<Bound>;
+    /// Whether it is chance: a spread from run to run, judged by the proper score of
+    /// the ensemble it makes (`Family::Chance`), after the deterministic effects.
+    fn stochastic(&self) -> bool {
+        false
+    }
     /// The parameters that change nothing.
     fn neutral(&self, _model: &Model, _site: Site) -> Vec<f64> {
         vec![0.0]
@@ -183,7 +201,7 @@ pub trait Effect: std::fmt::Debug + Sync + Send {
 }
 
 /// Every built-in effect, in the order a report lists it.
-pub static CATALOGUE: [&dyn Effect; 20] = [
+pub static CATALOGUE: [&dyn Effect; 24] = [
     &friction_coefficient::FrictionCoefficient,
     &coulomb_friction::CoulombFriction,
     &viscous_friction::ViscousFriction,
@@ -204,6 +222,10 @@ pub static CATALOGUE: [&dyn Effect; 20] = [
     &length_scale::LengthScale,
     &inertia_scale::InertiaScale,
     &edge_rounding::EdgeRounding,
+    &chance::CONTACT_SCATTER,
+    &chance::START_UNCERTAINTY,
+    &chance::FIXED_HEIGHT,
+    &chance::FIXED_TILT,
 ];
 
 /// The effects one diagnosis tries: the built-in [`CATALOGUE`] unless a caller adds its
@@ -221,6 +243,12 @@ impl Catalogue {
     /// This catalogue and `effect`, listed last.
     pub fn with(mut self, effect: &'static dyn Effect) -> Catalogue {
         self.0.push(effect);
+        self
+    }
+
+    /// This catalogue with only the effects `keep` keeps.
+    pub fn retain(mut self, keep: impl Fn(&dyn Effect) -> bool) -> Catalogue {
+        self.0.retain(|e| keep(*e));
         self
     }
 

@@ -12,7 +12,7 @@ use crate::numerics::optimize::minimize_scalar;
 use crate::numerics::optimize::nelder_mead::polish;
 use crate::numerics::optimize::Bound;
 use crate::replay::TossError;
-use crate::replay::{simulate_toss, PreparedToss};
+use crate::replay::{forecast_toss_paths, simulate_toss, PreparedToss, Spread};
 use crate::scenario::Model;
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -98,13 +98,41 @@ pub fn mean_or_infinity(scores: Option<&[f64]>) -> f64 {
     }
 }
 
-/// Every toss's score of `target` under `model`, in parallel (`None` if a replay fails).
+/// Every toss's score of `target` under `model`, in parallel (`None` if a replay fails):
+/// a model that varies ([`Model::varies`]) by its ensemble ([`chance_score`]), any
+/// other by its replay ([`toss_score`]).
 fn scores_of(target: &MotionTarget<'_>, model: &Model) -> Option<Vec<f64>> {
     let weight = model.bodies[target.setup.body].mass * target.setup.gravity.norm();
-    let scores: Vec<Option<f64>> = (target.tosses.par_iter())
-        .map(|toss| toss_score(target, toss, model, weight))
+    let varies = model.varies();
+    let scores: Vec<Option<f64>> = (target.tosses.par_iter().enumerate())
+        .map(|(index, toss)| match varies {
+            true => chance_score(target, toss, model, index as u64),
+            false => toss_score(target, toss, model, weight),
+        })
         .collect();
     scores.into_iter().collect()
+}
+
+/// Members of the ensemble a model that varies is scored by (–).
+pub const CHANCE_MEMBERS: usize = 12;
+/// Seed of their draws: toss k draws from stream k, so every candidate and every value
+/// of one sees the same random numbers (a smooth score to search, a paired comparison).
+const CHANCE_SEED: u64 = 0x5eed;
+
+/// One toss's score under a `model` that varies: the fair energy score of its ensemble's
+/// centres (% of the width) plus orientations (°) ([`crate::replay::PathForecast::fair_score`]),
+/// [`CHANCE_MEMBERS`] members from stream `stream` — with one member, the replay's
+/// position plus rotation error, so a deterministic model and a spread compare on one
+/// scale. A force channel is not scored here.
+fn chance_score(
+    target: &MotionTarget<'_>,
+    toss: &PreparedToss<'_>,
+    model: &Model,
+    stream: u64,
+) -> Option<f64> {
+    let spread = Spread::of_model(CHANCE_MEMBERS, CHANCE_SEED);
+    let paths = forecast_toss_paths(model, &target.setup, toss, &spread, stream)?;
+    Some(paths.fair_score())
 }
 
 /// One toss's score under `model`: its mean position error (% of the width) plus mean
@@ -145,6 +173,10 @@ pub struct Fitted {
     pub(crate) fitness: f64,
     /// Fitness evaluations (each a replay of every training toss).
     pub(crate) evaluations: usize,
+    /// For chance, the lowest and highest values whose training scores are not worse
+    /// than the best's at 95 % (paired over the tosses): the interval the data leave for
+    /// the spread (on the grid: its step limits it).
+    pub(crate) interval: Option<[f64; 2]>,
 }
 
 /// Fits `effect` to `training` in `bounds`, starting from `neutral`: one parameter by
@@ -157,6 +189,9 @@ pub fn fit(
     neutral: &[f64],
     training: &Part<'_>,
 ) -> Fitted {
+    if let (true, [bound]) = (effect.stochastic(), bounds) {
+        return grid_fit(subject, effect, bound, training);
+    }
     let score = |values: &[f64]| subject.fitness(effect, values, training);
     let start = score(neutral);
     let (values, fitness, evaluations) = match bounds {
@@ -171,13 +206,64 @@ pub fn fit(
             values,
             fitness,
             evaluations: evaluations + 1,
+            interval: None,
         }
     } else {
         Fitted {
             values: neutral.to_vec(),
             fitness: start,
             evaluations: evaluations + 1,
+            interval: None,
         }
+    }
+}
+
+/// Grid points of a chance candidate's box, its ends included (–).
+const CHANCE_GRID: usize = 13;
+
+/// A chance candidate fitted by its ensemble's training score on [`CHANCE_GRID`]
+/// evenly spaced values of `bound` (the first its neutral 0): the score of a few
+/// members is rough, so the grid, not a local search, and the same draws at every
+/// value (common random numbers). The best value (the lowest on a tie) and the
+/// interval of the values whose paired difference from it, toss by toss, has a 95 %
+/// interval (Student's t) reaching 0.
+fn grid_fit(
+    subject: &Subject<'_>,
+    effect: &dyn Effect,
+    bound: &Bound,
+    training: &Part<'_>,
+) -> Fitted {
+    let values: Vec<f64> = (0..CHANCE_GRID)
+        .map(|k| bound.value_at(k as f64 / (CHANCE_GRID - 1) as f64))
+        .collect();
+    let scores: Vec<Option<Vec<f64>>> = (values.iter())
+        .map(|&v| subject.scores(effect, &[v], training))
+        .collect();
+    let means: Vec<f64> = scores
+        .iter()
+        .map(|s| mean_or_infinity(s.as_deref()))
+        .collect();
+    let best = (0..values.len())
+        .min_by(|&a, &b| means[a].total_cmp(&means[b]))
+        .unwrap_or(0);
+    let within = |k: usize| match (&scores[k], &scores[best]) {
+        (Some(s), Some(b)) if k != best => super::Paired::of(s, b).interval[0] <= 0.0,
+        (Some(_), Some(_)) => true,
+        _ => false,
+    };
+    let inside: Vec<f64> = (0..values.len())
+        .filter(|&k| within(k))
+        .map(|k| values[k])
+        .collect();
+    let interval = match (inside.first(), inside.last()) {
+        (Some(&lo), Some(&hi)) => Some([lo, hi]),
+        _ => None,
+    };
+    Fitted {
+        values: vec![values[best]],
+        fitness: means[best],
+        evaluations: values.len(),
+        interval,
     }
 }
 

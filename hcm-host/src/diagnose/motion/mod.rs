@@ -20,6 +20,7 @@
 //! (at most [`MAX_ROUNDS`] causes). Nothing helping: the answer is "none".
 
 mod fit;
+mod rest;
 
 pub use super::paired::Paired;
 use super::rounds::{self, Outcome, Trials};
@@ -62,6 +63,9 @@ pub struct CandidateResult {
     pub(crate) held_out: f64,
     /// Held-out gain over the round's model: its score minus the candidate's.
     pub gain: Paired,
+    /// For chance, the values the training tosses leave for its spread (95 %, paired).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interval: Option<[f64; 2]>,
     /// Whether it helps (see the module's rule).
     pub helps: bool,
     /// Fitness evaluations its fit took.
@@ -201,6 +205,13 @@ struct Search<'p> {
     last_scores: Option<Vec<f64>>,
     /// Where each candidate's fit is reported.
     progress: &'p dyn Progress,
+    /// Whether the search is in its chance phase: the deterministic effects done,
+    /// the spreads tried on what is left.
+    chance: bool,
+    /// The model as the deterministic phase left it, while the chance phase judges
+    /// its spreads against it with the start state drawn as its fit says: the
+    /// extended model unless a chance is named.
+    deterministic: Option<Model>,
     /// The round under way and its candidates' fits.
     this: Option<Round>,
     held_scores: Vec<Fit>,
@@ -257,8 +268,21 @@ impl Search<'_> {
         self.rounds.push(this);
     }
 
+    /// Whether a chance was named.
+    fn chance_named(&self) -> bool {
+        let chance = |name: &str| {
+            (self.catalogue.for_evidence(Evidence::Poses))
+                .any(|e| e.stochastic() && e.name() == name)
+        };
+        self.named.iter().any(|(name, _)| chance(name))
+    }
+
     /// The diagnosis the search reached.
     fn diagnosis(self) -> MotionDiagnosis {
+        let extended = match (self.chance_named(), &self.deterministic) {
+            (false, Some(deterministic)) => deterministic.clone(),
+            _ => self.current.clone(),
+        };
         let total_gain = match (&self.first_scores, &self.last_scores) {
             (Some(first), Some(last)) => Some(Paired::of(first, last)),
             _ => None,
@@ -272,7 +296,7 @@ impl Search<'_> {
             ambiguous: self.ambiguous,
             total_gain,
             answer,
-            extended: self.current,
+            extended,
         }
     }
 }
@@ -300,10 +324,14 @@ impl rounds::Judge for Search<'_> {
         }
         let floor = MIN_GAIN * mean(self.first_scores.get_or_insert_with(|| base_held.clone()));
         let open: Vec<&'static dyn Effect> = (self.catalogue.for_evidence(Evidence::Poses))
+            .filter(|e| e.stochastic() == self.chance)
             .filter(|e| !self.named.iter().any(|(n, _)| n == e.name()))
             .filter(|e| e.applies(&self.current, site))
             .filter(|e| self.base == MotionBase::Given || !e.within_base_fit(&self.current, site))
             .collect();
+        if open.is_empty() {
+            return Ok(None);
+        }
         let stage = Stage {
             subject,
             training: training_part,
@@ -350,8 +378,28 @@ impl rounds::Judge for Search<'_> {
             }
             Outcome::Nothing => {}
         }
-        self.ambiguous.clone_from(&this.ambiguous);
+        self.ambiguous.extend(&this.ambiguous);
         self.rounds.push(this);
+    }
+
+    /// Chance after the deterministic effects, once: from here on the model forecasts
+    /// from start states drawn with their fits' covariance and what the tracker records
+    /// of each member (`variation.start_state` and `tracker` 1 where they were 0), as
+    /// any forecast of filmed frames from a filmed start must — not causes, the
+    /// reference every spread is judged against.
+    fn next_phase(&mut self) -> bool {
+        if std::mem::replace(&mut self.chance, true) {
+            return false;
+        }
+        self.deterministic = Some(self.current.clone());
+        let variation = &mut self.current.scenario.variation;
+        if variation.start_state == 0.0 {
+            variation.start_state = 1.0;
+        }
+        if variation.tracker == 0.0 {
+            variation.tracker = 1.0;
+        }
+        true
     }
 }
 
@@ -439,6 +487,7 @@ fn search(
         MotionBase::Given => model.clone(),
         MotionBase::Fitted => polished_base(model, &indices, &training)?,
     };
+    let rest_tilt = rest::rest_tilt(model, &setup, &training);
     let mut search = Search {
         base,
         current,
@@ -448,7 +497,10 @@ fn search(
             contact: indices.contact,
             partner: indices.partner,
         },
-        scales: Scales::of_body(model.bodies[setup.body].mass, setup.width / 2.0),
+        scales: Scales {
+            rest_tilt,
+            ..Scales::of_body(model.bodies[setup.body].mass, setup.width / 2.0)
+        },
         catalogue: catalogue.clone(),
         rounds: Vec::new(),
         named: Vec::new(),
@@ -456,6 +508,8 @@ fn search(
         first_scores: None,
         last_scores: None,
         progress,
+        chance: false,
+        deterministic: None,
         this: None,
         held_scores: Vec::new(),
     };
@@ -481,6 +535,7 @@ fn judge(
         training: fitted.fitness,
         held_out: held.map_or(f64::INFINITY, mean),
         gain: Paired::of(&[], &[]),
+        interval: fitted.interval,
         helps: false,
         evaluations: fitted.evaluations,
     }
