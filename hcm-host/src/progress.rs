@@ -26,6 +26,9 @@ pub enum Stage {
     Diagnose,
     /// The final faces' ensembles; steps are tosses (each scatter's, then the forecast's).
     Faces,
+    /// The held-out tosses forecast by the named chance; steps are tosses (ensembles,
+    /// then replays).
+    Forecast,
 }
 
 /// Which fold of a two-fold split a stage works on.
@@ -54,6 +57,7 @@ impl Stage {
             Stage::Predict(Fold::Second) => "second fold: predict",
             Stage::Diagnose => "diagnose",
             Stage::Faces => "final faces",
+            Stage::Forecast => "forecast by the named chance",
         }
     }
 }

@@ -111,7 +111,8 @@ pub fn forecast(
     let forecasts = forecast_tosses(model, data, spread, faces, || bar.inc(1))
         .context("forecasting the tosses by ensembles")?;
     bar.finish_and_clear();
-    let replays = forecast_tosses(model, data, Spread::replay(), false, || {})
+    let replay = model.without_variation();
+    let replays = forecast_tosses(&replay, data, Spread::replay(), false, || {})
         .context("scoring the single replays")?
         .into_iter()
         .map(|f| f.paths)

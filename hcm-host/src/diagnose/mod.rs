@@ -15,6 +15,7 @@ mod naming;
 mod noise;
 mod nonlinearity;
 mod paired;
+pub use paired::Paired;
 mod quality;
 mod report;
 mod rounds;

@@ -39,7 +39,7 @@ pub use rigid::{
 };
 pub use samples::force_samples;
 
-pub use physics::{FitRecord, Physics};
+pub use physics::{variation_sets, FitRecord, Physics};
 
 use crate::dataset::{Dataset, ForceSample};
 use crate::indicators::IndicatorError;

@@ -188,6 +188,24 @@ impl Physics {
         }
     }
 
+    /// This file with `model`'s variation: each of its contacts' parameter scatter
+    /// (`noise`) from the model's contact between the same bodies, and the model's
+    /// `[variation]` as `sets` (those not 0) — the extended model of a diagnosis that
+    /// named a chance.
+    pub fn with_variation(mut self, model: &Model) -> Physics {
+        for contact in &mut self.contacts {
+            let same = (model.contacts.iter()).find(|c| {
+                [c.body_1, c.body_2].map(|b| model.bodies[b].name.as_str())
+                    == [contact.bodies[0].as_str(), contact.bodies[1].as_str()]
+            });
+            if let Some(c) = same {
+                contact.noise = c.noise.iter().cloned().collect();
+            }
+        }
+        self.sets.extend(variation_sets(model));
+        self
+    }
+
     /// Reads a physics file.
     pub fn read(path: &Path) -> Result<Physics, PhysicsError> {
         let file = |message: String| PhysicsError::File {
@@ -330,6 +348,21 @@ impl Physics {
         }
         Ok(())
     }
+}
+
+/// `model`'s `[variation]` as the assignments that set it, those not 0.
+pub fn variation_sets(model: &Model) -> Vec<Assignment> {
+    let v = &model.scenario.variation;
+    let entries = [
+        ("start_state", v.start_state),
+        ("fixed_height", v.fixed_height),
+        ("fixed_tilt", v.fixed_tilt),
+        ("tracker", v.tracker),
+    ];
+    (entries.into_iter())
+        .filter(|(_, value)| *value != 0.0)
+        .filter_map(|(name, value)| Assignment::parse(&format!("variation.{name}={value:?}")).ok())
+        .collect()
 }
 
 /// The parameter a domain error is about, if it names one.

@@ -67,7 +67,8 @@ impl Spread {
         }
     }
 
-    /// One member, no draw: the single replay.
+    /// One member without start draw or contact scatter: the single replay, of a model
+    /// without the rest of a variation (`Model::without_variation`).
     pub fn replay() -> Spread {
         Spread {
             members: 1,

@@ -147,6 +147,15 @@ impl Model {
             || v.tracker > 0.0
     }
 
+    /// The model without its variation: no contact's parameter scatter, `[variation]`
+    /// all 0 — the deterministic model whose one member is the single replay.
+    pub fn without_variation(&self) -> Model {
+        let mut model = self.clone();
+        model.contacts.iter_mut().for_each(|c| c.noise.clear());
+        model.scenario.variation = Default::default();
+        model
+    }
+
     /// Index of the body named `name`.
     pub fn body_index(&self, name: &str) -> Option<usize> {
         self.bodies.iter().position(|b| b.name == name)

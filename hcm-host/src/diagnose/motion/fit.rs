@@ -45,14 +45,18 @@ pub struct Part<'a> {
     pub(crate) data: &'a Dataset,
     /// Prepared from the round's model.
     pub(crate) target: MotionTarget<'a>,
+    /// Members of the ensemble a model that varies is scored by here (–).
+    pub(crate) members: usize,
 }
 
 impl<'a> Part<'a> {
-    /// `data` prepared for `model`.
-    pub fn new(model: &Model, data: &'a Dataset) -> Result<Part<'a>, TossError> {
+    /// `data` prepared for `model`, a model that varies scored by ensembles of
+    /// `members`.
+    pub fn new(model: &Model, data: &'a Dataset, members: usize) -> Result<Part<'a>, TossError> {
         Ok(Part {
             data,
             target: MotionTarget::new(model, data)?,
+            members,
         })
     }
 }
@@ -61,7 +65,7 @@ impl Subject<'_> {
     /// Every toss's score of `part` under the subject's own model (`None` if a replay
     /// fails).
     pub fn base_scores(&self, part: &Part<'_>) -> Option<Vec<f64>> {
-        scores_of(&part.target, self.model)
+        scores_of(&part.target, self.model, part.members)
     }
 
     /// Every toss's score of `part` under `effect` with `values` (`None` if the data
@@ -72,8 +76,11 @@ impl Subject<'_> {
         let mut model = self.model.clone();
         effect.apply(&mut model, self.site, values);
         match effect.read(part.data, values) {
-            Some(read) => scores_of(&MotionTarget::new(self.model, &read).ok()?, &model),
-            None => scores_of(&part.target, &model),
+            Some(read) => {
+                let target = MotionTarget::new(self.model, &read).ok()?;
+                scores_of(&target, &model, part.members)
+            }
+            None => scores_of(&part.target, &model, part.members),
         }
     }
 
@@ -99,38 +106,41 @@ pub fn mean_or_infinity(scores: Option<&[f64]>) -> f64 {
 }
 
 /// Every toss's score of `target` under `model`, in parallel (`None` if a replay fails):
-/// a model that varies ([`Model::varies`]) by its ensemble ([`chance_score`]), any
-/// other by its replay ([`toss_score`]).
-fn scores_of(target: &MotionTarget<'_>, model: &Model) -> Option<Vec<f64>> {
+/// a model that varies ([`Model::varies`]) by its ensemble of `members` ([`chance_score`]),
+/// any other by its replay ([`toss_score`]).
+fn scores_of(target: &MotionTarget<'_>, model: &Model, members: usize) -> Option<Vec<f64>> {
     let weight = model.bodies[target.setup.body].mass * target.setup.gravity.norm();
     let varies = model.varies();
     let scores: Vec<Option<f64>> = (target.tosses.par_iter().enumerate())
         .map(|(index, toss)| match varies {
-            true => chance_score(target, toss, model, index as u64),
+            true => chance_score(target, toss, model, (members, index as u64)),
             false => toss_score(target, toss, model, weight),
         })
         .collect();
     scores.into_iter().collect()
 }
 
-/// Members of the ensemble a model that varies is scored by (–).
-pub const CHANCE_MEMBERS: usize = 12;
+/// Members of the ensembles a model that varies is fitted by on the training tosses
+/// (–): the fair score is unbiased whatever their number, so few suffice for the search.
+pub const FIT_MEMBERS: usize = 8;
+/// Members of the ensembles it is judged by on the held-out tosses (–).
+pub const JUDGE_MEMBERS: usize = 16;
 /// Seed of their draws: toss k draws from stream k, so every candidate and every value
 /// of one sees the same random numbers (a smooth score to search, a paired comparison).
 const CHANCE_SEED: u64 = 0x5eed;
 
 /// One toss's score under a `model` that varies: the fair energy score of its ensemble's
 /// centres (% of the width) plus orientations (°) ([`crate::replay::PathForecast::fair_score`]),
-/// [`CHANCE_MEMBERS`] members from stream `stream` — with one member, the replay's
+/// `members` members from stream `stream` — with one member, the replay's
 /// position plus rotation error, so a deterministic model and a spread compare on one
 /// scale. A force channel is not scored here.
 fn chance_score(
     target: &MotionTarget<'_>,
     toss: &PreparedToss<'_>,
     model: &Model,
-    stream: u64,
+    (members, stream): (usize, u64),
 ) -> Option<f64> {
-    let spread = Spread::of_model(CHANCE_MEMBERS, CHANCE_SEED);
+    let spread = Spread::of_model(members, CHANCE_SEED);
     let paths = forecast_toss_paths(model, &target.setup, toss, &spread, stream)?;
     Some(paths.fair_score())
 }
@@ -219,7 +229,7 @@ pub fn fit(
 }
 
 /// Grid points of a chance candidate's box, its ends included (–).
-const CHANCE_GRID: usize = 13;
+const CHANCE_GRID: usize = 9;
 
 /// A chance candidate fitted by its ensemble's training score on [`CHANCE_GRID`]
 /// evenly spaced values of `bound` (the first its neutral 0): the score of a few

@@ -18,6 +18,15 @@
 //! larger than its own though less sure; otherwise the answer is "ambiguous" and names
 //! none. A named cause is added to the model, and the search repeats on what is left
 //! (at most [`MAX_ROUNDS`] causes). Nothing helping: the answer is "none".
+//!
+//! Then chance (`Family::Chance`): with the deterministic effects done, the model
+//! forecasts by ensembles — its start state drawn as its fit says and the tracker's
+//! noise on each member's frames, the reference — and each kind of run-to-run spread
+//! (the contact's scatter, the start state's, the fixed body's height and tilt) is
+//! fitted on a grid by the fair energy score of its ensembles and judged by the same
+//! rule on the held-out tosses. Chances the held-out tosses cannot tell apart are one
+//! forecast: the one gaining most is named, the others reported beside it. One chance
+//! at most is named; none named, the extended model is the deterministic one.
 
 mod fit;
 mod rest;
@@ -85,6 +94,10 @@ pub struct Round {
     pub(crate) named: Option<&'static str>,
     /// Candidates that explain the held-out data equally well (none named).
     pub(crate) ambiguous: Vec<&'static str>,
+    /// Chances the named one could not be told from: spreads that forecast the
+    /// held-out tosses as well (the named one gains most).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub same_as: Vec<&'static str>,
 }
 
 /// What the diagnosis found.
@@ -107,6 +120,16 @@ pub struct MotionDiagnosis {
     /// The user's model with every named cause.
     #[serde(skip)]
     pub extended: Model,
+}
+
+impl MotionDiagnosis {
+    /// Whether every cause it named is a chance (the extended model is then the base
+    /// with a spread: a physics file of the base carries it whole).
+    pub fn only_chance_named(&self) -> bool {
+        let chance =
+            |name: &str| (super::CATALOGUE.iter()).any(|e| e.stochastic() && e.name() == name);
+        self.named.iter().all(|(name, _)| chance(name))
+    }
 }
 
 /// Why a motion diagnosis could not run.
@@ -220,8 +243,9 @@ struct Search<'p> {
 impl Search<'_> {
     /// The held-out scores of the current model with `first` as fitted, then `second`
     /// fitted on top of it on the training tosses (read through `first` where it is a
-    /// measurement effect): the model with both, for the rule's test whether the best
-    /// candidate (`second`) adds beyond a rival (`first`). None where `second` cannot change that model or a
+    /// measurement effect; two chances: `first` then refitted on top of `second`): the
+    /// model with both, for the rule's test whether the best candidate (`second`) adds
+    /// beyond a rival (`first`). None where `second` cannot change that model or a
     /// replay fails.
     fn stacked(&self, first: &Fit, second: &'static dyn Effect) -> Option<Vec<f64>> {
         let site = self.site;
@@ -235,8 +259,8 @@ impl Search<'_> {
         let training = read(&self.training).unwrap_or_else(|| self.training.clone());
         let held_out = read(&self.held_out).unwrap_or_else(|| self.held_out.clone());
         let (training, held_out) = (
-            Part::new(&model, &training).ok()?,
-            Part::new(&model, &held_out).ok()?,
+            Part::new(&model, &training, fit::FIT_MEMBERS).ok()?,
+            Part::new(&model, &held_out, fit::JUDGE_MEMBERS).ok()?,
         );
         let subject = Subject {
             model: &model,
@@ -245,7 +269,19 @@ impl Search<'_> {
         let bounds = second.bounds(Evidence::Poses, &self.scales);
         let neutral = second.neutral(&model, site);
         let fitted = fit::fit(&subject, second, &bounds, &neutral, &training);
-        subject.scores(second, &fitted.values, &held_out)
+        if !(effect.stochastic() && second.stochastic()) {
+            return subject.scores(second, &fitted.values, &held_out);
+        }
+        // Chance on chance: the rival's spread refitted with the best's in place, as the
+        // two would be fitted together — fitted alone, a spread takes up some of what
+        // the other explains, and kept so it would over-spread the pair.
+        let mut both = model.clone();
+        second.apply(&mut both, site, &fitted.values);
+        let subject = Subject { model: &both, site };
+        let bounds = effect.bounds(Evidence::Poses, &self.scales);
+        let neutral = effect.neutral(&both, site);
+        let refitted = fit::fit(&subject, *effect, &bounds, &neutral, &training);
+        subject.scores(*effect, &refitted.values, &held_out)
     }
 
     /// Names candidate `index` of the round `this`: adds it to the model, reads the
@@ -287,7 +323,11 @@ impl Search<'_> {
             (Some(first), Some(last)) => Some(Paired::of(first, last)),
             _ => None,
         };
-        let answer = answer(&self.named, &self.ambiguous, total_gain.as_ref());
+        let same_as: Vec<(&str, &[&str])> = (self.rounds.iter())
+            .filter_map(|r| Some((r.named?, r.same_as.as_slice())))
+            .filter(|(_, same)| !same.is_empty())
+            .collect();
+        let answer = answer(&self.named, &self.ambiguous, &same_as, total_gain.as_ref());
         MotionDiagnosis {
             training_tosses: self.training.runs.len(),
             held_out_tosses: self.held_out.runs.len(),
@@ -312,8 +352,8 @@ impl rounds::Judge for Search<'_> {
             site,
         };
         let (training_part, held_part) = (
-            Part::new(&self.current, &self.training)?,
-            Part::new(&self.current, &self.held_out)?,
+            Part::new(&self.current, &self.training, fit::FIT_MEMBERS)?,
+            Part::new(&self.current, &self.held_out, fit::JUDGE_MEMBERS)?,
         );
         let base_held = subject
             .base_scores(&held_part)
@@ -329,7 +369,11 @@ impl rounds::Judge for Search<'_> {
             .filter(|e| e.applies(&self.current, site))
             .filter(|e| self.base == MotionBase::Given || !e.within_base_fit(&self.current, site))
             .collect();
-        if open.is_empty() {
+        // One chance at most: the spread the held-out tosses choose (the others it
+        // cannot be told from are reported beside it); a second round on top of an
+        // ensemble would cost the budget of a whole diagnosis.
+        let chance_named = self.chance && self.chance_named();
+        if open.is_empty() || chance_named {
             return Ok(None);
         }
         let stage = Stage {
@@ -346,6 +390,7 @@ impl rounds::Judge for Search<'_> {
             candidates: results,
             named: None,
             ambiguous: Vec::new(),
+            same_as: Vec::new(),
         });
         self.held_scores = held_scores;
         Ok(Some(Trials {
@@ -360,6 +405,24 @@ impl rounds::Judge for Search<'_> {
         self.stacked(&self.held_scores[rival], self.held_scores[best].0)
     }
 
+    /// Chances tied with the best are one forecast: spreads from run to run the
+    /// held-out tosses cannot tell apart. The best (the first of `tied`) is named, the
+    /// others reported beside it; a tie with any deterministic effect stays ambiguous.
+    fn one_model(&self, tied: &[usize]) -> Option<(usize, Vec<&'static str>)> {
+        let chance = |&i: &usize| self.held_scores.get(i).is_some_and(|h| h.0.stochastic());
+        if !self.chance || !tied.iter().all(chance) {
+            return None;
+        }
+        let (&best, others) = tied.split_first()?;
+        Some((
+            best,
+            others
+                .iter()
+                .map(|&i| self.held_scores[i].0.name())
+                .collect(),
+        ))
+    }
+
     fn record(&mut self, decision: &Decision, outcome: &Outcome) {
         let Some(mut this) = self.this.take() else {
             return;
@@ -369,7 +432,8 @@ impl rounds::Judge for Search<'_> {
             (r.gain, r.helps) = (*gain, *helps);
         }
         match outcome {
-            Outcome::Named(index, _) => {
+            Outcome::Named(index, same_as) => {
+                this.same_as.clone_from(same_as);
                 let held_scores = std::mem::take(&mut self.held_scores);
                 return self.name(this, held_scores, *index);
             }
@@ -545,6 +609,7 @@ fn judge(
 fn answer(
     named: &[(String, Vec<(String, f64)>)],
     ambiguous: &[&'static str],
+    same_as: &[(&str, &[&str])],
     total: Option<&Paired>,
 ) -> String {
     let mut parts = Vec::new();
@@ -553,7 +618,13 @@ fn answer(
             .iter()
             .map(|(p, v)| format!("{p} = {v:.4e}"))
             .collect();
-        parts.push(format!("{name} ({})", values.join(", ")));
+        let alike = (same_as.iter().find(|(n, _)| n == name)).map_or(String::new(), |(_, same)| {
+            format!(
+                "; a spread the held-out tosses do not tell from {}",
+                same.join(" or ")
+            )
+        });
+        parts.push(format!("{name} ({}{alike})", values.join(", ")));
     }
     let mut text = if parts.is_empty() {
         "none named".to_owned()

@@ -12,6 +12,7 @@
 mod errors;
 mod faces;
 mod figures;
+mod forecast;
 mod peers;
 mod phases;
 mod report;
@@ -185,13 +186,26 @@ impl Reproduced for CubeReproduction {
         );
         let body = TossSetup::new(&self.fit.model)?.name;
         let predicted = predicted_dataset(&self.predicted.held_out_fitted, &body);
+        let extended = (self.diagnosis.as_ref())
+            .filter(|d| d.extended.varies() && d.only_chance_named())
+            .map(|d| {
+                let comment = format!(
+                    "{comment}, with the chance hcm reproduce cube-toss's diagnosis named \
+                     (what forecast members draw)"
+                );
+                let physics = physics.clone().with_variation(&d.extended);
+                Artifact::Physics("extended.toml", physics, comment)
+            });
         Ok(vec![
             Artifact::Physics("physics.toml", physics, comment),
             Artifact::Data("training.csv", Cow::Borrowed(&self.training)),
             Artifact::Data("held_out.csv", Cow::Borrowed(&self.held_out)),
             Artifact::Data("predicted_held_out.csv", Cow::Owned(predicted)),
             Artifact::Figures(&self.figures),
-        ])
+        ]
+        .into_iter()
+        .chain(extended)
+        .collect())
     }
 
     fn record(&mut self, timing: StageTiming) {
@@ -243,6 +257,15 @@ pub fn reproduce_cube(
         })?),
         false => None,
     };
+    let forecast = match &diagnosis {
+        Some(d) if d.extended.varies() => {
+            Some(clock.time("forecast by the named chance", || {
+                let variation = extended_physics_sets(&d.extended);
+                forecast::forecast(&fit.model, &d.extended, variation, &held_out, progress)
+            })?)
+        }
+        _ => None,
+    };
     let faces = match settings.face_members {
         0 => None,
         members => Some(clock.time("final faces (ensembles)", || {
@@ -259,7 +282,8 @@ pub fn reproduce_cube(
         second: &second_fold,
     };
     let results = CubeResults::gather(settings, folds, timeline, diagnosis.as_ref(), clock.0)
-        .with_faces(faces);
+        .with_faces(faces)
+        .with_forecast(forecast);
     Ok(CubeReproduction {
         scenario,
         training,
@@ -274,6 +298,23 @@ pub fn reproduce_cube(
         figures,
         appendix: None,
     })
+}
+
+/// What the extended physics file adds to the fitted one for `extended`'s variation:
+/// its contacts' `noise` and its `[variation]`, as `--set`s.
+fn extended_physics_sets(extended: &Model) -> Vec<String> {
+    let noise = (extended.contacts.iter().enumerate())
+        .filter(|(_, c)| !c.noise.is_empty())
+        .map(|(i, c)| {
+            let entries: Vec<String> = (c.noise.iter())
+                .map(|(name, b)| format!("{name} = {b:?}"))
+                .collect();
+            format!("contact.{i}.noise={{ {} }}", entries.join(", "))
+        });
+    let variation = crate::identify::variation_sets(extended);
+    noise
+        .chain(variation.iter().map(ToString::to_string))
+        .collect()
 }
 
 /// The diagnosis of `fitted` on both parts (which it splits again, the same way).

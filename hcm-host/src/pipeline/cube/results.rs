@@ -1,6 +1,7 @@
 //! What `results.json` holds: every figure of the report, unrounded.
 
 use super::faces::FaceResults;
+use super::forecast::ForecastResults;
 use super::stages::{Predictions, SecondFold, Timeline};
 use super::CubeSettings;
 use crate::diagnose::MotionDiagnosis;
@@ -130,6 +131,9 @@ pub struct CubeResults {
     pub(crate) diagnosis: Option<MotionDiagnosis>,
     /// The held-out tosses' final faces by ensembles (`null`: skipped).
     pub(crate) faces: Option<FaceResults>,
+    /// The held-out tosses forecast by the chance the diagnosis named (`null`: none
+    /// named, or no diagnosis).
+    pub(crate) forecast: Option<ForecastResults>,
     /// Wall clock per stage (s); the only part that differs between runs.
     pub(crate) timings: Vec<StageTiming>,
 }
@@ -174,8 +178,14 @@ impl CubeResults {
             timeline,
             diagnosis: diagnosis.cloned(),
             faces: None,
+            forecast: None,
             timings,
         }
+    }
+
+    /// With the forecast by the named chance.
+    pub(crate) fn with_forecast(self, forecast: Option<ForecastResults>) -> CubeResults {
+        CubeResults { forecast, ..self }
     }
 
     /// With the final faces' results.
