@@ -163,6 +163,30 @@ pub fn filmed_poses(
     data
 }
 
+/// Prints a motion diagnosis round by round, every candidate's gain, fit and (for a
+/// chance) interval, then its answer: what `--nocapture` shows of a diagnosis test.
+pub fn print_motion_diagnosis(d: &hcm_host::diagnose::MotionDiagnosis) {
+    for round in &d.rounds {
+        println!(
+            "  round: training {:.4}, held-out {:.4} (% + °)",
+            round.training, round.held_out
+        );
+        for c in &round.candidates {
+            let interval = c.interval.map_or(String::new(), |i| format!(" in {i:?}"));
+            println!(
+                "    {:<27} gain {:>9.4} ± {:.4} (t {:>7.1}) {}  {:?}{interval}",
+                c.name,
+                c.gain.mean,
+                c.gain.standard_error,
+                c.gain.t(),
+                if c.helps { "helps" } else { "     " },
+                c.parameters
+            );
+        }
+    }
+    println!("  answer: {}", d.answer);
+}
+
 /// The path of a scenario file in the workspace's `scenarios/`.
 pub fn scenario(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

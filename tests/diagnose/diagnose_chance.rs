@@ -46,30 +46,14 @@ fn diagnosed(what: &str, data: &hcm_host::dataset::Dataset) -> MotionDiagnosis {
     let begun = std::time::Instant::now();
     // The chance phase alone: the deterministic effects are tried first by every
     // diagnosis (tests/diagnose/diagnose_motion.rs), and find nothing here.
-    let chance = Catalogue::default().retain(|e| e.stochastic());
+    let chance = Catalogue::default()
+        .with_chance()
+        .retain(|e| e.stochastic());
     let base = (MotionBase::Given, &chance);
     let silent = &hcm_host::progress::Silent;
     let d = diagnose_motion_with(&cube_toss(&[]), data, base, silent).unwrap();
     println!("== {what} ({:.1} s)", begun.elapsed().as_secs_f64());
-    for round in &d.rounds {
-        println!(
-            "  round: training {:.4}, held-out {:.4}",
-            round.training, round.held_out
-        );
-        for c in &round.candidates {
-            println!(
-                "    {:<22} gain {:>9.4} ± {:.4} (t {:>6.1}) {}  {:?} {:?}",
-                c.name,
-                c.gain.mean,
-                c.gain.standard_error,
-                c.gain.t(),
-                if c.helps { "helps" } else { "     " },
-                c.parameters,
-                c.interval
-            );
-        }
-    }
-    println!("  answer: {}", d.answer);
+    hcm_tests::print_motion_diagnosis(&d);
     d
 }
 

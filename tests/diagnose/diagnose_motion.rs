@@ -171,24 +171,7 @@ fn diagnosed_from(what: &str, user: &Model, data: &Dataset) -> MotionDiagnosis {
     let begun = std::time::Instant::now();
     let d = diagnose_motion(user, data, &hcm_host::progress::Silent).expect("the diagnosis runs");
     println!("== {what} ({:.1} s)", begun.elapsed().as_secs_f64());
-    for round in &d.rounds {
-        println!(
-            "  round: training {:.4}, held-out {:.4} (% + °)",
-            round.training, round.held_out
-        );
-        for c in &round.candidates {
-            println!(
-                "    {:<22} gain {:>9.4} ± {:.4} (t {:>7.1}) {}  {:?}",
-                c.name,
-                c.gain.mean,
-                c.gain.standard_error,
-                c.gain.t(),
-                if c.helps { "helps" } else { "     " },
-                c.parameters
-            );
-        }
-    }
-    println!("  answer: {}", d.answer);
+    hcm_tests::print_motion_diagnosis(&d);
     d
 }
 

@@ -81,6 +81,12 @@ pub struct Args {
     /// candidate fitted on the even ones and judged on the odd ones.
     #[arg(long)]
     from_poses: bool,
+    /// From poses: after the deterministic effects, also try chance — the contact's
+    /// scatter, the start state's uncertainty, the fixed body's height and tilt from
+    /// run to run — judged by the energy score of ensembles (asked for: on poses without
+    /// true run-to-run variation, a spread can still cover what the fit left).
+    #[arg(long)]
+    chance: bool,
     /// Which contact of the scenario.
     #[arg(long, default_value_t = 0)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
@@ -185,7 +191,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         } else {
             MotionBase::Given
         };
-        return super::diagnose_motion::diagnose_into(base, data, freedom, &args.data, &json);
+        let mut catalogue = hcm_host::diagnose::Catalogue::default();
+        if args.chance {
+            catalogue = catalogue.with_chance();
+        }
+        let base_with = (freedom, &catalogue);
+        return super::diagnose_motion::diagnose_into(base, data, base_with, &args.data, &json);
     }
     anyhow::ensure!(
         inputs.has_physics,

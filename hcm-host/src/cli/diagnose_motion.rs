@@ -12,16 +12,16 @@ use hcm_host::output::write_bytes;
 /// Diagnoses `model` on `data` (read from `path`), writes the diagnosis as JSON to
 /// `json` (creating the directory it is in, once there is something to write)
 /// and prints it. `hcm diagnose` on a camera's poses comes here too, with a `base`
-/// fitted when its physics file says so.
+/// fitted when its physics file says so, and the catalogue to try (chance when asked).
 pub fn diagnose_into(
     model: &hcm_host::scenario::Model,
     data: &hcm_host::dataset::Dataset,
-    base: MotionBase,
+    base: (MotionBase, &Catalogue),
     path: &std::path::Path,
     json: &std::path::Path,
 ) -> anyhow::Result<()> {
     let bars = Bars::with_status(|_| "candidates");
-    let diagnosis = diagnose_motion_with(model, data, (base, &Catalogue::default()), &bars)
+    let diagnosis = diagnose_motion_with(model, data, base, &bars)
         .with_context(|| format!("diagnosing the runs of {} from their poses", path.display()))?;
     let text = serde_json::to_string_pretty(&diagnosis)?;
     if let Some(dir) = json.parent().filter(|d| !d.as_os_str().is_empty()) {

@@ -26,7 +26,7 @@ mod verdict;
 pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};
 mod drag;
 mod effects;
-pub use effects::{Catalogue, Effect, Scales, Site, CATALOGUE};
+pub use effects::{Catalogue, Effect, Scales, Site, CATALOGUE, CHANCES};
 mod momentum;
 mod motion;
 mod rigid;

@@ -17,10 +17,7 @@ mod split;
 mod write;
 
 pub use generation::Generation;
-pub use noise::{
-    member_model, noisy_model, noisy_run, read_by_sensor, sensor_is_exact, Draw,
-    FRICTION_COEFFICIENT,
-};
+pub use noise::{noisy_model, noisy_run, read_by_sensor, sensor_is_exact};
 pub use pre_contact::{
     pre_contact_states, replay_model, state_before, PreContact, PreContactError,
 };

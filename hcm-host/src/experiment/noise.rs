@@ -9,10 +9,8 @@
 
 use crate::dataset::{Run, Sample};
 use crate::numerics::sampled::{delayed, low_pass};
-use crate::replay::{shift_surface, tilt_surface};
-use crate::scenario::{Contact, ExperimentSpec, FrictionSpec, Model};
+use crate::scenario::{drawn_run, Draw, ExperimentSpec, Model};
 use crate::simulate::{simulate, SimulationError};
-use hcm_core::LawError;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
@@ -28,37 +26,8 @@ pub fn noisy_run(model: &Model, rng: &mut ChaCha8Rng) -> Result<Run, SimulationE
 /// The model of one run of PM1: every contact's noisy parameters drawn (Eq 18), in
 /// contact order; the first draws of the run's stream.
 pub fn noisy_model(model: &Model, rng: &mut ChaCha8Rng) -> Result<Model, SimulationError> {
-    scattered(model, rng, Draw::Exact)
-}
-
-/// `model` with every contact's noise drawn by `draw`, in contact order, then every
-/// fixed body's height and tilt (`[variation]`), in body order.
-fn scattered(model: &Model, rng: &mut ChaCha8Rng, draw: Draw) -> Result<Model, SimulationError> {
-    let mut model = model.clone();
-    for (index, contact) in model.contacts.iter_mut().enumerate() {
-        scatter_parameters(contact, rng, draw).map_err(|source| SimulationError::Noise {
-            contact: index,
-            source,
-        })?;
-    }
-    let variation = &model.scenario.variation;
-    let (height, tilt) = (variation.fixed_height, variation.fixed_tilt);
-    if height > 0.0 || tilt > 0.0 {
-        let fixed: Vec<usize> = (0..model.bodies.len())
-            .filter(|&b| model.bodies[b].fixed)
-            .collect();
-        for body in fixed {
-            if height > 0.0 {
-                let shift = draw.offset(height, normal(rng));
-                shift_surface(&mut model, body, shift);
-            }
-            if tilt > 0.0 {
-                let [x, y] = [0; 2].map(|_| draw.offset(tilt, normal(rng)));
-                tilt_surface(&mut model, body, x, y);
-            }
-        }
-    }
-    Ok(model)
+    drawn_run(model, rng, Draw::Exact)
+        .map_err(|(contact, source)| SimulationError::Noise { contact, source })
 }
 
 /// Eq 19 and the sensor effects on a simulated run: a force sensor's nonlinearity,
@@ -117,92 +86,6 @@ pub fn read_by_sensor(e: &ExperimentSpec, samples: &mut [Sample]) {
             *f = e.force_gain * *f + b;
         }
         sample.torque.iter_mut().for_each(|t| *t *= e.force_gain);
-    }
-}
-
-/// How Eq 18's ζ becomes a parameter's new value a′ from its value a and relative σ b.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Draw {
-    /// The paper's: a′ = a + a·b·ζ, ζ ~ N(0, 1) as drawn (a generated experiment).
-    Exact,
-    /// A forecast member's: ζ truncated to ±2.5 (offsets too) and the factor 1 + b·ζ held ≥ 0.05, so
-    /// a positive parameter stays positive; a value the law still refuses (a
-    /// restitution above 1) has its offset from a halved until the law takes it. A
-    /// member is a plausible run, never a run the model cannot simulate.
-    Member,
-}
-
-impl Draw {
-    /// a′ for ζ (the new value before any halving).
-    fn value(self, a: f64, b: f64, zeta: f64) -> f64 {
-        match self {
-            Draw::Exact => a + a * b * zeta,
-            Draw::Member => a * (1.0 + b * zeta.clamp(-2.5, 2.5)).max(0.05),
-        }
-    }
-
-    /// An offset of standard deviation σ for ζ: σ·ζ, ζ truncated as the draw truncates.
-    fn offset(self, sigma: f64, zeta: f64) -> f64 {
-        match self {
-            Draw::Exact => sigma * zeta,
-            Draw::Member => sigma * zeta.clamp(-2.5, 2.5),
-        }
-    }
-}
-
-/// The name in a contact's `noise` table that scatters μ_s and μ_d by one ζ (both ×
-/// the same factor, so μ_d ≤ μ_s holds): the friction coefficient of a surface that is
-/// not the same at every spot.
-pub const FRICTION_COEFFICIENT: &str = "mu";
-
-/// A forecast member's model: every contact's parameters of its `noise` table drawn
-/// as [`Draw::Member`] does, in the order [`noisy_model`] draws them. A member whose
-/// friction leaves its domain (v_d below v_s) is an error, like a generated run.
-pub fn member_model(model: &Model, rng: &mut ChaCha8Rng) -> Result<Model, SimulationError> {
-    scattered(model, rng, Draw::Member)
-}
-
-/// Eq 18 on one contact: each parameter of its `noise` table (sorted by name, one draw
-/// each, so a scenario's runs draw alike whatever else changes) drawn by `draw`. A
-/// friction name acts on the contact's friction when it has one ([`FRICTION_COEFFICIENT`]
-/// on both coefficients); any other name on the normal law, which refuses names it does
-/// not have. Friction scattered out of its domain (v_d below v_s, say) is refused
-/// rather than simulated.
-fn scatter_parameters(
-    contact: &mut Contact,
-    rng: &mut ChaCha8Rng,
-    draw: Draw,
-) -> Result<(), LawError> {
-    for (name, b) in &contact.noise {
-        let zeta = normal(rng);
-        let friction = contact.model.friction.as_mut();
-        if let Some(f) = friction {
-            if name == FRICTION_COEFFICIENT {
-                let factor = draw.value(1.0, *b, zeta);
-                f.static_coefficient *= factor;
-                f.dynamic_coefficient *= factor;
-                continue;
-            }
-            if let Some(a) = FrictionSpec::parameter(f, name) {
-                *a = draw.value(*a, *b, zeta);
-                continue;
-            }
-        }
-        let law = &mut contact.model.normal.base;
-        let a = law.get(name)?;
-        let mut value = draw.value(a, *b, zeta);
-        let mut tries = 0;
-        while let Err(error) = law.set(name, value) {
-            tries += 1;
-            if draw == Draw::Exact || tries > 30 {
-                return Err(error);
-            }
-            value = a + 0.5 * (value - a);
-        }
-    }
-    match &contact.model.friction {
-        Some(friction) => friction.validate(),
-        None => Ok(()),
     }
 }
 

@@ -14,7 +14,7 @@
 //! toss: the same seed gives the same forecast on any number of threads.
 //!
 //! A member also draws every contact's parameter scatter (its `noise`, Eq 18, drawn
-//! as `experiment::Draw::Member` does; `Spread::scatter` puts one relative σ on the
+//! as `scenario::Draw::Member` does; `Spread::scatter` puts one relative σ on the
 //! stiffness, damping and friction coefficient): a real table and cube are not the same at
 //! every spot and every landing, and with the fitted ContactNets physics the start
 //! state's own covariance, even ×30, moved no toss to another face
@@ -31,8 +31,9 @@ use super::initial_state::{orientation, InitialState};
 use super::predict::{prepare, simulate_toss, PreparedToss, TossPrediction};
 use super::{Summary, TossError, TossSetup};
 use crate::dataset::{Dataset, FlightFit, Sample};
-use crate::experiment::{member_model, FRICTION_COEFFICIENT};
+use crate::scenario::{drawn_run, Draw, FRICTION_COEFFICIENT};
 use crate::scenario::{Model, Shape};
+use crate::simulate::SimulationError;
 use nalgebra::{UnitQuaternion, Vector3};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -352,7 +353,7 @@ pub(super) fn forecast_face(
 }
 
 /// The members' replays of one toss, in draw order: each member's start states drawn
-/// ([`drawn`]), then its contacts' parameters ([`member_model`]), from stream `stream` of the
+/// ([`drawn`]), then its contacts' parameters and fixed bodies ([`drawn_run`]), from stream `stream` of the
 /// spread's seed.
 pub(super) fn member_replays(
     model: &Model,
@@ -371,10 +372,13 @@ pub(super) fn member_replays(
             for body in &mut member.bodies {
                 body.initial = drawn(&body.initial, inflation, &mut rng);
             }
-            let drawn = member_model(&model, &mut rng).map_err(|error| TossError::Simulation {
-                run: toss.run.to_owned(),
-                error,
-            })?;
+            let drawn =
+                drawn_run(&model, &mut rng, Draw::Member).map_err(|(contact, source)| {
+                    TossError::Simulation {
+                        run: toss.run.to_owned(),
+                        error: SimulationError::Noise { contact, source },
+                    }
+                })?;
             let mut prediction = simulate_toss(&drawn, setup, &member)?;
             if tracker > 0.0 {
                 let companions = prediction.companions.iter_mut().map(|c| &mut c.samples);

@@ -78,38 +78,6 @@ fn box_clearance(local: &Vector3<f64>, half: &Vector3<f64>) -> f64 {
     outside + q.max().min(0.0)
 }
 
-/// The unit up direction of `model`: against gravity, or +z without gravity.
-pub fn up(model: &Model) -> Vector3<f64> {
-    let g = model.gravity;
-    if g.norm() > 0.0 {
-        -g / g.norm()
-    } else {
-        Vector3::z()
-    }
-}
-
-/// Moves fixed body `body`'s contact surface by `shift` (m): a plane's along its own
-/// normal (its `offset`), any other shape's reference point along the up direction.
-pub fn shift_surface(model: &mut Model, body: usize, shift: f64) {
-    let up = up(model);
-    let fixed = &mut model.bodies[body];
-    match &mut fixed.shape {
-        Shape::Plane { offset, .. } => *offset += shift,
-        _ => fixed.position += up * shift,
-    }
-}
-
-/// Tilts fixed body `body` by the rotation vector `(x, y, 0)` (rad, world axes): a
-/// plane's normal turns, any other shape turns about its reference point.
-pub fn tilt_surface(model: &mut Model, body: usize, x: f64, y: f64) {
-    let tilt = UnitQuaternion::from_scaled_axis(Vector3::new(x, y, 0.0));
-    let fixed = &mut model.bodies[body];
-    match &mut fixed.shape {
-        Shape::Plane { normal, .. } => *normal = tilt * *normal,
-        _ => fixed.orientation = tilt * fixed.orientation,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -14,11 +14,13 @@ mod residual_fit;
 mod resolve;
 mod rigid;
 mod validate;
+mod variation;
 pub use geometry::{pair_contacts, pair_kinematics, pair_rate, pair_separation, Pose};
 
 pub use assignment::{Assignment, IntoAssignment};
 pub use resolve::{Body, Contact, Model, Shape};
 pub use rigid::{FrictionSpec, InertiaSpec, OrientationSpec, Part, PartSpec};
+pub use variation::{drawn_run, shift_surface, tilt_surface, up, Draw, FRICTION_COEFFICIENT};
 
 use crate::input;
 use hcm_core::effect::{AirDrag, ContactEffect};

@@ -694,7 +694,7 @@ fn check_noise(spec: &super::ContactSpec) -> Result<(), String> {
     let known = law_catalogue::entry(&spec.law)
         .map(|e| e.parameters)
         .unwrap_or(&[]);
-    let joint = crate::experiment::FRICTION_COEFFICIENT;
+    let joint = super::FRICTION_COEFFICIENT;
     let friction: Vec<&str> = super::FrictionSpec::PARAMETERS
         .into_iter()
         .chain([joint])

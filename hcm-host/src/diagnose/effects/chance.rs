@@ -42,7 +42,7 @@ pub static CONTACT_SCATTER: Chance = Chance {
 pub static START_UNCERTAINTY: Chance = Chance {
     kind: Kind::StartState,
 };
-/// The fixed bodies' height σ ∈ [0, L/20] m.
+/// The fixed bodies' height σ ∈ [0, L/20] m (less where resting bodies show less).
 pub static FIXED_HEIGHT: Chance = Chance {
     kind: Kind::FixedHeight,
 };
@@ -68,6 +68,18 @@ fn tilt_max(s: &Scales) -> f64 {
         s.rest_tilt.min(MAX)
     } else {
         MAX
+    }
+}
+
+/// The largest height σ (m) of the fixed body per run: L/20, or less where the
+/// recordings end at rest and the resting centre's height varies less beyond the
+/// tracker's noise ([`Scales::rest_height`]).
+fn height_max(s: &Scales) -> f64 {
+    let max = 0.05 * s.arm;
+    if s.rest_height.is_finite() {
+        s.rest_height.min(max)
+    } else {
+        max
     }
 }
 
@@ -111,7 +123,7 @@ impl Effect for Chance {
         vec![match self.kind {
             Kind::ContactScatter => Bound::linear("sigma", 0.0, 0.6),
             Kind::StartState => Bound::linear("factor", 0.0, START_FACTOR_MAX),
-            Kind::FixedHeight => Bound::linear("sigma", 0.0, 0.05 * s.arm),
+            Kind::FixedHeight => Bound::linear("sigma", 0.0, height_max(s)),
             Kind::FixedTilt => Bound::linear("sigma", 0.0, tilt_max(s)),
         }]
     }

@@ -126,8 +126,7 @@ impl MotionDiagnosis {
     /// Whether every cause it named is a chance (the extended model is then the base
     /// with a spread: a physics file of the base carries it whole).
     pub fn only_chance_named(&self) -> bool {
-        let chance =
-            |name: &str| (super::CATALOGUE.iter()).any(|e| e.stochastic() && e.name() == name);
+        let chance = |name: &str| (super::CHANCES.iter()).any(|e| e.name() == name);
         self.named.iter().all(|(name, _)| chance(name))
     }
 }
@@ -451,8 +450,10 @@ impl rounds::Judge for Search<'_> {
     /// of each member (`variation.start_state` and `tracker` 1 where they were 0), as
     /// any forecast of filmed frames from a filmed start must — not causes, the
     /// reference every spread is judged against.
+    /// Not after an ambiguous round: a deterministic cause is there, only not which,
+    /// and a spread would take up its misfit.
     fn next_phase(&mut self) -> bool {
-        if std::mem::replace(&mut self.chance, true) {
+        if !self.ambiguous.is_empty() || std::mem::replace(&mut self.chance, true) {
             return false;
         }
         self.deterministic = Some(self.current.clone());
@@ -520,6 +521,7 @@ pub fn diagnose_motion_split(
     model: &Model,
     training: Dataset,
     held_out: Dataset,
+    catalogue: &Catalogue,
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, MotionDiagnoseError> {
     in_stage(progress, ProgressStage::Diagnose, 0, || {
@@ -527,7 +529,7 @@ pub fn diagnose_motion_split(
             model,
             training,
             held_out,
-            (MotionBase::Given, &Catalogue::default()),
+            (MotionBase::Given, catalogue),
             progress,
         )
     })
@@ -551,7 +553,7 @@ fn search(
         MotionBase::Given => model.clone(),
         MotionBase::Fitted => polished_base(model, &indices, &training)?,
     };
-    let rest_tilt = rest::rest_tilt(model, &setup, &training);
+    let (rest_tilt, rest_height) = rest::rest_spreads(model, &setup, &training);
     let mut search = Search {
         base,
         current,
@@ -563,6 +565,7 @@ fn search(
         },
         scales: Scales {
             rest_tilt,
+            rest_height,
             ..Scales::of_body(model.bodies[setup.body].mass, setup.width / 2.0)
         },
         catalogue: catalogue.clone(),

@@ -325,7 +325,11 @@ fn diagnose(
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, CubeError> {
     let (training, held_out) = (training.clone(), held_out.clone());
-    Ok(diagnose_motion_split(fitted, training, held_out, progress)?)
+    // Chance asked for: the tosses vary from toss to toss (issue 48).
+    let catalogue = crate::diagnose::Catalogue::default().with_chance();
+    Ok(diagnose_motion_split(
+        fitted, training, held_out, &catalogue, progress,
+    )?)
 }
 
 /// The data read, cut to `first`, checked against the scenario, and split.
