@@ -346,6 +346,19 @@ impl rounds::Judge for Search<'_> {
     /// Every open candidate fitted and judged against the current model.
     fn trials(&mut self, round: usize) -> Result<Option<Trials>, MotionDiagnoseError> {
         let site = self.site;
+        let open: Vec<&'static dyn Effect> = (self.catalogue.for_evidence(Evidence::Poses))
+            .filter(|e| e.stochastic() == self.chance)
+            .filter(|e| !self.named.iter().any(|(n, _)| n == e.name()))
+            .filter(|e| e.applies(&self.current, site))
+            .filter(|e| self.base == MotionBase::Given || !e.within_base_fit(&self.current, site))
+            .collect();
+        // One chance at most: the spread the held-out tosses choose (the others it
+        // cannot be told from are reported beside it); a second round on top of an
+        // ensemble would cost the budget of a whole diagnosis.
+        let chance_named = self.chance && self.chance_named();
+        if open.is_empty() || chance_named {
+            return Ok(None);
+        }
         let subject = Subject {
             model: &self.current,
             site,
@@ -362,19 +375,6 @@ impl rounds::Judge for Search<'_> {
             return Err(MotionDiagnoseError::Replay { part: "training" });
         }
         let floor = MIN_GAIN * mean(self.first_scores.get_or_insert_with(|| base_held.clone()));
-        let open: Vec<&'static dyn Effect> = (self.catalogue.for_evidence(Evidence::Poses))
-            .filter(|e| e.stochastic() == self.chance)
-            .filter(|e| !self.named.iter().any(|(n, _)| n == e.name()))
-            .filter(|e| e.applies(&self.current, site))
-            .filter(|e| self.base == MotionBase::Given || !e.within_base_fit(&self.current, site))
-            .collect();
-        // One chance at most: the spread the held-out tosses choose (the others it
-        // cannot be told from are reported beside it); a second round on top of an
-        // ensemble would cost the budget of a whole diagnosis.
-        let chance_named = self.chance && self.chance_named();
-        if open.is_empty() || chance_named {
-            return Ok(None);
-        }
         let stage = Stage {
             subject,
             training: training_part,
@@ -453,7 +453,8 @@ impl rounds::Judge for Search<'_> {
     /// Not after an ambiguous round: a deterministic cause is there, only not which,
     /// and a spread would take up its misfit.
     fn next_phase(&mut self) -> bool {
-        if !self.ambiguous.is_empty() || std::mem::replace(&mut self.chance, true) {
+        let chances = (self.catalogue.for_evidence(Evidence::Poses)).any(|e| e.stochastic());
+        if !chances || !self.ambiguous.is_empty() || std::mem::replace(&mut self.chance, true) {
             return false;
         }
         self.deterministic = Some(self.current.clone());
