@@ -32,7 +32,7 @@ use super::predict::{prepare, simulate_toss, PreparedToss, TossPrediction};
 use super::{Summary, TossError, TossSetup};
 use crate::dataset::{Dataset, FlightFit, Sample};
 use crate::scenario::{drawn_run, Draw, FRICTION_COEFFICIENT};
-use crate::scenario::{Model, Shape};
+use crate::scenario::{Contact, Model, Shape};
 use crate::simulate::SimulationError;
 use nalgebra::{UnitQuaternion, Vector3};
 use rand::SeedableRng;
@@ -429,21 +429,24 @@ const SCATTERED: [&str; 5] = [
 /// friction coefficient (μ_s and μ_d by one ζ); `scatter` 0 clears it.
 pub fn scatter_all(model: &mut Model, scatter: f64) {
     for contact in &mut model.contacts {
-        contact.noise.clear();
-        if scatter <= 0.0 {
-            continue;
-        }
-        let law = &contact.model.normal.base;
-        for name in SCATTERED.into_iter().filter(|name| law.get(name).is_ok()) {
-            contact.noise.push((name.to_owned(), scatter));
-        }
-        if contact.model.friction.is_some() {
-            contact
-                .noise
-                .push((FRICTION_COEFFICIENT.to_owned(), scatter));
-        }
-        contact.noise.sort_by(|a, b| a.0.cmp(&b.0));
+        scatter_contact(contact, scatter);
     }
+}
+
+/// Sets `contact`'s `noise` as [`scatter_all`] sets every contact's.
+pub fn scatter_contact(contact: &mut Contact, scatter: f64) {
+    contact.noise.clear();
+    if scatter <= 0.0 {
+        return;
+    }
+    let law = &contact.model.normal.base;
+    for name in SCATTERED.into_iter().filter(|name| law.get(name).is_ok()) {
+        contact.noise.push((name.to_owned(), scatter));
+    }
+    if contact.model.friction.is_some() {
+        (contact.noise).push((FRICTION_COEFFICIENT.to_owned(), scatter));
+    }
+    contact.noise.sort_by(|a, b| a.0.cmp(&b.0));
 }
 
 /// `initial` moved by one draw from its fits' covariance (unchanged without fits).

@@ -43,8 +43,8 @@ pub use score::rotation_angle;
 
 pub use baseline::frozen_pose;
 pub use ensemble::{
-    calibrate_scatter, forecast_faces, scatter_all, summarize_faces, FaceForecast, FaceSummary,
-    Spread, SCATTERS,
+    calibrate_scatter, forecast_faces, scatter_all, scatter_contact, summarize_faces, FaceForecast,
+    FaceSummary, Spread, SCATTERS,
 };
 pub use evaluation::{
     evaluate_tosses, predicted_dataset, summarize, EvaluationSummary, TossEvaluation,

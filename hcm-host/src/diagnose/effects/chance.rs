@@ -17,6 +17,7 @@
 use super::{first, Effect, Family, Scales, Site};
 use crate::dataset::Evidence;
 use crate::numerics::optimize::Bound;
+use crate::replay::scatter_contact;
 use crate::scenario::Model;
 
 /// Which variation.
@@ -83,15 +84,6 @@ fn height_max(s: &Scales) -> f64 {
     }
 }
 
-/// The relative σ `scatter` (–) on contact `contact`'s law parameters that
-/// `crate::replay::scatter_all` scatters and its friction coefficient, in place of its
-/// noise.
-fn scatter_contact(model: &mut Model, contact: usize, scatter: f64) {
-    let mut one = model.clone();
-    crate::replay::scatter_all(&mut one, scatter);
-    model.contacts[contact].noise = std::mem::take(&mut one.contacts[contact].noise);
-}
-
 impl Effect for Chance {
     fn name(&self) -> &'static str {
         match self.kind {
@@ -139,7 +131,7 @@ impl Effect for Chance {
         let size = first(values).max(0.0);
         let variation = &mut model.scenario.variation;
         match self.kind {
-            Kind::ContactScatter => scatter_contact(model, site.contact, size),
+            Kind::ContactScatter => scatter_contact(&mut model.contacts[site.contact], size),
             Kind::StartState => variation.start_state = size,
             Kind::FixedHeight => variation.fixed_height = size,
             Kind::FixedTilt => variation.fixed_tilt = size,
