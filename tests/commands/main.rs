@@ -9,6 +9,7 @@ mod broken_pipe;
 mod cli;
 mod cube_reproduce;
 mod dataset_format;
+mod diagnose_force_chance;
 mod diagnose_given;
 mod fuzz;
 mod help;

@@ -81,10 +81,13 @@ pub struct Args {
     /// candidate fitted on the even ones and judged on the odd ones.
     #[arg(long)]
     from_poses: bool,
-    /// From poses: after the deterministic effects, also try chance — the contact's
-    /// scatter, the start state's uncertainty, the fixed body's height and tilt from
-    /// run to run — judged by the energy score of ensembles (asked for: on poses without
-    /// true run-to-run variation, a spread can still cover what the fit left).
+    /// After the deterministic effects, also try chance, judged by proper scores of
+    /// ensemble forecasts on the held-out runs. From poses: the contact's scatter, the
+    /// start state's uncertainty, the fixed body's height and tilt from run to run
+    /// (energy score). On force (1D): each free law parameter's scatter and the sensor's
+    /// noise level (CRPS of the peak force, impulse and energy taken); a named scatter
+    /// goes into extended.toml's `noise`. Asked for: on runs without true run-to-run
+    /// variation, a spread can still cover what a fit left.
     #[arg(long)]
     chance: bool,
     /// Which contact of the scenario.
@@ -235,6 +238,7 @@ fn diagnose_line_force(args: &Args, inputs: &Inputs) -> anyhow::Result<()> {
         } else {
             BaseFreedom::Given
         },
+        chance: args.chance,
         ..DiagnoseSettings::default()
     };
     let diagnosis = diagnose(&inputs.base, &inputs.data, &settings)?;
@@ -274,6 +278,9 @@ fn extended_physics(base: &Model, args: &Args, diagnosis: &Diagnosis) -> Physics
         },
     );
     extended.contacts[0].effects = diagnosis.extended.effects.iter().copied().collect();
+    if let Some(chance) = &diagnosis.chance {
+        extended.contacts[0].noise = chance.noise().into_iter().collect();
+    }
     if let Some(air_drag) = diagnosis.drag.as_ref().and_then(|d| d.air_drag()) {
         extended.bodies.push(PhysicsBody {
             name: diagnosis.drag_body.clone(),
@@ -328,6 +335,7 @@ fn json_of(d: &Diagnosis) -> serde_json::Value {
         "data_quality": d.data_quality,
         "not_accepted": d.not_accepted,
         "ambiguous": d.ambiguous,
+        "chance": d.chance,
         "sensor_gain": d.sensor_gain,
         "before": d.before,
         "after": d.after,

@@ -1,11 +1,14 @@
 //! The whole diagnosis of one contact: what is wrong, the named causes, the extended
 //! model and its gain — the data behind `DIR/report.md` and `DIR/diagnosis.json`.
 
+use super::force_chance::{force_chance, ForceChance};
 use super::gain::{gain, group_table, holdout, GainTable, Holdout, Judged};
 use super::momentum::{sensor_gain, with_gain, SensorGain};
 use super::naming::{name_causes_beside_momentum, unnamed, Naming, NotAccepted, Trial};
+use super::noise::effective_sigma;
 use super::noise::{noise_floor, NoiseFloor};
 use super::quality::{assess, reconstruction_gap, DataQuality, MAX_GAP_SIGMAS};
+use super::select::free_parameters;
 use super::select::{select, BaseFreedom, Cause, Fitted, Refit, Step};
 use super::sensor::Sensor;
 use super::structure::{residual_structure, Structure};
@@ -37,6 +40,9 @@ pub struct DiagnoseSettings {
     pub hcm_epochs: usize,
     /// What of the base law the user's fit had free (see [`BaseFreedom`]).
     pub base_freedom: BaseFreedom,
+    /// After the deterministic effects, also try chance: each free parameter's scatter
+    /// from run to run and the sensor's noise level ([`super::force_chance`]).
+    pub chance: bool,
 }
 
 impl Default for DiagnoseSettings {
@@ -47,6 +53,7 @@ impl Default for DiagnoseSettings {
             holdout_fraction: 0.25,
             hcm_epochs: 60,
             base_freedom: BaseFreedom::Given,
+            chance: false,
         }
     }
 }
@@ -104,6 +111,9 @@ pub struct Diagnosis {
     /// The same comparison on the training runs: what is wrong with the base model's
     /// force and indicators where it was fitted, and what the extension leaves.
     pub in_sample: GainTable,
+    /// The chance phase, where it was asked for and the deterministic answer leaves
+    /// room for it (not ambiguous, nothing unexplained); None otherwise.
+    pub chance: Option<ForceChance>,
 }
 
 /// Run indices used for fitting and for the gain.
@@ -321,16 +331,16 @@ struct Models {
 }
 
 impl Models {
-    /// Builds the extended model from `law` and `drag` and trains the HCM on `fit_data`
-    /// (contact `settings.contact`).
+    /// Builds the extended model from `fit`'s law and sensor and `drag`, and trains the
+    /// HCM on `fit_data` (contact `settings.contact`).
     fn new(
         base: &Model,
         fit_data: &Dataset,
-        law: &ExtendedLaw<f64>,
-        sensor: Sensor,
+        fit: &Refit,
         drag: Option<&super::drag::DragFit>,
         settings: &DiagnoseSettings,
     ) -> Result<Self, IdentifyError> {
+        let (law, sensor) = (&fit.law, fit.sensor);
         let c = settings.contact;
         let mut extended = base.clone();
         extended.contacts[c].model.normal = law.clone();
@@ -347,6 +357,22 @@ impl Models {
             sensor,
             hcm,
         })
+    }
+
+    /// The gain: base, extended and HCM on `split`'s held-out runs of `data`, and the
+    /// same on its training runs (contact `c`, noise σ in N).
+    fn gain(
+        &self,
+        base: &Model,
+        (data, split): (&Dataset, &Holdout),
+        sigma: f64,
+        c: usize,
+    ) -> Result<(Vec<GainTable>, GainTable), IdentifyError> {
+        let judged = self.judged(base);
+        let held_out = gain(base, data, &split.held_out, c, sigma, &judged)?;
+        let runs = &split.training;
+        let training = group_table("training runs".into(), base, data, runs, c, sigma, &judged)?;
+        Ok((held_out, training))
     }
 
     /// The rows of the gain tables: base, extended and (if trained) HCM.
@@ -481,19 +507,17 @@ pub fn diagnose(
     } else {
         0.0
     };
-    // The gain: base, extended and HCM on the held-out runs.
-    let models = Models::new(
-        base,
-        &fitted.data,
-        &fit.law,
-        fit.sensor,
-        drag.as_ref(),
-        settings,
-    )?;
-    let judged = models.judged(base);
-    let gain = gain(base, data, &split.held_out, c, sigma, &judged)?;
-    let runs = &split.training;
-    let in_sample = group_table("training runs".into(), base, data, runs, c, sigma, &judged)?;
+    let models = Models::new(base, &fitted.data, &fit, drag.as_ref(), settings)?;
+    let (gain, in_sample) = models.gain(base, (data, &split), sigma, c)?;
+    let chance = match settings.chance && naming.ambiguous.is_empty() && !naming.unexplained {
+        true => Some(chance_phase(
+            base,
+            (&completed, &split),
+            (&findings.samples, sigma, &fit),
+            settings,
+        )?),
+        false => None,
+    };
     Ok(Diagnosis {
         noise: findings.noise,
         data_quality: findings.quality,
@@ -520,7 +544,32 @@ pub fn diagnose(
         extended: fit.law,
         gain,
         in_sample,
+        chance,
     })
+}
+
+/// Chance on what the deterministic phase left (`fit`, on the training `samples`, whose
+/// noise floor is `sigma`, N),
+/// judged on the held-out runs of `split`. Asked only where the deterministic answer
+/// leaves no doubt: beside an ambiguity or a structure no cause explains, a spread
+/// would cover a misfit.
+fn chance_phase(
+    base: &Model,
+    (completed, split): (&Completed<'_>, &Holdout),
+    (samples, sigma, fit): (&ContactSamples, f64, &Refit),
+    settings: &DiagnoseSettings,
+) -> Result<ForceChance, IdentifyError> {
+    let c = settings.contact;
+    let held_out = contact_samples_of(base, &completed.subset(&split.held_out), c)?;
+    let noise = effective_sigma(samples, &fit.law, sigma);
+    let free = free_parameters(samples, &fit.law.base, settings.base_freedom);
+    Ok(force_chance(
+        (samples, &held_out),
+        (&fit.law, fit.sensor),
+        noise,
+        &free,
+        (&split.training, &split.held_out),
+    ))
 }
 
 /// The HCM of the base model: a residual network trained on the training runs,

@@ -9,6 +9,8 @@ pub use crate::identify::{contact_samples, ContactSamples};
 mod catalogue;
 mod diagnosis;
 mod family;
+mod force_chance;
+pub use force_chance::{ChanceRound, ChanceTrial, ForceChance, NamedChance};
 mod gain;
 mod held_out;
 mod naming;

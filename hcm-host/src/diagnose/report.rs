@@ -72,6 +72,7 @@ pub fn answer(d: &Diagnosis) -> String {
             100.0 * d.unexplained_share
         ));
     }
+    parts.extend(chance_named(d).map(|n| n.effect.clone()));
     if parts.is_empty() {
         "none".into()
     } else {
@@ -98,6 +99,34 @@ fn refit_explains(d: &Diagnosis) -> bool {
 /// two effects, unexplained, or none. (`diagnosis.json`'s `answer` keeps the short
 /// form of [`answer`].)
 pub fn answer_line(d: &Diagnosis) -> String {
+    let line = deterministic_line(d);
+    let chances: Vec<String> = chance_named(d)
+        .map(|n| {
+            format!(
+                "{} ({} = {})",
+                n.effect,
+                n.parameter,
+                with_interval(n.value, n.interval)
+            )
+        })
+        .collect();
+    if chances.is_empty() {
+        line
+    } else {
+        format!(
+            "{line}; and from run to run, chance: {} (section 5)",
+            chances.join(" + ")
+        )
+    }
+}
+
+/// The chances the diagnosis named, if it asked for them.
+fn chance_named(d: &Diagnosis) -> impl Iterator<Item = &super::NamedChance> {
+    d.chance.iter().flat_map(|c| c.named.iter())
+}
+
+/// [`answer_line`] of the deterministic phase.
+fn deterministic_line(d: &Diagnosis) -> String {
     if !d.data_quality.sufficient {
         return format!("insufficient data ({})", d.data_quality.reasons.join("; "));
     }
@@ -433,5 +462,72 @@ pub fn diagnosis_markdown(d: &Diagnosis, figures: &[&str]) -> String {
     selection_steps(&mut md, d);
     decision(&mut md, d);
     extended_and_gain(&mut md, d);
+    chance_section(&mut md, d);
     md
+}
+
+/// Section 5: the chance phase's rounds, what it named and the extended model's
+/// forecast of the held-out runs beside the deterministic one's.
+fn chance_section(md: &mut String, d: &Diagnosis) {
+    let Some(c) = &d.chance else {
+        return;
+    };
+    let _ = writeln!(md, "
+## 5. Chance (held-out runs)
+
+After the deterministic effects, the model forecasts each run's force as an ensemble: each member's law parameters drawn with their scatter (Eq 18), read along the run's recorded motion by the fitted sensor, plus the sensor's noise. A run's score is the fair CRPS of its peak force, impulse and the energy the contact takes, each in % of its mean over the training runs, averaged (lower is better; the deterministic model plus the sensor's noise is the reference). Each candidate — a free parameter's scatter σ (relative), the sensor's noise × k — is fitted on the training runs over a grid (its interval: the values the training runs do not tell from the best at 95 %, paired) and judged on {} held-out runs by ensembles of {} members, by the rule of section 2: a gain of {} standard errors, beating every rival.\n", c.held_out, c.members, super::verdict::GAIN_T);
+    let _ = writeln!(md, "| round | candidate | fitted | interval | held-out gain (%/run) | ± | t | helps |\n|---|---|---|---|---|---|---|---|");
+    for (k, round) in c.rounds.iter().enumerate() {
+        for t in &round.trials {
+            let _ = writeln!(
+                md,
+                "| {} | `{}` | {:.4} | {:.4} – {:.4} | {:.4} | {:.4} | {:.1} | {} |",
+                k + 1,
+                t.effect,
+                t.value,
+                t.interval.0,
+                t.interval.1,
+                t.gain.mean,
+                t.gain.standard_error,
+                t.gain.t(),
+                t.helps
+            );
+        }
+        let _ = writeln!(
+            md,
+            "| {} | *verdict* (reference {:.4} %) | {} | | | | | |",
+            k + 1,
+            round.reference,
+            round.verdict
+        );
+    }
+    for n in &c.named {
+        let beside = if n.same_as.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; the held-out runs cannot tell it from {} (one forecast)",
+                n.same_as.join(", ")
+            )
+        };
+        let _ = writeln!(
+            md,
+            "\nNamed: `{}`, {} = {}{beside}; `extended.toml` carries it (`noise` of the contact), and every command's `--members` draws it.",
+            n.effect,
+            n.parameter,
+            with_interval(n.value, n.interval)
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\nThe forecast of the held-out runs: score {:.4} % (deterministic) → {:.4} % (with the chances named), gain {:.4} ± {:.4} % per run; 50 % and 90 % bands of the indicators hold {:.3} and {:.3} of them ({:.3} and {:.3} without).",
+        c.scores.0,
+        c.scores.1,
+        c.gain.mean,
+        c.gain.standard_error,
+        c.coverage[0],
+        c.coverage[1],
+        c.coverage_reference[0],
+        c.coverage_reference[1]
+    );
 }

@@ -34,6 +34,23 @@ pub fn crps(members: &[f64], observed: f64) -> f64 {
     error - spread / (m * m)
 }
 
+/// The fair CRPS of the members `members` for the outcome `observed` (their unit):
+/// [`crps`] with the spread term over the M·(M − 1) pairs of distinct members,
+/// (1/M)·Σᵢ|xᵢ − y| − (1/(2M(M − 1)))·Σᵢ Σⱼ |xᵢ − xⱼ| (Ferro 2014, *Fair scores for
+/// ensemble forecasts*, QJRMS 140): in expectation the CRPS of the distribution the
+/// members are drawn from, whatever M, so an ensemble of few members fitted by it is
+/// not pushed wider. One member: the absolute error. NaN for no members or any NaN.
+pub fn fair_crps(members: &[f64], observed: f64) -> f64 {
+    let m = members.len() as f64;
+    if members.len() < 2 {
+        return crps(members, observed);
+    }
+    // crps = error − S/M² with S = ½·Σᵢ Σⱼ |xᵢ − xⱼ|; the error alone is E|X − y|.
+    let error = members.iter().map(|x| (x - observed).abs()).sum::<f64>() / m;
+    let spread_m2 = error - crps(members, observed);
+    error - spread_m2 * m / (m - 1.0)
+}
+
 /// The energy score of the members `members` (each a point of the same dimension) for
 /// the outcome `observed` (their unit): E‖X − y‖ − ½·E‖X − X′‖, the CRPS's
 /// multivariate form (equal to it in one dimension). NaN for no members, a member of
@@ -216,6 +233,32 @@ mod tests {
     use super::*;
     use rand::{RngExt, SeedableRng};
     use rand_chacha::ChaCha8Rng;
+
+    /// The fair CRPS: two members 0 and 2 for the outcome 1 have error 1 and a pair
+    /// spread of 4 over 2·2·1 pair slots, so 0 (the plain CRPS gives 0.5); one member is
+    /// the absolute error. Over many small ensembles drawn from N(0, 1) for outcomes
+    /// drawn alike, it averages the distribution's own CRPS, 1/√π, where the plain CRPS
+    /// of 4 members is larger by E|X − X′|/(2M) = (2/√π)/8.
+    #[test]
+    fn the_fair_crps_is_unbiased_for_few_members() {
+        assert_eq!(fair_crps(&[0.0, 2.0], 1.0), 0.0);
+        assert_eq!(crps(&[0.0, 2.0], 1.0), 0.5);
+        assert_eq!(fair_crps(&[3.0], 1.0), 2.0);
+        assert!(fair_crps(&[], 1.0).is_nan());
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let mut normal =
+            || -> f64 { rand_distr::Distribution::sample(&rand_distr::StandardNormal, &mut rng) };
+        let (mut fair, mut plain, n) = (0.0, 0.0, 40_000);
+        for _ in 0..n {
+            let members = [normal(), normal(), normal(), normal()];
+            let y = normal();
+            fair += fair_crps(&members, y) / n as f64;
+            plain += crps(&members, y) / n as f64;
+        }
+        let truth = 1.0 / std::f64::consts::PI.sqrt();
+        assert!((fair - truth).abs() < 0.01, "{fair} vs {truth}");
+        assert!((plain - truth - 2.0 / std::f64::consts::PI.sqrt() / 8.0).abs() < 0.01);
+    }
 
     /// The pair sum written out, for the sorted form to be checked against.
     fn crps_by_pairs(x: &[f64], y: f64) -> f64 {

@@ -23,7 +23,7 @@ pub enum Draw {
 
 impl Draw {
     /// a′ for ζ (the new value before any halving).
-    fn value(self, a: f64, b: f64, zeta: f64) -> f64 {
+    pub fn value(self, a: f64, b: f64, zeta: f64) -> f64 {
         match self {
             Draw::Exact => a + a * b * zeta,
             Draw::Member => a * (1.0 + b * zeta.clamp(-2.5, 2.5)).max(0.05),
