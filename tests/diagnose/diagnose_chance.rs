@@ -11,7 +11,7 @@
 
 use hcm_host::diagnose::{diagnose_motion_with, Catalogue, MotionBase, MotionDiagnosis};
 use hcm_host::identify::split_tosses;
-use hcm_host::replay::{forecast_paths, summarize_paths, Spread};
+use hcm_host::replay::{band_shares, forecast_paths, summarize_paths, Spread};
 use hcm_host::scenario::{Model, Scenario};
 
 /// Tosses per scattered data set: half train, half held out.
@@ -94,7 +94,7 @@ fn a_scattered_contact_is_named_with_its_scatter_and_forecast_calibrated() {
             run
         }));
     let forecasts = forecast_paths(&d.extended, &held_out, Spread::of_model(40, 3), || {}).unwrap();
-    let shares = summarize_paths(&forecasts).coverage.shares();
+    let shares = band_shares(&summarize_paths(&forecasts).coverage);
     println!(
         "coverage of the 50 % and 90 % bands (40 members) on {} unseen tosses: {shares:?}",
         held_out.runs.len()

@@ -7,7 +7,7 @@
 //! hold an outcome drawn like them (the level, or their range's (M − 1)/(M + 1)); the draws do not
 //! depend on the thread count.
 
-use hcm_host::replay::{evaluate_tosses, forecast_paths, summarize_paths, Spread};
+use hcm_host::replay::{band_shares, evaluate_tosses, forecast_paths, summarize_paths, Spread};
 
 #[test]
 fn an_ensemble_of_a_scattered_contact_scores_better_than_the_replay_it_reduces_to() {
@@ -44,8 +44,8 @@ fn an_ensemble_of_a_scattered_contact_scores_better_than_the_replay_it_reduces_t
         many.rotation.mean,
         gain.mean,
         standard_error,
-        one.coverage.shares(),
-        many.coverage.shares()
+        band_shares(&one.coverage),
+        band_shares(&many.coverage)
     );
     assert!(ensemble.iter().all(|f| f.members + f.failed == 16));
     assert!(
@@ -54,7 +54,7 @@ fn an_ensemble_of_a_scattered_contact_scores_better_than_the_replay_it_reduces_t
         gain.mean
     );
     // 16 members: 0.5 and 0.882 (their range) for a calibrated ensemble.
-    for (share, level) in many.coverage.shares().into_iter().zip([0.5, 0.9]) {
+    for (share, level) in band_shares(&many.coverage).into_iter().zip([0.5, 0.9]) {
         let calibrated = hcm_host::numerics::scores::calibrated_coverage(16, level);
         assert!((share - calibrated).abs() < 0.08, "{share} vs {calibrated}");
     }

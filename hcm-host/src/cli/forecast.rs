@@ -10,8 +10,8 @@ use hcm_host::identify::split_tosses;
 use hcm_host::numerics::scores::calibrated_coverage;
 use hcm_host::output::write_atomically;
 use hcm_host::replay::{
-    calibrate_scatter, forecast_tosses, summarize_paths, PathForecast, Spread, Summary,
-    TossForecast, BAND_LEVELS, SCATTERS,
+    band_shares, calibrate_scatter, forecast_tosses, summarize_paths, PathForecast, Spread,
+    Summary, TossForecast, BAND_LEVELS, SCATTERS,
 };
 use hcm_host::scenario::Model;
 use std::path::Path;
@@ -226,7 +226,7 @@ pub fn print_scores(ensemble: &Ensemble, width: f64) {
         );
         println!("|---|---|---|---|---|---|---|---|---|---|");
         for (forecast, toss) in ensemble.forecasts.iter().zip(&paths) {
-            let shares = toss.coverage.shares();
+            let shares = band_shares(&toss.coverage);
             let (brier, log) = forecast
                 .face
                 .as_ref()
@@ -252,7 +252,7 @@ pub fn print_scores(ensemble: &Ensemble, width: f64) {
     println!("|---|---|---|---|---|---|---|---|");
     let row = |label: &str, forecasts: &[PathForecast]| {
         let s = summarize_paths(forecasts);
-        let shares = s.coverage.shares();
+        let shares = band_shares(&s.coverage);
         println!(
             "| {label} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} |",
             s.position.mean, s.rotation.mean, s.crps[0], s.crps[1], s.crps[2], shares[0], shares[1]

@@ -196,6 +196,15 @@ impl Coverage {
         }
     }
 
+    /// The share of the outcomes scored inside the band of `level` (–); NaN where
+    /// `level` is not counted or nothing was scored.
+    pub fn share_at(&self, level: f64) -> f64 {
+        match self.levels.iter().position(|l| *l == level) {
+            Some(k) if self.scored > 0 => self.inside[k] as f64 / self.scored as f64,
+            _ => f64::NAN,
+        }
+    }
+
     /// Counts one outcome `observed` against the bands of `members`; an outcome or
     /// ensemble with NaN is not counted.
     pub fn add(&mut self, members: &[f64], observed: f64) {

@@ -28,8 +28,16 @@ use crate::dataset::{Dataset, Sample};
 use crate::numerics::scores::{self, energy_parts_by, euclidean, Coverage};
 use crate::scenario::Model;
 
-/// The central bands whose coverage is counted (–).
+/// The central bands whose coverage is printed and written per toss (–).
 pub const BAND_LEVELS: [f64; 2] = [0.5, 0.9];
+/// The central bands whose coverage is counted (–): every tenth and 95 %, the
+/// calibration curve's points ([`BAND_LEVELS`] among them).
+pub const CALIBRATION_LEVELS: [f64; 10] = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95];
+
+/// The shares of `coverage`'s outcomes inside the bands of [`BAND_LEVELS`] (–).
+pub fn band_shares(coverage: &Coverage) -> [f64; 2] {
+    BAND_LEVELS.map(|level| coverage.share_at(level))
+}
 
 /// One toss's path forecast and its scores.
 #[derive(Clone, Debug, PartialEq)]
@@ -113,7 +121,7 @@ pub fn forecast_paths(
 pub fn summarize_paths(forecasts: &[PathForecast]) -> PathSummary {
     let of =
         |f: fn(&PathForecast) -> f64| Summary::of(&forecasts.iter().map(f).collect::<Vec<_>>());
-    let mut coverage = Coverage::new(&BAND_LEVELS);
+    let mut coverage = Coverage::new(&CALIBRATION_LEVELS);
     for f in forecasts {
         coverage.merge(&f.coverage);
     }
@@ -141,7 +149,7 @@ pub(super) fn score_paths(
     let mover = &setup.movers[0];
     let recorded = toss.primary().measured();
     let turn = |s: &Sample| orientation(&mover.name, toss.run, s);
-    let mut coverage = Coverage::new(&BAND_LEVELS);
+    let mut coverage = Coverage::new(&CALIBRATION_LEVELS);
     let (mut position, mut rotation, mut crps) = (0.0, 0.0, [0.0; 3]);
     let mut spread = [0.0; 2];
     for (i, frame) in recorded.iter().enumerate() {

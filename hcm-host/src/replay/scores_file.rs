@@ -65,7 +65,7 @@ pub fn write_scores(
         )?;
         for (i, e) in evaluations.iter().enumerate() {
             let forecast = forecasts.and_then(|f| f.get(i)).map(|f| {
-                let shares = f.coverage.shares();
+                let shares = super::band_shares(&f.coverage);
                 [
                     f.position, f.rotation, f.crps[0], f.crps[1], f.crps[2], shares[0], shares[1],
                 ]

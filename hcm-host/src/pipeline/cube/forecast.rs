@@ -4,11 +4,11 @@
 
 use crate::dataset::Dataset;
 use crate::diagnose::Paired;
-use crate::numerics::scores::calibrated_coverage;
+use crate::numerics::scores::{calibrated_coverage, central_band};
 use crate::progress::{in_stage, Progress, Stage};
 use crate::replay::{
-    forecast_tosses, summarize_faces, summarize_paths, FaceSummary, PathForecast, Spread,
-    TossError, BAND_LEVELS,
+    band_shares, forecast_tosses, summarize_faces, summarize_paths, FaceSummary, PathForecast,
+    Spread, TossError, TossForecast, TossSetup, BAND_LEVELS, CALIBRATION_LEVELS,
 };
 use crate::scenario::Model;
 use serde::Serialize;
@@ -31,6 +31,9 @@ pub struct PathScores {
     pub(crate) crps: [f64; 3],
     /// Share of the recorded coordinates inside the 50 % and 90 % bands.
     pub(crate) coverage: Vec<f64>,
+    /// The calibration curve: (nominal level, share inside) at every level of
+    /// [`CALIBRATION_LEVELS`].
+    pub(crate) calibration: Vec<(f64, f64)>,
 }
 
 impl PathScores {
@@ -40,9 +43,70 @@ impl PathScores {
             position: s.position.mean,
             rotation: s.rotation.mean,
             crps: s.crps,
-            coverage: s.coverage.shares(),
+            coverage: band_shares(&s.coverage).to_vec(),
+            calibration: (CALIBRATION_LEVELS.iter())
+                .map(|&level| (level, s.coverage.share_at(level)))
+                .collect(),
         }
     }
+}
+
+/// One held-out toss's recorded centre beside its forecast's bands, for the report's
+/// figure.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ShownToss {
+    /// Run id.
+    pub(crate) run: String,
+    /// Each window frame's time since the window start (s).
+    pub(crate) time: Vec<f64>,
+    /// The recorded centre at each frame (m).
+    pub(crate) recorded: Vec<[f64; 3]>,
+    /// Per frame and axis: the members' central 50 % and 90 % bands (m).
+    pub(crate) bands: Vec<[[(f64, f64); 2]; 3]>,
+}
+
+impl ShownToss {
+    /// The toss of `forecast` (of `data`'s runs, `setup`'s primary body) with its bands;
+    /// None where a member failed or the recording is missing.
+    fn of(setup: &TossSetup, data: &Dataset, forecast: &TossForecast) -> Option<ShownToss> {
+        let members: Vec<_> = (forecast.members.iter())
+            .map(Option::as_ref)
+            .collect::<Option<_>>()?;
+        let first = members.first()?;
+        let run = (data.runs.iter()).find(|r| r.id == forecast.paths.run)?;
+        let recorded = run.body(&setup.name)?.samples.get(first.window.start..)?;
+        let t0 = recorded.first()?.time;
+        let bands = (0..recorded.len())
+            .map(|i| {
+                std::array::from_fn(|axis| {
+                    let values: Vec<f64> = members
+                        .iter()
+                        .filter_map(|m| m.samples.get(i).map(|s| s.position[axis]))
+                        .collect();
+                    BAND_LEVELS.map(|level| central_band(&values, level))
+                })
+            })
+            .collect();
+        Some(ShownToss {
+            run: forecast.paths.run.clone(),
+            time: recorded.iter().map(|s| s.time - t0).collect(),
+            recorded: recorded.iter().map(|s| s.position).collect(),
+            bands,
+        })
+    }
+}
+
+/// The forecast of the toss whose ensemble score is the median of `forecasts`.
+fn median_toss(setup: &TossSetup, data: &Dataset, forecasts: &[TossForecast]) -> Option<ShownToss> {
+    let mut order: Vec<usize> = (0..forecasts.len()).collect();
+    order.sort_by(|&a, &b| {
+        forecasts[a]
+            .paths
+            .score()
+            .total_cmp(&forecasts[b].paths.score())
+    });
+    let median = *order.get(order.len() / 2)?;
+    ShownToss::of(setup, data, &forecasts[median])
 }
 
 /// What the forecast stage found.
@@ -63,6 +127,9 @@ pub struct ForecastResults {
     pub(crate) gain: Paired,
     /// The final faces from the same members (the primary body a box).
     pub(crate) faces: Option<FaceSummary>,
+    /// The held-out toss of median ensemble score with its bands (the figure's).
+    #[serde(skip)]
+    pub(crate) shown: Option<ShownToss>,
 }
 
 /// The held-out tosses forecast by `extended` (a model that varies) beside `fitted`'s
@@ -79,12 +146,11 @@ pub(crate) fn forecast(
     let tick = || progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1, steps);
     in_stage(progress, Stage::Forecast, steps, || {
         let spread = Spread::of_model(MEMBERS, SEED);
-        let boxed = crate::replay::TossSetup::new(extended).is_ok_and(|s| {
-            matches!(
-                extended.bodies[s.body].shape,
-                crate::scenario::Shape::Box { .. }
-            )
-        });
+        let setup = TossSetup::new(extended)?;
+        let boxed = matches!(
+            extended.bodies[setup.body].shape,
+            crate::scenario::Shape::Box { .. }
+        );
         let ensembles = forecast_tosses(extended, held_out, spread, boxed, tick)?;
         let replays = forecast_tosses(fitted, held_out, Spread::replay(), false, tick)?;
         let paths: Vec<PathForecast> = ensembles.iter().map(|f| f.paths.clone()).collect();
@@ -101,6 +167,7 @@ pub(crate) fn forecast(
                 .collect(),
             gain: Paired::of(&scores(&single), &scores(&paths)),
             faces: boxed.then(|| summarize_faces(&faces, MEMBERS)),
+            shown: median_toss(&setup, held_out, &ensembles),
         })
     })
 }

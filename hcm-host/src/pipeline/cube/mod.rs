@@ -13,6 +13,7 @@ mod errors;
 mod faces;
 mod figures;
 mod forecast;
+mod forecast_figures;
 mod peers;
 mod phases;
 mod report;
@@ -273,7 +274,9 @@ pub fn reproduce_cube(
         })?),
     };
     let figures = clock.time("figures", || {
-        toss_figures(&setup, &held_out, &predicted, &timeline)
+        let mut figures = toss_figures(&setup, &held_out, &predicted, &timeline)?;
+        figures.extend(forecast.iter().flat_map(forecast_figures::forecast_figures));
+        Ok::<_, CubeError>(figures)
     })?;
     let folds = results::Folds {
         fit: &fit,

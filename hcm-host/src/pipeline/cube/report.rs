@@ -94,6 +94,14 @@ impl CubeResults {
             f.gain.units,
             calibrated.join(", ")
         )?;
+        let curve: Vec<String> = (f.ensemble.calibration.iter())
+            .map(|(level, share)| format!("{:.0} %: {share:.3}", 100.0 * level))
+            .collect();
+        writeln!(
+            out,
+            "The calibration curve (`forecast_calibration.svg`), each central band's share              of the held-out coordinates: {}. `forecast_bands.svg`: the held-out toss of              median score, its recorded centre over the members' 50 % and 90 % bands.",
+            curve.join(", ")
+        )?;
         if let Some(s) = &f.faces {
             writeln!(
                 out,
