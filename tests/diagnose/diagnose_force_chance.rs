@@ -3,7 +3,7 @@
 //! were generated with — the scatter named, with σ's interval holding the truth — and
 //! the same runs without scatter, where no chance is named.
 
-use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
+use hcm_host::diagnose::{diagnose, diagnosis_markdown, DiagnoseSettings, Diagnosis};
 use hcm_tests::hidden::{measured, model};
 
 /// The diagnosis with chance of `runs` ball runs generated with `overrides` (seed
@@ -19,38 +19,10 @@ fn diagnosed(overrides: &[String], runs: usize, seed: u64) -> Diagnosis {
     let d = diagnose(&base, &data, &settings).unwrap();
     let causes: Vec<_> = d.causes.iter().map(|c| c.effect).collect();
     println!("{overrides:?}, {runs} runs, seed {seed}: causes {causes:?}");
-    match &d.chance {
-        Some(chance) => {
-            for (k, round) in chance.rounds.iter().enumerate() {
-                println!(
-                    "round {k}: reference {:.3} %, {}",
-                    round.reference, round.verdict
-                );
-                for t in &round.trials {
-                    println!(
-                        "  {}: {:.4} [{:.4}, {:.4}], gain {:.4} ± {:.4} (t {:.1}){}",
-                        t.effect,
-                        t.value,
-                        t.interval.0,
-                        t.interval.1,
-                        t.gain.mean,
-                        t.gain.standard_error,
-                        t.gain.t(),
-                        if t.helps { ", helps" } else { "" }
-                    );
-                }
-            }
-            println!(
-                "held out {}: {:.3} → {:.3} %, gain {:.3} ± {:.3}; coverage {:?} (reference {:?})",
-                chance.held_out,
-                chance.scores.0,
-                chance.scores.1,
-                chance.gain.mean,
-                chance.gain.standard_error,
-                chance.coverage,
-                chance.coverage_reference
-            );
-        }
+    // The report's section 5: every round, what was named, the held-out forecast.
+    let report = diagnosis_markdown(&d, &[]);
+    match report.find("## 5. Chance") {
+        Some(start) => println!("{}", &report[start..]),
         None => println!("no chance phase"),
     }
     d

@@ -99,7 +99,7 @@ impl CubeResults {
             .collect();
         writeln!(
             out,
-            "The calibration curve (`forecast_calibration.svg`), each central band's share              of the held-out coordinates: {}. `forecast_bands.svg`: the held-out toss of              median score, its recorded centre over the members' 50 % and 90 % bands.",
+            "The calibration curve (`forecast_calibration.svg`), each central band's share of the held-out coordinates: {}. `forecast_bands.svg`: the held-out toss of median score, its recorded centre over the members' 50 % and 90 % bands.",
             curve.join(", ")
         )?;
         if let Some(s) = &f.faces {
