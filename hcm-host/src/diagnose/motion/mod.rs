@@ -60,9 +60,9 @@ pub const MIN_HELD_OUT: usize = 3;
 /// tosses a second round on top of the first (the table's tilt) did not pass the rule —
 /// the contact's scatter refitted with the tilt in place gained 0.449 ± 0.345 % + ° per
 /// held-out toss (t 1.3; `hcm predict --members 32` of tilt and scatter 0.15 together:
-/// bands 0.593 and 0.873 where the tilt alone holds 0.426 and 0.729), and its three
-/// refits of ensembles on every toss are the costliest round (`hcm reproduce
-/// cube-toss`, docs/real-data.md).
+/// bands 0.593 and 0.873 where the tilt alone holds 0.426 and 0.729), and the round
+/// cost 332 s of the diagnose stage's 1212 s (`hcm reproduce cube-toss` on one 2-core
+/// machine; 880 s without it, docs/real-data.md).
 pub const MAX_CHANCES: usize = 1;
 
 /// One candidate of one round.
