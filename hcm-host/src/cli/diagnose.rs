@@ -228,7 +228,13 @@ fn diagnose_line_force(args: &Args, inputs: &Inputs) -> anyhow::Result<()> {
     // a failure (too few runs, a failed fit) leaves no --out behind.
     let staged = StagedDirectory::create(&args.out, "diagnosis.json")?;
     let out = staged.path().to_owned();
-    let bar = progress_bar(1, "diagnosing (noise, selection, re-fit, HCM, gain)");
+    let bar = progress_bar(
+        1,
+        match args.chance {
+            true => "diagnosing (noise, selection, re-fit, HCM, gain, chance)",
+            false => "diagnosing (noise, selection, re-fit, HCM, gain)",
+        },
+    );
     let settings = DiagnoseSettings {
         contact: args.contact,
         seed: args.seed,
