@@ -30,7 +30,7 @@ use super::sensor::Sensor;
 use super::verdict::{Decision, Margins};
 use super::ContactSamples;
 use crate::numerics::scores::{central_band, fair_crps};
-use crate::scenario::Draw;
+use crate::scenario::{draw_parameter, Draw};
 use hcm_core::effect::ExtendedLaw;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -202,9 +202,8 @@ fn cases(samples: &ContactSamples, streams: &[usize]) -> Vec<RunCase> {
         .collect()
 }
 
-/// `law` with `scatter`'s parameters drawn as a forecast member draws them, one ζ each
-/// in order; an offset the law refuses is halved until it takes it (at most 30 times,
-/// then the parameter keeps its value).
+/// `law` with `scatter`'s parameters drawn as a forecast member draws them
+/// ([`draw_parameter`]), one ζ each in order.
 fn drawn_law(
     law: &ExtendedLaw<f64>,
     scatter: &[(String, f64)],
@@ -213,19 +212,8 @@ fn drawn_law(
     let mut drawn = law.clone();
     for (name, sigma) in scatter {
         let zeta: f64 = StandardNormal.sample(rng);
-        let Ok(a) = drawn.base.get(name) else {
-            continue;
-        };
-        let mut value = Draw::Member.value(a, *sigma, zeta);
-        for _ in 0..30 {
-            if drawn.base.set(name, value).is_ok() && drawn.validate().is_ok() {
-                break;
-            }
-            value = a + 0.5 * (value - a);
-        }
-        if drawn.validate().is_err() {
-            let _ = drawn.base.set(name, a);
-        }
+        // The candidates are the law's own parameters: no name is unknown.
+        let _ = draw_parameter(&mut drawn, name, *sigma, zeta, Draw::Member);
     }
     drawn
 }

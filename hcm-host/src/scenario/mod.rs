@@ -20,7 +20,8 @@ pub use geometry::{pair_contacts, pair_kinematics, pair_rate, pair_separation, P
 pub use assignment::{Assignment, IntoAssignment};
 pub use resolve::{Body, Contact, Model, Shape};
 pub use rigid::{FrictionSpec, InertiaSpec, OrientationSpec, Part, PartSpec};
-pub use variation::{drawn_run, shift_surface, tilt_surface, up, Draw, FRICTION_COEFFICIENT};
+pub use variation::{draw_parameter, drawn_run, shift_surface, tilt_surface, up};
+pub use variation::{Draw, FRICTION_COEFFICIENT};
 
 use crate::input;
 use hcm_core::effect::{AirDrag, ContactEffect};

@@ -4,6 +4,7 @@
 //! (`crate::replay`). And the moves of a fixed body both draw (and a diagnosis fits).
 
 use super::{Contact, FrictionSpec, Model, Shape};
+use hcm_core::effect::ExtendedLaw;
 use hcm_core::LawError;
 use nalgebra::{UnitQuaternion, Vector3};
 use rand_chacha::ChaCha8Rng;
@@ -103,22 +104,42 @@ fn scatter_parameters(
                 continue;
             }
         }
-        let law = &mut contact.model.normal.base;
-        let a = law.get(name)?;
-        let mut value = draw.value(a, *b, zeta);
-        let mut tries = 0;
-        while let Err(error) = law.set(name, value) {
-            tries += 1;
-            if draw == Draw::Exact || tries > 30 {
-                return Err(error);
-            }
-            value = a + 0.5 * (value - a);
-        }
+        draw_parameter(&mut contact.model.normal, name, *b, zeta, draw)?;
     }
     match &contact.model.friction {
         Some(friction) => friction.validate(),
         None => Ok(()),
     }
+}
+
+/// Eq 18 on one parameter `name` of `law`'s base law: its value a drawn by `draw` for
+/// relative σ `b` (–) and `zeta`. A member's value the law refuses (a restitution
+/// above one) has its offset from a halved until the law takes it, at most 30 times,
+/// then keeps a; an exact draw is taken as drawn. [`LawError::UnknownParameter`] if the
+/// law has no `name`.
+pub fn draw_parameter(
+    law: &mut ExtendedLaw<f64>,
+    name: &str,
+    b: f64,
+    zeta: f64,
+    draw: Draw,
+) -> Result<(), LawError> {
+    let a = law.base.get(name)?;
+    let mut value = draw.value(a, b, zeta);
+    law.base.set(name, value)?;
+    if draw == Draw::Member {
+        for _ in 0..30 {
+            if law.validate().is_ok() {
+                return Ok(());
+            }
+            value = a + 0.5 * (value - a);
+            law.base.set(name, value)?;
+        }
+        if law.validate().is_err() {
+            law.base.set(name, a)?;
+        }
+    }
+    Ok(())
 }
 
 /// The unit up direction of `model`: against gravity, or +z without gravity.
