@@ -33,6 +33,7 @@ fn on_cube_drop_the_hcm_beats_a_pm2_of_another_law_on_held_out_runs() {
 }
 
 #[test]
+#[ignore = "study, over 12 s on 2 cores: cargo test -- --include-ignored"]
 fn on_a_ball_thrown_onto_a_tilted_plate_the_hcm_beats_a_pm2_of_another_law() {
     let e = pipeline(&hcm_tests::scene("ball_on_plate.toml"), "hertz", 100);
     hcm_beats_pm2(&e);

@@ -178,6 +178,7 @@ fn row<'a>(table: &'a GainTable, model: &str) -> &'a GainRow {
 }
 
 #[test]
+#[ignore = "study, over 12 s on 2 cores: cargo test -- --include-ignored"]
 fn the_extended_model_halves_the_held_out_excess_error() {
     use hcm_host::diagnose::{diagnose, DiagnoseSettings};
     for effect in [

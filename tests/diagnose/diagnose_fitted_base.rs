@@ -57,6 +57,7 @@ fn diagnosed_against_fitted(
 /// `hysteresis_damping`; with the exponent re-tuned, none, and a hidden plasticity is
 /// named alone.
 #[test]
+#[ignore = "study, over 12 s on 2 cores: cargo test -- --include-ignored"]
 fn a_fitted_base_never_has_its_exponent_named() {
     let mut held = Vec::new();
     for law in ["hertz", "lankarani_nikravesh", "hunt_crossley", "impact"] {
@@ -102,6 +103,7 @@ fn a_fitted_base_never_has_its_exponent_named() {
 /// and 7.66 µs of 8 µs, intervals ±0.04 µs that miss the truth: the covariance knows
 /// the noise, not the wrong law — so only within 20 %.
 #[test]
+#[ignore = "study, over 12 s on 2 cores: cargo test -- --include-ignored"]
 fn a_delay_a_fitted_base_absorbed_is_named_with_its_value() {
     for law in ["variable_stiffness", "lankarani_nikravesh", "hunt_crossley"] {
         for delay in [2.5e-6, 8e-6] {
@@ -131,6 +133,7 @@ fn a_delay_a_fitted_base_absorbed_is_named_with_its_value() {
 /// `sensor_delay` as rivals (information criteria 9.0 apart, ambiguous) and the Hertz
 /// base names `hysteresis_damping`; so beside the gain only that damping may be named.
 #[test]
+#[ignore = "study, over 12 s on 2 cores: cargo test -- --include-ignored"]
 fn a_gain_a_fitted_base_absorbed_is_named_as_the_sensors() {
     let (model, data) = hidden("experiment.force_gain=1.03", 16, 6);
     for law in ["variable_stiffness", "lankarani_nikravesh", "hertz"] {

@@ -116,6 +116,7 @@ fn each_named_right(name: &str, cases: &[(&str, &str, &str)]) {
 }
 
 #[test]
+#[ignore = "study, over 12 s on 2 cores: cargo test -- --include-ignored"]
 fn hidden_effects_on_a_ball_are_named_or_honestly_left() {
     each_named_right(
         "ball_on_plate.toml",
@@ -138,6 +139,7 @@ fn hidden_effects_on_a_ball_are_named_or_honestly_left() {
 }
 
 #[test]
+#[ignore = "study, over 12 s on 2 cores: cargo test -- --include-ignored"]
 fn hidden_effects_on_a_block_landing_on_a_block_are_named_or_honestly_left() {
     each_named_right(
         "block_on_block.toml",
@@ -164,6 +166,7 @@ fn hidden_effects_on_a_block_landing_on_a_block_are_named_or_honestly_left() {
 /// else: a constant viscous damping, plasticity and a rolling resistance were named on
 /// these data before the normal-law family joined the catalogue.
 #[test]
+#[ignore = "study, over 12 s on 2 cores: cargo test -- --include-ignored"]
 fn a_hertz_pm2_on_data_of_another_law_finds_that_law() {
     let cases = [
         (
