@@ -12,3 +12,4 @@ mod peg_in_hole;
 mod peg_speed;
 mod simulate_figures;
 mod simulation;
+mod variation_tails;

@@ -156,6 +156,9 @@ fn describe(model: &Model, spread: Spread) -> String {
             v.fixed_height, v.fixed_tilt
         ));
     }
+    if v.tails > 0.0 && !parts.is_empty() {
+        parts.push(format!("run-to-run draws Student-t with ν = {}", v.tails));
+    }
     if parts.is_empty() {
         parts.push("no variation (every member is the single replay)".into());
     }

@@ -357,6 +357,7 @@ pub fn variation_sets(model: &Model) -> Vec<Assignment> {
         ("start_state", v.start_state),
         ("fixed_height", v.fixed_height),
         ("fixed_tilt", v.fixed_tilt),
+        ("tails", v.tails),
         ("tracker", v.tracker),
     ];
     (entries.into_iter())

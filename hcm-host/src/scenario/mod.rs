@@ -260,6 +260,14 @@ pub struct VariationSpec {
     /// σ·ζ₁ about the world x axis and σ·ζ₂ about y per run.
     #[serde(default)]
     pub fixed_tilt: f64,
+    /// Degrees of freedom ν of the run-to-run draws (–, > 2; 0, the default, is the
+    /// normal law): every ζ of a run's contact scatter (`noise`), fixed height and
+    /// tilt is a normal draw × one scale per run, √((ν − 2)/χ²_ν), so that the run's
+    /// draws are Student-t of unit variance — the same σ, heavier tails: most runs
+    /// nearer the model than a normal spread puts them, a few much further (a scale
+    /// mixture of normals, as contacts that are mostly alike and now and then not).
+    #[serde(default)]
+    pub tails: f64,
     /// Factor on the tracker's noise each member's frames carry (–, ≥ 0): every frame's
     /// centre and orientation moved by the residual σ of the toss's own free-flight
     /// fits × this, per axis — a forecast of what the tracker records rather than of the

@@ -426,6 +426,13 @@ impl Scenario {
                 format!("must be a factor ≥ 0 on the fitted start state's σ, found {start}");
             return Err(("variation.start_state".into(), problem));
         }
+        let tails = self.variation.tails;
+        if !(tails == 0.0 || (tails > 2.0 && tails.is_finite())) {
+            let problem = format!(
+                "must be 0 (normal draws) or a Student-t's degrees of freedom > 2, found {tails}"
+            );
+            return Err(("variation.tails".into(), problem));
+        }
         if !e.force_nonlinearity.is_finite() {
             return Err((
                 "experiment.force_nonlinearity".into(),

@@ -8,7 +8,7 @@ use hcm_core::effect::ExtendedLaw;
 use hcm_core::LawError;
 use nalgebra::{UnitQuaternion, Vector3};
 use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, StandardNormal};
+use rand_distr::{ChiSquared, Distribution, StandardNormal};
 
 /// How Eq 18's ζ becomes a parameter's new value a′ from its value a and relative σ b.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,7 +47,8 @@ pub const FRICTION_COEFFICIENT: &str = "mu";
 
 /// One run of `model`: every contact's `noise` drawn by `draw` (Eq 18), in contact
 /// order, then every fixed body's height and tilt (`[variation]`), in body order — a
-/// generated run's model (`Draw::Exact`) or a forecast member's (`Draw::Member`). An
+/// generated run's model (`Draw::Exact`) or a forecast member's (`Draw::Member`); with
+/// `variation.tails`, one scale for all of the run's draws is drawn first. An
 /// error names the contact whose parameter left its law's domain.
 pub fn drawn_run(
     model: &Model,
@@ -55,8 +56,9 @@ pub fn drawn_run(
     draw: Draw,
 ) -> Result<Model, (usize, LawError)> {
     let mut model = model.clone();
+    let scale = run_scale(rng, model.scenario.variation.tails);
     for (index, contact) in model.contacts.iter_mut().enumerate() {
-        scatter_parameters(contact, rng, draw).map_err(|source| (index, source))?;
+        scatter_parameters(contact, rng, draw, scale).map_err(|source| (index, source))?;
     }
     let variation = &model.scenario.variation;
     let (height, tilt) = (variation.fixed_height, variation.fixed_tilt);
@@ -66,11 +68,11 @@ pub fn drawn_run(
             .collect();
         for body in fixed {
             if height > 0.0 {
-                let shift = draw.offset(height, normal(rng));
+                let shift = draw.offset(height, scale * normal(rng));
                 shift_surface(&mut model, body, shift);
             }
             if tilt > 0.0 {
-                let [x, y] = [0; 2].map(|_| draw.offset(tilt, normal(rng)));
+                let [x, y] = [0; 2].map(|_| draw.offset(tilt, scale * normal(rng)));
                 tilt_surface(&mut model, body, x, y);
             }
         }
@@ -79,7 +81,7 @@ pub fn drawn_run(
 }
 
 /// Eq 18 on one contact: each parameter of its `noise` table (sorted by name, one draw
-/// each, so a scenario's runs draw alike whatever else changes) drawn by `draw`. A
+/// each, × the run's `scale`, so a scenario's runs draw alike whatever else changes) drawn by `draw`. A
 /// friction name acts on the contact's friction when it has one ([`FRICTION_COEFFICIENT`]
 /// on both coefficients); any other name on the normal law, which refuses names it does
 /// not have. Friction scattered out of its domain (v_d below v_s, say) is refused
@@ -88,9 +90,10 @@ fn scatter_parameters(
     contact: &mut Contact,
     rng: &mut ChaCha8Rng,
     draw: Draw,
+    scale: f64,
 ) -> Result<(), LawError> {
     for (name, b) in &contact.noise {
-        let zeta = normal(rng);
+        let zeta = scale * normal(rng);
         let friction = contact.model.friction.as_mut();
         if let Some(f) = friction {
             if name == FRICTION_COEFFICIENT {
@@ -171,6 +174,20 @@ pub fn tilt_surface(model: &mut Model, body: usize, x: f64, y: f64) {
     match &mut fixed.shape {
         Shape::Plane { normal, .. } => *normal = tilt * *normal,
         _ => fixed.orientation = tilt * fixed.orientation,
+    }
+}
+
+/// The run's scale on its normal draws for Student-t tails with `nu` degrees of freedom
+/// (`VariationSpec::tails`): √((ν − 2)/χ²_ν), of mean square 1, so that each scaled
+/// draw has unit variance; 1, drawing nothing, for the normal law (`nu` = 0), so that a
+/// model without tails draws the same numbers it always drew.
+fn run_scale(rng: &mut ChaCha8Rng, nu: f64) -> f64 {
+    match ChiSquared::new(nu) {
+        Ok(chi) if nu > 2.0 => {
+            let w: f64 = chi.sample(rng);
+            ((nu - 2.0) / w.max(f64::MIN_POSITIVE)).sqrt()
+        }
+        _ => 1.0,
     }
 }
 

@@ -128,6 +128,11 @@ pub struct MotionDiagnosis {
     /// The user's model with every named cause.
     #[serde(skip)]
     pub extended: Model,
+    /// Wall-clock time of the chance phase (s; 0 where it did not run): what the
+    /// spreads add to the deterministic search. Not written (a run's outputs are the
+    /// same bits for the same inputs).
+    #[serde(skip)]
+    pub chance_seconds: f64,
 }
 
 impl MotionDiagnosis {
@@ -242,6 +247,8 @@ struct Search<'p> {
     /// its spreads against it with the start state drawn as its fit says: the
     /// extended model unless a chance is named.
     deterministic: Option<Model>,
+    /// When the chance phase began.
+    chance_started: Option<std::time::Instant>,
     /// The round under way and its candidates' fits.
     this: Option<Round>,
     held_scores: Vec<Fit>,
@@ -349,6 +356,7 @@ impl Search<'_> {
             total_gain,
             answer,
             extended,
+            chance_seconds: (self.chance_started).map_or(0.0, |t| t.elapsed().as_secs_f64()),
         }
     }
 }
@@ -470,6 +478,7 @@ impl rounds::Judge for Search<'_> {
             return false;
         }
         self.deterministic = Some(self.current.clone());
+        self.chance_started = Some(std::time::Instant::now());
         let variation = &mut self.current.scenario.variation;
         if variation.start_state == 0.0 {
             variation.start_state = 1.0;
@@ -590,6 +599,7 @@ fn search(
         progress,
         chance: false,
         deterministic: None,
+        chance_started: None,
         this: None,
         held_scores: Vec::new(),
     };

@@ -258,6 +258,22 @@ pub fn reproduce_cube(
         })?),
         false => None,
     };
+    // The diagnosis' two phases on rows of their own: what chance adds (issue 48).
+    if let Some(d) = diagnosis.as_ref().filter(|d| d.chance_seconds > 0.0) {
+        if let Some(whole) = clock.0.pop() {
+            let phases = [
+                (
+                    "diagnose: deterministic effects",
+                    whole.seconds - d.chance_seconds,
+                ),
+                ("diagnose: chance", d.chance_seconds),
+            ];
+            (clock.0).extend(phases.map(|(stage, seconds)| StageTiming {
+                stage: stage.into(),
+                seconds,
+            }));
+        }
+    }
     let forecast = match &diagnosis {
         Some(d) if d.extended.varies() => {
             Some(clock.time("forecast by the named chance", || {
