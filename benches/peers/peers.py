@@ -170,9 +170,23 @@ def toss_errors(toss, positions, quaternions):
 # --------------------------------------------------------------- MuJoCo
 
 
-def mujoco_xml(k, b, mu, offset, inertia_scale=1.0, substeps=SUBSTEPS, cone="elliptic"):
+def tilt_quaternion(tilt):
+    """(w, x, y, z) of the rotation vector (x, y, 0) rad: a table tilted by `tilt` = (x, y)
+    about the world x and y axes (hcm's `variation.fixed_tilt` turns the plane's normal
+    so)."""
+    x, y = tilt
+    angle = math.hypot(x, y)
+    if angle == 0.0:
+        return np.array([1.0, 0.0, 0.0, 0.0])
+    s = math.sin(angle / 2) / angle
+    return np.array([math.cos(angle / 2), s * x, s * y, 0.0])
+
+
+def mujoco_xml(k, b, mu, offset, inertia_scale=1.0, substeps=SUBSTEPS, cone="elliptic",
+               tilt=(0.0, 0.0)):
     """A 0.1048 m box on a free joint above a plane at z = offset, its inertia
-    hcm's × `inertia_scale`.
+    hcm's × `inertia_scale`; the plane tilted by `tilt` (rad about x and y, about its
+    point (0, 0, offset)) when given.
 
     The cube's geom has priority 1, so its friction, solref and solimp are the
     contact's (the plane's are not mixed in); solref in the negative form is
@@ -181,11 +195,14 @@ def mujoco_xml(k, b, mu, offset, inertia_scale=1.0, substeps=SUBSTEPS, cone="ell
     along the contact frame's diagonal by μ/√2 only (friction_isotropy_check).
     """
     inertia = INERTIA * inertia_scale
+    turned = tuple(tilt) != (0.0, 0.0)
+    quat = (' quat="' + " ".join(repr(float(v)) for v in tilt_quaternion(tilt)) + '"'
+            if turned else "")
     return f"""<mujoco model="cube_toss">
   <option timestep="{FRAME / substeps!r}" integrator="Euler" cone="{cone}" solver="Newton"
           jacobian="dense" gravity="0 0 {-GRAVITY!r}"/>
   <worldbody>
-    <geom name="table" type="plane" size="0 0 1" pos="0 0 {offset!r}" friction="0 0 0"/>
+    <geom name="table" type="plane" size="0 0 1" pos="0 0 {offset!r}"{quat} friction="0 0 0"/>
     <body name="cube">
       <freejoint/>
       <inertial pos="0 0 0" mass="{MASS!r}" diaginertia="{inertia!r} {inertia!r} {inertia!r}"/>
@@ -252,16 +269,19 @@ def cube_urdf():
     return _bullet["urdf"]
 
 
-def bullet_world_fitted(p, c, k, b, mu, offset=0.0, inertia_scale=1.0):
+def bullet_world_fitted(p, c, k, b, mu, offset=0.0, inertia_scale=1.0, tilt=(0.0, 0.0)):
     """Our PyBullet setup: a box of hcm's inertia (× `inertia_scale`), no velocity
-    damping, μ the cube's.
+    damping, μ the cube's; the plane tilted by `tilt` (rad about x and y) when given.
 
     Bullet combines contact stiffness in series and damping as a sum, and friction
     as a product: the cube and the plane each get (2k, b/2), which combine to (k, b)
     exactly, and the plane's lateral friction is 1.
     """
+    w, x, y, z = tilt_quaternion(tilt)
     plane = p.createMultiBody(0.0, p.createCollisionShape(p.GEOM_PLANE, physicsClientId=c),
-                              basePosition=[0, 0, offset], physicsClientId=c)
+                              basePosition=[0, 0, offset],
+                              baseOrientation=[float(v) for v in (x, y, z, w)],
+                              physicsClientId=c)
     box = p.createCollisionShape(p.GEOM_BOX, halfExtents=[HALF] * 3, physicsClientId=c)
     cube = p.createMultiBody(MASS, box, physicsClientId=c)
     p.changeDynamics(cube, -1, localInertiaDiagonal=[INERTIA * inertia_scale] * 3,

@@ -11,6 +11,7 @@ mod cube_reproduce;
 mod dataset_format;
 mod diagnose_force_chance;
 mod diagnose_given;
+mod diagnose_poses_outputs;
 mod fuzz;
 mod help;
 mod members;

@@ -69,7 +69,8 @@ pub struct Args {
     #[arg(long)]
     physics: Option<PathBuf>,
     /// Output directory (created): report.md, diagnosis.json, extended.toml, figures.
-    /// From poses only the diagnosis is written: OUT/diagnosis.json, or OUT itself
+    /// From poses: report.md, diagnosis.json, and where a chance is named its forecast's
+    /// figures and (chances alone) extended.toml; or the diagnosis alone in OUT itself
     /// when it ends in `.json`.
     #[arg(long, value_hint = clap::ValueHint::DirPath)]
     out: PathBuf,
@@ -183,12 +184,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         println!("{}", inventory_summary(data, base, args.contact));
     }
     if evidence == Evidence::Poses {
-        // A camera's poses: the diagnosis from motion, its answer in OUT/diagnosis.json.
-        let json = if args.out.extension().is_some_and(|e| e == "json") {
-            args.out.clone()
-        } else {
-            args.out.join("diagnosis.json")
-        };
+        // A camera's poses: the diagnosis from motion, written to OUT.
         let freedom = if inputs.fitted {
             MotionBase::Fitted
         } else {
@@ -199,7 +195,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             catalogue = catalogue.with_chance();
         }
         let base_with = (freedom, &catalogue);
-        return super::diagnose_motion::diagnose_into(base, data, base_with, &args.data, &json);
+        let physics = args.physics.as_deref().map(Physics::read).transpose()?;
+        let poses = super::diagnose_motion::PosesInputs {
+            model: base,
+            physics,
+            scenario: &inputs.scenario.name,
+            contact: args.contact,
+            data: (data, &args.data),
+            out: &args.out,
+        };
+        return super::diagnose_motion::diagnose_into(poses, base_with);
     }
     anyhow::ensure!(
         inputs.has_physics,

@@ -29,7 +29,9 @@ mod report;
 mod results;
 mod setup;
 mod train;
-pub use cube::{reproduce_cube, CubeReproduction, CubeSettings, Peers};
+pub use cube::{
+    chance_forecast, reproduce_cube, CubeReproduction, CubeSettings, ForecastResults, Peers,
+};
 pub use peg::PegReproduction;
 pub use peg::PegSettings;
 pub use peg::{evaluate_peg, reproduce_peg, CONTACT as PEG_CONTACT};

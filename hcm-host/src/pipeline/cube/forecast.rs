@@ -12,6 +12,7 @@ use crate::replay::{
 };
 use crate::scenario::Model;
 use serde::Serialize;
+use std::fmt::Write;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Members of the held-out ensembles: enough for the 90 % band to be calibrated
@@ -132,6 +133,78 @@ pub struct ForecastResults {
     pub(crate) shown: Option<ShownToss>,
 }
 
+impl ForecastResults {
+    /// Its report section (`## Forecast by the named chance`): the table, the gain,
+    /// the calibration curve's numbers and the faces, in markdown.
+    pub fn write_markdown(&self, out: &mut String) -> std::fmt::Result {
+        let f = self;
+        writeln!(
+            out,
+            "## Forecast by the named chance\n\nThe held-out tosses forecast by ensembles of {} \
+             members of the extended model (the fitted model with {}; `extended.toml`), beside \
+             the fitted model's single replays, scored alike: the energy score of the centre \
+             (% of the width) and of the orientation (°), the CRPS of each coordinate, and the \
+             share of the recorded coordinates inside the members' central bands.\n",
+            f.members,
+            f.variation.join(", ")
+        )?;
+        let calibrated: Vec<String> = (f.calibrated.iter())
+            .map(|(level, share)| format!("{:.0} %: {share:.3}", 100.0 * level))
+            .collect();
+        writeln!(
+            out,
+            "| held out | energy score: position (%) | rotation (°) | CRPS x | y | z (%) | inside 50 % band | inside 90 % band |\n|---|---|---|---|---|---|---|---|"
+        )?;
+        for (label, s) in [("single replay", &f.replay), ("ensemble", &f.ensemble)] {
+            writeln!(
+                out,
+                "| {label} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} |",
+                s.position,
+                s.rotation,
+                s.crps[0],
+                s.crps[1],
+                s.crps[2],
+                s.coverage[0],
+                s.coverage[1]
+            )?;
+        }
+        writeln!(
+            out,
+            "\nEnergy score gain (position + rotation, replay − ensemble, paired per toss): \
+             {:.2} (95 % {:.2} to {:.2}) over {} tosses; a calibrated ensemble's bands hold \
+             {}.",
+            f.gain.mean,
+            f.gain.interval[0],
+            f.gain.interval[1],
+            f.gain.units,
+            calibrated.join(", ")
+        )?;
+        let curve: Vec<String> = (f.ensemble.calibration.iter())
+            .map(|(level, share)| format!("{:.0} %: {share:.3}", 100.0 * level))
+            .collect();
+        writeln!(
+            out,
+            "The calibration curve (`forecast_calibration.svg`), each central band's share of the held-out coordinates: {}. `forecast_bands.svg`: the held-out toss of median score, its recorded centre over the members' 50 % and 90 % bands.",
+            curve.join(", ")
+        )?;
+        if let Some(s) = &f.faces {
+            writeln!(
+                out,
+                "Final faces from the same members: Brier {:.4} (replay {:.4}), log-likelihood \
+                 {:.4} (replay {:.4}), most probable face right on {} of {} (replay {}).",
+                s.brier.1,
+                s.brier.0,
+                s.log_likelihood.1,
+                s.log_likelihood.0,
+                s.ensemble_right,
+                s.tosses,
+                s.replay_right
+            )?;
+        }
+        writeln!(out)
+    }
+}
+
 /// The held-out tosses forecast by `extended` (a model that varies) beside `fitted`'s
 /// replays; reports [`Stage::Forecast`].
 pub(crate) fn forecast(
@@ -170,4 +243,21 @@ pub(crate) fn forecast(
             shown: median_toss(&setup, held_out, &ensembles),
         })
     })
+}
+
+/// The held-out tosses of `data` (its odd toss numbers) forecast by a diagnosis'
+/// extended model `extended` (a model that varies) beside `base`'s single replays, and
+/// the forecast's figures: what `hcm diagnose` shows of a named chance, as `hcm
+/// reproduce cube-toss` shows it.
+pub fn chance_forecast(
+    base: &Model,
+    extended: &Model,
+    data: &Dataset,
+    progress: &dyn Progress,
+) -> Result<(ForecastResults, Vec<crate::figure::NamedFigure>), TossError> {
+    let (_, held_out) = crate::identify::split_tosses(data);
+    let variation = super::extended_physics_sets(extended);
+    let results = forecast(base, extended, variation, &held_out, progress)?;
+    let figures = super::forecast_figures::forecast_figures(&results);
+    Ok((results, figures))
 }

@@ -21,6 +21,7 @@ mod results;
 mod stages;
 
 pub use figures::toss_figures;
+pub use forecast::{chance_forecast, ForecastResults};
 pub use peers::Peers;
 pub use results::CubeResults;
 pub use stages::{Predictions, SecondFold};
@@ -258,22 +259,7 @@ pub fn reproduce_cube(
         })?),
         false => None,
     };
-    // The diagnosis' two phases on rows of their own: what chance adds (issue 48).
-    if let Some(d) = diagnosis.as_ref().filter(|d| d.chance_seconds > 0.0) {
-        if let Some(whole) = clock.0.pop() {
-            let phases = [
-                (
-                    "diagnose: deterministic effects",
-                    whole.seconds - d.chance_seconds,
-                ),
-                ("diagnose: chance", d.chance_seconds),
-            ];
-            (clock.0).extend(phases.map(|(stage, seconds)| StageTiming {
-                stage: stage.into(),
-                seconds,
-            }));
-        }
-    }
+    split_diagnosis_timing(&mut clock, diagnosis.as_ref());
     let forecast = match &diagnosis {
         Some(d) if d.extended.varies() => {
             Some(clock.time("forecast by the named chance", || {
@@ -334,6 +320,28 @@ fn extended_physics_sets(extended: &Model) -> Vec<String> {
     noise
         .chain(variation.iter().map(ToString::to_string))
         .collect()
+}
+
+/// The diagnosis' row of `clock` (the last) split in two where its chance phase ran:
+/// the deterministic effects and chance on rows of their own, what chance adds
+/// (issue 48).
+fn split_diagnosis_timing(clock: &mut StageClock, diagnosis: Option<&MotionDiagnosis>) {
+    let Some(d) = diagnosis.filter(|d| d.chance_seconds > 0.0) else {
+        return;
+    };
+    if let Some(whole) = clock.0.pop() {
+        let phases = [
+            (
+                "diagnose: deterministic effects",
+                whole.seconds - d.chance_seconds,
+            ),
+            ("diagnose: chance", d.chance_seconds),
+        ];
+        (clock.0).extend(phases.map(|(stage, seconds)| StageTiming {
+            stage: stage.into(),
+            seconds,
+        }));
+    }
 }
 
 /// The diagnosis of `fitted` on both parts (which it splits again, the same way).
