@@ -21,3 +21,4 @@ mod results_json;
 mod rigid_bad_data;
 mod rigid_pipeline;
 mod rigid_scenario_errors;
+mod simulate_members;

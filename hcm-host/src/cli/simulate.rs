@@ -2,11 +2,14 @@
 
 use super::report;
 use anyhow::Context;
+use hcm_host::dataset::RunWriter;
 use hcm_host::dataset::{Dataset, Evidence};
+use hcm_host::experiment::simulate_members;
 use hcm_host::figure::rigid_figures;
 use hcm_host::identify::Physics;
-use hcm_host::output::{commit, StagedFile};
+use hcm_host::output::{commit, write_atomically, StagedFile};
 use hcm_host::pipeline::NamedFigure;
+use hcm_host::scenario::Model;
 use hcm_host::simulate::simulate;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -50,6 +53,15 @@ pub struct Args {
     /// contact_force, contact_torque, contact_events (.svg and .png).
     #[arg(long, value_name = "DIR", value_hint = clap::ValueHint::DirPath)]
     figures: Option<PathBuf>,
+    /// Simulate N members drawn from the scenario's variation (each contact's `noise`,
+    /// its `[variation]`'s fixed height and tilt) as a forecast draws them, member m
+    /// from stream m of --seed: OUT holds them all, the measured-data format with the
+    /// column `member` (0 … N−1) last, the same bytes on any thread count.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    members: Option<u32>,
+    /// Seed of the members' draws.
+    #[arg(long, default_value_t = 1, requires = "members")]
+    seed: u64,
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -65,6 +77,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
              the figures show 3D motion — plot OUT's force column instead",
             model.scenario.name
         );
+    }
+    if let Some(members) = args.members {
+        anyhow::ensure!(
+            args.figures.is_none(),
+            "--figures draws one run: drop --members, or drop --figures to simulate the members"
+        );
+        return write_members(&model, members as usize, args.seed, &args.out);
     }
     let simulation = simulate(&model)?;
     let dataset = Dataset {
@@ -124,6 +143,43 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         })
         .collect();
     print!("{}", report::event_table(&rows));
+    Ok(())
+}
+
+/// Simulates `members` members of `model` from `seed` and writes them all to `out`
+/// (atomically), member by member, with the `member` column; prints what they drew
+/// and each member's contact events.
+fn write_members(model: &Model, members: usize, seed: u64, out: &Path) -> anyhow::Result<()> {
+    if !model.varies() {
+        eprintln!(
+            "note: scenario `{}` has no variation (no contact `noise`, no fixed height or \
+             tilt): every member is the same run",
+            model.scenario.name
+        );
+    }
+    let simulations = simulate_members(model, members, seed)?;
+    let name = out.display().to_string();
+    write_atomically(out, |file| -> anyhow::Result<()> {
+        let mut writer = RunWriter::with_members(file, &name)?;
+        for (member, simulation) in simulations.iter().enumerate() {
+            writer.write_member(&simulation.run, member)?;
+        }
+        writer.finish()?;
+        Ok(())
+    })
+    .with_context(|| format!("writing {name}"))?;
+    let events: Vec<usize> = simulations.iter().map(|s| s.events.len()).collect();
+    let rows: usize = (simulations.iter())
+        .flat_map(|s| &s.run.bodies)
+        .map(|b| b.samples.len())
+        .sum();
+    println!(
+        "{}: {members} members (seed {seed}), contact events per member {}–{}; wrote {rows} \
+         rows to {name} (column `member`)",
+        model.scenario.name,
+        events.iter().min().unwrap_or(&0),
+        events.iter().max().unwrap_or(&0),
+    );
     Ok(())
 }
 
