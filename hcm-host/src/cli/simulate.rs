@@ -79,11 +79,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
     }
     if let Some(members) = args.members {
-        anyhow::ensure!(
-            args.figures.is_none(),
-            "--figures draws one run: drop --members, or drop --figures to simulate the members"
-        );
-        return write_members(&model, members as usize, args.seed, &args.out);
+        return write_members(&model, members as usize, &args);
     }
     let simulation = simulate(&model)?;
     let dataset = Dataset {
@@ -146,10 +142,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Simulates `members` members of `model` from `seed` and writes them all to `out`
+/// Simulates `members` members of `model` from `--seed` and writes them all to `--out`
 /// (atomically), member by member, with the `member` column; prints what they drew
 /// and each member's contact events.
-fn write_members(model: &Model, members: usize, seed: u64, out: &Path) -> anyhow::Result<()> {
+fn write_members(model: &Model, members: usize, args: &Args) -> anyhow::Result<()> {
+    anyhow::ensure!(
+        args.figures.is_none(),
+        "--figures draws one run: drop --members, or drop --figures to simulate the members"
+    );
+    let (seed, out) = (args.seed, &args.out);
     if !model.varies() {
         eprintln!(
             "note: scenario `{}` has no variation (no contact `noise`, no fixed height or \
