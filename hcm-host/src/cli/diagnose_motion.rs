@@ -137,21 +137,14 @@ fn markdown(d: &MotionDiagnosis, scenario: &str) -> String {
             round.held_out
         );
         for c in &round.candidates {
-            let values: Vec<String> = (c.parameters.iter())
-                .map(|(n, v)| format!("{n} = {v:.4e}"))
-                .collect();
+            let [name, gain, se, t, helps, values] = cells(c);
             let interval = c
                 .interval
                 .map_or(String::new(), |[lo, hi]| format!("{lo:.4e} to {hi:.4e}"));
+            let helps = if helps.is_empty() { "" } else { "yes" };
             let _ = writeln!(
                 out,
-                "| {} | {:.4} | {:.4} | {:.1} | {} | {} | {interval} |",
-                c.name,
-                c.gain.mean,
-                c.gain.standard_error,
-                c.gain.t(),
-                if c.helps { "yes" } else { "" },
-                values.join(", ")
+                "| {name} | {gain} | {se} | {t} | {helps} | {values} | {interval} |"
             );
         }
         let _ = writeln!(out);
@@ -180,19 +173,25 @@ fn print_diagnosis(d: &MotionDiagnosis) {
             "candidate", "gain", "± se", "t", ""
         );
         for c in &round.candidates {
-            let values: Vec<String> = (c.parameters.iter())
-                .map(|(n, v)| format!("{n} = {v:.4e}"))
-                .collect();
-            println!(
-                "  {:<27} {:>10.4} {:>10.4} {:>8.1}  {:<6} {}",
-                c.name,
-                c.gain.mean,
-                c.gain.standard_error,
-                c.gain.t(),
-                if c.helps { "helps" } else { "" },
-                values.join(", ")
-            );
+            let [name, gain, se, t, helps, values] = cells(c);
+            println!("  {name:<27} {gain:>10} {se:>10} {t:>8}  {helps:<6} {values}");
         }
     }
     println!("answer: {}", d.answer);
+}
+
+/// A candidate's row: its name, gain, standard error, t, `helps` or nothing, and its
+/// fitted values — as printed and as the report's table has them.
+fn cells(c: &hcm_host::diagnose::CandidateResult) -> [String; 6] {
+    let values: Vec<String> = (c.parameters.iter())
+        .map(|(n, v)| format!("{n} = {v:.4e}"))
+        .collect();
+    [
+        c.name.to_owned(),
+        format!("{:.4}", c.gain.mean),
+        format!("{:.4}", c.gain.standard_error),
+        format!("{:.1}", c.gain.t()),
+        if c.helps { "helps" } else { "" }.to_owned(),
+        values.join(", "),
+    ]
 }

@@ -43,7 +43,7 @@ pub use motion::{
     diagnose_motion_split, MotionDiagnoseError, MotionDiagnosis, GAIN_T, MIN_GAIN, MIN_HELD_OUT,
     RIVAL_T,
 };
-pub use motion::{diagnose_motion_with, MotionBase};
+pub use motion::{diagnose_motion_with, CandidateResult, MotionBase};
 pub use naming::{name_causes_beside_momentum, Naming};
 pub use noise::noise_floor;
 pub use report::answer_line;
