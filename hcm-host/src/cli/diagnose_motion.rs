@@ -93,19 +93,12 @@ pub fn diagnose_into(
 /// scatter and `[variation]`.
 fn extended_physics(inputs: &PosesInputs<'_>, d: &MotionDiagnosis) -> Physics {
     let physics = inputs.physics.clone().unwrap_or_else(|| {
-        let contact = &inputs.model.contacts[inputs.contact].model;
-        let mut physics = Physics::for_contact(
-            inputs.model,
-            inputs.contact,
-            &contact.normal.base,
-            FitRecord {
-                data: inputs.data.1.display().to_string(),
-                notes: vec![d.answer.clone()],
-                ..FitRecord::default()
-            },
-        );
-        physics.contacts[0].effects = contact.normal.effects.iter().copied().collect();
-        physics
+        let fit = FitRecord {
+            data: inputs.data.1.display().to_string(),
+            notes: vec![d.answer.clone()],
+            ..FitRecord::default()
+        };
+        Physics::of_contact(inputs.model, inputs.contact, fit)
     });
     physics.with_variation(&d.extended)
 }

@@ -60,29 +60,16 @@ pub fn run(
 /// named, its friction and tangential effects (a measurement cause is reported, not
 /// added to the physics).
 fn extended_physics(d: &RigidDiagnosis, args: &RigidArgs<'_>) -> Physics {
-    let model = &d.fit.model;
-    let contact = &model.contacts[args.contact].model;
-    let mut physics = Physics::for_contact(
-        model,
-        args.contact,
-        &contact.normal.base,
-        FitRecord {
-            method: "diagnose (rigid, force samples)".into(),
-            data: args.data.display().to_string(),
-            runs: d.runs,
-            samples: d.rows,
-            force_rms: d.fit.force_rms,
-            notes: vec![d.answer.clone()],
-            ..FitRecord::default()
-        },
-    );
-    physics.contacts[0].effects = contact.normal.effects.iter().copied().collect();
-    let t = contact.tangential;
-    let any = t.viscous_friction.is_some()
-        || t.torsional_resistance.is_some()
-        || t.rolling_resistance.is_some();
-    physics.contacts[0].tangential = any.then_some(t);
-    physics
+    let fit = FitRecord {
+        method: "diagnose (rigid, force samples)".into(),
+        data: args.data.display().to_string(),
+        runs: d.runs,
+        samples: d.rows,
+        force_rms: d.fit.force_rms,
+        notes: vec![d.answer.clone()],
+        ..FitRecord::default()
+    };
+    Physics::of_contact(&d.fit.model, args.contact, fit)
 }
 
 /// report.md: the answer, each round's candidates with their held-out gain, and the

@@ -188,6 +188,21 @@ impl Physics {
         }
     }
 
+    /// Contact `c` of `model` as it stands: its base law, its effects, its friction and,
+    /// where any is set, its tangential effects — a diagnosis' extended model (the
+    /// fitted law of `hcm identify` goes through [`Physics::for_contact`]).
+    pub fn of_contact(model: &Model, c: usize, fit: FitRecord) -> Physics {
+        let contact = &model.contacts[c].model;
+        let mut physics = Physics::for_contact(model, c, &contact.normal.base, fit);
+        physics.contacts[0].effects = contact.normal.effects.iter().copied().collect();
+        let t = contact.tangential;
+        let any = t.viscous_friction.is_some()
+            || t.torsional_resistance.is_some()
+            || t.rolling_resistance.is_some();
+        physics.contacts[0].tangential = any.then_some(t);
+        physics
+    }
+
     /// This file with `model`'s variation: each of its contacts' parameter scatter
     /// (`noise`) from the model's contact between the same bodies, and the model's
     /// `[variation]` as `sets` (those not 0) — the extended model of a diagnosis that

@@ -81,8 +81,8 @@ pub fn drawn_run(
 }
 
 /// Eq 18 on one contact: each parameter of its `noise` table (sorted by name, one draw
-/// each, × the run's `scale`, so a scenario's runs draw alike whatever else changes) drawn by `draw`. A
-/// friction name acts on the contact's friction when it has one ([`FRICTION_COEFFICIENT`]
+/// each × the run's `scale`, so a scenario's runs draw alike whatever else changes)
+/// drawn by `draw`. A friction name acts on the contact's friction when it has one ([`FRICTION_COEFFICIENT`]
 /// on both coefficients); any other name on the normal law, which refuses names it does
 /// not have. Friction scattered out of its domain (v_d below v_s, say) is refused
 /// rather than simulated.
