@@ -145,6 +145,27 @@ fn generate_identify_evaluate_through_the_binary() {
         "{errors:?}"
     );
 
+    // --members: the same table under `conditions`, and each condition's forecast; PM2
+    // carries no `noise`, so its members are its replay.
+    let stdout = hcm
+        .run("evaluate")
+        .opt("--scenario", &ball)
+        .opt("--data", &s2)
+        .opt("--physics", &pm2)
+        .opt("--members", "4")
+        .arg("--json")
+        .ok();
+    let with: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(with["conditions"], json);
+    let forecast = &with["forecast"][0];
+    assert_eq!(forecast["members"], 4);
+    for (e, r) in (forecast["crps"].as_array().unwrap().iter())
+        .zip(forecast["replay_crps"].as_array().unwrap())
+    {
+        let (e, r) = (e.as_f64().unwrap(), r.as_f64().unwrap());
+        assert!((e - r).abs() <= 1e-12 * r, "{forecast}");
+    }
+
     // train → export (f32 and int8) → evaluate with the residual: the HCM column.
     let trained = hcm.path("residual.json");
     hcm.run("train")

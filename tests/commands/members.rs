@@ -230,6 +230,30 @@ friction = { mu_static = 0.18, mu_dynamic = 0.18, v_static = 1e-3, v_dynamic = 1
     let first = forecast.values().next().unwrap();
     assert_ne!(first[&0], first[&1], "the members differ");
 
+    // `hcm evaluate --members` draws the same members from the same file and scores
+    // them as `hcm predict` does: the same ensemble row.
+    let tosses = std::fs::read_to_string(tosses_csv()).unwrap();
+    let kept: Vec<&str> = (tosses.lines().enumerate())
+        .filter(|(i, l)| *i == 0 || forecast.contains_key(l.split(',').next().unwrap()))
+        .map(|(_, l)| l)
+        .collect();
+    std::fs::write(hcm.path("three.csv"), kept.join("\n") + "\n").unwrap();
+    let ensemble_row = |stdout: String| {
+        (stdout.lines())
+            .find(|l| l.starts_with("| ensemble of 4 |"))
+            .unwrap_or_else(|| panic!("no ensemble row in {stdout}"))
+            .to_owned()
+    };
+    let evaluated = hcm
+        .run("evaluate")
+        .opt("--scenario", &scenario)
+        .opt("--physics", "scattered.toml")
+        .opt("--data", "three.csv")
+        .opt("--members", "4")
+        .ok();
+    let predicted = predict("again.csv").opt("--physics", "scattered.toml").ok();
+    assert_eq!(ensemble_row(evaluated), ensemble_row(predicted));
+
     // One member of the scenario as it is (no variation): the replay's file, each row
     // with `,0` added.
     let replay = |out: &str| {

@@ -5,6 +5,7 @@
 //! Run one file's tests with `cargo test -p hcm-tests --test identify <module>::`.
 
 mod cube_toss_identify;
+mod evaluate_members;
 mod identification;
 mod independent_solver;
 mod motion_scenes;

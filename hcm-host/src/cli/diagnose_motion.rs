@@ -171,6 +171,9 @@ fn print_diagnosis(d: &MotionDiagnosis) {
         }
     }
     println!("answer: {}", d.answer);
+    if d.chance_seconds > 0.0 {
+        println!("the chance phase took {:.0} s", d.chance_seconds);
+    }
 }
 
 /// A candidate's row: its name, gain, standard error, t, `helps` or nothing, and its

@@ -3,7 +3,8 @@
 use anyhow::Context;
 use hcm_host::dataset::{complete, inventory_summary, DataUse, Dataset, Evidence};
 use hcm_host::evaluate::{
-    evaluate, evaluate_motion, evaluate_rigid, markdown, motion_markdown, rigid_markdown,
+    evaluate, evaluate_members, evaluate_motion, evaluate_rigid, markdown, members_markdown,
+    motion_markdown, rigid_markdown,
 };
 use hcm_host::identify::Physics;
 use hcm_host::residual::ContactResidual;
@@ -50,6 +51,20 @@ pub struct Args {
     #[arg(long, default_value_t = 0)]
     #[arg(allow_negative_numbers = true, value_parser = super::numbers::contact)]
     contact: usize,
+    /// Also forecast by an ensemble of N runs drawn from the model's variation and score
+    /// it beside the single replay by proper scores: on force data each condition's
+    /// indicators from members whose contact parameters are drawn from the physics
+    /// file's `noise` (Eq 18), the fair CRPS of each indicator per run (% of the measured
+    /// mean) and the share of the runs' indicators inside the members' 50 % and 90 %
+    /// bands (with --json: `{"conditions": [...], "forecast": [...]}`); on a camera's
+    /// data as `hcm predict --members` scores its tosses.
+    #[arg(long, value_name = "N",
+          value_parser = clap::value_parser!(u16).range(1..=1000))]
+    members: Option<u16>,
+    /// Seed of the members' draws: the same seed gives the same members on any number
+    /// of threads.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
     /// Print JSON instead of markdown.
     #[arg(long)]
     json: bool,
@@ -80,8 +95,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let columns: Vec<(&str, &hcm_host::scenario::Model)> =
         models.iter().map(|(l, m)| (*l, m)).collect();
     let tables = evaluate(&columns, data, args.contact)?;
+    let forecast = match args.members {
+        Some(n) => Some(evaluate_members(
+            &pm2,
+            data,
+            args.contact,
+            n.into(),
+            args.seed,
+        )?),
+        None => None,
+    };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&tables)?);
+        let json = match &forecast {
+            Some(f) => serde_json::json!({ "conditions": tables, "forecast": f }),
+            None => serde_json::to_value(&tables)?,
+        };
+        println!("{}", serde_json::to_string_pretty(&json)?);
         return Ok(());
     }
     for table in &tables {
@@ -99,6 +128,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
         print!("{}", markdown(table));
         println!();
+    }
+    if let Some(forecast) = &forecast {
+        if !pm2.varies() {
+            println!(
+                "note: {} carries no `noise` (Eq 18) for its members to draw: every member is \
+                 the replay. A physics file with the named scatter (`hcm diagnose --chance`'s \
+                 extended.toml) or a `noise` table on the contact makes them differ.\n",
+                args.physics.display()
+            );
+        }
+        println!(
+            "Forecast by ensembles of {} runs drawn from the contacts' noise (seed {}), each \
+             replayed from its condition's mean pre-contact state:\n",
+            args.members.unwrap_or(0),
+            args.seed
+        );
+        print!("{}", members_markdown(forecast));
     }
     Ok(())
 }
@@ -124,6 +170,11 @@ fn with_hcm(
 /// The rigid path: every run replayed from its own pre-contact state by PM2 (and the
 /// HCM), its events' indicators and the moving body's path against the data.
 fn run_rigid(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> anyhow::Result<()> {
+    anyhow::ensure!(
+        args.members.is_none(),
+        "--members: a wrench's events are not forecast by ensembles yet; on force along a \
+         line (`hcm evaluate --members` on S2 data) and on a camera's poses they are"
+    );
     let models = with_hcm(args, pm2)?;
     let columns: Vec<(&str, &hcm_host::scenario::Model)> =
         models.iter().map(|(l, m)| (*l, m)).collect();
@@ -166,5 +217,18 @@ fn run_motion(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> a
         pm2.contacts[args.contact].law().name()
     );
     print!("{}", motion_markdown(&evaluation));
+    if args.members.is_some() {
+        let ensemble = super::forecast::EnsembleArgs {
+            members: args.members,
+            scatter: None,
+            start_spread: None,
+            seed: args.seed,
+        };
+        if let Some(e) = super::forecast::forecast(&ensemble, false, pm2, data)? {
+            let setup = hcm_host::replay::TossSetup::new(pm2)?;
+            println!();
+            super::forecast::print_scores(&e, setup.width);
+        }
+    }
     Ok(())
 }

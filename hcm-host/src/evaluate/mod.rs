@@ -4,9 +4,11 @@
 //! [`ModelRow`], the shape every judged model takes (`evaluate --json`,
 //! `results.json`, `diagnosis.json`).
 
+mod ensemble;
 mod motion;
 mod rigid;
 
+pub use ensemble::{evaluate_members, members_markdown, IndicatorForecast};
 pub use motion::{evaluate_motion, motion_markdown, MotionEvaluation};
 pub use rigid::{evaluate_rigid, rigid_markdown, RigidEvaluation};
 

@@ -26,6 +26,8 @@ pub struct Target {
     pub(crate) curve: Vec<f64>,
     /// Mean measured indicators.
     pub(crate) indicators: Indicators,
+    /// Each run's measured indicators (the runs with a contact), in data order.
+    pub(crate) run_indicators: Vec<Indicators>,
     /// Standard error of each mean indicator, s/√n over the runs (same units): the
     /// noise floor below which a model's error against the mean cannot be told apart.
     /// None for a single run, whose spread is unknown (not zero).
@@ -120,6 +122,7 @@ fn condition_target(
         model: start,
         curve: mean_curve,
         indicators: mean,
+        run_indicators: indicators,
         standard_error,
         period,
     })

@@ -47,6 +47,10 @@ pub struct Part<'a> {
     pub(crate) target: MotionTarget<'a>,
     /// Members of the ensemble a model that varies is scored by here (–).
     pub(crate) members: usize,
+    /// Every toss's score under the round's own model, once computed
+    /// ([`Subject::base_scores`]): a chance's grid value that leaves the model as it is
+    /// (its neutral) reads them instead of replaying the tosses again.
+    pub(crate) base: Option<Vec<f64>>,
 }
 
 impl<'a> Part<'a> {
@@ -57,6 +61,7 @@ impl<'a> Part<'a> {
             data,
             target: MotionTarget::new(model, data)?,
             members,
+            base: None,
         })
     }
 }
@@ -121,10 +126,13 @@ fn scores_of(target: &MotionTarget<'_>, model: &Model, members: usize) -> Option
 }
 
 /// Members of the ensembles a model that varies is fitted by on the training tosses
-/// (–): the fair score is unbiased whatever their number, so few suffice for the search.
-pub const FIT_MEMBERS: usize = 8;
+/// (–): the fair score is unbiased whatever their number, and the same draws at every
+/// grid value keep the differences between values smooth, so few suffice for the
+/// search. Four, not eight: the chance phase of `hcm reproduce cube-toss` is mostly
+/// these replays (docs/real-data.md, "What chance costs").
+pub const FIT_MEMBERS: usize = 4;
 /// Members of the ensembles it is judged by on the held-out tosses (–).
-pub const JUDGE_MEMBERS: usize = 16;
+pub const JUDGE_MEMBERS: usize = 12;
 /// Seed of their draws: toss k draws from stream k, so every candidate and every value
 /// of one sees the same random numbers (a smooth score to search, a paired comparison).
 const CHANCE_SEED: u64 = 0x5eed;
@@ -199,8 +207,8 @@ pub fn fit(
     neutral: &[f64],
     training: &Part<'_>,
 ) -> Fitted {
-    if let (true, [bound]) = (effect.stochastic(), bounds) {
-        return grid_fit(subject, effect, bound, training);
+    if let (true, [bound], [neutral]) = (effect.stochastic(), bounds, neutral) {
+        return grid_fit(subject, effect, (bound, *neutral), training);
     }
     let score = |values: &[f64]| subject.fitness(effect, values, training);
     let start = score(neutral);
@@ -228,51 +236,77 @@ pub fn fit(
     }
 }
 
-/// Grid points of a chance candidate's box, its ends included (–).
+/// Grid points of a chance candidate's box, its ends included (–): the fractions
+/// k/(CHANCE_GRID − 1) of it.
 const CHANCE_GRID: usize = 9;
+/// Every how many grid points the coarse pass evaluates (–): 0, ¼, ½, ¾ and 1 of the box.
+const COARSE_STEP: usize = 2;
 
-/// A chance candidate fitted by its ensemble's training score on [`CHANCE_GRID`]
-/// evenly spaced values of `bound` (the first its neutral 0): the score of a few
-/// members is rough, so the grid, not a local search, and the same draws at every
-/// value (common random numbers). The best value (the lowest on a tie) and the
-/// interval of the values whose paired difference from it, toss by toss, has a 95 %
-/// interval (Student's t) reaching 0.
+/// A chance candidate fitted by its ensemble's training score on the grid of
+/// [`CHANCE_GRID`] evenly spaced values of `bound`: the score of a few members is rough,
+/// so a grid, not a local search, and the same draws at every value (common random
+/// numbers). Coarse to fine: every [`COARSE_STEP`]th value first, then the two beside
+/// the best of those — the full grid's resolution where the minimum is, with 7 of its 9
+/// values replayed (6 where the `neutral` value, the box's first, reads the part's base
+/// scores). The best value (the lowest on a tie) and the interval of the evaluated
+/// values whose paired difference from it, toss by toss, has a 95 % interval
+/// (Student's t) reaching 0.
 fn grid_fit(
     subject: &Subject<'_>,
     effect: &dyn Effect,
-    bound: &Bound,
+    (bound, neutral): (&Bound, f64),
     training: &Part<'_>,
 ) -> Fitted {
-    let values: Vec<f64> = (0..CHANCE_GRID)
-        .map(|k| bound.value_at(k as f64 / (CHANCE_GRID - 1) as f64))
-        .collect();
-    let scores: Vec<Option<Vec<f64>>> = (values.iter())
-        .map(|&v| subject.scores(effect, &[v], training))
-        .collect();
-    let means: Vec<f64> = scores
-        .iter()
-        .map(|s| mean_or_infinity(s.as_deref()))
-        .collect();
-    let best = (0..values.len())
-        .min_by(|&a, &b| means[a].total_cmp(&means[b]))
-        .unwrap_or(0);
+    let value = |k: usize| bound.value_at(k as f64 / (CHANCE_GRID - 1) as f64);
+    let mut scores: Vec<Option<Option<Vec<f64>>>> = vec![None; CHANCE_GRID];
+    let mut evaluations = 0;
+    let mut evaluate = |ks: &[usize], scores: &mut Vec<Option<Option<Vec<f64>>>>| {
+        for &k in ks {
+            if k >= CHANCE_GRID || scores[k].is_some() {
+                continue;
+            }
+            scores[k] = Some(match (&training.base, value(k) == neutral) {
+                (Some(base), true) => Some(base.clone()),
+                _ => {
+                    evaluations += 1;
+                    subject.scores(effect, &[value(k)], training)
+                }
+            });
+        }
+    };
+    let coarse: Vec<usize> = (0..CHANCE_GRID).step_by(COARSE_STEP).collect();
+    evaluate(&coarse, &mut scores);
+    let means = |scores: &[Option<Option<Vec<f64>>>]| -> Vec<f64> {
+        (scores.iter())
+            .map(|s| {
+                s.as_ref()
+                    .map_or(f64::INFINITY, |s| mean_or_infinity(s.as_deref()))
+            })
+            .collect()
+    };
+    let lowest = |means: &[f64]| {
+        (0..CHANCE_GRID)
+            .min_by(|&a, &b| means[a].total_cmp(&means[b]))
+            .unwrap_or(0)
+    };
+    let best = lowest(&means(&scores));
+    evaluate(&[best.saturating_sub(1), best + 1], &mut scores);
+    let means = means(&scores);
+    let best = lowest(&means);
     let within = |k: usize| match (&scores[k], &scores[best]) {
-        (Some(s), Some(b)) if k != best => super::Paired::of(s, b).interval[0] <= 0.0,
-        (Some(_), Some(_)) => true,
+        (Some(Some(s)), Some(Some(b))) if k != best => super::Paired::of(s, b).interval[0] <= 0.0,
+        (Some(Some(_)), Some(Some(_))) => true,
         _ => false,
     };
-    let inside: Vec<f64> = (0..values.len())
-        .filter(|&k| within(k))
-        .map(|k| values[k])
-        .collect();
+    let inside: Vec<f64> = (0..CHANCE_GRID).filter(|&k| within(k)).map(value).collect();
     let interval = match (inside.first(), inside.last()) {
         (Some(&lo), Some(&hi)) => Some([lo, hi]),
         _ => None,
     };
     Fitted {
-        values: vec![values[best]],
+        values: vec![value(best)],
         fitness: means[best],
-        evaluations: values.len(),
+        evaluations,
         interval,
     }
 }

@@ -257,8 +257,7 @@ struct Search<'p> {
 impl Search<'_> {
     /// The held-out scores of the current model with `first` as fitted, then `second`
     /// fitted on top of it on the training tosses (read through `first` where it is a
-    /// measurement effect; two chances: `first` then refitted on top of `second`): the
-    /// model with both, for the rule's test whether the best candidate (`second`) adds
+    /// measurement effect): the model with both, for the rule's test whether the best candidate (`second`) adds
     /// beyond a rival (`first`). None where `second` cannot change that model or a
     /// replay fails.
     fn stacked(&self, first: &Fit, second: &'static dyn Effect) -> Option<Vec<f64>> {
@@ -283,19 +282,7 @@ impl Search<'_> {
         let bounds = second.bounds(Evidence::Poses, &self.scales);
         let neutral = second.neutral(&model, site);
         let fitted = fit::fit(&subject, second, &bounds, &neutral, &training);
-        if !(effect.stochastic() && second.stochastic()) {
-            return subject.scores(second, &fitted.values, &held_out);
-        }
-        // Chance on chance: the rival's spread refitted with the best's in place, as the
-        // two would be fitted together — fitted alone, a spread takes up some of what
-        // the other explains, and kept so it would over-spread the pair.
-        let mut both = model.clone();
-        second.apply(&mut both, site, &fitted.values);
-        let subject = Subject { model: &both, site };
-        let bounds = effect.bounds(Evidence::Poses, &self.scales);
-        let neutral = effect.neutral(&both, site);
-        let refitted = fit::fit(&subject, *effect, &bounds, &neutral, &training);
-        subject.scores(*effect, &refitted.values, &held_out)
+        subject.scores(second, &fitted.values, &held_out)
     }
 
     /// Names candidate `index` of the round `this`: adds it to the model, reads the
@@ -383,14 +370,15 @@ impl rounds::Judge for Search<'_> {
             model: &self.current,
             site,
         };
-        let (training_part, held_part) = (
+        let (mut training_part, held_part) = (
             Part::new(&self.current, &self.training, fit::FIT_MEMBERS)?,
             Part::new(&self.current, &self.held_out, fit::JUDGE_MEMBERS)?,
         );
         let base_held = subject
             .base_scores(&held_part)
             .ok_or(MotionDiagnoseError::Replay { part: "held-out" })?;
-        let base_training = fit::mean_or_infinity(subject.base_scores(&training_part).as_deref());
+        training_part.base = subject.base_scores(&training_part);
+        let base_training = fit::mean_or_infinity(training_part.base.as_deref());
         if !base_training.is_finite() {
             return Err(MotionDiagnoseError::Replay { part: "training" });
         }
@@ -419,8 +407,15 @@ impl rounds::Judge for Search<'_> {
         }))
     }
 
-    /// The best fitted on top of the rival.
+    /// The best fitted on top of the rival; none in the chance phase, where every rival
+    /// is a chance and chances the held-out tosses cannot tell apart are one forecast
+    /// ([`rounds::Judge::one_model`]) whatever the pair would add: the best is named
+    /// either way, and the pair's fit (two grids, the rival refitted on top of the best)
+    /// was a third of the real cube tosses' chance phase.
     fn both(&self, best: usize, rival: usize) -> Option<Vec<f64>> {
+        if self.chance {
+            return None;
+        }
         self.stacked(&self.held_scores[rival], self.held_scores[best].0)
     }
 
