@@ -205,6 +205,17 @@ impl ForecastResults {
     }
 }
 
+/// One fold's held-out tosses forecast: the extended model's ensembles and the fitted
+/// model's single replays, toss by toss in the data's order.
+pub(crate) struct FoldForecast {
+    /// Each toss's ensemble of [`MEMBERS`].
+    pub(crate) ensembles: Vec<TossForecast>,
+    /// Each toss's replay, scored as a one-member forecast.
+    pub(crate) replays: Vec<PathForecast>,
+    /// Whether the faces were forecast (the body is a box).
+    pub(crate) boxed: bool,
+}
+
 /// The held-out tosses forecast by `extended` (a model that varies) beside `fitted`'s
 /// replays; reports [`Stage::Forecast`].
 pub(crate) fn forecast(
@@ -213,7 +224,21 @@ pub(crate) fn forecast(
     variation: Vec<String>,
     held_out: &Dataset,
     progress: &dyn Progress,
-) -> Result<ForecastResults, TossError> {
+) -> Result<(ForecastResults, FoldForecast), TossError> {
+    let fold = fold_forecast(fitted, extended, held_out, progress)?;
+    let setup = TossSetup::new(extended)?;
+    let mut results = results_of(&[&fold], variation);
+    results.shown = median_toss(&setup, held_out, &fold.ensembles);
+    Ok((results, fold))
+}
+
+/// [`FoldForecast`] of `held_out`; reports [`Stage::Forecast`].
+pub(crate) fn fold_forecast(
+    fitted: &Model,
+    extended: &Model,
+    held_out: &Dataset,
+    progress: &dyn Progress,
+) -> Result<FoldForecast, TossError> {
     let steps = 2 * held_out.runs.len() as u64;
     let done = AtomicU64::new(0);
     let tick = || progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1, steps);
@@ -226,23 +251,38 @@ pub(crate) fn forecast(
         );
         let ensembles = forecast_tosses(extended, held_out, spread, boxed, tick)?;
         let replays = forecast_tosses(fitted, held_out, Spread::replay(), false, tick)?;
-        let paths: Vec<PathForecast> = ensembles.iter().map(|f| f.paths.clone()).collect();
-        let single: Vec<PathForecast> = replays.into_iter().map(|f| f.paths).collect();
-        let scores = |f: &[PathForecast]| f.iter().map(PathForecast::score).collect::<Vec<_>>();
-        let faces: Vec<_> = ensembles.iter().filter_map(|f| f.face.clone()).collect();
-        Ok(ForecastResults {
-            members: MEMBERS,
-            variation,
-            replay: PathScores::of(&single),
-            ensemble: PathScores::of(&paths),
-            calibrated: (BAND_LEVELS.iter())
-                .map(|&l| (l, calibrated_coverage(MEMBERS, l)))
-                .collect(),
-            gain: Paired::of(&scores(&single), &scores(&paths)),
-            faces: boxed.then(|| summarize_faces(&faces, MEMBERS)),
-            shown: median_toss(&setup, held_out, &ensembles),
+        Ok(FoldForecast {
+            ensembles,
+            replays: replays.into_iter().map(|f| f.paths).collect(),
+            boxed,
         })
     })
+}
+
+/// The scores of `folds` together (every toss of each, paired with its own replay),
+/// the extended models' `variation` as `--set`s; no toss shown.
+pub(crate) fn results_of(folds: &[&FoldForecast], variation: Vec<String>) -> ForecastResults {
+    let paths: Vec<PathForecast> = (folds.iter())
+        .flat_map(|f| f.ensembles.iter().map(|t| t.paths.clone()))
+        .collect();
+    let single: Vec<PathForecast> = folds.iter().flat_map(|f| f.replays.clone()).collect();
+    let scores = |f: &[PathForecast]| f.iter().map(PathForecast::score).collect::<Vec<_>>();
+    let faces: Vec<_> = (folds.iter())
+        .flat_map(|f| f.ensembles.iter().filter_map(|t| t.face.clone()))
+        .collect();
+    let boxed = folds.iter().all(|f| f.boxed);
+    ForecastResults {
+        members: MEMBERS,
+        variation,
+        replay: PathScores::of(&single),
+        ensemble: PathScores::of(&paths),
+        calibrated: (BAND_LEVELS.iter())
+            .map(|&l| (l, calibrated_coverage(MEMBERS, l)))
+            .collect(),
+        gain: Paired::of(&scores(&single), &scores(&paths)),
+        faces: boxed.then(|| summarize_faces(&faces, MEMBERS)),
+        shown: None,
+    }
 }
 
 /// The held-out tosses of `data` (its odd toss numbers) forecast by a diagnosis'
@@ -257,7 +297,7 @@ pub fn chance_forecast(
 ) -> Result<(ForecastResults, Vec<crate::figure::NamedFigure>), TossError> {
     let (_, held_out) = crate::identify::split_tosses(data);
     let variation = super::extended_physics_sets(extended);
-    let results = forecast(base, extended, variation, &held_out, progress)?;
+    let (results, _) = forecast(base, extended, variation, &held_out, progress)?;
     let figures = super::forecast_figures::forecast_figures(&results);
     Ok((results, figures))
 }

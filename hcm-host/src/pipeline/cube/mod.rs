@@ -9,6 +9,7 @@
 //! Nothing here prints or writes a file: progress goes to a [`Progress`], and the
 //! caller writes what comes back.
 
+mod cross_validated;
 mod errors;
 mod faces;
 mod figures;
@@ -269,6 +270,14 @@ pub fn reproduce_cube(
         }
         _ => None,
     };
+    let cross_validated = match (&diagnosis, &forecast) {
+        (Some(d), Some((_, fold))) => clock.time("the named chance cross-validated", || {
+            let parts = (&held_out, &training);
+            cross_validated::cross_validate(&second_fold.fit.model, d, fold, parts, progress)
+        })?,
+        _ => None,
+    };
+    let forecast = forecast.map(|(results, _)| results);
     let faces = match settings.face_members {
         0 => None,
         members => Some(clock.time("final faces (ensembles)", || {
@@ -288,7 +297,8 @@ pub fn reproduce_cube(
     };
     let results = CubeResults::gather(settings, folds, timeline, diagnosis.as_ref(), clock.0)
         .with_faces(faces)
-        .with_forecast(forecast);
+        .with_forecast(forecast)
+        .with_cross_validated(cross_validated);
     Ok(CubeReproduction {
         scenario,
         training,

@@ -50,8 +50,11 @@ impl CubeResults {
     }
 
     fn write_forecast(&self, out: &mut String) -> std::fmt::Result {
-        match &self.forecast {
-            Some(f) => f.write_markdown(out),
+        if let Some(f) = &self.forecast {
+            f.write_markdown(out)?;
+        }
+        match &self.cross_validated {
+            Some(cv) => cv.write_markdown(self.forecast.as_ref(), out),
             None => Ok(()),
         }
     }

@@ -1,5 +1,6 @@
 //! What `results.json` holds: every figure of the report, unrounded.
 
+use super::cross_validated::CrossValidated;
 use super::faces::FaceResults;
 use super::forecast::ForecastResults;
 use super::stages::{Predictions, SecondFold, Timeline};
@@ -134,6 +135,9 @@ pub struct CubeResults {
     /// The held-out tosses forecast by the chance the diagnosis named (`null`: none
     /// named, or no diagnosis).
     pub(crate) forecast: Option<ForecastResults>,
+    /// The named chance cross-validated: the second fold's (`null`: none named, or no
+    /// diagnosis).
+    pub(crate) cross_validated: Option<CrossValidated>,
     /// Wall clock per stage (s); the only part that differs between runs.
     pub(crate) timings: Vec<StageTiming>,
 }
@@ -179,6 +183,7 @@ impl CubeResults {
             diagnosis: diagnosis.cloned(),
             faces: None,
             forecast: None,
+            cross_validated: None,
             timings,
         }
     }
@@ -186,6 +191,14 @@ impl CubeResults {
     /// With the forecast by the named chance.
     pub(crate) fn with_forecast(self, forecast: Option<ForecastResults>) -> CubeResults {
         CubeResults { forecast, ..self }
+    }
+
+    /// With the named chance cross-validated.
+    pub(crate) fn with_cross_validated(self, cross_validated: Option<CrossValidated>) -> Self {
+        CubeResults {
+            cross_validated,
+            ..self
+        }
     }
 
     /// With the final faces' results.
