@@ -261,23 +261,16 @@ pub fn reproduce_cube(
         false => None,
     };
     split_diagnosis_timing(&mut clock, diagnosis.as_ref());
-    let forecast = match &diagnosis {
-        Some(d) if d.extended.varies() => {
-            Some(clock.time("forecast by the named chance", || {
-                let variation = extended_physics_sets(&d.extended);
-                forecast::forecast(&fit.model, &d.extended, variation, &held_out, progress)
-            })?)
-        }
-        _ => None,
-    };
-    let cross_validated = match (&diagnosis, &forecast) {
-        (Some(d), Some((_, fold))) => clock.time("the named chance cross-validated", || {
-            let parts = (&held_out, &training);
-            cross_validated::cross_validate(&second_fold.fit.model, d, fold, parts, progress)
-        })?,
-        _ => None,
-    };
-    let forecast = forecast.map(|(results, _)| results);
+    let parts = (&training, &held_out);
+    let chance = chance_stages(
+        &mut clock,
+        diagnosis.as_ref(),
+        &fit,
+        &second_fold,
+        parts,
+        progress,
+    )?;
+    let (forecast, cross_validated) = chance;
     let faces = match settings.face_members {
         0 => None,
         members => Some(clock.time("final faces (ensembles)", || {
@@ -313,6 +306,36 @@ pub fn reproduce_cube(
         figures,
         appendix: None,
     })
+}
+
+/// The stages of a named chance: the held-out tosses forecast by it, and the chance
+/// cross-validated on the second fold (both None where no chance was named).
+fn chance_stages(
+    clock: &mut StageClock,
+    diagnosis: Option<&MotionDiagnosis>,
+    fit: &MotionFit,
+    second_fold: &SecondFold,
+    (training, held_out): (&Dataset, &Dataset),
+    progress: &dyn Progress,
+) -> Result<
+    (
+        Option<ForecastResults>,
+        Option<cross_validated::CrossValidated>,
+    ),
+    CubeError,
+> {
+    let Some(d) = diagnosis.filter(|d| d.extended.varies()) else {
+        return Ok((None, None));
+    };
+    let (forecast, fold) = clock.time("forecast by the named chance", || {
+        let variation = extended_physics_sets(&d.extended);
+        forecast::forecast(&fit.model, &d.extended, variation, held_out, progress)
+    })?;
+    let cross_validated = clock.time("the named chance cross-validated", || {
+        let parts = (held_out, training);
+        cross_validated::cross_validate(&second_fold.fit.model, d, &fold, parts, progress)
+    })?;
+    Ok((Some(forecast), cross_validated))
 }
 
 /// What the extended physics file adds to the fitted one for `extended`'s variation:
