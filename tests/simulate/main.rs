@@ -8,6 +8,7 @@ mod cube_drop;
 mod cube_drop_reference;
 mod cube_toss;
 mod figures_readable;
+mod joints;
 mod peg_in_hole;
 mod peg_speed;
 mod simulate_figures;

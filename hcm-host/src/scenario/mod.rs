@@ -9,6 +9,7 @@
 mod assignment;
 mod exact;
 mod geometry;
+mod joint;
 mod overrides;
 mod residual_fit;
 mod resolve;
@@ -18,6 +19,7 @@ mod variation;
 pub use geometry::{pair_contacts, pair_kinematics, pair_rate, pair_separation, Pose};
 
 pub use assignment::{Assignment, IntoAssignment};
+pub use joint::{Joint, JointKind, JointSpec, ASSEMBLY_TOLERANCE};
 pub use resolve::{Body, Contact, Model, Shape};
 pub use rigid::{FrictionSpec, InertiaSpec, OrientationSpec, Part, PartSpec};
 pub use variation::{draw_parameter, drawn_run, shift_surface, tilt_surface, up};
@@ -52,6 +54,9 @@ pub struct Scenario {
     /// The contact pairs and their laws.
     #[serde(rename = "contact")]
     pub(crate) contacts: Vec<ContactSpec>,
+    /// Joints between bodies (none by default).
+    #[serde(default, rename = "joint")]
+    pub(crate) joints: Vec<JointSpec>,
     /// Solver settings and when to stop.
     pub(crate) simulation: SimulationSpec,
     /// What the recorded trajectory holds.

@@ -116,6 +116,8 @@ pub struct Model {
     pub bodies: Vec<Body>,
     /// Contacts, in file order.
     pub contacts: Vec<Contact>,
+    /// Joints, in file order.
+    pub joints: Vec<super::Joint>,
 }
 
 impl Model {
@@ -192,11 +194,13 @@ impl Scenario {
                 return Err(invalid.error("record.bodies".into(), format!("no body `{name}`")));
             }
         }
+        let joints = self.resolve_joints(&bodies, &invalid)?;
         let model = Model {
             scenario: self.clone(),
             gravity: Vector3::from(self.gravity),
             bodies,
             contacts,
+            joints,
         };
         if model.is_rigid() {
             if let Some((i, b)) = model
@@ -214,6 +218,46 @@ impl Scenario {
             }
         }
         super::validate::starts_apart(model, path)
+    }
+
+    /// The joints, each between two moving or fixed bodies (not both fixed), every one
+    /// assembled in the initial state: its anchors within [`super::ASSEMBLY_TOLERANCE`]
+    /// (m) of each other, its axes within that (rad), and moving together there.
+    fn resolve_joints(
+        &self,
+        bodies: &[Body],
+        invalid: &Invalid<'_>,
+    ) -> Result<Vec<super::Joint>, ScenarioError> {
+        let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+        let mut joints = Vec::new();
+        for (i, spec) in self.joints.iter().enumerate() {
+            let joint = super::joint::resolve_joint(spec, i, &names, |f, m| invalid.error(f, m))?;
+            let [b1, b2] = joint.bodies.map(|b| &bodies[b]);
+            let field = format!("joint `{}` (#{i})", joint.name);
+            if b1.fixed && b2.fixed {
+                return Err(invalid.error(field, "joins two fixed bodies: one must move".into()));
+            }
+            let tolerance = super::ASSEMBLY_TOLERANCE;
+            let (gap, turn) = joint.misfit(
+                (&b1.position, &b1.orientation),
+                (&b2.position, &b2.orientation),
+            );
+            let slip = joint.relative_velocity(b1, b2);
+            if gap > tolerance || turn > tolerance || slip > tolerance {
+                return Err(invalid.error(
+                    field,
+                    format!(
+                        "is not assembled in the initial state: its anchors {gap:.3e} m apart, \
+                         its axes {turn:.3e} rad apart, the anchors' relative velocity and the \
+                         turn off its axis {slip:.3e} m/s and rad/s (at most {tolerance:e}): \
+                         place and move body `{}` so the joint holds",
+                        b2.name
+                    ),
+                ));
+            }
+            joints.push(joint);
+        }
+        Ok(joints)
     }
 
     /// Body `i`: a unique name, its mass, shape, material, initial state and drag.

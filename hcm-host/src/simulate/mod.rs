@@ -20,6 +20,7 @@
 mod event;
 mod footprint;
 mod jacobian;
+mod joints;
 mod layout;
 mod memory;
 mod record;

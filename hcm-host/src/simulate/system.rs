@@ -5,6 +5,7 @@
 //! with the arms, plus the residual), and each contact's linear and angular impulse.
 
 use super::jacobian::Linearisation;
+use super::joints::{add_constraint_loads, world_inverse_inertia, BodyMotion};
 use super::layout::{RigidLayout, StateVector};
 use super::memory::PointMemory;
 use crate::residual::{ContactResidual, INPUTS, WRENCH_INPUTS};
@@ -26,6 +27,8 @@ pub struct RigidSystem<'a> {
     pub(crate) memory: Vec<PointMemory>,
     /// Each body's mass properties (fixed bodies: unused).
     bodies: Vec<RigidBody<f64>>,
+    /// Each body's inverse inertia, body frame (1/(kg·m²)), for the joints' solve.
+    inverse_inertia: Vec<nalgebra::Matrix3<f64>>,
     /// Force and torque on each body (N, N·m), reused per evaluation.
     scratch: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// The Jacobian and factored W of the linearly implicit steps.
@@ -67,11 +70,19 @@ impl RigidSystem<'_> {
             .iter()
             .map(|b| RigidBody::new(b.mass, b.inertia, model.gravity))
             .collect();
+        let inverse_inertia = (model.bodies.iter())
+            .map(|b| {
+                b.inertia
+                    .try_inverse()
+                    .unwrap_or_else(nalgebra::Matrix3::zeros)
+            })
+            .collect();
         RigidSystem {
             model,
             layout,
             memory: vec![PointMemory::default(); model.contacts.len()],
             bodies,
+            inverse_inertia,
             scratch: Vec::new(),
             linear: Linearisation::default(),
         }
@@ -250,6 +261,49 @@ impl RigidSystem<'_> {
     }
 }
 
+impl RigidSystem<'_> {
+    /// Adds the joints' constraint forces and torques to `loads` (the contacts' so
+    /// far), from every body's motion without them (`joints.rs`).
+    fn add_joint_loads(&self, y: &[f64], loads: &mut [(Vector3<f64>, Vector3<f64>)]) {
+        let motion: Vec<BodyMotion> = (0..self.model.bodies.len())
+            .map(|b| {
+                let pose = self.layout.pose(self.model, y, b);
+                let Some(rigid) = self.layout.rigid_state(y, b) else {
+                    let zero = Vector3::zeros();
+                    let inverse = (0.0, nalgebra::Matrix3::zeros());
+                    return BodyMotion {
+                        pose,
+                        free: (zero, zero),
+                        inverse,
+                    };
+                };
+                let (mut force, torque) = loads[b];
+                if let Some(drag) = &self.model.bodies[b].air_drag {
+                    force += drag.force(&rigid.velocity());
+                }
+                let mut out = rigid;
+                self.bodies[b].derivative(&rigid, &force, &torque, &mut out);
+                let c = &out.components;
+                let linear = Vector3::new(c[7], c[8], c[9]);
+                let (angular, inertia) = match self.turns(b) {
+                    true => (
+                        pose.orientation * Vector3::new(c[10], c[11], c[12]),
+                        world_inverse_inertia(&self.inverse_inertia[b], &pose.orientation),
+                    ),
+                    false => (Vector3::zeros(), nalgebra::Matrix3::zeros()),
+                };
+                let inverse = (1.0 / self.model.bodies[b].mass, inertia);
+                BodyMotion {
+                    pose,
+                    free: (linear, angular),
+                    inverse,
+                }
+            })
+            .collect();
+        add_constraint_loads(self.model, &motion, loads);
+    }
+}
+
 impl OdeSystem<f64, StateVector> for RigidSystem<'_> {
     fn derivative(&mut self, _time: f64, state: &StateVector, derivative: &mut StateVector) {
         let (y, dy) = (&state.0, &mut derivative.0);
@@ -260,6 +314,9 @@ impl OdeSystem<f64, StateVector> for RigidSystem<'_> {
             dy[i..i + 3].copy_from_slice(load.on_mover.0.as_slice());
             dy[i + 3..i + 6].copy_from_slice(load.on_mover.1.as_slice());
         });
+        if !self.model.joints.is_empty() {
+            self.add_joint_loads(y, &mut loads);
+        }
         for (b, body) in self.model.bodies.iter().enumerate() {
             let (Some(s), Some(rigid)) = (self.layout.slot(b), self.layout.rigid_state(y, b))
             else {
