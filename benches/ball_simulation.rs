@@ -2,7 +2,9 @@
 //! search and sampling the trajectory: the 1D bouncing ball (drop, contact, lift-off),
 //! and the 3D peg-in-hole (two wall contacts and the bottom, IMPACT + STEP friction
 //! at up to 8 points), the cube drop (0.4 s of bouncing, tumbling and sliding) and one
-//! cube toss (the shipped scenario's), so that one run gives their ratios.
+//! cube toss (the shipped scenario's), and the elbow toss (two links on a hinge held by
+//! constraint forces, each link's vertices on the table), so that one run gives their
+//! ratios.
 //!
 //! Run: `cargo bench -p hcm-tests --bench ball_simulation`
 
@@ -25,6 +27,7 @@ fn bench_simulations(c: &mut Criterion) {
         ("peg_in_hole_simulation", "peg_in_hole.toml"),
         ("cube_drop_simulation", "cube_drop.toml"),
         ("cube_toss_simulation", "cube_toss.toml"),
+        ("elbow_toss_simulation", "elbow_toss.toml"),
     ] {
         let model = shipped(file);
         c.bench_function(label, |b| b.iter(|| simulate(black_box(&model)).unwrap()));

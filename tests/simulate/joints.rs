@@ -306,3 +306,36 @@ fn a_joint_not_assembled_is_refused_by_name() {
     );
     assert!(message.contains("1.000e-2 m apart"), "{message}");
 }
+
+/// The shipped elbow toss (two links on a hinge, each link's vertices on the table):
+/// the hinge holds through the landing's impacts, and both links reach the table.
+#[test]
+fn the_elbow_toss_keeps_its_hinge_through_the_landing() {
+    let path = hcm_tests::scenario("elbow_toss.toml");
+    let model = Scenario::load(&path, &[]).unwrap().resolve(&path).unwrap();
+    let simulation = simulate(&model).unwrap();
+    let joint = &model.joints[0];
+    let track = |name: &str| simulation.run.body(name).unwrap().samples.clone();
+    let (first, second) = (track("elbow_1"), track("elbow_2"));
+    let pose = |s: &hcm_host::dataset::Sample| {
+        let [w, x, y, z] = s.orientation;
+        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+        (Vector3::from(s.position), q)
+    };
+    let worst = (first.iter().zip(&second))
+        .map(|(a, b)| {
+            let ((p1, q1), (p2, q2)) = (pose(a), pose(b));
+            joint.misfit((&p1, &q1), (&p2, &q2)).0
+        })
+        .fold(0.0, f64::max);
+    println!(
+        "elbow toss: {} frames, largest hinge gap {worst:.2e} m",
+        first.len()
+    );
+    assert!(worst < 1e-6, "{worst}");
+    for name in ["elbow_1", "elbow_2"] {
+        let touched = (simulation.events.iter())
+            .any(|e| model.contacts[e.contact].body_1 == model.body_index(name).unwrap());
+        assert!(touched, "{name} never touched the table");
+    }
+}
