@@ -54,6 +54,8 @@ pub mod error;
 pub mod friction;
 pub mod geometry;
 pub mod integrate;
+/// Revolute-joint laws: spring, viscous and STEP-smoothed Coulomb torques (N·m).
+pub mod joint;
 pub mod law;
 pub mod model;
 mod real;
