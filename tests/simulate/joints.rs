@@ -76,9 +76,14 @@ angular_velocity = [{:e}, {:e}, {:e}]
 }
 
 fn joint(bodies: [&str; 2], anchors: [Vector3<f64>; 2]) -> String {
+    joint_with(bodies, anchors, "{}")
+}
+
+/// [`joint`] with its `law` table (TOML).
+fn joint_with(bodies: [&str; 2], anchors: [Vector3<f64>; 2], law: &str) -> String {
     let [a, b] = anchors;
     format!(
-        "[[joint]]\nbodies = [\"{}\", \"{}\"]\nanchors = [[{:e}, {:e}, {:e}], [{:e}, {:e}, {:e}]]\naxis = [0.0, 1.0, 0.0]\n",
+        "[[joint]]\nbodies = [\"{}\", \"{}\"]\nanchors = [[{:e}, {:e}, {:e}], [{:e}, {:e}, {:e}]]\naxis = [0.0, 1.0, 0.0]\nlaw = {law}\n",
         bodies[0], bodies[1], a.x, a.y, a.z, b.x, b.y, b.z
     )
 }
@@ -305,6 +310,24 @@ fn a_joint_not_assembled_is_refused_by_name() {
         "{message}"
     );
     assert!(message.contains("1.000e-2 m apart"), "{message}");
+
+    // A law out of its domain is refused naming the field.
+    let law = "{ viscous = { damping = -1.0 } }";
+    let anchors = [Vector3::new(0.0, 0.0, 10.0), Vector3::new(0.0, 0.0, 0.1)];
+    let text = scene(
+        -G,
+        &bodies,
+        &joint_with(["world", "link_1"], anchors, law),
+        0.1,
+    );
+    let message = match Scenario::parse(path, &text, &[]).and_then(|s| s.resolve(path)) {
+        Ok(_) => panic!("accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        message.contains("law") && message.contains("damping"),
+        "{message}"
+    );
 }
 
 /// The shipped elbow toss (two links on a hinge, each link's vertices on the table):
@@ -338,4 +361,47 @@ fn the_elbow_toss_keeps_its_hinge_through_the_landing() {
             .any(|e| model.contacts[e.contact].body_1 == model.body_index(name).unwrap());
         assert!(touched, "{name} never touched the table");
     }
+}
+
+/// The compound pendulum with viscous and Coulomb friction in its hinge: the energy it
+/// loses is the work the joint's torque does on the swing, −∫ τ(θ̇)·θ̇ dt (the core's
+/// law along the recorded rate, by the trapezoid rule at 1 ms).
+#[test]
+fn joint_friction_takes_the_energy_its_torque_works() {
+    use hcm_core::joint::{JointCoulomb, JointLaw, JointViscous};
+    let (half, theta) = (0.15, 0.5);
+    let q = about_y(theta);
+    let centre = -(q * Vector3::new(0.0, 0.0, half));
+    let zero = Vector3::zeros();
+    let bodies = link("link_1", half, centre, q, zero, zero);
+    let anchors = [Vector3::new(0.0, 0.0, 10.0), Vector3::new(0.0, 0.0, half)];
+    let text =
+        "{ viscous = { damping = 0.01 }, coulomb = { torque = 0.02, smoothing_rate = 0.01 } }";
+    let joints = joint_with(["world", "link_1"], anchors, text);
+    let simulation = run(&scene(-G, &bodies, &joints, 2.0));
+    let law = JointLaw {
+        viscous: Some(JointViscous { damping: 0.01 }),
+        coulomb: Some(JointCoulomb {
+            torque: 0.02,
+            smoothing_rate: 0.01,
+        }),
+        ..JointLaw::ZERO
+    };
+    let i_y = (0.02f64.powi(2) + (2.0 * half).powi(2)) / 12.0;
+    let samples = &simulation.run.body("link_1").unwrap().samples;
+    let energy = |s: &hcm_host::dataset::Sample| {
+        let (v, w) = (Vector3::from(s.velocity), Vector3::from(s.angular_velocity));
+        0.5 * v.norm_squared() + 0.5 * i_y * w.y * w.y + G * s.position[2]
+    };
+    let power = |s: &hcm_host::dataset::Sample| {
+        let rate = s.angular_velocity[1];
+        -law.torque(0.0, rate) * rate
+    };
+    let worked: f64 = (samples.windows(2))
+        .map(|w| 0.5 * (w[1].time - w[0].time) * (power(&w[0]) + power(&w[1])))
+        .sum();
+    let lost = energy(&samples[0]) - energy(samples.last().unwrap());
+    println!("energy lost {lost:.6e} J, the joint's work {worked:.6e} J");
+    assert!(lost > 0.01 * energy(&samples[0]).abs().max(1e-3), "{lost}");
+    assert!((lost - worked).abs() < 1e-5 * worked, "{lost} vs {worked}");
 }

@@ -9,6 +9,7 @@
 //! carries it.
 
 use super::ScenarioError;
+use hcm_core::joint::JointLaw;
 use nalgebra::{Unit, UnitQuaternion, Vector3};
 use serde::Deserialize;
 
@@ -30,6 +31,11 @@ pub struct JointSpec {
     /// The hinge's axis (–, any length but 0) in body 1's frame; with θ = 0 at aligned
     /// frames it is the same in body 2's.
     pub(crate) axis: [f64; 3],
+    /// The joint's own torque about its axis: `{ spring = { stiffness, rest_angle },
+    /// viscous = { damping }, coulomb = { torque, smoothing_rate } }`, each optional
+    /// (N·m/rad, rad, N·m·s/rad, N·m, rad/s; [`hcm_core::joint`]). None: a free hinge.
+    #[serde(default)]
+    pub(crate) law: JointLaw<f64>,
 }
 
 /// The kinds of joint.
@@ -52,6 +58,8 @@ pub struct Joint {
     pub anchors: [Vector3<f64>; 2],
     /// The axis, unit, in body 1's frame (and body 2's).
     pub axis: Unit<Vector3<f64>>,
+    /// Its own torque about the axis (spring, viscous and Coulomb friction).
+    pub law: JointLaw<f64>,
 }
 
 /// Largest gap between the two anchors, and angle between the axes as the two bodies
@@ -138,11 +146,15 @@ pub(crate) fn resolve_joint(
                 format!("must be a finite nonzero direction, found {:?}", spec.axis),
             )
         })?;
+    spec.law
+        .validate()
+        .map_err(|e| error(field("law"), e.to_string()))?;
     Ok(Joint {
         name,
         bodies,
         anchors: spec.anchors.map(Vector3::from),
         axis,
+        law: spec.law,
     })
 }
 

@@ -265,6 +265,19 @@ impl RigidSystem<'_> {
     /// Adds the joints' constraint forces and torques to `loads` (the contacts' so
     /// far), from every body's motion without them (`joints.rs`).
     fn add_joint_loads(&self, y: &[f64], loads: &mut [(Vector3<f64>, Vector3<f64>)]) {
+        for joint in self.model.joints.iter().filter(|j| !j.law.is_zero()) {
+            let [b1, b2] = joint.bodies;
+            let (p1, p2) = (
+                self.layout.pose(self.model, y, b1),
+                self.layout.pose(self.model, y, b2),
+            );
+            let axis = p1.orientation * joint.axis.into_inner();
+            let angle = joint.angle(&p1.orientation, &p2.orientation);
+            let rate = (p2.angular_velocity - p1.angular_velocity).dot(&axis);
+            let torque = axis * joint.law.torque(angle, rate);
+            loads[b2].1 += torque;
+            loads[b1].1 -= torque;
+        }
         let motion: Vec<BodyMotion> = (0..self.model.bodies.len())
             .map(|b| {
                 let pose = self.layout.pose(self.model, y, b);
