@@ -405,3 +405,42 @@ fn joint_friction_takes_the_energy_its_torque_works() {
     assert!(lost > 0.01 * energy(&samples[0]).abs().max(1e-3), "{lost}");
     assert!((lost - worked).abs() < 1e-5 * worked, "{lost} vs {worked}");
 }
+
+/// The real elbow tosses replayed (`hcm predict`'s path): each link's start fitted to its
+/// own free-flight frames, then assembled onto the hinge (`replay/assembly.rs`) — the
+/// first predicted frame of every toss holds the hinge to rounding, and every frame after
+/// it within 1e-6 m.
+#[test]
+fn the_elbow_tosses_replay_from_starts_the_hinge_allows() {
+    use hcm_host::dataset::Dataset;
+    use hcm_host::replay::{evaluate_tosses, predicted_dataset};
+    let path = hcm_tests::scenario("elbow_toss.toml");
+    let model = Scenario::load(&path, &[]).unwrap().resolve(&path).unwrap();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/contactnets-elbow/tosses.csv");
+    let mut data = Dataset::read(&file).unwrap();
+    data.runs.truncate(6);
+    let evaluations = evaluate_tosses(&model, &data, || {}).unwrap();
+    let predicted = predicted_dataset(&evaluations, "elbow_1");
+    let joint = &model.joints[0];
+    let pose = |s: &hcm_host::dataset::Sample| {
+        let [w, x, y, z] = s.orientation;
+        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+        (Vector3::from(s.position), q)
+    };
+    let (mut first, mut worst) = (0.0f64, 0.0f64);
+    for run in &predicted.runs {
+        let (a, b) = (run.body("elbow_1").unwrap(), run.body("elbow_2").unwrap());
+        assert_eq!(a.samples.len(), b.samples.len(), "{}", run.id);
+        for (k, (s1, s2)) in a.samples.iter().zip(&b.samples).enumerate() {
+            let ((p1, q1), (p2, q2)) = (pose(s1), pose(s2));
+            let gap = joint.misfit((&p1, &q1), (&p2, &q2)).0;
+            if k == 0 {
+                first = first.max(gap);
+            }
+            worst = worst.max(gap);
+        }
+    }
+    println!("elbow replays: hinge gap at the start {first:.2e} m, over the window {worst:.2e} m");
+    assert!(first < 1e-12, "{first}");
+    assert!(worst < 1e-6, "{worst}");
+}

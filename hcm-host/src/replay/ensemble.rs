@@ -372,6 +372,8 @@ pub(super) fn member_replays(
             for body in &mut member.bodies {
                 body.initial = drawn(&body.initial, inflation, &mut rng);
             }
+            // Drawn link by link, the start is assembled onto the joints again.
+            super::predict::assemble_bodies(setup, &mut member.bodies);
             let drawn =
                 drawn_run(&model, &mut rng, Draw::Member).map_err(|(contact, source)| {
                     TossError::Simulation {

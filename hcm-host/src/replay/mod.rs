@@ -20,6 +20,7 @@
 //!   and scored each on its own width); [`partner`]: a fixed body's clearance and the shift and tilt a
 //!   tracker's calibration error makes to it.
 
+mod assembly;
 mod baseline;
 mod ensemble;
 mod evaluation;

@@ -173,11 +173,25 @@ pub(crate) fn prepare<'a>(setup: &TossSetup, run: &'a Run) -> Result<PreparedTos
             ticks,
         });
     }
+    assemble_bodies(setup, &mut bodies);
     Ok(PreparedToss {
         run: &run.id,
         bodies,
         frame_period,
     })
+}
+
+/// The bodies' start states assembled onto the setup's joints (`assembly.rs`); no
+/// change without joints.
+pub(crate) fn assemble_bodies(setup: &TossSetup, bodies: &mut [PreparedBody<'_>]) {
+    if setup.joints.is_empty() {
+        return;
+    }
+    let mut states: Vec<_> = bodies.iter().map(|b| b.initial.clone()).collect();
+    super::assembly::assemble(setup, &mut states);
+    for (body, state) in bodies.iter_mut().zip(states) {
+        body.initial = state;
+    }
 }
 
 /// Each frame's index on the grid of `frame_period` (s) from `clock` (s, the window

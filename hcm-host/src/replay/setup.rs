@@ -44,6 +44,8 @@ pub struct Mover {
     pub(crate) partners: Vec<Partner>,
     /// The other movers (indices into [`TossSetup::movers`]) it has a contact with.
     pub(crate) touches: Vec<usize>,
+    /// Its mass (kg), for a mechanism's centre of mass (`assembly.rs`).
+    pub(crate) mass: f64,
 }
 
 /// The replayed bodies and the bodies they can touch, read from a model.
@@ -62,6 +64,19 @@ pub struct TossSetup {
     pub movers: Vec<Mover>,
     /// Gravity (m/s², world frame).
     pub(crate) gravity: Vector3<f64>,
+    /// The joints between movers, parents before children (none: every mover free).
+    pub(crate) joints: Vec<MoverJoint>,
+}
+
+/// A joint of the scene between two movers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MoverJoint {
+    /// The joint.
+    pub(crate) joint: crate::scenario::Joint,
+    /// Its body 1, as an index into the movers.
+    pub(crate) parent: usize,
+    /// Its body 2, likewise.
+    pub(crate) child: usize,
 }
 
 impl TossSetup {
@@ -86,6 +101,7 @@ impl TossSetup {
         let movers = (moving.iter())
             .map(|&body| mover(model, body, &moving).map_err(&fail))
             .collect::<Result<Vec<Mover>, TossError>>()?;
+        let joints = mover_joints(model, &movers).map_err(fail)?;
         let primary = &movers[0];
         Ok(TossSetup {
             body: primary.body,
@@ -94,6 +110,7 @@ impl TossSetup {
             width: primary.width,
             movers,
             gravity: model.gravity,
+            joints,
         })
     }
 
@@ -165,5 +182,49 @@ fn mover(model: &Model, body: usize, moving: &[usize]) -> Result<Mover, String> 
         touches: (others.iter())
             .filter_map(|o| moving.iter().position(|m| m == o))
             .collect(),
+        mass: tossed.mass,
     })
+}
+
+/// The joints of `model` between its `movers`, parents before children: every joint's
+/// bodies must move (a joint to a fixed body is not replayed from poses yet), and a
+/// mover is the child of one joint at most, in a tree.
+fn mover_joints(model: &Model, movers: &[Mover]) -> Result<Vec<MoverJoint>, String> {
+    let index = |body: usize| movers.iter().position(|m| m.body == body);
+    let mut joints = Vec::new();
+    for joint in &model.joints {
+        let (Some(parent), Some(child)) = (index(joint.bodies[0]), index(joint.bodies[1])) else {
+            return Err(format!(
+                "joint `{}` holds a fixed body: a mechanism pinned to the world is not \
+                 replayed from poses yet",
+                joint.name
+            ));
+        };
+        if joints.iter().any(|j: &MoverJoint| j.child == child) {
+            return Err(format!(
+                "body `{}` is the second body of two joints: a replay assembles a tree of \
+                 joints, each body the child of one at most",
+                movers[child].name
+            ));
+        }
+        joints.push(MoverJoint {
+            joint: joint.clone(),
+            parent,
+            child,
+        });
+    }
+    // Parents before children: a child placed before its parent would be moved again.
+    let mut ordered: Vec<MoverJoint> = Vec::new();
+    let mut placed: Vec<bool> = (0..movers.len())
+        .map(|m| !joints.iter().any(|j| j.child == m))
+        .collect();
+    while !joints.is_empty() {
+        let Some(k) = joints.iter().position(|j| placed[j.parent]) else {
+            return Err("the joints close a loop: a replay assembles a tree of joints".into());
+        };
+        let next = joints.remove(k);
+        placed[next.child] = true;
+        ordered.push(next);
+    }
+    Ok(ordered)
 }
