@@ -420,6 +420,22 @@ fn the_elbow_tosses_replay_from_starts_the_hinge_allows() {
     let mut data = Dataset::read(&file).unwrap();
     data.runs.truncate(6);
     let evaluations = evaluate_tosses(&model, &data, || {}).unwrap();
+    // Each link scored on its own (% of its 0.1 m, °), the toss's scores their means.
+    for e in &evaluations {
+        let s = &e.score;
+        let names: Vec<&str> = s.bodies.iter().map(|b| b.body.as_str()).collect();
+        assert_eq!(names, ["elbow_1", "elbow_2"], "{}", s.run);
+        let mean =
+            |f: fn(&hcm_host::replay::BodyScore) -> f64| s.bodies.iter().map(f).sum::<f64>() / 2.0;
+        assert!(
+            (mean(|b| b.position_error) - s.position_error).abs() < 1e-12,
+            "{s:?}"
+        );
+        assert!(
+            (mean(|b| b.rotation_error) - s.rotation_error).abs() < 1e-12,
+            "{s:?}"
+        );
+    }
     let predicted = predicted_dataset(&evaluations, "elbow_1");
     let joint = &model.joints[0];
     let pose = |s: &hcm_host::dataset::Sample| {

@@ -4,8 +4,8 @@
 use super::progress_bar;
 use anyhow::Context;
 use hcm_host::replay::{
-    evaluate_tosses, predicted_dataset, summarize, write_scores, StateSource, Summary,
-    TossEvaluation, TossSetup,
+    evaluate_tosses, predicted_dataset, summarize, summarize_bodies, write_scores, StateSource,
+    Summary, TossEvaluation, TossSetup,
 };
 use std::path::PathBuf;
 use std::time::Instant;
@@ -135,10 +135,15 @@ fn print_summary(name: &str, setup: &TossSetup, evaluations: &[TossEvaluation], 
         evaluations.len() - recorded
     );
     let summary = summarize(evaluations);
-    let width = 1e3 * setup.width;
+    // Several moving bodies (a mechanism's links): each one's rows, then their mean.
+    let bodies = summarize_bodies(evaluations);
+    let unit = match bodies.is_empty() {
+        true => format!("{:.1} mm", 1e3 * setup.width),
+        false => "each body's width".to_owned(),
+    };
     println!();
     println!(
-        "| model | position error (% of {width:.1} mm): mean ± std | median | rotation error (°): mean ± std | median |"
+        "| model | position error (% of {unit}): mean ± std | median | rotation error (°): mean ± std | median |"
     );
     println!("|---|---|---|---|---|");
     let row = |label: &str, position: &Summary, rotation: &Summary| {
@@ -152,9 +157,20 @@ fn print_summary(name: &str, setup: &TossSetup, evaluations: &[TossEvaluation], 
             rotation.median
         );
     };
-    row("simulation", &summary.position, &summary.rotation);
+    for (name, s) in &bodies {
+        row(&format!("simulation: `{name}`"), &s.position, &s.rotation);
+    }
+    let label = |what: &str| match bodies.is_empty() {
+        true => what.to_owned(),
+        false => format!("{what} (mean over the bodies)"),
+    };
+    row(&label("simulation"), &summary.position, &summary.rotation);
+    for (name, s) in &bodies {
+        let (p, r) = (&s.baseline_position, &s.baseline_rotation);
+        row(&format!("frozen pose: `{name}`"), p, r);
+    }
     row(
-        "frozen pose",
+        &label("frozen pose"),
         &summary.baseline_position,
         &summary.baseline_rotation,
     );

@@ -82,6 +82,43 @@ pub fn summarize(evaluations: &[TossEvaluation]) -> EvaluationSummary {
     }
 }
 
+/// With several moving bodies, each one's summaries over tosses: its name, then its
+/// position and rotation errors and the frozen pose's, as [`EvaluationSummary`] (each
+/// body's position in % of its own width); empty with one body.
+pub fn summarize_bodies(evaluations: &[TossEvaluation]) -> Vec<(String, EvaluationSummary)> {
+    let Some(first) = evaluations.first() else {
+        return Vec::new();
+    };
+    let of = |m: usize, baseline: bool| -> Vec<TossScore> {
+        (evaluations.iter())
+            .filter_map(|e| {
+                let score = if baseline { &e.baseline } else { &e.score };
+                let b = score.bodies.get(m)?;
+                Some(TossScore {
+                    run: score.run.clone(),
+                    frames: b.frames,
+                    position_error: b.position_error,
+                    rotation_error: b.rotation_error,
+                    bodies: Vec::new(),
+                })
+            })
+            .collect()
+    };
+    (first.score.bodies.iter().enumerate())
+        .map(|(m, body)| {
+            let (position, rotation) = Summary::of_scores(&of(m, false));
+            let (baseline_position, baseline_rotation) = Summary::of_scores(&of(m, true));
+            let summary = EvaluationSummary {
+                position,
+                rotation,
+                baseline_position,
+                baseline_rotation,
+            };
+            (body.body.clone(), summary)
+        })
+        .collect()
+}
+
 /// The predicted trajectories as a data file: one run per toss, its id and bodies kept
 /// (`body` the primary's name), the window's frames at their recorded times.
 pub fn predicted_dataset(evaluations: &[TossEvaluation], body: &str) -> Dataset {

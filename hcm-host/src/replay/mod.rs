@@ -49,14 +49,15 @@ pub use ensemble::{
     FaceSummary, Spread, SCATTERS,
 };
 pub use evaluation::{
-    evaluate_tosses, predicted_dataset, summarize, EvaluationSummary, TossEvaluation,
+    evaluate_tosses, predicted_dataset, summarize, summarize_bodies, EvaluationSummary,
+    TossEvaluation,
 };
 pub use face::{Face, FACES};
 pub(crate) use forecast::forecast_toss_paths;
 pub use forecast::{forecast_tosses, TossForecast};
 pub use initial_state::{estimate_initial_state, InitialState, StateSource};
 pub use predict::{predict_toss, predict_tosses, BodyPrediction, TossPrediction};
-pub use score::{score_movers, score_toss, Summary, TossScore};
+pub use score::{score_movers, score_toss, BodyScore, Summary, TossScore};
 pub use scores_file::write_scores;
 pub use setup::{Mover, TossSetup};
 pub use window::{find_window, find_windows, Window, LEAD_FRAMES};

@@ -27,6 +27,23 @@ pub struct TossScore {
     pub position_error: f64,
     /// Mean angle of R_predᵀ·R over the frames (degrees).
     pub rotation_error: f64,
+    /// With several moving bodies, each one's own scores (the toss's are their means);
+    /// empty with one.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub bodies: Vec<BodyScore>,
+}
+
+/// One moving body's scores in a toss of several.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BodyScore {
+    /// The body's name.
+    pub body: String,
+    /// Its frames scored (–).
+    pub frames: usize,
+    /// Mean |p_pred − p| over its frames, in % of its own width.
+    pub position_error: f64,
+    /// Mean angle of R_predᵀ·R over its frames (degrees).
+    pub rotation_error: f64,
 }
 
 /// The angle (rad, in [0, π]) of the rotation taking `predicted` to `measured`: the
@@ -62,6 +79,7 @@ pub fn score_movers(
 ) -> Result<TossScore, TossError> {
     let (mut position, mut rotation, mut frames) = (0.0, 0.0, 0);
     let bodies = measured.len().min(predicted.len()).min(setup.movers.len());
+    let mut rows = Vec::new();
     for m in 0..bodies {
         let mover = &setup.movers[m];
         let (mut p, mut r) = (0.0, 0.0);
@@ -75,16 +93,29 @@ pub fn score_movers(
         }
         let n = measured[m].len().min(predicted[m].len());
         frames += n;
-        let n = n.max(1) as f64;
-        position += 100.0 * p / n / mover.width;
-        rotation += r.to_degrees() / n;
+        let (p, r) = (
+            100.0 * p / n.max(1) as f64 / mover.width,
+            r.to_degrees() / n.max(1) as f64,
+        );
+        position += p;
+        rotation += r;
+        rows.push(BodyScore {
+            body: mover.name.clone(),
+            frames: n,
+            position_error: p,
+            rotation_error: r,
+        });
     }
     let count = bodies.max(1) as f64;
+    if bodies < 2 {
+        rows.clear();
+    }
     Ok(TossScore {
         run: run.to_owned(),
         frames,
         position_error: position / count,
         rotation_error: rotation / count,
+        bodies: rows,
     })
 }
 
