@@ -460,3 +460,32 @@ fn the_elbow_tosses_replay_from_starts_the_hinge_allows() {
     assert!(first < 1e-12, "{first}");
     assert!(worst < 1e-6, "{worst}");
 }
+
+/// What does not follow a mechanism yet says so: the final face's forecast (a lone box's)
+/// and a residual trained from poses (its samples move one body).
+#[test]
+fn what_does_not_follow_a_mechanism_yet_is_refused() {
+    use hcm_host::dataset::Dataset;
+    use hcm_host::replay::{forecast_tosses, Spread};
+    let path = hcm_tests::scenario("elbow_toss.toml");
+    let model = Scenario::load(&path, &[]).unwrap().resolve(&path).unwrap();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/contactnets-elbow/tosses.csv");
+    let mut data = Dataset::read(&file).unwrap();
+    data.runs.truncate(2);
+    let faces = match forecast_tosses(&model, &data, Spread::of_model(4, 1), true, || {}) {
+        Ok(_) => panic!("faces forecast for a mechanism"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        faces.contains("joint `hinge`") && faces.contains("face"),
+        "{faces}"
+    );
+    let train = match hcm_host::train::motion_rows(&model, &data, 0, 8) {
+        Ok(_) => panic!("trained from a mechanism's poses"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        train.contains("joint `hinge`") && train.contains("trained"),
+        "{train}"
+    );
+}

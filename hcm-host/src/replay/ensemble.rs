@@ -241,6 +241,16 @@ pub fn forecast_faces(
 
 /// Refuses a primary body that is not a box: only a box has faces to land on.
 pub(super) fn has_faces(model: &Model, setup: &TossSetup) -> Result<(), TossError> {
+    if let Some(link) = setup.joints.first() {
+        return Err(TossError::Setup {
+            scenario: model.scenario.name.clone(),
+            problem: format!(
+                "joint `{}`: a mechanism has no one face to land on; the faces are forecast for \
+                 a lone box",
+                link.joint.name
+            ),
+        });
+    }
     if matches!(model.bodies[setup.body].shape, Shape::Box { .. }) {
         return Ok(());
     }

@@ -62,6 +62,17 @@ pub fn motion_rows(
         });
     };
     contact.model.residual = None;
+    if let Some(joint) = physics.joints.first() {
+        // Its dense samples move the primary body alone: a link would leave its joint.
+        return Err(TossError::Setup {
+            scenario: physics.scenario.name.clone(),
+            problem: format!(
+                "joint `{}`: a residual is not trained from the poses of a mechanism yet (its \
+                 samples move one body); `hcm predict` replays it",
+                joint.name
+            ),
+        });
+    }
     let setup = TossSetup::new(&model)?;
     let per_run: Vec<Result<Vec<(SummedRow, f64)>, TossError>> = (data.runs.par_iter())
         .map(|run| toss_rows(&model, &setup, run, c, horizon.max(1)))
