@@ -17,6 +17,7 @@ mod help;
 mod members;
 mod outputs;
 mod peg_reproduce;
+mod predict_mechanism;
 mod results_json;
 mod rigid_bad_data;
 mod rigid_pipeline;

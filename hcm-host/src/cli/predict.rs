@@ -54,7 +54,10 @@ pub struct Args {
     /// pose, then the initial state itself: p0x…p0z (m), q0w…q0z, v0x…v0z (m/s),
     /// w0x…w0z (rad/s), world frame; with --members, then the forecast's scores:
     /// energy_position (%), energy_rotation (°), crps_x…crps_z (%), inside_50 and
-    /// inside_90 (shares of the recorded coordinates), members, failed).
+    /// inside_90 (shares of the recorded coordinates), members, failed). With several
+    /// moving bodies (a mechanism's links) a `body` column after `run`: per toss a row
+    /// per body (its scores in % of its own width, its own initial state), then a row
+    /// `all` (their means, no initial state, the forecast's scores).
     #[arg(long, value_name = "FILE")]
     scores: Option<PathBuf>,
     /// Also forecast each toss's final face (the primary body must be a box) by the

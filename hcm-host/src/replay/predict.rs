@@ -88,6 +88,8 @@ pub struct BodyPrediction {
     pub window: Window,
     /// The predicted samples, one per frame of the window, at the frames' times.
     pub samples: Vec<Sample>,
+    /// The state it started from (assembled onto the scene's joints).
+    pub initial: InitialState,
 }
 
 /// One moving body of a toss checked and ready to simulate.
@@ -298,6 +300,7 @@ pub(crate) fn simulate_toss(
             name: mover.name.clone(),
             window: prepared.window,
             samples: on_frames(toss, prepared, simulated)?,
+            initial: prepared.initial.clone(),
         });
     }
     let mut bodies = predicted.into_iter();

@@ -35,36 +35,28 @@ const FORECAST_COLUMNS: [&str; 9] = [
 /// Writes each toss's scores as CSV, atomically: run, frames, window start (s), initial
 /// state source, position (%) and rotation (°) errors of the prediction and of the
 /// frozen pose, then the initial state columns, then (given `forecasts`, one per toss)
-/// the forecast's columns.
+/// the forecast's columns. With several moving bodies (a mechanism's links) a `body`
+/// column follows `run`: per toss one row per body (its own scores, in % of its own
+/// width, and its own initial state), then a row `all` with the toss's scores (their
+/// means), no initial state, and the forecast's columns.
 pub fn write_scores(
     path: &Path,
     evaluations: &[TossEvaluation],
     forecasts: Option<&[PathForecast]>,
 ) -> anyhow::Result<()> {
+    let several = evaluations.iter().any(|e| !e.score.bodies.is_empty());
     write_atomically(path, |out| -> anyhow::Result<()> {
         let mut csv = csv::Writer::from_writer(out);
+        let forecast_columns = forecasts.map_or(&[][..], |_| &FORECAST_COLUMNS[..]);
         csv.write_record(
-            [
-                "run",
-                "frames",
-                "window_start",
-                "initial_state",
-                "position_error",
-                "rotation_error",
-                "frozen_position_error",
-                "frozen_rotation_error",
-            ]
-            .into_iter()
-            .chain(INITIAL_STATE_COLUMNS)
-            .chain(
-                forecasts
-                    .map_or(&[][..], |_| &FORECAST_COLUMNS[..])
-                    .iter()
-                    .copied(),
-            ),
+            std::iter::once("run")
+                .chain(several.then_some("body"))
+                .chain(SCORE_COLUMNS)
+                .chain(INITIAL_STATE_COLUMNS)
+                .chain(forecast_columns.iter().copied()),
         )?;
         for (i, e) in evaluations.iter().enumerate() {
-            let forecast = forecasts.and_then(|f| f.get(i)).map(|f| {
+            let forecast: Vec<String> = forecasts.and_then(|f| f.get(i)).map_or(Vec::new(), |f| {
                 let shares = super::band_shares(&f.coverage);
                 [
                     f.position, f.rotation, f.crps[0], f.crps[1], f.crps[2], shares[0], shares[1],
@@ -72,37 +64,124 @@ pub fn write_scores(
                 .map(|v| v.to_string())
                 .into_iter()
                 .chain([f.members.to_string(), f.failed.to_string()])
+                .collect()
             });
-            let source = match e.prediction.initial.source {
-                StateSource::FreeFlightFit { frames } => format!("fit {frames} frames"),
-                StateSource::Recorded => "recorded".to_owned(),
-            };
-            let initial = &e.prediction.initial;
-            let q = initial.orientation.quaternion();
-            let quaternion = [q.w, q.i, q.j, q.k];
-            let state = (initial.position.iter())
-                .chain(&quaternion)
-                .chain(initial.velocity.iter())
-                .chain(initial.angular_velocity.iter())
-                .map(f64::to_string);
-            csv.write_record(
-                [
-                    e.score.run.clone(),
-                    e.score.frames.to_string(),
-                    initial.time.to_string(),
-                    source,
-                    e.score.position_error.to_string(),
-                    e.score.rotation_error.to_string(),
-                    e.baseline.position_error.to_string(),
-                    e.baseline.rotation_error.to_string(),
-                ]
-                .into_iter()
-                .chain(state)
-                .chain(forecast.into_iter().flatten()),
-            )?;
+            for row in toss_rows(e, several, forecast) {
+                csv.write_record(row)?;
+            }
         }
         csv.flush()?;
         Ok(())
     })
     .with_context(|| format!("writing {}", path.display()))
+}
+
+/// The rows of one toss: one without `several` bodies; else one per body and `all`.
+fn toss_rows(e: &TossEvaluation, several: bool, forecast: Vec<String>) -> Vec<Vec<String>> {
+    let run = e.score.run.clone();
+    if !several {
+        let scores = scores(
+            &e.prediction.initial,
+            e.score.frames,
+            (&e.score, &e.baseline),
+        );
+        let state = state(&e.prediction.initial);
+        return vec![(std::iter::once(run)
+            .chain(scores)
+            .chain(state)
+            .chain(forecast))
+        .collect()];
+    }
+    let initials = std::iter::once(&e.prediction.initial)
+        .chain(e.prediction.companions.iter().map(|c| &c.initial));
+    let mut rows: Vec<Vec<String>> = (e.score.bodies.iter().zip(&e.baseline.bodies).zip(initials))
+        .map(|((body, frozen), initial)| {
+            let errors = [
+                body.position_error,
+                body.rotation_error,
+                frozen.position_error,
+                frozen.rotation_error,
+            ];
+            let head = [
+                run.clone(),
+                body.body.clone(),
+                body.frames.to_string(),
+                initial.time.to_string(),
+                source(initial),
+            ];
+            (head.into_iter())
+                .chain(errors.map(|v| v.to_string()))
+                .chain(state(initial))
+                .chain(forecast.iter().map(|_| String::new()))
+                .collect()
+        })
+        .collect();
+    let (model, frozen) = (&e.score, &e.baseline);
+    let errors = [
+        model.position_error,
+        model.rotation_error,
+        frozen.position_error,
+        frozen.rotation_error,
+    ];
+    let head = [run, "all".to_owned(), e.score.frames.to_string()];
+    rows.push(
+        (head.into_iter())
+            .chain([String::new(), String::new()])
+            .chain(errors.map(|v| v.to_string()))
+            .chain(INITIAL_STATE_COLUMNS.iter().map(|_| String::new()))
+            .chain(forecast)
+            .collect(),
+    );
+    rows
+}
+
+/// The columns between `run` (and `body`) and the initial state.
+const SCORE_COLUMNS: [&str; 7] = [
+    "frames",
+    "window_start",
+    "initial_state",
+    "position_error",
+    "rotation_error",
+    "frozen_position_error",
+    "frozen_rotation_error",
+];
+
+/// How a start state was found, as the `initial_state` column says it.
+fn source(initial: &super::InitialState) -> String {
+    match initial.source {
+        StateSource::FreeFlightFit { frames } => format!("fit {frames} frames"),
+        StateSource::Recorded => "recorded".to_owned(),
+    }
+}
+
+/// The [`SCORE_COLUMNS`] of a toss (or body) whose start is `initial`, over `frames`,
+/// with the model's and the frozen pose's scores.
+fn scores(
+    initial: &super::InitialState,
+    frames: usize,
+    (model, frozen): (&super::TossScore, &super::TossScore),
+) -> impl Iterator<Item = String> {
+    [
+        frames.to_string(),
+        initial.time.to_string(),
+        source(initial),
+        model.position_error.to_string(),
+        model.rotation_error.to_string(),
+        frozen.position_error.to_string(),
+        frozen.rotation_error.to_string(),
+    ]
+    .into_iter()
+}
+
+/// The [`INITIAL_STATE_COLUMNS`] of `initial`.
+fn state(initial: &super::InitialState) -> impl Iterator<Item = String> {
+    let q = initial.orientation.quaternion();
+    let quaternion = [q.w, q.i, q.j, q.k];
+    let values: Vec<f64> = (initial.position.iter())
+        .chain(&quaternion)
+        .chain(initial.velocity.iter())
+        .chain(initial.angular_velocity.iter())
+        .copied()
+        .collect();
+    values.into_iter().map(|v| v.to_string())
 }
