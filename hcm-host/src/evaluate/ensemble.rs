@@ -1,7 +1,7 @@
 //! `hcm evaluate --members N`: each condition's contact forecast by an ensemble of the
 //! model's runs — member m the model with its contacts' parameters drawn from their
-//! `noise` (the run-to-run scatter of Eq 18, as a forecast draws it: `Draw::Member`),
-//! from random stream m of the seed, replayed from the condition's mean pre-contact
+//! `noise` (the run-to-run scatter of Eq 18, as a forecast draws it:
+//! [`crate::experiment::member_model`]), replayed from the condition's mean pre-contact
 //! state as the paper's table replays the model — and scored run by run against the
 //! measured indicators by a proper score, the fair CRPS, beside the model's single
 //! replay scored the same way (one member: the absolute error). Where the runs differ
@@ -9,12 +9,11 @@
 //! sure; the bands' coverage says whether the spread is the runs' own.
 
 use crate::dataset::Dataset;
+use crate::experiment::member_model;
 use crate::identify::{simulate_target_with, targets, IdentifyError, Target};
 use crate::indicators::Indicators;
 use crate::numerics::scores::{calibrated_coverage, central_band, fair_crps};
-use crate::scenario::{drawn_run, Draw, Model};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use crate::scenario::Model;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -67,9 +66,7 @@ fn condition_forecast(target: &Target, c: usize, members: usize, seed: u64) -> I
     let drawn: Vec<Option<Indicators>> = (0..members)
         .into_par_iter()
         .map(|m| {
-            let mut rng = ChaCha8Rng::seed_from_u64(seed);
-            rng.set_stream(m as u64);
-            let member = drawn_run(&target.model, &mut rng, Draw::Member).ok()?;
+            let member = member_model(&target.model, seed, m).ok()?;
             simulate_target_with(target, c, &member.contacts[c]).map(|(_, i)| i)
         })
         .collect();

@@ -18,7 +18,7 @@ mod split;
 mod write;
 
 pub use generation::Generation;
-pub use members::simulate_members;
+pub use members::{member_model, simulate_members};
 pub use noise::{noisy_model, noisy_run, read_by_sensor, sensor_is_exact};
 pub use pre_contact::{
     pre_contact_states, replay_model, state_before, PreContact, PreContactError,

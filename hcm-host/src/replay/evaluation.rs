@@ -89,30 +89,30 @@ pub fn summarize_bodies(evaluations: &[TossEvaluation]) -> Vec<(String, Evaluati
     let Some(first) = evaluations.first() else {
         return Vec::new();
     };
-    let of = |m: usize, baseline: bool| -> Vec<TossScore> {
-        (evaluations.iter())
+    // Body m's position (or rotation) errors over the tosses, of the model or of the
+    // frozen pose.
+    let column = |m: usize, frozen: bool, rotation: bool| {
+        let values: Vec<f64> = (evaluations.iter())
             .filter_map(|e| {
-                let score = if baseline { &e.baseline } else { &e.score };
-                let b = score.bodies.get(m)?;
-                Some(TossScore {
-                    run: score.run.clone(),
-                    frames: b.frames,
-                    position_error: b.position_error,
-                    rotation_error: b.rotation_error,
-                    bodies: Vec::new(),
+                let body = (if frozen { &e.baseline } else { &e.score })
+                    .bodies
+                    .get(m)?;
+                Some(if rotation {
+                    body.rotation_error
+                } else {
+                    body.position_error
                 })
             })
-            .collect()
+            .collect();
+        Summary::of(&values)
     };
     (first.score.bodies.iter().enumerate())
         .map(|(m, body)| {
-            let (position, rotation) = Summary::of_scores(&of(m, false));
-            let (baseline_position, baseline_rotation) = Summary::of_scores(&of(m, true));
             let summary = EvaluationSummary {
-                position,
-                rotation,
-                baseline_position,
-                baseline_rotation,
+                position: column(m, false, false),
+                rotation: column(m, false, true),
+                baseline_position: column(m, true, false),
+                baseline_rotation: column(m, true, true),
             };
             (body.body.clone(), summary)
         })

@@ -3,7 +3,7 @@
 //! initial state was found, the prediction's and the frozen pose's errors, and the
 //! initial state itself, so that another simulator starts from the very same state.
 
-use super::{PathForecast, StateSource, TossEvaluation};
+use super::{InitialState, PathForecast, StateSource, TossEvaluation};
 use crate::output::write_atomically;
 use anyhow::Context;
 use std::path::Path;
@@ -79,60 +79,51 @@ pub fn write_scores(
 /// The rows of one toss: one without `several` bodies; else one per body and `all`.
 fn toss_rows(e: &TossEvaluation, several: bool, forecast: Vec<String>) -> Vec<Vec<String>> {
     let run = e.score.run.clone();
+    let start = |i: &InitialState| [i.time.to_string(), source(i)];
+    let totals = errors(
+        (e.score.position_error, e.score.rotation_error),
+        (e.baseline.position_error, e.baseline.rotation_error),
+    );
+    let frames = e.score.frames.to_string();
     if !several {
-        let scores = scores(
-            &e.prediction.initial,
-            e.score.frames,
-            (&e.score, &e.baseline),
-        );
-        let state = state(&e.prediction.initial);
-        return vec![(std::iter::once(run)
-            .chain(scores)
-            .chain(state)
-            .chain(forecast))
-        .collect()];
+        let initial = &e.prediction.initial;
+        let row = [run, frames]
+            .into_iter()
+            .chain(start(initial))
+            .chain(totals);
+        return vec![row.chain(state(initial)).chain(forecast).collect()];
     }
     let initials = std::iter::once(&e.prediction.initial)
         .chain(e.prediction.companions.iter().map(|c| &c.initial));
     let mut rows: Vec<Vec<String>> = (e.score.bodies.iter().zip(&e.baseline.bodies).zip(initials))
         .map(|((body, frozen), initial)| {
-            let errors = [
-                body.position_error,
-                body.rotation_error,
-                frozen.position_error,
-                frozen.rotation_error,
-            ];
-            let head = [
-                run.clone(),
-                body.body.clone(),
-                body.frames.to_string(),
-                initial.time.to_string(),
-                source(initial),
-            ];
+            let head = [run.clone(), body.body.clone(), body.frames.to_string()];
             (head.into_iter())
-                .chain(errors.map(|v| v.to_string()))
+                .chain(start(initial))
+                .chain(errors(
+                    (body.position_error, body.rotation_error),
+                    (frozen.position_error, frozen.rotation_error),
+                ))
                 .chain(state(initial))
                 .chain(forecast.iter().map(|_| String::new()))
                 .collect()
         })
         .collect();
-    let (model, frozen) = (&e.score, &e.baseline);
-    let errors = [
-        model.position_error,
-        model.rotation_error,
-        frozen.position_error,
-        frozen.rotation_error,
-    ];
-    let head = [run, "all".to_owned(), e.score.frames.to_string()];
+    let head = [run, "all".to_owned(), frames, String::new(), String::new()];
     rows.push(
         (head.into_iter())
-            .chain([String::new(), String::new()])
-            .chain(errors.map(|v| v.to_string()))
+            .chain(totals)
             .chain(INITIAL_STATE_COLUMNS.iter().map(|_| String::new()))
             .chain(forecast)
             .collect(),
     );
     rows
+}
+
+/// The error columns: the model's position (%) and rotation (°) errors, then the frozen
+/// pose's.
+fn errors(model: (f64, f64), frozen: (f64, f64)) -> [String; 4] {
+    [model.0, model.1, frozen.0, frozen.1].map(|v| v.to_string())
 }
 
 /// The columns between `run` (and `body`) and the initial state.
@@ -147,34 +138,15 @@ const SCORE_COLUMNS: [&str; 7] = [
 ];
 
 /// How a start state was found, as the `initial_state` column says it.
-fn source(initial: &super::InitialState) -> String {
+fn source(initial: &InitialState) -> String {
     match initial.source {
         StateSource::FreeFlightFit { frames } => format!("fit {frames} frames"),
         StateSource::Recorded => "recorded".to_owned(),
     }
 }
 
-/// The [`SCORE_COLUMNS`] of a toss (or body) whose start is `initial`, over `frames`,
-/// with the model's and the frozen pose's scores.
-fn scores(
-    initial: &super::InitialState,
-    frames: usize,
-    (model, frozen): (&super::TossScore, &super::TossScore),
-) -> impl Iterator<Item = String> {
-    [
-        frames.to_string(),
-        initial.time.to_string(),
-        source(initial),
-        model.position_error.to_string(),
-        model.rotation_error.to_string(),
-        frozen.position_error.to_string(),
-        frozen.rotation_error.to_string(),
-    ]
-    .into_iter()
-}
-
 /// The [`INITIAL_STATE_COLUMNS`] of `initial`.
-fn state(initial: &super::InitialState) -> impl Iterator<Item = String> {
+fn state(initial: &InitialState) -> impl Iterator<Item = String> {
     let q = initial.orientation.quaternion();
     let quaternion = [q.w, q.i, q.j, q.k];
     let values: Vec<f64> = (initial.position.iter())

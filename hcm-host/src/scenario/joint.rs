@@ -58,6 +58,9 @@ pub struct Joint {
     pub anchors: [Vector3<f64>; 2],
     /// The axis, unit, in body 1's frame (and body 2's).
     pub axis: Unit<Vector3<f64>>,
+    /// Two unit vectors perpendicular to the axis and to each other, in the same frames:
+    /// the axis rows' directions, and the angle's reference.
+    pub normals: [Vector3<f64>; 2],
     /// Its own torque about the axis (spring, viscous and Coulomb friction).
     pub law: JointLaw<f64>,
 }
@@ -68,22 +71,10 @@ pub struct Joint {
 pub const ASSEMBLY_TOLERANCE: f64 = 1e-6;
 
 impl Joint {
-    /// Two unit vectors (body frame) perpendicular to the axis and to each other.
-    pub fn normals(&self) -> [Vector3<f64>; 2] {
-        let a = self.axis.into_inner();
-        let seed = if a.x.abs() < 0.9 {
-            Vector3::x()
-        } else {
-            Vector3::y()
-        };
-        let first = a.cross(&seed).normalize();
-        [first, a.cross(&first)]
-    }
-
     /// The joint's angle θ (rad, in (−π, π]) with the bodies turned by `q1` and `q2`
     /// (body → world).
     pub fn angle(&self, q1: &UnitQuaternion<f64>, q2: &UnitQuaternion<f64>) -> f64 {
-        let [u, _] = self.normals();
+        let [u, _] = self.normals;
         let turned = (q1.inverse() * q2) * u;
         let a = self.axis.into_inner();
         u.cross(&turned).dot(&a).atan2(u.dot(&turned))
@@ -154,8 +145,21 @@ pub(crate) fn resolve_joint(
         bodies,
         anchors: spec.anchors.map(Vector3::from),
         axis,
+        normals: normals(&axis),
         law: spec.law,
     })
+}
+
+/// Two unit vectors perpendicular to `axis` and to each other.
+fn normals(axis: &Unit<Vector3<f64>>) -> [Vector3<f64>; 2] {
+    let a = axis.into_inner();
+    let seed = if a.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let first = a.cross(&seed).normalize();
+    [first, a.cross(&first)]
 }
 
 impl Joint {

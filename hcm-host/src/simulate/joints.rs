@@ -77,7 +77,7 @@ fn rows(joint: &Joint, motion: &[BodyMotion]) -> [Row; ROWS] {
         }
     };
     let axis = a.orientation * joint.axis.into_inner();
-    let [n1, n2] = joint.normals();
+    let [n1, n2] = joint.normals;
     let turn = |n: Vector3<f64>| {
         let normal = b.orientation * n;
         let lever = axis.cross(&normal);
@@ -105,16 +105,19 @@ pub fn add_constraint_loads(
 ) {
     let rows: Vec<Row> = model.joints.iter().flat_map(|j| rows(j, motion)).collect();
     let n = rows.len();
-    // M⁻¹ times a row's coefficients on body `b`.
-    let inverse = |r: &Row, side: usize| {
-        let (m, i) = motion[r.bodies[side]].inverse;
-        (r.linear[side] * m, i * r.angular[side])
-    };
+    // M⁻¹ times each row's coefficients on each of its two bodies, once per row.
+    let inverse: Vec<[(Vector3<f64>, Vector3<f64>); 2]> = (rows.iter())
+        .map(|r| {
+            std::array::from_fn(|side| {
+                let (m, i) = motion[r.bodies[side]].inverse;
+                (r.linear[side] * m, i * r.angular[side])
+            })
+        })
+        .collect();
     let matrix = DMatrix::from_fn(n, n, |p, q| {
         let (r, s) = (&rows[p], &rows[q]);
         let mut sum = 0.0;
-        for side in 0..2 {
-            let (linear, angular) = inverse(r, side);
+        for (side, (linear, angular)) in inverse[p].iter().enumerate() {
             for other in 0..2 {
                 if s.bodies[other] == r.bodies[side] {
                     sum += linear.dot(&s.linear[other]) + angular.dot(&s.angular[other]);
@@ -147,6 +150,21 @@ pub fn add_constraint_loads(
             load.0 += r.linear[side] * *l;
             load.1 += r.angular[side] * *l;
         }
+    }
+}
+
+/// Each joint's own torque (its law at its angle and rate) added into `loads`: on body 2
+/// about the axis, the opposite on body 1; the bodies at `poses`.
+pub fn add_law_torques(model: &Model, poses: &[Pose], loads: &mut [(Vector3<f64>, Vector3<f64>)]) {
+    for joint in model.joints.iter().filter(|j| !j.law.is_zero()) {
+        let [b1, b2] = joint.bodies;
+        let (p1, p2) = (&poses[b1], &poses[b2]);
+        let axis = p1.orientation * joint.axis.into_inner();
+        let angle = joint.angle(&p1.orientation, &p2.orientation);
+        let rate = (p2.angular_velocity - p1.angular_velocity).dot(&axis);
+        let torque = axis * joint.law.torque(angle, rate);
+        loads[b2].1 += torque;
+        loads[b1].1 -= torque;
     }
 }
 

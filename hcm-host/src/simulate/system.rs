@@ -5,7 +5,7 @@
 //! with the arms, plus the residual), and each contact's linear and angular impulse.
 
 use super::jacobian::Linearisation;
-use super::joints::{add_constraint_loads, world_inverse_inertia, BodyMotion};
+use super::joints::{add_constraint_loads, add_law_torques, world_inverse_inertia, BodyMotion};
 use super::layout::{RigidLayout, StateVector};
 use super::memory::PointMemory;
 use crate::residual::{ContactResidual, INPUTS, WRENCH_INPUTS};
@@ -262,25 +262,16 @@ impl RigidSystem<'_> {
 }
 
 impl RigidSystem<'_> {
-    /// Adds the joints' constraint forces and torques to `loads` (the contacts' so
-    /// far), from every body's motion without them (`joints.rs`).
+    /// Adds the joints' own torques, then their constraint forces and torques, to
+    /// `loads` (the contacts' so far), from every body's motion without the constraints
+    /// (`joints.rs`).
     fn add_joint_loads(&self, y: &[f64], loads: &mut [(Vector3<f64>, Vector3<f64>)]) {
-        for joint in self.model.joints.iter().filter(|j| !j.law.is_zero()) {
-            let [b1, b2] = joint.bodies;
-            let (p1, p2) = (
-                self.layout.pose(self.model, y, b1),
-                self.layout.pose(self.model, y, b2),
-            );
-            let axis = p1.orientation * joint.axis.into_inner();
-            let angle = joint.angle(&p1.orientation, &p2.orientation);
-            let rate = (p2.angular_velocity - p1.angular_velocity).dot(&axis);
-            let torque = axis * joint.law.torque(angle, rate);
-            loads[b2].1 += torque;
-            loads[b1].1 -= torque;
-        }
-        let motion: Vec<BodyMotion> = (0..self.model.bodies.len())
-            .map(|b| {
-                let pose = self.layout.pose(self.model, y, b);
+        let poses: Vec<_> = (0..self.model.bodies.len())
+            .map(|b| self.layout.pose(self.model, y, b))
+            .collect();
+        add_law_torques(self.model, &poses, loads);
+        let motion: Vec<BodyMotion> = (poses.into_iter().enumerate())
+            .map(|(b, pose)| {
                 let Some(rigid) = self.layout.rigid_state(y, b) else {
                     let zero = Vector3::zeros();
                     let inverse = (0.0, nalgebra::Matrix3::zeros());
