@@ -9,6 +9,7 @@
 
 pub mod cli;
 pub mod hidden;
+pub mod mechanism;
 pub mod reference;
 pub mod rig;
 pub mod rigid_pipeline;

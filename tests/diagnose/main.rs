@@ -8,6 +8,7 @@ mod diagnose;
 mod diagnose_chance;
 mod diagnose_fitted_base;
 mod diagnose_force_chance;
+mod diagnose_joint;
 mod diagnose_motion;
 mod diagnose_power;
 mod diagnose_power_curve;

@@ -43,7 +43,10 @@ pub fn run(args: Args, scenario: &Scenario, data: Dataset) -> anyhow::Result<()>
     let setup = TossSetup::new(&model)?;
     let mut parameters = MotionParameters::for_contact(&model, &setup, args.contact)?;
     if let Some(law) = &args.law {
-        model = with_law(&model, parameters.contact, law, None)?;
+        // Every contact fitted as one takes the law (else they would no longer be alike).
+        for c in parameters.contacts() {
+            model = with_law(&model, c, law, None)?;
+        }
         parameters = MotionParameters::for_contact(&model, &setup, args.contact)?;
     }
     let (training, held_out) = read_split(&args, data, &model, &setup)?;
@@ -150,7 +153,7 @@ fn write_physics(
 ) -> anyhow::Result<()> {
     let method = "ga + Nelder–Mead on toss replays (motion only)";
     let data = args.data.display().to_string();
-    fitted_physics(fit, parameters.contact, sets, method, &data, runs)
+    fitted_physics(fit, &parameters.contacts(), sets, method, &data, runs)
         .write(
             &args.out,
             &format!("contact of scenario `{name}` fitted to tosses by hcm identify from poses"),

@@ -21,6 +21,8 @@ pub enum Family {
     Measurement,
     /// The body's own properties (inertia, shape, drag through the air).
     Body,
+    /// A mechanism's joints: their own friction, stiffness, placement.
+    Joint,
     /// Chance: how a run varies from the next (the contact's parameters, the start
     /// state, the fixed body's place), a spread the model carries and forecasts draw.
     Chance,
@@ -28,7 +30,7 @@ pub enum Family {
 
 impl Family {
     /// The family's name in a report (`friction`, `resistance`, `normal`,
-    /// `measurement`, `body`), as serialised.
+    /// `measurement`, `body`, `joint`, `chance`), as serialised.
     pub fn name(self) -> &'static str {
         match self {
             Family::Friction => "friction",
@@ -36,6 +38,7 @@ impl Family {
             Family::Normal => "normal",
             Family::Measurement => "measurement",
             Family::Body => "body",
+            Family::Joint => "joint",
             Family::Chance => "chance",
         }
     }

@@ -28,7 +28,7 @@ mod verdict;
 pub use diagnosis::{diagnose, DiagnoseSettings, Diagnosis};
 mod drag;
 mod effects;
-pub use effects::{Catalogue, Effect, Scales, Site, CATALOGUE, CHANCES};
+pub use effects::{apply_at, Catalogue, Effect, Scales, Site, CATALOGUE, CHANCES};
 mod momentum;
 mod motion;
 mod rigid;

@@ -177,3 +177,39 @@ impl Joint {
         slip.norm().max(off_axis.norm())
     }
 }
+
+/// What a joint's own torque acts against, from its child body: the sizes the boxes
+/// of a fit or a diagnosis of its law are scaled by (no number from one example).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointScales {
+    /// The child's moment of inertia about the joint's axis through the anchor (kg·m²):
+    /// a·I·a + m·r⊥², r⊥ the anchor's distance from the child's centre of mass off
+    /// the axis.
+    pub inertia: f64,
+    /// The child's weight on its lever about the joint, m·|g|·r (N·m), r the larger of
+    /// r⊥ and the child's radius of gyration about the axis (a joint through the
+    /// centre of mass still turns a body of that size).
+    pub torque: f64,
+    /// The child swinging about the joint as a pendulum, √(torque / inertia) (rad/s).
+    pub rate: f64,
+}
+
+impl Joint {
+    /// The joint's scales with its bodies as in `model` (NaN where the child has no
+    /// mass or inertia about the axis).
+    pub fn scales(&self, model: &super::Model) -> JointScales {
+        let child = &model.bodies[self.bodies[1]];
+        let a = self.axis.into_inner();
+        let r = self.anchors[1];
+        let off_axis = (r - a * r.dot(&a)).norm();
+        let own = a.dot(&(child.inertia * a));
+        let inertia = own + child.mass * off_axis * off_axis;
+        let gyration = (own / child.mass).sqrt();
+        let torque = child.mass * model.gravity.norm() * off_axis.max(gyration);
+        JointScales {
+            inertia,
+            torque,
+            rate: (torque / inertia).sqrt(),
+        }
+    }
+}

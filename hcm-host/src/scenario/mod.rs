@@ -6,10 +6,12 @@
 //! deserialised and checked ([`Scenario::resolve`]) into a [`Model`] ready to simulate.
 //! Every key is documented in the README ("Scenario files").
 
+mod alike;
 mod assignment;
 mod exact;
 mod geometry;
 mod joint;
+mod joint_term;
 mod overrides;
 mod residual_fit;
 mod resolve;
@@ -19,7 +21,8 @@ mod variation;
 pub use geometry::{pair_contacts, pair_kinematics, pair_rate, pair_separation, Pose};
 
 pub use assignment::{Assignment, IntoAssignment};
-pub use joint::{Joint, JointKind, JointSpec, ASSEMBLY_TOLERANCE};
+pub use joint::{Joint, JointKind, JointScales, JointSpec, ASSEMBLY_TOLERANCE};
+pub use joint_term::{JointTerm, SMOOTHING_FRACTION};
 pub use resolve::{Body, Contact, Model, Shape};
 pub use rigid::{FrictionSpec, InertiaSpec, OrientationSpec, Part, PartSpec};
 pub use variation::{draw_parameter, drawn_run, shift_surface, tilt_surface, up};

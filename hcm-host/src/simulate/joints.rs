@@ -18,7 +18,7 @@
 //! constraint force and torque. A joint's own law (spring, friction) is a torque about
 //! its axis, added before.
 
-use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, SMatrix, SVector, UnitQuaternion, Vector3};
 
 use crate::scenario::{Joint, Model, Pose};
 
@@ -114,7 +114,7 @@ pub fn add_constraint_loads(
             })
         })
         .collect();
-    let matrix = DMatrix::from_fn(n, n, |p, q| {
+    let entry = |p: usize, q: usize| {
         let (r, s) = (&rows[p], &rows[q]);
         let mut sum = 0.0;
         for (side, (linear, angular)) in inverse[p].iter().enumerate() {
@@ -125,8 +125,8 @@ pub fn add_constraint_loads(
             }
         }
         sum
-    });
-    let rhs = DVector::from_fn(n, |p, _| {
+    };
+    let rhs = |p: usize| {
         let r = &rows[p];
         let free: f64 = (0..2)
             .map(|side| {
@@ -135,13 +135,8 @@ pub fn add_constraint_loads(
             })
             .sum();
         r.bias - free
-    });
-    let Some(lambda) = matrix
-        .clone()
-        .cholesky()
-        .map(|c| c.solve(&rhs))
-        .or_else(|| matrix.lu().solve(&rhs))
-    else {
+    };
+    let Some(lambda) = solve(n, entry, rhs) else {
         return;
     };
     for (r, l) in rows.iter().zip(lambda.iter()) {
@@ -151,6 +146,29 @@ pub fn add_constraint_loads(
             load.1 += r.angular[side] * *l;
         }
     }
+}
+
+/// λ of (J·M⁻¹·Jᵀ)·λ = rhs, the matrix's entries from `entry`: Cholesky, LU where the
+/// matrix is not positive definite (joints that constrain the same motion twice), None
+/// where neither solves. One joint's 5 rows in fixed-size matrices on the stack (the
+/// elbow's hinge solves at every evaluation of a jointed scene's derivative and its
+/// Jacobian: measured by `benches/ball_simulation.rs`'s elbow toss), more in heap ones.
+fn solve(
+    n: usize,
+    entry: impl Fn(usize, usize) -> f64,
+    rhs: impl Fn(usize) -> f64,
+) -> Option<Vec<f64>> {
+    if n == ROWS {
+        let matrix = SMatrix::<f64, ROWS, ROWS>::from_fn(&entry);
+        let rhs = SVector::<f64, ROWS>::from_fn(|p, _| rhs(p));
+        let lambda = (matrix.cholesky().map(|c| c.solve(&rhs))).or_else(|| matrix.lu().solve(&rhs));
+        return lambda.map(|l| l.iter().copied().collect());
+    }
+    let matrix = DMatrix::from_fn(n, n, &entry);
+    let rhs = DVector::from_fn(n, |p, _| rhs(p));
+    let lambda =
+        (matrix.clone().cholesky().map(|c| c.solve(&rhs))).or_else(|| matrix.lu().solve(&rhs));
+    lambda.map(|l| l.iter().copied().collect())
 }
 
 /// Each joint's own torque (its law at its angle and rate) added into `loads`: on body 2

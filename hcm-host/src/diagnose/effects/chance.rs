@@ -127,6 +127,10 @@ impl Effect for Chance {
             _ => vec![0.0],
         }
     }
+    /// The contact's scatter on each alike contact; the others once.
+    fn per_contact(&self) -> bool {
+        self.kind == Kind::ContactScatter
+    }
     fn apply(&self, model: &mut Model, site: Site, values: &[f64]) {
         let size = first(values).max(0.0);
         let variation = &mut model.scenario.variation;

@@ -26,6 +26,9 @@ impl Effect for LengthScale {
     fn neutral(&self, _model: &Model, _site: Site) -> Vec<f64> {
         vec![1.0]
     }
+    fn per_contact(&self) -> bool {
+        false
+    }
     fn apply(&self, _model: &mut Model, _site: Site, _values: &[f64]) {}
     /// Every position and velocity divided by s (about the world origin).
     fn read(&self, data: &Dataset, values: &[f64]) -> Option<Dataset> {

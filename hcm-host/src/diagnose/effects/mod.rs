@@ -23,6 +23,10 @@
 //! | measurement | `length_scale`: the tracker's lengths × s | poses | s ∈ [0.9, 1.1] |
 //! | body | `inertia_scale`: the inertia tensor × k | poses | k ∈ [0.5, 2] |
 //! | body | `edge_rounding`: a box's edges rounded to r | poses | r ∈ [0, L/5] m |
+//! | joint | `joint_viscous_friction` −c·θ̇ in every joint | poses | c ∈ [0, 4·I·ω̂] N·m·s/rad |
+//! | joint | `joint_coulomb_friction` τ_c, STEP-smoothed | poses | τ_c ∈ [0, 2·τ̂] N·m |
+//! | joint | `joint_stiffness` −k·(θ − θ₀) | poses | k ∈ [0, 4·τ̂] N·m/rad |
+//! | joint | `joint_offset`: the joint's point on the child moved along its lever | poses | d ∈ ±L/5 m |
 //! | chance | `contact_scatter`: stiffness, damping, friction × (1 + σ·ζ) per run | poses | σ ∈ [0, 0.6] |
 //! | chance | `start_uncertainty`: the start state's fit σ × k | poses | k ∈ [0, 2.2] |
 //! | chance | `fixed_height`, `fixed_tilt`: the fixed body moved or tilted by σ·ζ per run | poses | σ ∈ [0, min(L/20, h̄)] m; [0, min(0.05, θ̄)] rad |
@@ -31,9 +35,9 @@
 //! point, δ̂ the deepest, L the largest lever arm of a point about the moving body's
 //! centre (poses: the body's largest half extent), θ̄ and h̄ the largest RMS tilt and
 //! height change per run a body resting at the end of its recordings shows beyond the
-//! tracker's noise, m the
-//! body's mass, Δt the median sample
-//! interval: every box from the data ([`Scales`]), none from an example. On a line of
+//! tracker's noise, m the body's mass, Δt the median sample interval, I, τ̂ and ω̂ the
+//! (first) joint's child's inertia about it, its weight's torque about it and its
+//! pendulum rate ([`crate::scenario::JointScales`]): every box from the data ([`Scales`]), none from an example. On a line of
 //! force (1D) an effect is judged through its linear column at small strength
 //! ([`Effect::column`], the fast pre-ranking of `select`).
 
@@ -44,6 +48,7 @@ mod force_gain;
 mod force_offset;
 mod friction_coefficient;
 mod inertia_scale;
+mod joint;
 mod law_term;
 mod length_scale;
 mod resistance;
@@ -108,6 +113,9 @@ pub struct Scales {
     /// the body's centre resting at the end of its recordings shows it beyond the
     /// tracker's noise. NaN where none is known.
     pub rest_height: f64,
+    /// The (first) joint's scales, where the model has joints (the joint effects'
+    /// boxes).
+    pub joint: Option<crate::scenario::JointScales>,
 }
 
 impl Scales {
@@ -138,6 +146,7 @@ impl Scales {
             mass: f64::NAN,
             rest_tilt: f64::NAN,
             rest_height: f64::NAN,
+            joint: None,
         }
     }
 
@@ -159,6 +168,7 @@ impl Scales {
             mass,
             rest_tilt: f64::NAN,
             rest_height: f64::NAN,
+            joint: None,
         }
     }
 }
@@ -196,6 +206,13 @@ pub trait Effect: std::fmt::Debug + Sync + Send {
     }
     /// `model` with the change `values` stand for at `site`.
     fn apply(&self, model: &mut Model, site: Site, values: &[f64]);
+    /// Whether it changes the site's contact or its moving body, so that on a scene
+    /// whose contacts are alike (a mechanism's links on one table) [`apply_at`] makes
+    /// it on each of them; false for a change of the partner, the joints or the whole
+    /// model, made once.
+    fn per_contact(&self) -> bool {
+        true
+    }
     /// The data as the effect reads them (a tracker's length scale); `None`: as recorded.
     fn read(&self, _data: &Dataset, _values: &[f64]) -> Option<Dataset> {
         None
@@ -208,7 +225,7 @@ pub trait Effect: std::fmt::Debug + Sync + Send {
 }
 
 /// Every built-in effect, in the order a report lists it.
-pub static CATALOGUE: [&dyn Effect; 20] = [
+pub static CATALOGUE: [&dyn Effect; 24] = [
     &friction_coefficient::FrictionCoefficient,
     &coulomb_friction::CoulombFriction,
     &viscous_friction::ViscousFriction,
@@ -229,6 +246,10 @@ pub static CATALOGUE: [&dyn Effect; 20] = [
     &length_scale::LengthScale,
     &inertia_scale::InertiaScale,
     &edge_rounding::EdgeRounding,
+    &joint::VISCOUS,
+    &joint::COULOMB,
+    &joint::STIFFNESS,
+    &joint::JointOffset,
 ];
 
 /// The chances a diagnosis from poses tries when asked ([`Catalogue::with_chance`]):
@@ -279,6 +300,20 @@ impl Catalogue {
         evidence: Evidence,
     ) -> impl Iterator<Item = &'static dyn Effect> + '_ {
         self.0.iter().copied().filter(move |e| e.evidence(evidence))
+    }
+}
+
+/// `effect` with `values` made on `model` at `site`: on every contact alike with the
+/// site's ([`Model::alike_contacts`]) where it changes a contact or its body
+/// ([`Effect::per_contact`]), once otherwise. A lone body's contact is alike only with
+/// itself: then the same as [`Effect::apply`].
+pub fn apply_at(effect: &dyn Effect, model: &mut Model, site: Site, values: &[f64]) {
+    if !effect.per_contact() {
+        return effect.apply(model, site, values);
+    }
+    for contact in model.alike_contacts(site.contact) {
+        let at = Site { contact, ..site };
+        effect.apply(model, at, values);
     }
 }
 

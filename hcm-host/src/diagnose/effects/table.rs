@@ -55,6 +55,9 @@ impl Effect for Table {
     fn neutral(&self, _model: &Model, _site: Site) -> Vec<f64> {
         vec![0.0; 1 + usize::from(self.tilt)]
     }
+    fn per_contact(&self) -> bool {
+        false
+    }
     fn apply(&self, model: &mut Model, site: Site, values: &[f64]) {
         if self.tilt {
             let second = values.get(1).copied().unwrap_or(0.0);

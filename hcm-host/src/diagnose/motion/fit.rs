@@ -5,7 +5,7 @@
 //! parameters: the Nelder–Mead polish of the identification from motion, from the
 //! neutral values.
 
-use super::super::{Effect, Site};
+use super::super::{apply_at, Effect, Site};
 use crate::dataset::Dataset;
 use crate::identify::MotionTarget;
 use crate::numerics::optimize::minimize_scalar;
@@ -79,7 +79,7 @@ impl Subject<'_> {
     /// subject's model.
     pub fn scores(&self, effect: &dyn Effect, values: &[f64], part: &Part<'_>) -> Option<Vec<f64>> {
         let mut model = self.model.clone();
-        effect.apply(&mut model, self.site, values);
+        apply_at(effect, &mut model, self.site, values);
         match effect.read(part.data, values) {
             Some(read) => {
                 let target = MotionTarget::new(self.model, &read).ok()?;
@@ -328,4 +328,43 @@ fn line_search(bound: &Bound, score: impl Fn(f64) -> f64) -> (Vec<f64>, f64, usi
         FRACTION_TOLERANCE,
     );
     (vec![bound.value_at(at)], fitness, evaluations)
+}
+
+/// Bisections of each side of a named cause's interval (–): its ends to 1/32 of the
+/// stretch between the fitted value and the box's end.
+const INTERVAL_STEPS: usize = 5;
+
+/// The values of a one-parameter deterministic `effect` the training tosses do not
+/// tell from the fitted `best` (its paired difference from `best`'s scores, toss by
+/// toss, has a 95 % interval reaching 0, as [`grid_fit`] bounds a chance): on each
+/// side the box's end where that is not worse, else the last of [`INTERVAL_STEPS`]
+/// bisections of the fraction between `best` and the end that is not. None where a
+/// replay fails. 2 + 2·[`INTERVAL_STEPS`] replays of the training tosses at most.
+pub fn interval(
+    subject: &Subject<'_>,
+    effect: &dyn Effect,
+    (bound, best): (&Bound, f64),
+    training: &Part<'_>,
+) -> Option<[f64; 2]> {
+    let scores = |u: f64| subject.scores(effect, &[bound.value_at(u)], training);
+    let at_best = scores(bound.fraction_of(best))?;
+    let alike =
+        |u: f64| scores(u).is_some_and(|s| super::Paired::of(&s, &at_best).interval[0] <= 0.0);
+    let side = |end: f64| {
+        let mut inside = bound.fraction_of(best);
+        if alike(end) {
+            return end;
+        }
+        let mut outside = end;
+        for _ in 0..INTERVAL_STEPS {
+            let middle = 0.5 * (inside + outside);
+            if alike(middle) {
+                inside = middle;
+            } else {
+                outside = middle;
+            }
+        }
+        inside
+    };
+    Some([bound.value_at(side(0.0)), bound.value_at(side(1.0))])
 }

@@ -39,7 +39,7 @@ use super::verdict::{Decision, Margins};
 /// ([`Margins::TOSSES`]).
 pub const RIVAL_T: f64 = Margins::TOSSES.rival_t;
 
-use super::{Catalogue, Effect, Scales, Site};
+use super::{apply_at, Catalogue, Effect, Scales, Site};
 use crate::dataset::{Dataset, Evidence};
 use crate::identify::{split_tosses, MotionParameters};
 use crate::progress::{in_stage, Progress, Stage as ProgressStage};
@@ -80,7 +80,8 @@ pub struct CandidateResult {
     pub(crate) held_out: f64,
     /// Held-out gain over the round's model: its score minus the candidate's.
     pub gain: Paired,
-    /// For chance, the values the training tosses leave for its spread (95 %, paired).
+    /// The values the training tosses leave for it (95 %, paired): for chance, on its
+    /// grid; for a named deterministic cause of one parameter, bisected.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub interval: Option<[f64; 2]>,
     /// Whether it helps (see the module's rule).
@@ -264,7 +265,7 @@ impl Search<'_> {
         let site = self.site;
         let (effect, fitted, _) = first;
         let mut model = self.current.clone();
-        effect.apply(&mut model, site, &fitted.values);
+        apply_at(*effect, &mut model, site, &fitted.values);
         if !second.applies(&model, site) {
             return None;
         }
@@ -289,12 +290,15 @@ impl Search<'_> {
     /// tosses through it where it is a measurement effect, and records the round.
     fn name(&mut self, mut this: Round, mut held_scores: Vec<Fit>, index: usize) {
         let (effect, fitted, held) = held_scores.swap_remove(index);
+        if this.candidates[index].interval.is_none() {
+            this.candidates[index].interval = self.interval(effect, &fitted);
+        }
         this.named = Some(effect.name());
         self.named.push((
             effect.name().to_owned(),
             this.candidates[index].parameters.clone(),
         ));
-        effect.apply(&mut self.current, self.site, &fitted.values);
+        apply_at(effect, &mut self.current, self.site, &fitted.values);
         if let Some(read) = effect.read(&self.training, &fitted.values) {
             self.training = read;
         }
@@ -303,6 +307,22 @@ impl Search<'_> {
         }
         self.last_scores = held;
         self.rounds.push(this);
+    }
+
+    /// The interval of values the training tosses leave for a named deterministic
+    /// cause of one parameter ([`fit::interval`]), against the round's model (before
+    /// it is added); None for two parameters or where a replay fails.
+    fn interval(&self, effect: &'static dyn Effect, fitted: &Fitted) -> Option<[f64; 2]> {
+        let bounds = effect.bounds(Evidence::Poses, &self.scales);
+        let ([bound], [best]) = (bounds.as_slice(), fitted.values.as_slice()) else {
+            return None;
+        };
+        let training = Part::new(&self.current, &self.training, fit::FIT_MEMBERS).ok()?;
+        let subject = Subject {
+            model: &self.current,
+            site: self.site,
+        };
+        fit::interval(&subject, effect, (bound, *best), &training)
     }
 
     /// How many chances were named.
@@ -333,7 +353,19 @@ impl Search<'_> {
             .filter_map(|r| Some((r.named?, r.same_as.as_slice())))
             .filter(|(_, same)| !same.is_empty())
             .collect();
-        let answer = answer(&self.named, &self.ambiguous, &same_as, total_gain.as_ref());
+        let intervals: Vec<Option<[f64; 2]>> = (self.named.iter())
+            .map(|(name, _)| {
+                let round = self.rounds.iter().find(|r| r.named == Some(name.as_str()));
+                let candidate = round.and_then(|r| r.candidates.iter().find(|c| c.name == name));
+                candidate.and_then(|c| c.interval)
+            })
+            .collect();
+        let answer = answer(
+            (&self.named, &intervals),
+            &self.ambiguous,
+            &same_as,
+            total_gain.as_ref(),
+        );
         MotionDiagnosis {
             training_tosses: self.training.runs.len(),
             held_out_tosses: self.held_out.runs.len(),
@@ -583,6 +615,7 @@ fn search(
         scales: Scales {
             rest_tilt,
             rest_height,
+            joint: model.joints.first().map(|j| j.scales(model)),
             ..Scales::of_body(model.bodies[setup.body].mass, setup.width / 2.0)
         },
         catalogue: catalogue.clone(),
@@ -626,19 +659,25 @@ fn judge(
     }
 }
 
+/// A cause named, with its parameters (name, value).
+type NamedCause = (String, Vec<(String, f64)>);
+
 /// The answer in one sentence.
 fn answer(
-    named: &[(String, Vec<(String, f64)>)],
+    (named, intervals): (&[NamedCause], &[Option<[f64; 2]>]),
     ambiguous: &[&'static str],
     same_as: &[(&str, &[&str])],
     total: Option<&Paired>,
 ) -> String {
     let mut parts = Vec::new();
-    for (name, parameters) in named {
-        let values: Vec<String> = parameters
+    for ((name, parameters), interval) in named.iter().zip(intervals) {
+        let mut values: Vec<String> = parameters
             .iter()
             .map(|(p, v)| format!("{p} = {v:.4e}"))
             .collect();
+        if let Some([lo, hi]) = interval {
+            values.push(format!("95 % {lo:.4e} to {hi:.4e}"));
+        }
         let alike = (same_as.iter().find(|(n, _)| n == name)).map_or(String::new(), |(_, same)| {
             format!(
                 "; a spread the held-out tosses do not tell from {}",

@@ -15,11 +15,19 @@
 //! a restitution over 0.05…1.
 //!
 //! Friction is searched as μ_s and μ_d/μ_s ∈ [0.3, 1], so every candidate is a valid law.
+//!
+//! A mechanism: the contacts the scenario declares alike with the fitted one (its
+//! links on the same table with the same law and friction, [`Model::alike_contacts`])
+//! take the same law and friction genes, its links that are copies of the replayed
+//! body the same inertia scale and rounding; each joint's law terms the scenario
+//! declares (`[[joint]] law = { viscous = …, coulomb = …, spring = … }`) are freed too,
+//! each over 0 … [`JointTerm::upper`] of the joint's scales. A free hinge stays free:
+//! what it lacks is the diagnosis' question.
 
 use crate::numerics::optimize::{Bound, Parameters};
 use crate::replay::shift_surface;
 use crate::replay::{TossError, TossSetup};
-use crate::scenario::{Model, Shape};
+use crate::scenario::{JointTerm, Model, Shape};
 
 /// Factor on each side of the scenario's stiffness or damping its box spans (–).
 pub const SPAN: f64 = 30.0;
@@ -48,16 +56,24 @@ const OTHER_GENES: [(&str, f64, f64, bool); 4] = [
     ("inertia_scale", 0.5, 2.0, true),
 ];
 
-/// The free parameters of the replayed body's contact with a fixed partner.
+/// The free parameters of the replayed body's contact with a fixed partner (and of
+/// the contacts the scenario declares alike with it, [`Model::alike_contacts`]: a
+/// mechanism's links on one table), and of its joints' declared law terms.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MotionParameters {
     /// Index of the contact.
     pub contact: usize,
+    /// The contacts fitted as one: `contact` and those alike with it.
+    pub(crate) contacts: Vec<usize>,
     /// Index of the partner's body (a table, a ramp…).
     pub(crate) partner: usize,
     /// Index of the replayed body.
     pub(crate) body: usize,
-    /// The law's genes (one or two), then the other four.
+    /// The bodies the inertia scale and the rounding change: the replayed body and the
+    /// other movers of the alike contacts with its mass, shape and inertia (copies of
+    /// it, as the elbow's two links).
+    pub(crate) bodies: Vec<usize>,
+    /// The law's genes (one or two), then the other four, the rounding, the joints'.
     genes: Vec<Bound>,
 }
 
@@ -116,12 +132,33 @@ impl MotionParameters {
             model.bodies[partner].fixed,
         ));
         genes.extend(rounding_gene(&model.bodies[body].shape));
+        genes.extend(joint_genes(model));
+        let contacts = model.alike_contacts(contact);
+        let same = |b: usize| {
+            let (one, other) = (&model.bodies[b], &model.bodies[body]);
+            one.mass == other.mass && one.shape == other.shape && one.inertia == other.inertia
+        };
+        let bodies = (contacts.iter())
+            .map(|&c| model.mover_of(c, partner))
+            .filter(|&b| b == body || same(b))
+            .collect();
         Ok(MotionParameters {
             contact,
+            contacts,
             partner,
             body,
+            bodies,
             genes,
         })
+    }
+
+    /// The contacts fitted as one: the fitted contact first, then those alike with it
+    /// ([`Model::alike_contacts`]).
+    pub fn contacts(&self) -> Vec<usize> {
+        let others = self.contacts.iter().filter(|&&c| c != self.contact);
+        std::iter::once(self.contact)
+            .chain(others.copied())
+            .collect()
     }
 
     /// Genes of the law (one or two): those before `mu_static`.
@@ -162,6 +199,36 @@ fn other_genes(mu_static: f64, fixed_partner: bool) -> impl Iterator<Item = Boun
         }
         bound
     })
+}
+
+/// The genes of every joint's declared law terms, named by their scenario keys
+/// (`joint.0.law.viscous.damping`): 0 … [`JointTerm::upper`] of the joint's scales.
+fn joint_genes(model: &Model) -> Vec<Bound> {
+    let mut genes = Vec::new();
+    for (j, joint) in model.joints.iter().enumerate() {
+        let scales = joint.scales(model);
+        for term in joint.declared_terms() {
+            let [name, coefficient] = term.key();
+            genes.push(Bound::linear(
+                format!("joint.{j}.law.{name}.{coefficient}"),
+                0.0,
+                term.upper(&scales),
+            ));
+        }
+    }
+    genes
+}
+
+/// The joint and the term a joint gene (`joint.<j>.law.<term>.<coefficient>`) sets.
+fn joint_gene(name: &str) -> Option<(usize, JointTerm)> {
+    let mut parts = name.split('.');
+    let (Some("joint"), Some(j), Some("law"), Some(term)) =
+        (parts.next(), parts.next(), parts.next(), parts.next())
+    else {
+        return None;
+    };
+    let term = JointTerm::ALL.into_iter().find(|t| t.key()[0] == term)?;
+    Some((j.parse().ok()?, term))
 }
 
 /// Upper bound of a box's rounding gene, as a multiple of the rounding the scenario
@@ -299,7 +366,10 @@ impl Parameters for MotionParameters {
                     "mu_ratio" => mu_ratio,
                     "table_offset" => 0.0,
                     "rounding" => box_rounding(&model.bodies[self.body].shape),
-                    _ => 1.0,
+                    name => match joint_gene(name) {
+                        Some((j, term)) => term.get(&model.joints[j].law).unwrap_or(0.0),
+                        None => 1.0,
+                    },
                 }),
         );
         (genes.iter().zip(&self.genes))
@@ -313,35 +383,44 @@ impl Parameters for MotionParameters {
     fn apply(&self, model: &Model, genes: &[f64]) -> Model {
         let mut out = model.clone();
         let (law, other) = genes.split_at(self.law_len().min(genes.len()));
-        let contact = &mut out.contacts[self.contact];
-        for (gene, value) in self.genes.iter().zip(law) {
-            // The names come from the law's own parameter list: set cannot fail.
-            let _ = contact.model.normal.base.set(&gene.name, *value);
-        }
         let named = |name: &str| {
             let at = self.genes[self.law_len()..]
                 .iter()
                 .position(|g| g.name == name);
             at.and_then(|i| other.get(i).copied())
         };
-        if let (Some(friction), Some(mu_static), Some(mu_ratio)) = (
-            contact.model.friction.as_mut(),
-            named("mu_static"),
-            named("mu_ratio"),
-        ) {
-            friction.static_coefficient = mu_static;
-            friction.dynamic_coefficient = mu_static * mu_ratio;
+        for &c in &self.contacts {
+            let contact = &mut out.contacts[c];
+            for (gene, value) in self.genes.iter().zip(law) {
+                // The names come from the law's own parameter list: set cannot fail.
+                let _ = contact.model.normal.base.set(&gene.name, *value);
+            }
+            if let (Some(friction), Some(mu_static), Some(mu_ratio)) = (
+                contact.model.friction.as_mut(),
+                named("mu_static"),
+                named("mu_ratio"),
+            ) {
+                friction.static_coefficient = mu_static;
+                friction.dynamic_coefficient = mu_static * mu_ratio;
+            }
         }
         if let Some(shift) = named("table_offset") {
             shift_surface(&mut out, self.partner, shift);
         }
-        if let Some(scale) = named("inertia_scale") {
-            out.bodies[self.body].inertia *= scale;
+        for &b in &self.bodies {
+            let body = &mut out.bodies[b];
+            if let Some(scale) = named("inertia_scale") {
+                body.inertia *= scale;
+            }
+            if let (Some(r), Shape::Box { rounding, .. }) = (named("rounding"), &mut body.shape) {
+                *rounding = r;
+            }
         }
-        if let (Some(r), Shape::Box { rounding, .. }) =
-            (named("rounding"), &mut out.bodies[self.body].shape)
-        {
-            *rounding = r;
+        let joints =
+            (self.genes.iter().zip(genes)).filter_map(|(g, v)| Some((joint_gene(&g.name)?, *v)));
+        for ((j, term), value) in joints {
+            let scales = out.joints[j].scales(&out);
+            term.set(&mut out.joints[j].law, value, &scales);
         }
         out
     }

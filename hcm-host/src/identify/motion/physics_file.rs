@@ -8,11 +8,12 @@ use crate::identify::{FitRecord, Physics};
 use crate::scenario::Assignment;
 use std::fmt::Display;
 
-/// `fit`'s physics file for its `contact`: made by `method` on `runs` training tosses
-/// of `data`, the table offset and the inertia applied by `sets` ([`super::beside_physics`]).
+/// `fit`'s physics file for its `contacts` (the fitted one first, then those fitted
+/// as one with it): made by `method` on `runs` training tosses of `data`, the table
+/// offset, the inertia and the joints' terms applied by `sets` ([`super::beside_physics`]).
 pub fn fitted_physics(
     fit: &MotionFit,
-    contact: usize,
+    contacts: &[usize],
     sets: &[Assignment],
     method: &str,
     data: &str,
@@ -38,8 +39,12 @@ pub fn fitted_physics(
         ],
         ..FitRecord::default()
     };
-    let law = fit.model.contacts[contact].law();
-    let mut physics = Physics::for_contact(&fit.model, contact, law, record);
+    let of =
+        |c: usize| Physics::for_contact(&fit.model, c, fit.model.contacts[c].law(), record.clone());
+    let mut physics = of(contacts.first().copied().unwrap_or(0));
+    for &c in contacts.iter().skip(1) {
+        physics.contacts.extend(of(c).contacts);
+    }
     physics.sets = sets.to_vec();
     physics
 }

@@ -10,23 +10,34 @@ use crate::scenario::{Assignment, Model, Scenario, ScenarioError, Shape};
 
 /// The assignments that turn `model`'s scenario into the fitted one, from the
 /// fit's `MotionParameters::named` values: the law's two parameters, `mu_static`,
-/// `mu_dynamic`, `table_offset` (m), `inertia_scale` (–) and a box's `rounding` (m).
+/// `mu_dynamic` (on every contact fitted as one), `table_offset` (m), `inertia_scale`
+/// (–) and a box's `rounding` (m) (on every body they change), and the joints' law
+/// terms (their genes are named by their keys).
 pub fn fitted_assignments(
     model: &Model,
     parameters: &MotionParameters,
     named: &[(String, f64)],
 ) -> Vec<Assignment> {
-    let contact = parameters.contact;
-    named
-        .iter()
-        .map(|(name, value)| match name.as_str() {
+    let mut out = Vec::new();
+    for (name, value) in named {
+        match name.as_str() {
             "table_offset" | "inertia_scale" | "rounding" => {
-                body_assignment(model, parameters, name, *value)
+                out.extend(body_assignments(model, parameters, name, *value))
             }
-            "mu_static" | "mu_dynamic" => Assignment::contact(contact, &["friction", name], *value),
-            _ => Assignment::contact(contact, &["parameters", name], *value),
-        })
-        .collect()
+            _ if name.starts_with("joint.") => {
+                out.extend(body_assignments(model, parameters, name, *value))
+            }
+            "mu_static" | "mu_dynamic" => out.extend(
+                (parameters.contacts.iter())
+                    .map(|&c| Assignment::contact(c, &["friction", name], *value)),
+            ),
+            _ => out.extend(
+                (parameters.contacts.iter())
+                    .map(|&c| Assignment::contact(c, &["parameters", name], *value)),
+            ),
+        }
+    }
+    out
 }
 
 /// The assignments (`--set`s) a physics file — which holds the law and the friction, not the bodies —
@@ -39,9 +50,35 @@ pub fn beside_physics(
     named: &[(String, f64)],
 ) -> Vec<Assignment> {
     (named.iter())
-        .filter(|(name, _)| matches!(name.as_str(), "table_offset" | "inertia_scale" | "rounding"))
-        .map(|(name, value)| body_assignment(model, parameters, name, *value))
+        .filter(|(name, _)| {
+            matches!(name.as_str(), "table_offset" | "inertia_scale" | "rounding")
+                || name.starts_with("joint.")
+        })
+        .flat_map(|(name, value)| body_assignments(model, parameters, name, *value))
         .collect()
+}
+
+/// [`body_assignment`] on every body the gene changes (the inertia and the rounding:
+/// each of `parameters.bodies`); a joint's gene at its own key.
+fn body_assignments(
+    model: &Model,
+    parameters: &MotionParameters,
+    name: &str,
+    value: f64,
+) -> Vec<Assignment> {
+    match name {
+        "inertia_scale" | "rounding" => (parameters.bodies.iter())
+            .map(|&b| body_assignment(model, parameters, b, name, value))
+            .collect(),
+        _ if name.starts_with("joint.") => vec![Assignment::new(name.split('.'), value)],
+        _ => vec![body_assignment(
+            model,
+            parameters,
+            parameters.body,
+            name,
+            value,
+        )],
+    }
 }
 
 /// The assignment of one body gene: `table_offset` moves the partner's surface by
@@ -51,6 +88,7 @@ pub fn beside_physics(
 fn body_assignment(
     model: &Model,
     parameters: &MotionParameters,
+    body: usize,
     name: &str,
     value: f64,
 ) -> Assignment {
@@ -69,7 +107,7 @@ fn body_assignment(
             }
         };
     }
-    let body = &model.bodies[parameters.body];
+    let body = &model.bodies[body];
     if name == "rounding" {
         return Assignment::body(&body.name, &["shape", "box", "rounding"], value);
     }
@@ -152,6 +190,66 @@ mod tests {
                 crate::scenario::Shape::Plane { offset, .. } => assert_eq!(offset, -1.5e-3),
                 _ => panic!("the table is a plane"),
             }
+        }
+    }
+
+    /// On a mechanism the fit's genes change every contact alike with the fitted one,
+    /// every copy of the replayed link and the joint's declared terms — and the
+    /// assignments written for the fitted scenario give the very model the genes stand
+    /// for.
+    #[test]
+    fn a_mechanism_s_fit_is_written_whole() {
+        const ELBOW: &str = include_str!("../../../../scenarios/elbow_toss.toml");
+        let sets = ["joint.hinge.law.viscous.damping=0.002".to_owned()];
+        let base = Scenario::parse(Path::new("elbow_toss.toml"), ELBOW, &sets).unwrap();
+        let model = base.model().unwrap();
+        let setup = TossSetup::new(&model).unwrap();
+        let parameters = MotionParameters::new(&model, &setup).unwrap();
+        assert_eq!(parameters.contacts(), vec![0, 1]);
+        let bounds = parameters.bounds();
+        let names: Vec<&str> = bounds.iter().map(|b| b.name.as_str()).collect();
+        assert_eq!(
+            names.last(),
+            Some(&"joint.0.law.viscous.damping"),
+            "{names:?}"
+        );
+        // Every gene moved to 30 % of its box.
+        let genes: Vec<f64> = bounds.iter().map(|b| b.value_at(0.3)).collect();
+        let fitted = parameters.apply(&model, &genes);
+        let law = |m: &Model, c: usize| m.contacts[c].model.normal.clone();
+        assert_eq!(law(&fitted, 0), law(&fitted, 1));
+        assert_ne!(law(&fitted, 0), law(&model, 0));
+        assert_eq!(
+            fitted.contacts[0].model.friction,
+            fitted.contacts[1].model.friction
+        );
+        assert_eq!(fitted.bodies[0].inertia, fitted.bodies[1].inertia);
+        assert_ne!(fitted.bodies[0].inertia, model.bodies[0].inertia);
+        let damping = fitted.joints[0].law.viscous.unwrap().damping;
+        assert_eq!(damping, genes[genes.len() - 1]);
+        let named = parameters.named(&genes);
+        let written = base
+            .with_assignments(&fitted_assignments(&model, &parameters, &named))
+            .unwrap()
+            .model()
+            .unwrap();
+        for c in 0..2 {
+            assert_eq!(law(&written, c), law(&fitted, c));
+            assert_eq!(
+                written.contacts[c].model.friction,
+                fitted.contacts[c].model.friction
+            );
+        }
+        for b in 0..3 {
+            let gap = (written.bodies[b].inertia - fitted.bodies[b].inertia)
+                .abs()
+                .max();
+            assert!(gap <= 1e-18, "body {b}: {gap}");
+        }
+        assert_eq!(written.joints[0].law, fitted.joints[0].law);
+        match (&written.bodies[2].shape, &fitted.bodies[2].shape) {
+            (Shape::Plane { offset: a, .. }, Shape::Plane { offset: b, .. }) => assert_eq!(a, b),
+            _ => panic!("the table is a plane"),
         }
     }
 }

@@ -128,8 +128,8 @@ pub struct CubeReproduction {
     /// The fitted table offset and inertia as the `--set`s that apply them beside the
     /// physics file.
     pub(crate) sets: Vec<Assignment>,
-    /// The index of the fitted contact.
-    pub(crate) contact: usize,
+    /// The fitted contacts (the fitted one first, then those alike with it).
+    pub(crate) contacts: Vec<usize>,
     /// Both parts predicted with both models.
     pub(crate) predicted: Predictions,
     /// The second fold: the fit on the held-out part, the training part predicted.
@@ -177,7 +177,7 @@ impl Reproduced for CubeReproduction {
         let runs = self.training.runs.len();
         let physics = fitted_physics(
             &self.fit,
-            self.contact,
+            &self.contacts,
             &self.sets,
             method,
             &self.results.data,
@@ -298,7 +298,7 @@ pub fn reproduce_cube(
         held_out,
         fit,
         sets,
-        contact: parameters.contact,
+        contacts: parameters.contacts(),
         predicted,
         second_fold,
         diagnosis,
