@@ -12,6 +12,7 @@ mod dataset_format;
 mod diagnose_force_chance;
 mod diagnose_given;
 mod diagnose_poses_outputs;
+mod elbow_reproduce;
 mod fuzz;
 mod help;
 mod members;

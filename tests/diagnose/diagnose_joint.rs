@@ -15,6 +15,10 @@ use hcm_host::scenario::{Model, Scenario};
 
 /// Tosses per data set: half train (even numbers), half are held out.
 const TOSSES: usize = 24;
+/// Tosses of the Coulomb study: with 24, Coulomb friction (gain 34.1, t 3.7) and a
+/// stiffness about the aligned frames (31.2, t 3.1) could not be told apart on 12
+/// held-out tosses — both hold the hinge back — and the answer was "ambiguous".
+const COULOMB_TOSSES: usize = 48;
 /// The tracker's noise: centre (m) and orientation (rad) per axis.
 const TRACKER: (f64, f64) = (5e-4, 0.3 * std::f64::consts::PI / 180.0);
 
@@ -27,14 +31,18 @@ fn elbow(sets: &[&str]) -> Model {
         .expect("and resolves")
 }
 
-/// `TOSSES` throws of `truth`, filmed.
-fn filmed(truth: &Model, seed: u64) -> Dataset {
-    let thrown = hcm_tests::mechanism::thrown_mechanisms(truth, TOSSES, seed);
+/// `count` throws of `truth`, filmed.
+fn filmed(truth: &Model, count: usize, seed: u64) -> Dataset {
+    let thrown = hcm_tests::mechanism::thrown_mechanisms(truth, count, seed);
     hcm_tests::filmed_poses(thrown, TRACKER, seed)
 }
 
 fn diagnosed(what: &str, truth: &Model, seed: u64) -> MotionDiagnosis {
-    let data = filmed(truth, seed);
+    diagnosed_from(what, truth, (TOSSES, seed))
+}
+
+fn diagnosed_from(what: &str, truth: &Model, (count, seed): (usize, u64)) -> MotionDiagnosis {
+    let data = filmed(truth, count, seed);
     let begun = std::time::Instant::now();
     let d = diagnose_motion(&elbow(&[]), &data, &hcm_host::progress::Silent)
         .expect("the diagnosis runs");
@@ -76,7 +84,11 @@ fn hidden_coulomb_joint_friction_is_named_with_its_interval() {
     let model = elbow(&[&format!(
         "joint.hinge.law.coulomb={{ torque = {truth}, smoothing_rate = 0.5 }}"
     )]);
-    let d = diagnosed("Coulomb hinge friction 0.04 N·m", &model, 22);
+    let d = diagnosed_from(
+        "Coulomb hinge friction 0.04 N·m",
+        &model,
+        (COULOMB_TOSSES, 22),
+    );
     assert_eq!(names(&d), ["joint_coulomb_friction"], "{}", d.answer);
     let [lo, hi] = interval(&d, "joint_coulomb_friction");
     assert!(lo <= truth && truth <= hi, "{lo} … {hi} misses {truth}");

@@ -24,6 +24,8 @@ pub(super) enum ExampleArg {
     PegInHole,
     /// Real filmed tosses of a cube (--data), fitted and predicted held out.
     CubeToss,
+    /// Real filmed tosses of a two-link elbow on a hinge (--data), the same way.
+    ElbowToss,
 }
 
 /// Reproduce one of the paper's examples end to end, with report and figures.
@@ -31,6 +33,8 @@ pub(super) enum ExampleArg {
 /// Example: `hcm reproduce bouncing-ball --out results/ball`
 ///
 /// Example: `hcm reproduce cube-toss --data data/contactnets-cube/tosses.csv --out results/cube`
+///
+/// Example: `hcm reproduce elbow-toss --data data/contactnets-elbow/tosses.csv --out results/elbow`
 ///
 /// Runs generate (PM1) → split (S1, S2) → identify (PM2) → train → export → evaluate
 /// and writes to OUT: s1.csv, s2.csv, pm2.toml, residual.json, residual.bin,
@@ -48,6 +52,12 @@ pub(super) enum ExampleArg {
 /// diagnosis from motion on the fitted model, and writes to OUT: physics.toml,
 /// training.csv, held_out.csv, predicted_held_out.csv, report.md, results.json and the
 /// figures (the 456 tosses: about 10 minutes on two cores, 20 minutes of processor time).
+///
+/// elbow-toss does the same on the tosses of a two-link elbow on a hinge
+/// (data/contactnets-elbow/tosses.csv of the source; scenarios/elbow_toss.toml, a free
+/// hinge): both links' contacts fitted as one, each link scored, the diagnosis with the
+/// joint's candidates; its fits see every fourth toss of their part (a mechanism replays
+/// 20 times slower), no faces, no chance (the 433 tosses: about 9 minutes on two cores).
 ///
 /// The scenarios are built into hcm (copies of scenarios/bouncing_ball.toml,
 /// scenarios/flat_shot.toml and scenarios/peg_in_hole.toml of the source), so it runs
@@ -178,6 +188,17 @@ fn preset(args: &Args) -> anyhow::Result<Preset> {
                 "--peers",
             ],
         ),
+        ExampleArg::ElbowToss => (
+            "elbow-toss",
+            &[
+                "--generations",
+                "--population",
+                "--polish",
+                "--data",
+                "--first",
+                "--no-diagnosis",
+            ],
+        ),
     };
     let unread: Vec<&str> = (given.iter())
         .filter(|(option, set)| *set && !reads.contains(option))
@@ -193,7 +214,8 @@ fn preset(args: &Args) -> anyhow::Result<Preset> {
         ExampleArg::BouncingBall => Preset::Paper(paper(args, Example::BouncingBall)),
         ExampleArg::FlatShot => Preset::Paper(paper(args, Example::FlatShot)),
         ExampleArg::PegInHole => Preset::PegInHole(peg(args)),
-        ExampleArg::CubeToss => Preset::CubeToss(cube(args)?),
+        ExampleArg::CubeToss => Preset::CubeToss(cube(args, ExampleArg::CubeToss)?),
+        ExampleArg::ElbowToss => Preset::CubeToss(cube(args, ExampleArg::ElbowToss)?),
     })
 }
 
@@ -233,11 +255,16 @@ fn peg(args: &Args) -> PegSettings {
     }
 }
 
-fn cube(args: &Args) -> anyhow::Result<CubeSettings> {
+/// The settings of the filmed tosses' example `example` (cube-toss or elbow-toss).
+fn cube(args: &Args, example: ExampleArg) -> anyhow::Result<CubeSettings> {
+    let (name, folder) = match example {
+        ExampleArg::ElbowToss => ("elbow-toss", "contactnets-elbow"),
+        _ => ("cube-toss", "contactnets-cube"),
+    };
     let data = args.data.clone().ok_or_else(|| {
         anyhow::anyhow!(
-            "`hcm reproduce cube-toss` needs --data: the filmed tosses, e.g. \
-             data/contactnets-cube/tosses.csv of the source"
+            "`hcm reproduce {name}` needs --data: the filmed tosses, e.g. \
+             data/{folder}/tosses.csv of the source"
         )
     })?;
     if let Some(first) = args.first {
@@ -246,10 +273,13 @@ fn cube(args: &Args) -> anyhow::Result<CubeSettings> {
             "--first {first}: give at least 6 runs (3 per part)"
         );
     }
-    let shipped = CubeSettings::shipped(&data);
+    let shipped = match example {
+        ExampleArg::ElbowToss => CubeSettings::elbow(&data),
+        _ => CubeSettings::shipped(&data),
+    };
     Ok(CubeSettings {
         first: args.first,
-        scenario: scenario(args, Shipped::CubeToss),
+        scenario: scenario(args, shipped.scenario.shipped),
         seed: args.seed,
         population: args.population.unwrap_or(shipped.population),
         generations: args.generations.unwrap_or(shipped.generations),

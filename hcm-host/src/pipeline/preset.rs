@@ -23,6 +23,8 @@ pub enum Shipped {
     PegInHole,
     /// `scenarios/cube_toss.toml` (the ContactNets tosses).
     CubeToss,
+    /// `scenarios/elbow_toss.toml` (the ContactNets elbow's tosses).
+    ElbowToss,
 }
 
 impl Shipped {
@@ -33,6 +35,7 @@ impl Shipped {
             Shipped::FlatShot => "flat_shot.toml",
             Shipped::PegInHole => "peg_in_hole.toml",
             Shipped::CubeToss => "cube_toss.toml",
+            Shipped::ElbowToss => "elbow_toss.toml",
         }
     }
 
@@ -43,6 +46,7 @@ impl Shipped {
             Shipped::FlatShot => include_str!("../../../scenarios/flat_shot.toml"),
             Shipped::PegInHole => include_str!("../../../scenarios/peg_in_hole.toml"),
             Shipped::CubeToss => include_str!("../../../scenarios/cube_toss.toml"),
+            Shipped::ElbowToss => include_str!("../../../scenarios/elbow_toss.toml"),
         }
     }
 }
@@ -95,7 +99,7 @@ pub enum Preset {
     Paper(ReproduceSettings),
     /// The paper's peg-in-hole: Table 15.
     PegInHole(PegSettings),
-    /// The real cube tosses against the published peers.
+    /// Real filmed tosses (the cube's against the published peers, the elbow's).
     CubeToss(CubeSettings),
 }
 
@@ -128,6 +132,7 @@ mod tests {
             Shipped::FlatShot,
             Shipped::PegInHole,
             Shipped::CubeToss,
+            Shipped::ElbowToss,
         ] {
             let on_disk = Path::new(env!("CARGO_MANIFEST_DIR"))
                 .join("../scenarios")

@@ -336,10 +336,13 @@ const INTERVAL_STEPS: usize = 5;
 
 /// The values of a one-parameter deterministic `effect` the training tosses do not
 /// tell from the fitted `best` (its paired difference from `best`'s scores, toss by
-/// toss, has a 95 % interval reaching 0, as [`grid_fit`] bounds a chance): on each
-/// side the box's end where that is not worse, else the last of [`INTERVAL_STEPS`]
-/// bisections of the fraction between `best` and the end that is not. None where a
-/// replay fails. 2 + 2·[`INTERVAL_STEPS`] replays of the training tosses at most.
+/// toss, has a 95 % interval reaching 0, as [`grid_fit`] bounds a chance), bracketed:
+/// on each side the box's end where that is not worse, else the nearest value of
+/// [`INTERVAL_STEPS`] bisections of the fraction between `best` and the end that is —
+/// the boundary lies between it and the last value that is not, so the interval holds
+/// every value the tosses do not exclude (a step of 1/32 of the side wider at most).
+/// None where a replay fails. 2 + 2·[`INTERVAL_STEPS`] replays of the training tosses
+/// at most.
 pub fn interval(
     subject: &Subject<'_>,
     effect: &dyn Effect,
@@ -364,7 +367,7 @@ pub fn interval(
                 outside = middle;
             }
         }
-        inside
+        outside
     };
     Some([bound.value_at(side(0.0)), bound.value_at(side(1.0))])
 }

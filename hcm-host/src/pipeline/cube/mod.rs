@@ -64,6 +64,17 @@ pub struct CubeSettings {
     pub diagnose: bool,
     /// Replays per toss of the final faces' ensembles (0: no faces stage).
     pub face_members: usize,
+    /// The example's name in the report and the files' comments (`cube-toss`,
+    /// `elbow-toss`).
+    pub name: &'static str,
+    /// The fits — the GA's, the polish's, the diagnosis' candidates' — see every
+    /// `fit_stride`th toss of their part (1: all); every toss of the other part is
+    /// predicted and judged. A mechanism replays 20 times slower than the cube
+    /// (criterion, `benches/ball_simulation.rs`): its fits see a quarter of the tosses
+    /// so that the whole run stays within 15 minutes.
+    pub fit_stride: usize,
+    /// Whether the diagnosis tries chance after the deterministic effects (issue 48).
+    pub chance: bool,
 }
 
 impl CubeSettings {
@@ -81,7 +92,37 @@ impl CubeSettings {
             polish: 40,
             diagnose: true,
             face_members: 16,
+            name: "cube-toss",
+            fit_stride: 1,
+            chance: true,
         }
+    }
+
+    /// The defaults of `hcm reproduce elbow-toss` on `data`: the shipped elbow (a free
+    /// hinge: what it lacks is the diagnosis' question), a GA of 12 × 8 and a polish of
+    /// 30, fits on every fourth toss of their part (55 of the 217 even tosses), no faces
+    /// (a mechanism's are not forecast), no chance — within 15 minutes on two cores
+    /// (docs/real-data.md, "The elbow").
+    pub fn elbow(data: &Path) -> CubeSettings {
+        CubeSettings {
+            scenario: ScenarioChoice::shipped(Shipped::ElbowToss),
+            population: 12,
+            generations: 8,
+            polish: 30,
+            face_members: 0,
+            name: "elbow-toss",
+            fit_stride: 4,
+            chance: false,
+            ..CubeSettings::shipped(data)
+        }
+    }
+}
+
+/// Every `stride`th run of `data` (1: all of it), in order.
+pub(crate) fn strided(data: &Dataset, stride: usize) -> Dataset {
+    Dataset {
+        runs: data.runs.iter().step_by(stride.max(1)).cloned().collect(),
+        ..data.clone()
     }
 }
 
@@ -98,11 +139,23 @@ pub enum CubeError {
     #[error(transparent)]
     Toss(#[from] TossError),
     /// The fit's settings.
-    #[error("the fit from motion: {0}")]
+    #[error("the fit from motion")]
     Genetic(#[from] GeneticError),
     /// The diagnosis.
-    #[error("the diagnosis from motion: {0}")]
+    #[error("the diagnosis from motion")]
     Diagnose(#[from] MotionDiagnoseError),
+    /// Too few tosses for the fits, which see every `stride`th toss of a part.
+    #[error("{data}: the fits see every {stride}th toss of a part, {fitted} here; they need at least 3: give --first {least} or more")]
+    Stride {
+        /// The data file's path.
+        data: String,
+        /// Tosses the smaller part's fit would see.
+        fitted: usize,
+        /// Every how many tosses a fit sees one.
+        stride: usize,
+        /// Runs the data need (`--first`).
+        least: usize,
+    },
     /// Too few tosses for one part of the split.
     #[error("{data}: the split by toss number left {training} training and {held_out} held-out runs; both need at least 3 (even and odd toss numbers)")]
     Split {
@@ -173,19 +226,23 @@ impl CubeReproduction {
 /// fitted model's held-out predictions and the figures.
 impl Reproduced for CubeReproduction {
     fn artifacts(&self) -> anyhow::Result<Vec<Artifact<'_>>> {
-        let method = "ga + Nelder–Mead on toss replays (motion only), hcm reproduce cube-toss";
-        let runs = self.training.runs.len();
+        let method = format!(
+            "ga + Nelder–Mead on toss replays (motion only), hcm reproduce {}",
+            self.results.name
+        );
+        // The tosses the fit saw: every `fit_stride`th of the training part.
+        let runs = (self.training.runs.len()).div_ceil(self.results.fit_stride.max(1));
         let physics = fitted_physics(
             &self.fit,
             &self.contacts,
             &self.sets,
-            method,
+            &method,
             &self.results.data,
             runs,
         );
         let comment = format!(
-            "contact of scenario `{}` fitted to tosses by hcm reproduce cube-toss",
-            self.scenario.name
+            "contact of scenario `{}` fitted to tosses by hcm reproduce {}",
+            self.scenario.name, self.results.name
         );
         let body = TossSetup::new(&self.fit.model)?.name;
         let predicted = predicted_dataset(&self.predicted.held_out_fitted, &body);
@@ -193,8 +250,8 @@ impl Reproduced for CubeReproduction {
             .filter(|d| d.extended.varies() && d.only_chance_named())
             .map(|d| {
                 let comment = format!(
-                    "{comment}, with the chance hcm reproduce cube-toss's diagnosis named \
-                     (what forecast members draw)"
+                    "{comment}, with the chance the diagnosis named (what forecast members \
+                     draw)"
                 );
                 let physics = physics.clone().with_variation(&d.extended);
                 Artifact::Physics("extended.toml", physics, comment)
@@ -256,7 +313,7 @@ pub fn reproduce_cube(
     })?;
     let diagnosis = match settings.diagnose {
         true => Some(clock.time("diagnose", || {
-            diagnose(&fit.model, &training, &held_out, progress)
+            diagnose(settings, &fit.model, (&training, &held_out), progress)
         })?),
         false => None,
     };
@@ -377,16 +434,20 @@ fn split_diagnosis_timing(clock: &mut StageClock, diagnosis: Option<&MotionDiagn
     }
 }
 
-/// The diagnosis of `fitted` on both parts (which it splits again, the same way).
+/// The diagnosis of `fitted`: its candidates fitted on every `fit_stride`th training
+/// toss, judged on every held-out one.
 fn diagnose(
+    settings: &CubeSettings,
     fitted: &Model,
-    training: &Dataset,
-    held_out: &Dataset,
+    (training, held_out): (&Dataset, &Dataset),
     progress: &dyn Progress,
 ) -> Result<MotionDiagnosis, CubeError> {
-    let (training, held_out) = (training.clone(), held_out.clone());
-    // Chance asked for: the tosses vary from toss to toss (issue 48).
-    let catalogue = crate::diagnose::Catalogue::default().with_chance();
+    let (training, held_out) = (strided(training, settings.fit_stride), held_out.clone());
+    // Chance where asked for: the cube's tosses vary from toss to toss (issue 48).
+    let catalogue = match settings.chance {
+        true => crate::diagnose::Catalogue::default().with_chance(),
+        false => crate::diagnose::Catalogue::default(),
+    };
     Ok(diagnose_motion_split(
         fitted, training, held_out, &catalogue, progress,
     )?)
@@ -411,6 +472,20 @@ fn read_split(
             data: name,
             training: training.runs.len(),
             held_out: held_out.runs.len(),
+        });
+    }
+    let stride = settings.fit_stride.max(1);
+    let fitted = training
+        .runs
+        .len()
+        .min(held_out.runs.len())
+        .div_ceil(stride);
+    if fitted < least {
+        return Err(CubeError::Stride {
+            data: name,
+            fitted,
+            stride,
+            least: 2 * least * stride,
         });
     }
     Ok((training, held_out))

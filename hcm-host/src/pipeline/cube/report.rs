@@ -1,4 +1,4 @@
-//! `report.md` of `hcm reproduce cube-toss`: the score table beside the published
+//! `report.md` of `hcm reproduce cube-toss` and `elbow-toss`: the score table beside the published
 //! figures, the fit, the error per phase, the diagnosis, the timings.
 
 use super::phases::{IMPACT_AFTER, REST_ANGLE, REST_DISTANCE, REST_SPAN};
@@ -16,14 +16,21 @@ impl CubeResults {
     }
 
     fn write_markdown(&self, out: &mut String) -> std::fmt::Result {
-        writeln!(out, "# hcm reproduce cube-toss\n")?;
+        writeln!(out, "# hcm reproduce {}\n", self.name)?;
+        let stride = match self.fit_stride {
+            0 | 1 => String::new(),
+            k => format!(
+                " The fits (the GA's, the polish's, the diagnosis' candidates') see every \
+                 {k}th toss of their part; every toss of the other is predicted and judged."
+            ),
+        };
         writeln!(
             out,
             "Scenario `{}`, tosses `{}`{}: {} training tosses (even toss numbers), {} held out \
              (odd), never seen by the fit. GA seed {}, population {}, {} generations, polish {} \
              evaluations. A second fold fits the same way on the odd tosses and predicts the \
              even ones: the *cross-validated* rows score every toss with the fit that never \
-             saw it.\n",
+             saw it.{stride}\n",
             self.scenario,
             self.data,
             self.first
@@ -101,8 +108,9 @@ impl CubeResults {
         writeln!(
             out,
             "## Scores\n\nPosition error: mean over a toss's window frames of |p_pred − p| in % \
-             of the cube's width; rotation error: mean of the angle of R_predᵀ·R (°); then \
-             mean ± standard deviation and median over tosses.\n"
+             of the body's width; rotation error: mean of the angle of R_predᵀ·R (°) — for a \
+             mechanism each link's, then their mean; then mean ± standard deviation and median \
+             over tosses.\n"
         )?;
         writeln!(
             out,
@@ -122,6 +130,9 @@ impl CubeResults {
                 "| all 550, in-sample (published, quoted second-hand) | {} | {:.1} ± {:.1} | – | {:.1} ± {:.1} | – |",
                 p.simulator, p.position[0], p.position[1], p.rotation[0], p.rotation[1]
             )?;
+        }
+        if self.published.is_empty() {
+            return writeln!(out);
         }
         writeln!(
             out,
@@ -152,9 +163,10 @@ impl CubeResults {
             out,
             "\n`physics.toml` holds the law and the friction, and as its `sets` the table offset \
              and the inertia (`{sets}`), which `--physics` applies:\n\n```\nhcm predict \
-             --scenario scenarios/cube_toss.toml --physics physics.toml --data held_out.csv \
+             --scenario scenarios/{file} --physics physics.toml --data held_out.csv \
              --out predicted.csv\n```\n",
-            sets = set_options(&self.sets)
+            sets = set_options(&self.sets),
+            file = format!("{}.toml", self.name.replace('-', "_"))
         )
     }
 

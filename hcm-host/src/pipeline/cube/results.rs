@@ -102,6 +102,10 @@ impl FitSummary {
 /// Everything the report states.
 #[derive(Clone, Debug, Serialize)]
 pub struct CubeResults {
+    /// The example (`cube-toss`, `elbow-toss`).
+    pub(crate) name: &'static str,
+    /// The fits saw every `fit_stride`th toss of their part (–).
+    pub(crate) fit_stride: usize,
     /// The scenario and the data as given.
     pub(crate) scenario: String,
     pub(crate) data: String,
@@ -161,6 +165,8 @@ impl CubeResults {
         timings: Vec<StageTiming>,
     ) -> CubeResults {
         CubeResults {
+            name: settings.name,
+            fit_stride: settings.fit_stride,
             scenario: settings.scenario.label().display().to_string(),
             data: settings.data.display().to_string(),
             first: settings.first,
@@ -174,7 +180,11 @@ impl CubeResults {
             second_fit: FitSummary::of(&folds.second.fit),
             sets: folds.sets.iter().map(Assignment::to_string).collect(),
             scores: score_rows(folds.predicted, folds.second),
-            published: PUBLISHED.to_vec(),
+            // The published figures are the cube's data set's.
+            published: match settings.name {
+                "cube-toss" => PUBLISHED.to_vec(),
+                _ => Vec::new(),
+            },
             held_out: toss_rows(
                 &folds.predicted.held_out_fitted,
                 &folds.predicted.held_out_scenario,

@@ -23,7 +23,8 @@ pub fn fit(
     fold: Fold,
     progress: &dyn Progress,
 ) -> Result<(MotionFit, MotionParameters), CubeError> {
-    let target = MotionTarget::new(model, training)?;
+    let training = super::strided(training, settings.fit_stride);
+    let target = MotionTarget::new(model, &training)?;
     let parameters = MotionParameters::new(model, setup)?;
     let genetic = GeneticSettings {
         seed: settings.seed,
