@@ -20,7 +20,7 @@ pub struct JointSpec {
     /// Name, for messages (default: `joint #i`).
     #[serde(default)]
     pub(crate) name: String,
-    /// What it lets the bodies do: `revolute` (the one kind so far).
+    /// What it lets the bodies do: `revolute` (the default), `prismatic` or `fixed`.
     #[serde(default)]
     pub(crate) kind: JointKind,
     /// The two bodies: body 1 (the parent) and body 2 (the child).
@@ -38,13 +38,30 @@ pub struct JointSpec {
     pub(crate) law: JointLaw<f64>,
 }
 
-/// The kinds of joint.
+/// The kinds of joint: what the two bodies may still do relative to each other.
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum JointKind {
-    /// One rotation about an axis.
+    /// One rotation about the axis (a hinge): 5 rows.
     #[default]
     Revolute,
+    /// One translation along the axis (a slide, a gripper's finger), no rotation: 5 rows.
+    /// Its law acts along the axis: the same terms in N, m and m/s (the joint's
+    /// coordinate s the child's anchor's displacement from the parent's along the axis).
+    Prismatic,
+    /// Nothing (a tool bolted to a link): 6 rows; its law has nothing to act on.
+    Fixed,
+}
+
+impl JointKind {
+    /// Its name in a scenario file: `revolute`, `prismatic`, `fixed`.
+    pub fn name(self) -> &'static str {
+        match self {
+            JointKind::Revolute => "revolute",
+            JointKind::Prismatic => "prismatic",
+            JointKind::Fixed => "fixed",
+        }
+    }
 }
 
 /// A joint resolved against the scenario's bodies.
@@ -61,8 +78,11 @@ pub struct Joint {
     /// Two unit vectors perpendicular to the axis and to each other, in the same frames:
     /// the axis rows' directions, and the angle's reference.
     pub normals: [Vector3<f64>; 2],
-    /// Its own torque about the axis (spring, viscous and Coulomb friction).
+    /// Its own torque about the axis (spring, viscous and Coulomb friction); for a
+    /// prismatic joint its force along the axis.
     pub law: JointLaw<f64>,
+    /// What it lets the bodies do.
+    pub kind: JointKind,
 }
 
 /// Largest gap between the two anchors, and angle between the axes as the two bodies
@@ -80,16 +100,25 @@ impl Joint {
         u.cross(&turned).dot(&a).atan2(u.dot(&turned))
     }
 
-    /// The gap between the anchors (m) and the angle between the axes (rad) with the
-    /// bodies at `(p1, q1)` and `(p2, q2)`.
+    /// The gap between the anchors (m; a prismatic joint's off its axis) and the angle
+    /// the joint does not allow (rad: between the axes of a hinge, the whole relative
+    /// turn of a slide or a fixed joint) with the bodies at `(p1, q1)` and `(p2, q2)`.
     pub fn misfit(
         &self,
         (p1, q1): (&Vector3<f64>, &UnitQuaternion<f64>),
         (p2, q2): (&Vector3<f64>, &UnitQuaternion<f64>),
     ) -> (f64, f64) {
         let gap = (p1 + q1 * self.anchors[0]) - (p2 + q2 * self.anchors[1]);
-        let (a1, a2) = (q1 * self.axis.into_inner(), q2 * self.axis.into_inner());
-        (gap.norm(), a1.cross(&a2).norm().atan2(a1.dot(&a2)))
+        let axis = q1 * self.axis.into_inner();
+        let (a1, a2) = (axis, q2 * self.axis.into_inner());
+        match self.kind {
+            JointKind::Revolute => (gap.norm(), a1.cross(&a2).norm().atan2(a1.dot(&a2))),
+            JointKind::Prismatic => (
+                (gap - axis * gap.dot(&axis)).norm(),
+                (q1.inverse() * q2).angle(),
+            ),
+            JointKind::Fixed => (gap.norm(), (q1.inverse() * q2).angle()),
+        }
     }
 }
 
@@ -147,6 +176,7 @@ pub(crate) fn resolve_joint(
         axis,
         normals: normals(&axis),
         law: spec.law,
+        kind: spec.kind,
     })
 }
 
@@ -174,7 +204,23 @@ impl Joint {
         let axis = b1.orientation * self.axis.into_inner();
         let turn = b2.angular_velocity - b1.angular_velocity;
         let off_axis = turn - axis * turn.dot(&axis);
-        slip.norm().max(off_axis.norm())
+        match self.kind {
+            JointKind::Revolute => slip.norm().max(off_axis.norm()),
+            // A slide's anchors move apart along the axis as fast as they like: the rate
+            // of their gap off the axis, normals carried by body 1.
+            JointKind::Prismatic => {
+                let gap = (b1.position + b1.orientation * self.anchors[0])
+                    - (b2.position + b2.orientation * self.anchors[1]);
+                let off = |n: &Vector3<f64>| {
+                    let m = b1.orientation * n;
+                    (b1.angular_velocity.cross(&m).dot(&gap) + m.dot(&slip)).abs()
+                };
+                off(&self.normals[0])
+                    .max(off(&self.normals[1]))
+                    .max(turn.norm())
+            }
+            JointKind::Fixed => slip.norm().max(turn.norm()),
+        }
     }
 }
 

@@ -20,7 +20,7 @@
 
 use nalgebra::{DMatrix, DVector, Matrix3, SMatrix, SVector, UnitQuaternion, Vector3};
 
-use crate::scenario::{Joint, Model, Pose};
+use crate::scenario::{Joint, JointKind, Model, Pose};
 
 /// ω_c of Baumgarte's stabilisation (rad/s): an error decays with a 20 ms time constant,
 /// slow beside the contacts' milliseconds (the step size never has to follow it) and
@@ -52,21 +52,115 @@ struct Row {
     bias: f64,
 }
 
-/// The rows of `joint` with its bodies in `motion`.
-fn rows(joint: &Joint, motion: &[BodyMotion]) -> [Row; ROWS] {
+/// The rows of `joint` with its bodies in `motion`, added to `out`: a hinge's 5 (the
+/// anchors together, the axes parallel), a slide's 5 (the anchors together off the axis,
+/// no turn), a fixed joint's 6 (the anchors together, no turn).
+fn push_rows(joint: &Joint, motion: &[BodyMotion], out: &mut Vec<Row>) {
+    let [x, y, z, t1, t2] = rows(joint, motion);
+    let point = [x, y, z];
+    match joint.kind {
+        JointKind::Revolute => out.extend(point.into_iter().chain([t1, t2])),
+        JointKind::Prismatic => {
+            out.extend(slide_rows(joint, motion));
+            out.extend([t1, t2, lock_row(joint, motion)]);
+        }
+        JointKind::Fixed => {
+            out.extend(point.into_iter().chain([t1, t2, lock_row(joint, motion)]));
+        }
+    }
+}
+
+/// The row that stops body 2 turning about the axis relative to body 1: C = −θ,
+/// J·u = a·(ω₁ − ω₂), J̇·u = (ω₁ × a)·(ω₁ − ω₂), a the axis as body 1 carries it.
+fn lock_row(joint: &Joint, motion: &[BodyMotion]) -> Row {
     let [i, j] = joint.bodies;
     let (a, b) = (&motion[i].pose, &motion[j].pose);
-    let (ra, rb) = (
-        a.orientation * joint.anchors[0],
-        b.orientation * joint.anchors[1],
-    );
+    let axis = a.orientation * joint.axis.into_inner();
     let (wa, wb) = (a.angular_velocity, b.angular_velocity);
-    let error = (a.position + ra) - (b.position + rb);
-    let rate = (a.velocity + wa.cross(&ra)) - (b.velocity + wb.cross(&rb));
-    let curvature = wa.cross(&wa.cross(&ra)) - wb.cross(&wb.cross(&rb));
-    let bias = |c: f64, c_dot: f64, j_dot_u: f64| {
-        -j_dot_u - 2.0 * STABILISATION * c_dot - STABILISATION * STABILISATION * c
-    };
+    let angle = joint.angle(&a.orientation, &b.orientation);
+    Row {
+        bodies: [i, j],
+        linear: [Vector3::zeros(), Vector3::zeros()],
+        angular: [axis, -axis],
+        bias: bias(
+            -angle,
+            axis.dot(&(wa - wb)),
+            wa.cross(&axis).dot(&(wa - wb)),
+        ),
+    }
+}
+
+/// A slide's two rows: the anchors' gap e = (p₁ + r₁) − (p₂ + r₂) off the axis, along
+/// the normals m as body 1 carries them, C = m·e, held at 0 (its rate and curvature
+/// differentiated with m turning with body 1).
+fn slide_rows(joint: &Joint, motion: &[BodyMotion]) -> [Row; 2] {
+    let g = Anchors::of(joint, motion);
+    let [i, j] = g.bodies;
+    let (a, wa) = (&motion[i].pose, g.spin[0]);
+    joint.normals.map(|n| {
+        let m = a.orientation * n;
+        let turning = wa.cross(&m);
+        let j_dot_u =
+            wa.cross(&turning).dot(&g.gap) + 2.0 * turning.dot(&g.rate) + m.dot(&g.curvature);
+        Row {
+            bodies: [i, j],
+            linear: [m, -m],
+            angular: [m.cross(&g.gap) + g.arms[0].cross(&m), -g.arms[1].cross(&m)],
+            bias: bias(m.dot(&g.gap), turning.dot(&g.gap) + m.dot(&g.rate), j_dot_u),
+        }
+    })
+}
+
+/// A joint's two anchors as its bodies in `motion` carry them (world frame).
+struct Anchors {
+    /// Body 1 and body 2.
+    bodies: [usize; 2],
+    /// Each anchor from its body's centre of mass (m).
+    arms: [Vector3<f64>; 2],
+    /// Each body's angular velocity (rad/s).
+    spin: [Vector3<f64>; 2],
+    /// Anchor 1 minus anchor 2 (m).
+    gap: Vector3<f64>,
+    /// Its rate (m/s).
+    rate: Vector3<f64>,
+    /// The part of its second derivative the accelerations do not give,
+    /// ω₁×(ω₁×r₁) − ω₂×(ω₂×r₂) (m/s²).
+    curvature: Vector3<f64>,
+}
+
+impl Anchors {
+    fn of(joint: &Joint, motion: &[BodyMotion]) -> Anchors {
+        let [i, j] = joint.bodies;
+        let (a, b) = (&motion[i].pose, &motion[j].pose);
+        let (ra, rb) = (
+            a.orientation * joint.anchors[0],
+            b.orientation * joint.anchors[1],
+        );
+        let (wa, wb) = (a.angular_velocity, b.angular_velocity);
+        Anchors {
+            bodies: [i, j],
+            arms: [ra, rb],
+            spin: [wa, wb],
+            gap: (a.position + ra) - (b.position + rb),
+            rate: (a.velocity + wa.cross(&ra)) - (b.velocity + wb.cross(&rb)),
+            curvature: wa.cross(&wa.cross(&ra)) - wb.cross(&wb.cross(&rb)),
+        }
+    }
+}
+
+/// −J̇·u − 2·ω_c·Ċ − ω_c²·C: a row's right-hand side from its error `c`, its rate
+/// `c_dot` and `j_dot_u`.
+fn bias(c: f64, c_dot: f64, j_dot_u: f64) -> f64 {
+    -j_dot_u - 2.0 * STABILISATION * c_dot - STABILISATION * STABILISATION * c
+}
+
+/// The rows of a hinge with its bodies in `motion`.
+fn rows(joint: &Joint, motion: &[BodyMotion]) -> [Row; ROWS] {
+    let g = Anchors::of(joint, motion);
+    let [i, j] = g.bodies;
+    let (a, b) = (&motion[i].pose, &motion[j].pose);
+    let ([ra, rb], [wa, wb]) = (g.arms, g.spin);
+    let (error, rate, curvature) = (g.gap, g.rate, g.curvature);
     let point = |k: usize| {
         let e = Vector3::ith(k, 1.0);
         Row {
@@ -103,7 +197,10 @@ pub fn add_constraint_loads(
     motion: &[BodyMotion],
     loads: &mut [(Vector3<f64>, Vector3<f64>)],
 ) {
-    let rows: Vec<Row> = model.joints.iter().flat_map(|j| rows(j, motion)).collect();
+    let mut rows: Vec<Row> = Vec::with_capacity(6 * model.joints.len());
+    for joint in &model.joints {
+        push_rows(joint, motion, &mut rows);
+    }
     let n = rows.len();
     // M⁻¹ times each row's coefficients on each of its two bodies, once per row.
     let inverse: Vec<[(Vector3<f64>, Vector3<f64>); 2]> = (rows.iter())
@@ -178,11 +275,34 @@ pub fn add_law_torques(model: &Model, poses: &[Pose], loads: &mut [(Vector3<f64>
         let [b1, b2] = joint.bodies;
         let (p1, p2) = (&poses[b1], &poses[b2]);
         let axis = p1.orientation * joint.axis.into_inner();
-        let angle = joint.angle(&p1.orientation, &p2.orientation);
-        let rate = (p2.angular_velocity - p1.angular_velocity).dot(&axis);
-        let torque = axis * joint.law.torque(angle, rate);
-        loads[b2].1 += torque;
-        loads[b1].1 -= torque;
+        match joint.kind {
+            JointKind::Revolute => {
+                let angle = joint.angle(&p1.orientation, &p2.orientation);
+                let rate = (p2.angular_velocity - p1.angular_velocity).dot(&axis);
+                let torque = axis * joint.law.torque(angle, rate);
+                loads[b2].1 += torque;
+                loads[b1].1 -= torque;
+            }
+            JointKind::Prismatic => {
+                // s: body 2's anchor from body 1's along the axis (m), ṡ its rate with
+                // the axis turning with body 1; the force on body 2 at its anchor, its
+                // opposite on body 1 at the same point.
+                let (r1, r2) = (
+                    p1.orientation * joint.anchors[0],
+                    p2.orientation * joint.anchors[1],
+                );
+                let gap = (p2.position + r2) - (p1.position + r1);
+                let slip = (p2.velocity + p2.angular_velocity.cross(&r2))
+                    - (p1.velocity + p1.angular_velocity.cross(&r1));
+                let rate = p1.angular_velocity.cross(&axis).dot(&gap) + axis.dot(&slip);
+                let force = axis * joint.law.torque(gap.dot(&axis), rate);
+                loads[b2].0 += force;
+                loads[b2].1 += r2.cross(&force);
+                loads[b1].0 -= force;
+                loads[b1].1 -= (r1 + gap).cross(&force);
+            }
+            JointKind::Fixed => {}
+        }
     }
 }
 

@@ -122,7 +122,6 @@ impl CubeSettings {
 pub(crate) fn strided(data: &Dataset, stride: usize) -> Dataset {
     Dataset {
         runs: data.runs.iter().step_by(stride.max(1)).cloned().collect(),
-        ..data.clone()
     }
 }
 

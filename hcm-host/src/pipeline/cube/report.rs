@@ -166,7 +166,7 @@ impl CubeResults {
              --scenario scenarios/{file} --physics physics.toml --data held_out.csv \
              --out predicted.csv\n```\n",
             sets = set_options(&self.sets),
-            file = format!("{}.toml", self.name.replace('-', "_"))
+            file = format_args!("{}.toml", self.name.replace('-', "_"))
         )
     }
 
