@@ -677,3 +677,31 @@ fn a_spinning_slide_keeps_its_axis_momentum_and_energy() {
         "{off} {turn} {dp} {de}"
     );
 }
+
+/// The pendulum released at 0.5 rad with a stop at −0.3 rad (k = 500 N·m/rad, c = 0.5
+/// N·m·s/rad): it swings into the stop, is pushed back within the depth its energy there
+/// allows (½·k·δ² = m·g·c·(cos 0.3 − cos 0.5), δ = 0.0214 rad, gravity's pull adding a
+/// little), and returns below its release angle, the stop's damper having taken energy.
+#[test]
+fn a_hinge_stop_turns_the_pendulum_back() {
+    let (half, theta) = (0.15, 0.5);
+    let q = about_y(theta);
+    let centre = -(q * Vector3::new(0.0, 0.0, half));
+    let zero = Vector3::zeros();
+    let bodies = link("link_1", half, centre, q, zero, zero);
+    let anchors = [Vector3::new(0.0, 0.0, 10.0), Vector3::new(0.0, 0.0, half)];
+    let stop = "{ limit = { lower = -0.3, upper = 0.6, stiffness = 500.0, damping = 0.5 } }";
+    let joints = joint_with(["world", "link_1"], anchors, stop);
+    let simulation = run(&scene(-G, &bodies, &joints, 1.0));
+    let angles = swing(&simulation, "link_1");
+    let lowest = angles.iter().map(|a| a.1).fold(f64::INFINITY, f64::min);
+    let turned = angles.iter().position(|a| a.1 == lowest).unwrap();
+    let back = angles[turned..]
+        .iter()
+        .map(|a| a.1)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let depth = (2.0 * G * half * (0.3f64.cos() - 0.5f64.cos()) / 500.0).sqrt();
+    println!("stop: lowest {lowest:.4} rad (free depth {depth:.4}), back to {back:.4} rad");
+    assert!(lowest < -0.3 && lowest > -0.3 - 1.5 * depth, "{lowest}");
+    assert!(back > 0.0 && back < theta - 1e-3, "{back}");
+}

@@ -1,12 +1,13 @@
-//! The joint law: a sum of optional spring, viscous and Coulomb terms.
+//! The joint law: a sum of optional spring, viscous, Coulomb and limit terms.
 
-use super::{JointCoulomb, JointSpring, JointViscous};
+use super::{JointCoulomb, JointLimit, JointSpring, JointViscous};
 use crate::{LawError, Real};
 use serde::{Deserialize, Serialize};
 
 /// The torque of a revolute joint on its child (N·m): the sum of the terms present,
 /// τ = −k·(θ − θ₀) − c·θ̇ − sign(θ̇)·step(|θ̇|, 0, 0, ω_s, τ_c) (the rotational
-/// SPRINGDAMPER of MSC ADAMS plus the STEP-smoothed friction of Eq 10–11). All absent
+/// SPRINGDAMPER of MSC ADAMS plus the STEP-smoothed friction of Eq 10–11), plus the
+/// stops of a [`JointLimit`] past the ends of its travel. All absent
 /// by default ([`JointLaw::ZERO`]); absent terms are omitted when serialised.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -20,6 +21,9 @@ pub struct JointLaw<T> {
     /// STEP-smoothed Coulomb friction.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coulomb: Option<JointCoulomb<T>>,
+    /// Stops at the ends of the joint's travel.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limit: Option<JointLimit<T>>,
 }
 
 impl<T> JointLaw<T> {
@@ -28,11 +32,15 @@ impl<T> JointLaw<T> {
         spring: None,
         viscous: None,
         coulomb: None,
+        limit: None,
     };
 
     /// True when no term is present (a present term with a zero coefficient counts).
     pub fn is_zero(&self) -> bool {
-        self.spring.is_none() && self.viscous.is_none() && self.coulomb.is_none()
+        self.spring.is_none()
+            && self.viscous.is_none()
+            && self.coulomb.is_none()
+            && self.limit.is_none()
     }
 }
 
@@ -62,6 +70,9 @@ impl<T: Real> JointLaw<T> {
         if let Some(coulomb) = &self.coulomb {
             torque += coulomb.torque(rate);
         }
+        if let Some(limit) = &self.limit {
+            torque += limit.torque(angle, rate);
+        }
         torque.saturate()
     }
 
@@ -78,7 +89,8 @@ impl<T: Real> JointLaw<T> {
     pub fn validate(&self) -> Result<(), LawError> {
         self.spring.map_or(Ok(()), |t| t.validate())?;
         self.viscous.map_or(Ok(()), |t| t.validate())?;
-        self.coulomb.map_or(Ok(()), |t| t.validate())
+        self.coulomb.map_or(Ok(()), |t| t.validate())?;
+        self.limit.map_or(Ok(()), |t| t.validate())
     }
 }
 
@@ -89,6 +101,7 @@ impl<T: Copy> JointLaw<T> {
             spring: self.spring.map(|t| t.map(f)),
             viscous: self.viscous.map(|t| t.map(f)),
             coulomb: self.coulomb.map(|t| t.map(f)),
+            limit: self.limit.map(|t| t.map(f)),
         }
     }
 }

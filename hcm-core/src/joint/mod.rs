@@ -34,11 +34,13 @@
 
 mod coulomb;
 mod law;
+mod limit;
 mod spring;
 mod viscous;
 
 pub use coulomb::JointCoulomb;
 pub use law::JointLaw;
+pub use limit::JointLimit;
 pub use spring::JointSpring;
 pub use viscous::JointViscous;
 

@@ -29,7 +29,49 @@ fn full() -> JointLaw<f64> {
             torque: 0.7,
             smoothing_rate: 0.05,
         }),
+        limit: None,
     }
+}
+
+/// The stops push back past either end, never pull into them, and give nothing
+/// between; NaN in gives NaN out.
+fn limit_pushes_back_only_past_its_ends<T: Real + core::fmt::Debug>() {
+    let limit = JointLimit {
+        lower: of::<T>(-0.5),
+        upper: of(1.0),
+        stiffness: of(100.0),
+        damping: of(2.0),
+    };
+    for k in -50..=100 {
+        let angle = of::<T>(f64::from(k) / 100.0);
+        assert_eq!(limit.torque(angle, of(3.0)), T::zero());
+    }
+    // Past the upper stop, moving on: spring and damper push back.
+    assert_eq!(limit.torque(of(1.25), of(1.0)), of(-27.0));
+    // Leaving it fast: the damper would pull; the stop gives nothing.
+    assert_eq!(limit.torque(of(1.01), of(-5.0)), T::zero());
+    // Past the lower stop, moving on: pushed up.
+    assert_eq!(limit.torque(of(-0.75), of(-1.0)), of(27.0));
+    assert!(limit.torque(of(f64::NAN), T::zero()).is_nan());
+    assert!(limit.torque(of(2.0), of(f64::NAN)).is_nan());
+    assert!(limit.validate().is_ok());
+    let crossed = JointLimit {
+        lower: of::<T>(1.0),
+        upper: of(0.0),
+        ..limit
+    };
+    assert!(crossed.validate().is_err());
+    let negative = JointLimit {
+        damping: of::<T>(-1.0),
+        ..limit
+    };
+    assert!(negative.validate().is_err());
+}
+
+#[test]
+fn limit_pushes_back_only_past_its_ends_f64_and_f32() {
+    limit_pushes_back_only_past_its_ends::<f64>();
+    limit_pushes_back_only_past_its_ends::<f32>();
 }
 
 fn viscous_is_linear_and_odd<T: Real + core::fmt::Debug>() {
