@@ -54,10 +54,8 @@ fn link(
     v: Vector3<f64>,
     w: Vector3<f64>,
 ) -> String {
-    let (ix, iz) = (
-        (0.02f64.powi(2) + (2.0 * half).powi(2)) / 12.0,
-        2.0 * 0.02f64.powi(2) / 12.0,
-    );
+    let inertia = link_inertia(half);
+    let (ix, iz) = (inertia[(0, 0)], inertia[(2, 2)]);
     let q = q.quaternion();
     format!(
         r#"
@@ -73,6 +71,18 @@ angular_velocity = [{:e}, {:e}, {:e}]
 "#,
         position.x, position.y, position.z, q.w, q.i, q.j, q.k, v.x, v.y, v.z, w.x, w.y, w.z
     )
+}
+
+/// The body-frame inertia (kg·m²) of a [`link`] of half length `half` (m).
+fn link_inertia(half: f64) -> nalgebra::Matrix3<f64> {
+    let across = (0.02f64.powi(2) + (2.0 * half).powi(2)) / 12.0;
+    nalgebra::Matrix3::from_diagonal(&Vector3::new(across, across, 2.0 * 0.02f64.powi(2) / 12.0))
+}
+
+/// A recorded sample's orientation (body → world).
+fn orientation(s: &hcm_host::dataset::Sample) -> UnitQuaternion<f64> {
+    let [w, x, y, z] = s.orientation;
+    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z))
 }
 
 fn joint(bodies: [&str; 2], anchors: [Vector3<f64>; 2]) -> String {
@@ -176,11 +186,7 @@ fn a_free_two_link_chain_keeps_its_momentum_and_energy() {
     let bodies = link("link_1", half, p1, q1, v1, w1) + &link("link_2", half, p2, q2, v2, w2);
     let joints = joint(["link_1", "link_2"], [a1, a2]);
     let simulation = run(&scene(0.0, &bodies, &joints, 2.0));
-    let inertia = nalgebra::Matrix3::from_diagonal(&Vector3::new(
-        (0.02f64.powi(2) + (2.0 * half).powi(2)) / 12.0,
-        (0.02f64.powi(2) + (2.0 * half).powi(2)) / 12.0,
-        2.0 * 0.02f64.powi(2) / 12.0,
-    ));
+    let inertia = link_inertia(half);
     let state = |k: usize| {
         let mut momentum = Vector3::zeros();
         let mut angular = Vector3::zeros();
@@ -191,8 +197,7 @@ fn a_free_two_link_chain_keeps_its_momentum_and_energy() {
             let p = Vector3::from(s.position);
             let v = Vector3::from(s.velocity);
             let w = Vector3::from(s.angular_velocity);
-            let [qw, qx, qy, qz] = s.orientation;
-            let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(qw, qx, qy, qz));
+            let q = orientation(s);
             let world = q.to_rotation_matrix() * inertia * q.to_rotation_matrix().transpose();
             momentum += v;
             angular += p.cross(&v) + world * w;
@@ -340,11 +345,7 @@ fn the_elbow_toss_keeps_its_hinge_through_the_landing() {
     let joint = &model.joints[0];
     let track = |name: &str| simulation.run.body(name).unwrap().samples.clone();
     let (first, second) = (track("elbow_1"), track("elbow_2"));
-    let pose = |s: &hcm_host::dataset::Sample| {
-        let [w, x, y, z] = s.orientation;
-        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
-        (Vector3::from(s.position), q)
-    };
+    let pose = |s: &hcm_host::dataset::Sample| (Vector3::from(s.position), orientation(s));
     let worst = (first.iter().zip(&second))
         .map(|(a, b)| {
             let ((p1, q1), (p2, q2)) = (pose(a), pose(b));
@@ -438,11 +439,7 @@ fn the_elbow_tosses_replay_from_starts_the_hinge_allows() {
     }
     let predicted = predicted_dataset(&evaluations, "elbow_1");
     let joint = &model.joints[0];
-    let pose = |s: &hcm_host::dataset::Sample| {
-        let [w, x, y, z] = s.orientation;
-        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
-        (Vector3::from(s.position), q)
-    };
+    let pose = |s: &hcm_host::dataset::Sample| (Vector3::from(s.position), orientation(s));
     let (mut first, mut worst) = (0.0f64, 0.0f64);
     for run in &predicted.runs {
         let (a, b) = (run.body("elbow_1").unwrap(), run.body("elbow_2").unwrap());
@@ -573,24 +570,34 @@ fn a_block_on_a_slide_follows_its_equation_of_motion() {
     );
 }
 
-/// Two links bolted together (a fixed joint) thrown spinning without gravity move as one
-/// rigid body: their relative pose stays as it started, momentum and energy are kept.
-#[test]
-fn two_links_bolted_together_move_as_one_body() {
-    let half = 0.05;
+/// Half length (m) of the links of [`thrown_pair`].
+const PAIR_HALF: f64 = 0.05;
+
+/// Two aligned links end to end (link 1 turned 0.3 rad about y), thrown without gravity
+/// as one rigid body spinning, link 2 sliding at `slide` (m/s) along link 1's long axis
+/// besides: the bodies' TOML and the anchors of the ends that meet (m, each link's frame).
+fn thrown_pair(slide: f64) -> (String, [Vector3<f64>; 2]) {
+    let half = PAIR_HALF;
     let q = about_y(0.3);
     let (v1, w) = (Vector3::new(0.3, -0.1, 0.2), Vector3::new(0.5, 2.0, -0.3));
     let (a1, a2) = (Vector3::new(0.0, 0.0, -half), Vector3::new(0.0, 0.0, half));
     let p1 = Vector3::new(0.0, 0.0, 1.0);
     let p2 = p1 + q * a1 - q * a2;
-    let v2 = v1 + w.cross(&(p2 - p1));
+    let v2 = v1 + w.cross(&(p2 - p1)) + q * Vector3::z() * slide;
     let bodies = link("link_1", half, p1, q, v1, w) + &link("link_2", half, p2, q, v2, w);
+    (bodies, [a1, a2])
+}
+
+/// Two links bolted together (a fixed joint) thrown spinning without gravity move as one
+/// rigid body: their relative pose stays as it started, momentum and energy are kept.
+#[test]
+fn two_links_bolted_together_move_as_one_body() {
+    let (bodies, [a1, a2]) = thrown_pair(0.0);
     let bolt = joint_of("fixed", ["link_1", "link_2"], [a1, a2], Vector3::y(), "{}");
     let simulation = run(&scene(0.0, &bodies, &bolt, 2.0));
     let pose = |name: &str, k: usize| {
         let s = &simulation.run.body(name).unwrap().samples[k];
-        let [qw, qx, qy, qz] = s.orientation;
-        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(qw, qx, qy, qz));
+        let q = orientation(s);
         (Vector3::from(s.position), q, Vector3::from(s.velocity))
     };
     let samples = simulation.run.body("link_1").unwrap().samples.len();
@@ -614,15 +621,8 @@ fn two_links_bolted_together_move_as_one_body() {
 /// and momentum and energy are kept while link 2 never leaves the axis nor turns.
 #[test]
 fn a_spinning_slide_keeps_its_axis_momentum_and_energy() {
-    let half = 0.05;
-    let q = about_y(0.3);
-    let (v1, w) = (Vector3::new(0.3, -0.1, 0.2), Vector3::new(0.5, 2.0, -0.3));
-    let (a1, a2) = (Vector3::new(0.0, 0.0, -half), Vector3::new(0.0, 0.0, half));
-    let p1 = Vector3::new(0.0, 0.0, 1.0);
-    let p2 = p1 + q * a1 - q * a2;
-    let along = q * Vector3::z() * -0.4;
-    let v2 = v1 + w.cross(&(p2 - p1)) + along;
-    let bodies = link("link_1", half, p1, q, v1, w) + &link("link_2", half, p2, q, v2, w);
+    let half = PAIR_HALF;
+    let (bodies, [a1, a2]) = thrown_pair(-0.4);
     let slide = joint_of(
         "prismatic",
         ["link_1", "link_2"],
@@ -631,19 +631,14 @@ fn a_spinning_slide_keeps_its_axis_momentum_and_energy() {
         "{}",
     );
     let simulation = run(&scene(0.0, &bodies, &slide, 1.0));
-    let inertia = nalgebra::Matrix3::from_diagonal(&Vector3::new(
-        (0.02f64.powi(2) + (2.0 * half).powi(2)) / 12.0,
-        (0.02f64.powi(2) + (2.0 * half).powi(2)) / 12.0,
-        2.0 * 0.02f64.powi(2) / 12.0,
-    ));
+    let inertia = link_inertia(half);
     let samples = simulation.run.body("link_1").unwrap().samples.len();
     let state = |k: usize| {
         let (mut momentum, mut energy) = (Vector3::zeros(), 0.0);
         let mut poses = Vec::new();
         for name in ["link_1", "link_2"] {
             let s = &simulation.run.body(name).unwrap().samples[k];
-            let [qw, qx, qy, qz] = s.orientation;
-            let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(qw, qx, qy, qz));
+            let q = orientation(s);
             let (v, w) = (Vector3::from(s.velocity), Vector3::from(s.angular_velocity));
             let world = q.to_rotation_matrix() * inertia * q.to_rotation_matrix().transpose();
             momentum += v;

@@ -21,10 +21,7 @@ pub fn fitted_assignments(
     let mut out = Vec::new();
     for (name, value) in named {
         match name.as_str() {
-            "table_offset" | "inertia_scale" | "rounding" => {
-                out.extend(body_assignments(model, parameters, name, *value))
-            }
-            _ if name.starts_with("joint.") => {
+            _ if beside_the_contact(name) => {
                 out.extend(body_assignments(model, parameters, name, *value))
             }
             "mu_static" | "mu_dynamic" => out.extend(
@@ -50,12 +47,15 @@ pub fn beside_physics(
     named: &[(String, f64)],
 ) -> Vec<Assignment> {
     (named.iter())
-        .filter(|(name, _)| {
-            matches!(name.as_str(), "table_offset" | "inertia_scale" | "rounding")
-                || name.starts_with("joint.")
-        })
+        .filter(|(name, _)| beside_the_contact(name))
         .flat_map(|(name, value)| body_assignments(model, parameters, name, *value))
         .collect()
+}
+
+/// Whether gene `name` is not a contact's: a body's, the table's or a joint's (what a
+/// physics file carries as its `sets`).
+fn beside_the_contact(name: &str) -> bool {
+    matches!(name, "table_offset" | "inertia_scale" | "rounding") || name.starts_with("joint.")
 }
 
 /// [`body_assignment`] on every body the gene changes (the inertia and the rounding:
