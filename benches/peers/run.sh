@@ -2,6 +2,7 @@
 # hcm beside MuJoCo and PyBullet on the real cube tosses (benches/peers/README.md).
 #
 #   bash benches/peers/run.sh [OUT] [--quick] [--randomised-only]
+#   bash benches/peers/run.sh [OUT] --elbow [--quick]
 #
 # OUT (default peers-out/) receives hcm's scores and fit, peers.md, peers.json and
 # run.log, then the randomised peers (randomised.py: hcm's ensemble and the peers'
@@ -14,6 +15,10 @@
 # HCM=/path/to/hcm uses that binary; unset, hcm is built with
 # `cargo build --release -p hcm-host --bin hcm` and target/release/hcm is used.
 # PYTHON picks the interpreter for the venv (default python3.11, else python3).
+# --elbow: the real two-link elbow tosses instead (README, "The elbow"): hcm predicts every
+# toss with the shipped scenario and with its fitted physics (docs/results/elbow-toss/
+# physics.toml), then elbow.py fits MuJoCo and PyBullet on every 4th even toss and scores
+# them on the odd ones (--quick: the first 40 runs and short fits, about 20 s).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -21,11 +26,13 @@ root="$(cd "$here/../.." && pwd)"
 out=peers-out
 quick=0
 randomised_only=0
+elbow=0
 for arg in "$@"; do
     case "$arg" in
         --quick) quick=1 ;;
         --randomised-only) randomised_only=1 ;;
-        -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+        --elbow) elbow=1 ;;
+        -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
         -*) echo "unknown option $arg" >&2; exit 2 ;;
         *) out="$arg" ;;
     esac
@@ -49,6 +56,47 @@ fi
 say "hcm: $HCM ($("$HCM" --version))"
 
 cd "$root"
+
+# Times one step into run.log.
+step() {
+    local name="$1"; shift
+    local t0=$SECONDS
+    "$@" 2>&1 | tee -a "$log"
+    say "[$name: $((SECONDS - t0)) s]"
+}
+
+if [ "$elbow" = 1 ]; then
+    [ "$randomised_only" = 0 ] || { echo "--elbow has no randomised stage" >&2; exit 2; }
+    scenario=scenarios/elbow_toss.toml
+    data=data/contactnets-elbow/tosses.csv
+    physics=docs/results/elbow-toss/physics.toml
+    if [ "$quick" = 1 ]; then
+        first=(--first 40)
+        peer_fit=(--survey 8 --evaluations 15 --check-tosses 20)
+    else
+        first=()
+        peer_fit=(--survey 32 --evaluations 120)
+    fi
+    step "hcm predict, shipped scenario" "$HCM" predict --scenario "$scenario" --data "$data" \
+        "${first[@]}" --out "$out/predicted_scenario.csv" --scores "$out/scores_scenario.csv"
+    step "hcm predict, fitted physics" "$HCM" predict --scenario "$scenario" \
+        --physics "$physics" --data "$data" "${first[@]}" --out "$out/predicted_fitted.csv" \
+        --scores "$out/scores_fitted.csv"
+    step "elbow.py" "$venv/bin/python" "$here/elbow.py" --data "$data" \
+        --scenario-scores "$out/scores_scenario.csv" \
+        --scenario-predicted "$out/predicted_scenario.csv" \
+        --fitted-scores "$out/scores_fitted.csv" --hcm-physics "$physics" --fit-stride 4 \
+        --out "$out" "${first[@]}" "${peer_fit[@]}"
+    total=$((SECONDS - started))
+    say "[total: $total s]"
+    {
+        echo
+        echo "Command: \`bash benches/peers/run.sh OUT --elbow$( [ "$quick" = 1 ] && echo ' --quick')\`;" \
+             "wall time $total s on $(nproc) cores (steps: $(grep -o '^\[[^]]*\]' "$log" | tr '\n' ' '))."
+    } >> "$out/peers.md"
+    exit 0
+fi
+
 scenario=scenarios/cube_toss.toml
 data=data/contactnets-cube/tosses.csv
 if [ "$quick" = 1 ]; then
@@ -64,14 +112,6 @@ else
     members=32
     randomise=(--members 32 --train-members 8)
 fi
-
-# Times one step into run.log.
-step() {
-    local name="$1"; shift
-    local t0=$SECONDS
-    "$@" 2>&1 | tee -a "$log"
-    say "[$name: $((SECONDS - t0)) s]"
-}
 
 step "hcm predict, shipped scenario" "$HCM" predict --scenario "$scenario" --data "$data" \
     "${first[@]}" --out "$out/hcm_scenario_predicted.csv" --scores "$out/hcm_scenario_scores.csv"
