@@ -6,6 +6,7 @@
 
 mod faces;
 mod hybrid_model;
+mod joint_residual;
 mod motion_residual;
 mod paths;
 mod peg_hcm;

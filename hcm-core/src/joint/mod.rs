@@ -35,12 +35,14 @@
 mod coulomb;
 mod law;
 mod limit;
+mod residual;
 mod spring;
 mod viscous;
 
 pub use coulomb::JointCoulomb;
 pub use law::JointLaw;
 pub use limit::JointLimit;
+pub use residual::{hybrid_torque, residual_torque, JOINT_INPUTS};
 pub use spring::JointSpring;
 pub use viscous::JointViscous;
 

@@ -365,3 +365,52 @@ fn validation_names_the_field() {
         })
     );
 }
+
+/// A 2-4-4-1 network that outputs `offset` (N·m) wherever θ̇ lies in [−1, 1] rad/s (its
+/// envelope), zero weights: the output mean alone.
+fn constant_network(offset: f32) -> crate::residual::Mlp<2, 4, 1, 2> {
+    let mut network = crate::residual::Mlp::zeroed(crate::residual::Activation::Tanh);
+    network.normalisation.output_mean = [offset];
+    network.envelope.min = [-4.0, -1.0];
+    network.envelope.max = [4.0, 1.0];
+    network
+}
+
+/// The hybrid torque is the law's plus the network's inside its envelope, the law's
+/// alone outside it, NaN in NaN out; a network of other than one output adds nothing.
+fn hybrid_torque_adds_the_network_inside_its_envelope<T: Real + core::fmt::Debug>() {
+    let law = JointLaw {
+        viscous: Some(JointViscous {
+            damping: of::<T>(0.25),
+        }),
+        ..JointLaw::ZERO
+    };
+    let network = constant_network(-0.125);
+    let inside = hybrid_torque(&law, &network, of::<T>(0.3), of::<T>(0.5));
+    let expected = law.torque(of::<T>(0.3), of::<T>(0.5)) + of::<T>(-0.125);
+    assert!((inside - expected).abs() <= of::<T>(1e-6), "{inside:?}");
+    assert_eq!(
+        residual_torque(&network, of::<T>(0.3), of::<T>(0.5)),
+        Some(of::<T>(-0.125))
+    );
+    // θ̇ = 2 rad/s lies outside: the law alone.
+    let outside = hybrid_torque(&law, &network, of::<T>(0.3), of::<T>(2.0));
+    assert_eq!(outside, law.torque(of::<T>(0.3), of::<T>(2.0)));
+    assert!(hybrid_torque(&law, &network, of::<T>(f64::NAN), of::<T>(0.5)).is_nan());
+    assert_eq!(
+        residual_torque(&network, of::<T>(0.3), of::<T>(f64::NAN)),
+        None
+    );
+    let wrench = crate::residual::Mlp::<2, 4, 6, 2>::zeroed(crate::residual::Activation::Tanh);
+    assert_eq!(residual_torque(&wrench, of::<T>(0.3), of::<T>(0.5)), None);
+}
+
+#[test]
+fn hybrid_torque_f64() {
+    hybrid_torque_adds_the_network_inside_its_envelope::<f64>();
+}
+
+#[test]
+fn hybrid_torque_f32() {
+    hybrid_torque_adds_the_network_inside_its_envelope::<f32>();
+}

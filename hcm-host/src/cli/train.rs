@@ -71,6 +71,10 @@ pub struct Args {
     /// Eq 12: switched off wherever the body is not where and as it was in training).
     #[arg(long, value_enum, default_value_t = Inputs::Contact)]
     inputs: Inputs,
+    /// A mechanism (a scenario with joints) on a camera's poses: which joint's torque
+    /// residual to learn (its angle and rate → the torque on its child, N·m).
+    #[arg(long, default_value_t = 0)]
+    joint: usize,
     /// Trained residual file to write (JSON), e.g. `residual.json`.
     #[arg(long)]
     out: PathBuf,
@@ -135,7 +139,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let file = args.data.display().to_string();
     data.require_for(&file, &pm2, args.contact, evidence, DataUse::Train)?;
-    let kind = ResidualKind::of(evidence, args.inputs == Inputs::State);
+    let kind = ResidualKind::of(
+        evidence,
+        args.inputs == Inputs::State,
+        !pm2.joints.is_empty(),
+    );
+    if kind == ResidualKind::Joint {
+        return run_joint(&args, &pm2, &data);
+    }
     if kind != ResidualKind::Force {
         return run_rigid(&args, kind, &pm2, &data);
     }
@@ -156,6 +167,51 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "int8 twin: RMS against the f32 network {:.3} N rounded → {:.3} N after {} epochs (worst {:.3} N), {:.2} s",
         tuned.rounded_rms, tuned.tuned_rms, tuned.epochs, tuned.tuned_max, tuned.seconds
     );
+    trained.residual.write(&args.out)?;
+    println!(
+        "→ {} (export with `hcm export --residual {0} --out residual.bin`)",
+        args.out.display()
+    );
+    Ok(())
+}
+
+/// The mechanism's path: joint `--joint`'s torque residual from the recorded poses, the
+/// share of the missed joint angle it explains, and a warning when it explains nothing.
+fn run_joint(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> anyhow::Result<()> {
+    let Some(joint) = pm2.joints.get(args.joint) else {
+        anyhow::bail!(
+            "--joint {}: scenario `{}` has {} joint(s), numbered from 0",
+            args.joint,
+            pm2.scenario.name,
+            pm2.joints.len()
+        );
+    };
+    let (settings, bars) = settings_and_bars(args);
+    let kind = ResidualKind::Joint;
+    let trained = kind.train((pm2, data, args.joint), usize::MAX, &settings, &bars)?;
+    let report = &trained.report;
+    println!(
+        "trained {} of joint `{}` on {} frames in flight of {} runs: {} epochs (best {}), \
+         train RMS {:.3e} rad, validation RMS {:.3e} rad, {:.2} s",
+        kind.describe(),
+        joint.name,
+        trained.rows,
+        data.runs.len(),
+        report.epochs,
+        report.best_epoch,
+        report.train_loss.sqrt(),
+        report.validation_loss.sqrt(),
+        report.seconds
+    );
+    let explained = trained.explained.first().copied().unwrap_or(0.0);
+    println!("share of the missed joint angle explained (R², training rows): {explained:.2}");
+    if !trained.silenced.is_empty() {
+        eprintln!(
+            "warning: the network is no better than a zero torque and is fixed at 0 (the \
+             HCM is PM2): the recorded joint angles show no torque the joint's law misses \
+             that its angle and rate would tell, or too few frames in flight"
+        );
+    }
     trained.residual.write(&args.out)?;
     println!(
         "→ {} (export with `hcm export --residual {0} --out residual.bin`)",

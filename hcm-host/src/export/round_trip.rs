@@ -76,6 +76,7 @@ fn core_outputs(decoded: &ContactResidual, x: &[f64]) -> Option<Vec<f64>> {
             let features: &[f64; hcm_core::model::POINT_INPUTS] = x.try_into().ok()?;
             stored.outputs(features).map(|o| o.to_vec())
         }
+        ContactResidual::JointTorque(joint) => Residual::<f64>::correction(joint, x).map(outputs),
         _ => Residual::<f64>::correction(decoded, x).map(outputs),
     }
 }

@@ -35,6 +35,7 @@ mod scores_file;
 mod setup;
 mod window;
 pub use crate::scenario::{shift_surface, tilt_surface};
+pub(crate) use assembly::assemble;
 pub use initial_state::orientation;
 pub use path_forecast::{band_shares, forecast_paths, summarize_paths, PathForecast, PathSummary};
 pub use path_forecast::{BAND_LEVELS, CALIBRATION_LEVELS};

@@ -16,12 +16,18 @@
 //!   (`crate::train::per_output`), or one joint network of width 48;
 //! - [`ContactResidual::Point`], 5-16-16-5: the contact-frame residual, evaluated at
 //!   every touching point from that point's δ, δ̇, slip speed, spin and rolling rate
-//!   ([`hcm_core::model::point_residual`]; trained by `crate::train::point_residual`).
+//!   ([`hcm_core::model::point_residual`]; trained by `crate::train::point_residual`);
+//! - [`ContactResidual::JointTorque`], 2-16-16-1: a joint's torque error from its own
+//!   angle and rate ([`JointResidual`], [`hcm_core::joint::hybrid_torque`]; trained by
+//!   `crate::train::joint_residual`), attached to a joint, not a contact.
 
+mod joint;
 mod stored;
 
+pub use joint::{JointResidual, JOINT_WIDTH};
 pub use stored::Stored;
 
+use hcm_core::joint::JOINT_INPUTS;
 use hcm_core::model::{
     ContactModel, ContactPoint, Correction, Residual, POINT_INPUTS, POINT_OUTPUTS,
 };
@@ -61,16 +67,19 @@ pub enum ContactResidual {
     WideWrench(Stored<WRENCH_INPUTS, WIDE_WRENCH_WIDTH, WRENCH_OUTPUTS, HIDDEN>),
     /// The contact-frame residual, 5-16-16-5, one evaluation per touching point.
     Point(Stored<POINT_INPUTS, POINT_WIDTH, POINT_OUTPUTS, HIDDEN>),
+    /// A joint's torque residual, 2-16-16-1, from the joint's angle and rate.
+    JointTorque(JointResidual),
 }
 
 impl ContactResidual {
     /// The shapes this build decodes, in [`ContactResidual`]'s order.
-    pub fn shapes() -> [Shape; 4] {
+    pub fn shapes() -> [Shape; 5] {
         [
             Shape::of::<INPUTS, WIDTH, 1, HIDDEN>(),
             Shape::of::<WRENCH_INPUTS, WRENCH_WIDTH, WRENCH_OUTPUTS, HIDDEN>(),
             Shape::of::<WRENCH_INPUTS, WIDE_WRENCH_WIDTH, WRENCH_OUTPUTS, HIDDEN>(),
             Shape::of::<POINT_INPUTS, POINT_WIDTH, POINT_OUTPUTS, HIDDEN>(),
+            Shape::of::<JOINT_INPUTS, JOINT_WIDTH, 1, HIDDEN>(),
         ]
     }
 
@@ -83,7 +92,10 @@ impl ContactResidual {
             Err(BlobError::WrongShape { found, .. }) => found,
             Err(e) => return Err(e),
         };
-        let [force, wrench, wide, point] = Self::shapes();
+        let [force, wrench, wide, point, joint] = Self::shapes();
+        if found == joint {
+            return Stored::decode(bytes).map(|s| ContactResidual::JointTorque(JointResidual(s)));
+        }
         if found == wrench {
             return Stored::decode(bytes).map(ContactResidual::Wrench);
         }
@@ -93,7 +105,7 @@ impl ContactResidual {
         if found == wide {
             return Stored::decode(bytes).map(ContactResidual::WideWrench);
         }
-        let expected = [wrench, wide, point]
+        let expected = [wrench, wide, point, joint]
             .into_iter()
             .find(|s| (s.inputs, s.outputs) == (found.inputs, found.outputs))
             .unwrap_or(force);
@@ -102,12 +114,13 @@ impl ContactResidual {
 
     /// The network's shape.
     pub fn shape(&self) -> Shape {
-        let [force, wrench, wide, point] = Self::shapes();
+        let [force, wrench, wide, point, joint] = Self::shapes();
         match self {
             ContactResidual::Force(_) => force,
             ContactResidual::Wrench(_) => wrench,
             ContactResidual::WideWrench(_) => wide,
             ContactResidual::Point(_) => point,
+            ContactResidual::JointTorque(_) => joint,
         }
     }
 
@@ -139,7 +152,8 @@ impl Residual<f64> for ContactResidual {
             ContactResidual::Force(m) => m.correction(input),
             ContactResidual::Wrench(m) => m.correction(input),
             ContactResidual::WideWrench(m) => m.correction(input),
-            ContactResidual::Point(_) => None,
+            // A joint's network is evaluated by its joint, never as a contact's.
+            ContactResidual::Point(_) | ContactResidual::JointTorque(_) => None,
         }
     }
 
@@ -155,7 +169,7 @@ impl Residual<f64> for ContactResidual {
             ContactResidual::Force(m) => m.excursion(input),
             ContactResidual::Wrench(m) => m.excursion(input),
             ContactResidual::WideWrench(m) => m.excursion(input),
-            ContactResidual::Point(_) => None,
+            ContactResidual::Point(_) | ContactResidual::JointTorque(_) => None,
         }
     }
 }

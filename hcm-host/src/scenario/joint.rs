@@ -83,6 +83,9 @@ pub struct Joint {
     pub law: JointLaw<f64>,
     /// What it lets the bodies do.
     pub kind: JointKind,
+    /// The learned torque added to its law's (the joint's HCM), once attached
+    /// (`Model::with_residual`; trained by `hcm train` on a mechanism's poses).
+    pub residual: Option<crate::residual::JointResidual>,
 }
 
 /// Largest gap between the two anchors, and angle between the axes as the two bodies
@@ -177,6 +180,7 @@ pub(crate) fn resolve_joint(
         normals: normals(&axis),
         law: spec.law,
         kind: spec.kind,
+        residual: None,
     })
 }
 

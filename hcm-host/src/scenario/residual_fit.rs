@@ -1,7 +1,8 @@
 //! Which residual network a scenario's contact can take: the 1D normal-force network
 //! (3 inputs: δ, δ̇, δ̇0) on a 1D scenario, the body-state wrench networks (13 inputs: a
 //! rigid body's state) on a 3D one, the contact-frame network (5 inputs, evaluated at
-//! each touching point) on either. A blob of another kind would be evaluated without a
+//! each touching point) on either; and which joint takes a joint's torque network (2
+//! inputs: θ, θ̇) — a mechanism's one joint. A blob of another kind would be evaluated without a
 //! word — its envelope shutting it off, the HCM silently equal to PM2 — so it is
 //! refused where it is attached.
 
@@ -17,6 +18,9 @@ impl Model {
         residual: ContactResidual,
         source: &str,
     ) -> Result<Model, String> {
+        if let ContactResidual::JointTorque(joint) = residual {
+            return self.with_joint_residual(joint, source);
+        }
         if contact >= self.contacts.len() {
             return Err(format!(
                 "{source}: scenario `{}` has no contact {contact} (it has {})",
@@ -29,6 +33,8 @@ impl Model {
             ContactResidual::Force(_) => !self.is_rigid(),
             ContactResidual::Wrench(_) | ContactResidual::WideWrench(_) => self.is_rigid(),
             ContactResidual::Point(_) => true,
+            // Attached to its joint above.
+            ContactResidual::JointTorque(_) => false,
         };
         if !fits {
             let (kind, needs) = if self.is_rigid() {
@@ -54,5 +60,31 @@ impl Model {
         let mut out = self.clone();
         out.contacts[contact].model.residual = Some(residual);
         Ok(out)
+    }
+}
+
+impl Model {
+    /// `self` with a joint's torque network on its joint: a scenario of one joint
+    /// (a mechanism of several would need the joint named; not yet).
+    fn with_joint_residual(
+        &self,
+        residual: crate::residual::JointResidual,
+        source: &str,
+    ) -> Result<Model, String> {
+        match self.joints.len() {
+            1 => {
+                let mut out = self.clone();
+                out.joints[0].residual = Some(residual);
+                Ok(out)
+            }
+            0 => Err(format!(
+                "{source}: a joint's torque network (2 inputs: θ, θ̇) does not fit scenario                  `{}`, which has no joint; give the mechanism's scenario it was trained on",
+                self.scenario.name
+            )),
+            n => Err(format!(
+                "{source}: scenario `{}` has {n} joints, and a joint's torque network is                  attached only to a scenario of one joint so far",
+                self.scenario.name
+            )),
+        }
     }
 }

@@ -271,7 +271,7 @@ fn solve(
 /// Each joint's own torque (its law at its angle and rate) added into `loads`: on body 2
 /// about the axis, the opposite on body 1; the bodies at `poses`.
 pub fn add_law_torques(model: &Model, poses: &[Pose], loads: &mut [(Vector3<f64>, Vector3<f64>)]) {
-    for joint in model.joints.iter().filter(|j| !j.law.is_zero()) {
+    for joint in (model.joints.iter()).filter(|j| !j.law.is_zero() || j.residual.is_some()) {
         let [b1, b2] = joint.bodies;
         let (p1, p2) = (&poses[b1], &poses[b2]);
         let axis = p1.orientation * joint.axis.into_inner();
@@ -279,7 +279,7 @@ pub fn add_law_torques(model: &Model, poses: &[Pose], loads: &mut [(Vector3<f64>
             JointKind::Revolute => {
                 let angle = joint.angle(&p1.orientation, &p2.orientation);
                 let rate = (p2.angular_velocity - p1.angular_velocity).dot(&axis);
-                let torque = axis * joint.law.torque(angle, rate);
+                let torque = axis * joint_torque(joint, angle, rate);
                 loads[b2].1 += torque;
                 loads[b1].1 -= torque;
             }
@@ -295,7 +295,7 @@ pub fn add_law_torques(model: &Model, poses: &[Pose], loads: &mut [(Vector3<f64>
                 let slip = (p2.velocity + p2.angular_velocity.cross(&r2))
                     - (p1.velocity + p1.angular_velocity.cross(&r1));
                 let rate = p1.angular_velocity.cross(&axis).dot(&gap) + axis.dot(&slip);
-                let force = axis * joint.law.torque(gap.dot(&axis), rate);
+                let force = axis * joint_torque(joint, gap.dot(&axis), rate);
                 loads[b2].0 += force;
                 loads[b2].1 += r2.cross(&force);
                 loads[b1].0 -= force;
@@ -306,9 +306,66 @@ pub fn add_law_torques(model: &Model, poses: &[Pose], loads: &mut [(Vector3<f64>
     }
 }
 
+/// A joint's torque on body 2 (N·m; a slide's force, N) at its angle (rad; m) and rate
+/// (rad/s; m/s): its law's, plus its residual's where one is attached and on (the core's
+/// hybrid sum, [`hcm_core::joint::hybrid_torque`]).
+fn joint_torque(joint: &Joint, angle: f64, rate: f64) -> f64 {
+    match &joint.residual {
+        Some(residual) => residual.torque(&joint.law, angle, rate),
+        None => joint.law.torque(angle, rate),
+    }
+}
+
 /// World-frame inverse inertia R·I⁻¹·Rᵀ (1/(kg·m²)) of a body of body-frame inverse
 /// inertia `inverse` turned by `q`.
 pub fn world_inverse_inertia(inverse: &Matrix3<f64>, q: &UnitQuaternion<f64>) -> Matrix3<f64> {
     let r = q.to_rotation_matrix();
     r.matrix() * inverse * r.matrix().transpose()
+}
+
+/// Joint `j`'s compliance (1/(kg·m²)): the relative angular acceleration about its axis
+/// (rad/s²) that a unit torque pair — +1 N·m on body 2 about the axis, −1 N·m on body 1
+/// — gives the bodies at `poses` (their velocities ignored) while every joint of `model`
+/// holds them and nothing else acts: 1/I of the joint's turn, the inverse of the
+/// effective inertia a torque on the joint meets (for two free links, between their
+/// inertias about their own centres and about the joint). What a joint's residual
+/// torque turns the joint by (`crate::train::joint_samples`).
+pub(crate) fn joint_compliance(model: &Model, j: usize, poses: &[Pose]) -> f64 {
+    let joint = &model.joints[j];
+    let axis = poses[joint.bodies[0]].orientation * joint.axis.into_inner();
+    let still: Vec<Pose> = (poses.iter())
+        .map(|p| Pose {
+            velocity: Vector3::zeros(),
+            angular_velocity: Vector3::zeros(),
+            ..*p
+        })
+        .collect();
+    let turn = |torque: f64| {
+        let mut loads = vec![(Vector3::zeros(), Vector3::zeros()); model.bodies.len()];
+        loads[joint.bodies[1]].1 += axis * torque;
+        loads[joint.bodies[0]].1 -= axis * torque;
+        let inverse: Vec<(f64, Matrix3<f64>)> = (model.bodies.iter().zip(&still))
+            .map(|(body, pose)| match body.fixed {
+                true => (0.0, Matrix3::zeros()),
+                false => {
+                    let inverse = body.inertia.try_inverse().unwrap_or_else(Matrix3::zeros);
+                    let world = world_inverse_inertia(&inverse, &pose.orientation);
+                    (1.0 / body.mass, world)
+                }
+            })
+            .collect();
+        let motion: Vec<BodyMotion> = (still.iter().zip(&inverse).zip(&loads))
+            .map(|((pose, inverse), load)| BodyMotion {
+                pose: *pose,
+                free: (load.0 * inverse.0, inverse.1 * load.1),
+                inverse: *inverse,
+            })
+            .collect();
+        add_constraint_loads(model, &motion, &mut loads);
+        let spin = |b: usize| inverse[b].1 * loads[b].1;
+        (spin(joint.bodies[1]) - spin(joint.bodies[0])).dot(&axis)
+    };
+    // Less the response without the torque: the stabilisation's pull on the rows'
+    // error at these poses.
+    turn(1.0) - turn(0.0)
 }

@@ -27,6 +27,7 @@ mod record;
 mod stepper;
 mod system;
 pub use footprint::{memory_budget, record_bytes, shown_bytes};
+pub(crate) use joints::joint_compliance;
 
 pub use crate::indicators::ContactEvent;
 pub use event::EventTracker;

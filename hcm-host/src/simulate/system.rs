@@ -164,7 +164,7 @@ impl RigidSystem<'_> {
         // without a residual the input is not read.
         let inputs = match (&contact.model.residual, points.first()) {
             // A contact-frame residual reads each point itself.
-            (None | Some(ContactResidual::Point(_)), _) => 0,
+            (None | Some(ContactResidual::Point(_) | ContactResidual::JointTorque(_)), _) => 0,
             (Some(ContactResidual::Force(_)), Some(p)) => {
                 let i = p.indentation;
                 input[..INPUTS].copy_from_slice(&[i.depth, i.rate, i.approach_speed]);

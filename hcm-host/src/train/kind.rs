@@ -3,8 +3,8 @@
 //! network, its int8 twin, its envelope, the rows it learned from and what it explains.
 
 use super::{
-    train_force_residual, train_motion_residual, train_point_residual, train_wrench_residual,
-    ResidualError, ResidualSettings, Trained, HORIZON,
+    train_force_residual, train_joint_residual, train_motion_residual, train_point_residual,
+    train_wrench_residual, ResidualError, ResidualSettings, Trained, HORIZON,
 };
 use crate::dataset::{Dataset, Evidence};
 use crate::progress::Progress;
@@ -23,22 +23,28 @@ pub enum ResidualKind {
     /// The same per-point residual learned from poses alone (the replayed frames'
     /// missing momentum, over [`HORIZON`] frames).
     Motion,
+    /// A mechanism's joint torque (N·m) from the joint's angle and rate, learned from
+    /// poses alone (the joint angle the replayed frames miss, over [`HORIZON`] frames).
+    Joint,
 }
 
 impl ResidualKind {
     /// The kind for `evidence`: the line force's, the per-point one on a wrench (or the
-    /// state one where `state` asks for it), the one from motion on poses.
-    pub fn of(evidence: Evidence, state: bool) -> ResidualKind {
+    /// state one where `state` asks for it), the one from motion on poses — the joint's
+    /// torque on a mechanism's poses (`joints`: the model has joints).
+    pub fn of(evidence: Evidence, state: bool, joints: bool) -> ResidualKind {
         match evidence {
             Evidence::LineForce => ResidualKind::Force,
             Evidence::Wrench if state => ResidualKind::Wrench,
             Evidence::Wrench => ResidualKind::Point,
+            Evidence::Poses if joints => ResidualKind::Joint,
             Evidence::Poses => ResidualKind::Motion,
         }
     }
 
-    /// This residual of contact `c` of `pm2` trained on `training` (for a wrench, on
-    /// the samples before contact event `events`), reporting to `progress`.
+    /// This residual of contact `c` of `pm2` (a joint's: of joint `c`) trained on
+    /// `training` (for a wrench, on the samples before contact event `events`),
+    /// reporting to `progress`.
     pub fn train(
         self,
         (pm2, training, c): (&Model, &Dataset, usize),
@@ -57,6 +63,9 @@ impl ResidualKind {
             ResidualKind::Motion => {
                 train_motion_residual(pm2, training, c, HORIZON, settings, progress)
             }
+            ResidualKind::Joint => {
+                train_joint_residual(pm2, training, c, HORIZON, settings, progress)
+            }
         }
     }
 
@@ -72,6 +81,9 @@ impl ResidualKind {
             }
             ResidualKind::Motion => {
                 "the contact-frame residual from motion (5 inputs per touching point → its force and couple)"
+            }
+            ResidualKind::Joint => {
+                "the joint's torque residual from motion (its angle and rate → the torque on the child)"
             }
         }
     }

@@ -107,7 +107,7 @@ fn toss_rows(
         if (periods - horizon as f64).abs() > CLOCK_TOLERANCE * horizon as f64 {
             continue;
         }
-        let Some(state) = frame_state(setup, &run.id, frames, k)? else {
+        let Some(state) = frame_state(&setup.name, &run.id, frames, k)? else {
             continue;
         };
         let measured = (
@@ -185,23 +185,23 @@ fn sustained_rows(
 
 /// A body's state: position (m), orientation, velocity (m/s), angular velocity (rad/s),
 /// world frame.
-type State = (
+pub(super) type State = (
     Vector3<f64>,
     UnitQuaternion<f64>,
     Vector3<f64>,
     Vector3<f64>,
 );
 
-/// The recorded state at frame `k`: its pose, and its recorded velocities or else the
+/// The recorded state of body `body` at frame `k`: its pose, and its recorded velocities or else the
 /// backward difference from frame k − 1 (`None` at a first frame without them).
-fn frame_state(
-    setup: &TossSetup,
+pub(super) fn frame_state(
+    body: &str,
     run: &str,
     frames: &[Sample],
     k: usize,
 ) -> Result<Option<State>, TossError> {
     let frame = &frames[k];
-    let q = orientation(&setup.name, run, frame)?;
+    let q = orientation(body, run, frame)?;
     let p = Vector3::from(frame.position);
     if frame.has(Channel::Velocity) && frame.has(Channel::AngularVelocity) {
         let (v, w) = (frame.velocity, frame.angular_velocity);
@@ -211,7 +211,7 @@ fn frame_state(
         return Ok(None);
     };
     let dt = frame.time - before.time;
-    let turn = (q * orientation(&setup.name, run, before)?.inverse()).scaled_axis();
+    let turn = (q * orientation(body, run, before)?.inverse()).scaled_axis();
     let v = (p - Vector3::from(before.position)) / dt;
     Ok(Some((p, q, v, turn / dt)))
 }

@@ -138,7 +138,7 @@ fn from_rest(mut network: super::Network) -> super::Network {
 
 /// R² of each wrench component (force x y z, torque x y z) of the network's summed
 /// prediction over `rows`; 0 for a component without variance.
-fn summed_explained(network: &super::Network, rows: &[SummedRow]) -> Vec<f64> {
+pub(super) fn summed_explained(network: &super::Network, rows: &[SummedRow]) -> Vec<f64> {
     let components = rows.first().map_or(0, |r| r.target.len());
     let n = rows.len().max(1) as f64;
     let mut mean = vec![0.0; components];
