@@ -22,7 +22,7 @@ import os
 import sys
 import time
 import xml.etree.ElementTree as ElementTree
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import minimize
@@ -456,6 +456,7 @@ class ElbowPeer(Peer):
 
     survey_dims: tuple = ()
     after: str = ""
+    hinge_off: list = field(default_factory=list)  # held-out scores, hinge terms set back
 
 
 def peers(inertia_box=cube.INERTIA_BOX):
@@ -572,6 +573,11 @@ def fit_and_score(peer, scorer, training, held_out, args):
                        "held_out_fitness_half_step": fitness([s[:2] for s in finer]),
                        "training_fitness": min(h["fitness"] for h in peer.history),
                        "failed_held_out": sum(s == FAILED for s in scores)}
+    if peer.after:
+        # The hinge terms' own share: the same fit with them set back to (almost) none.
+        peer.hinge_off = scorer.scores(peer, {**peer.fitted, **HINGE_START}, held_out)
+        peer.step_check["held_out_fitness_hinge_terms_off"] = fitness(
+            [s[:2] for s in peer.hinge_off])
     return scores
 
 
@@ -842,7 +848,17 @@ def table_rows(held_out, fitted_hcm, scenario, fitted_peers, rows):
             + [("frozen pose", hcm(scenario, "frozen_"))])
 
 
-def markdown(table, held_out, context):
+def hinge_gains(table, fitted_peers):
+    """Each peer with the hinge's friction against the same simulator without it, paired
+    per held-out toss: (row with it, row without it, paired Δ(position + rotation)
+    against that row, and against its own fit with the hinge terms set back to 1e-6)."""
+    scores = {name: [s[:2] for s in rows] for name, rows in table}
+    return [(p.name, p.after, paired(scores[p.name], scores[p.after]),
+             paired(scores[p.name], [s[:2] for s in p.hinge_off]))
+            for p in fitted_peers if p.after]
+
+
+def markdown(table, held_out, gains, context):
     """peers.md: the table, each link's means, and what they rest on."""
     reference = [s[:2] for s in table[0][1]]
     lines = [
@@ -854,6 +870,12 @@ def markdown(table, held_out, context):
         "|---|---|---|---|---|---|",
     ]
     lines += [table_row(name, [s[:2] for s in scores], reference) for name, scores in table]
+    lines += ["", "The hinge's friction, paired per held-out toss: Δ(position + rotation) of "
+              "the row with it minus the row without it, ± 95 % (negative: it helps); then "
+              "minus its own fit with the two hinge terms set back to 1e-6 (the hinge terms "
+              "alone, the contact fit kept):", ""]
+    lines += [f"- {name}: {d['mean']:+.2f} ± {d['half_width_95']:.2f}; the hinge terms alone "
+              f"{off['mean']:+.2f} ± {off['half_width_95']:.2f}" for name, _, d, off in gains]
     lines += ["", "Each link's own means on the held-out tosses (position % of 0.1 m, "
               "rotation °):", "",
               "| model | elbow_1 position | elbow_1 rotation | elbow_2 position | "
@@ -934,8 +956,9 @@ def context_lines(args, split, fitted_peers, timings, checks):
                          f"over windows of up to {c['longest_window_s']:.2f} s "
                          f"({c['tosses']} tosses)")
         else:
-            lines.append(f"- {name}: centre {c['free_flight_centre_less_euler_lag_gap_m']:.1e} m, "
-                         f"with half the step {c['free_flight_centre_less_euler_lag_gap_m_half_step']:.1e} m "
+            centre = c["free_flight_centre_less_euler_lag_gap_m"]
+            finer = c["free_flight_centre_less_euler_lag_gap_m_half_step"]
+            lines.append(f"- {name}: centre {centre:.1e} m, with half the step {finer:.1e} m "
                          f"({c['tosses']} tosses); first frames vs hcm "
                          f"{c['first_frames_vs_hcm_position_gap_m']:.1e} m, "
                          f"{c['first_frames_vs_hcm_rotation_gap_deg']:.1e}° "
@@ -964,9 +987,9 @@ def arguments(argv=None):
                    help="`hcm predict --out` of the shipped scenario (for the checks)")
     a.add_argument("--fitted-scores", required=True,
                    help="`hcm predict --scores` with hcm's fitted physics")
-    a.add_argument("--hcm-physics", default=os.path.join(ROOT, "docs", "results", "elbow-toss",
-                                                         "physics.toml"),
-                   help="hcm's fitted physics file (shown in peers.md)")
+    a.add_argument("--hcm-physics",
+                   help="hcm's fitted physics file, shown in peers.md (run.sh --elbow: "
+                   "docs/results/elbow-toss/physics.toml)")
     a.add_argument("--out", required=True, help="output folder (peers.md, peers.json)")
     a.add_argument("--first", type=int, help="use only the first N runs (as hcm --first)")
     a.add_argument("--fit-stride", type=int, default=4,
@@ -1050,7 +1073,9 @@ def json_report(args, split, table, fitted_peers, checks, timings):
         "peers": {p.name: {"simulator": p.simulator, "start": p.start, "bounds": p.bounds,
                            "survey_dims": list(p.survey_dims), "starts_from": p.after,
                            "fitted": p.fitted, "note": p.note, "step_check": p.step_check,
-                           "history": p.history} for p in fitted_peers},
+                           "history": p.history,
+                           **({"held_out_hinge_terms_off": per_toss(held_out, p.hinge_off)}
+                              if p.after else {})} for p in fitted_peers},
         "timestep_s": TIMESTEP, "substeps_per_frame": SUBSTEPS, "frame_s": FRAME,
         "width_m": WIDTH, "inertia": INERTIA.tolist(), "urdf": os.path.relpath(args.urdf, ROOT),
         "survey_points": args.survey, "max_evaluations": args.evaluations,
@@ -1088,12 +1113,17 @@ def main(argv=None):
     timings["elbow.py total"] = time.perf_counter() - clock
 
     os.makedirs(args.out, exist_ok=True)
-    text = markdown(table, held_out, context_lines(args, split, fitted_peers, timings, checks))
+    gains = hinge_gains(table, fitted_peers)
+    text = markdown(table, held_out, gains,
+                    context_lines(args, split, fitted_peers, timings, checks))
     with open(os.path.join(args.out, "peers.md"), "w") as f:
         f.write(text)
     with open(os.path.join(args.out, "peers.json"), "w") as f:
-        json.dump(json_report(args, split, table, fitted_peers, checks, timings), f, indent=1,
-                  default=float)
+        report = json_report(args, split, table, fitted_peers, checks, timings)
+        report["hinge_friction_gain_paired"] = {
+            name: {"without": without, **d, "hinge_terms_alone": off}
+            for name, without, d, off in gains}
+        json.dump(report, f, indent=1, default=float)
     print(text)
 
 

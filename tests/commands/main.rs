@@ -15,6 +15,7 @@ mod diagnose_poses_outputs;
 mod elbow_reproduce;
 mod fuzz;
 mod help;
+mod joint_residual;
 mod members;
 mod outputs;
 mod peg_reproduce;

@@ -100,10 +100,10 @@ pub struct Args {
     /// the stage).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=1000))]
     pub(super) face_members: Option<u16>,
-    /// Cube-toss: also fit and score MuJoCo and PyBullet the same way, side by side
-    /// (benches/peers/peers.py, run from the repository's root with its virtual
-    /// environment: `bash benches/peers/run.sh OUT --quick` installs it; about 12 more
-    /// minutes on the full data).
+    /// Cube-toss and elbow-toss: also fit and score MuJoCo and PyBullet the same way,
+    /// side by side (benches/peers/peers.py, the elbow's benches/peers/elbow.py, run from
+    /// the repository's root with their virtual environment: `bash benches/peers/run.sh
+    /// OUT --quick` installs it; about 12 more minutes on the full cube data).
     #[arg(long)]
     pub(super) peers: bool,
     /// Output directory (created): data, pm2.toml, residual blobs, report.md,
@@ -139,7 +139,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // that --out appears complete or not at all; made before the minutes of work, so
     // that an unwritable place or an --out that may not be replaced fails at once.
     let peers = match (&preset, args.peers) {
-        (Preset::CubeToss(_), true) => Some(Peers::locate()?),
+        (Preset::CubeToss(settings), true) => Some(Peers::locate(settings.name)?),
         _ => None,
     };
     let staged = StagedDirectory::create(&args.out, "results.json")?;
@@ -167,8 +167,8 @@ fn preset(args: &Args) -> anyhow::Result<Preset> {
         "--data",
         "--first",
         "--no-diagnosis",
-        "--face-members",
         "--peers",
+        "--face-members",
     ];
     let given = [
         ("--generations", args.generations.is_some()),
@@ -187,8 +187,8 @@ fn preset(args: &Args) -> anyhow::Result<Preset> {
         ExampleArg::FlatShot => ("flat-shot", &["--runs", "--method"]),
         ExampleArg::PegInHole => ("peg-in-hole", &["--runs", "--generations", "--population"]),
         ExampleArg::CubeToss => ("cube-toss", &TOSSES_OPTIONS),
-        // A mechanism's faces and peers are not run yet: the options before them.
-        ExampleArg::ElbowToss => ("elbow-toss", &TOSSES_OPTIONS[..6]),
+        // A mechanism's final faces are not forecast yet: the options before theirs.
+        ExampleArg::ElbowToss => ("elbow-toss", &TOSSES_OPTIONS[..7]),
     };
     let unread: Vec<&str> = (given.iter())
         .filter(|(option, set)| *set && !reads.contains(option))

@@ -78,7 +78,7 @@ impl Evidence {
             (Evidence::LineForce, U::Diagnose) => &Requirement::DIAGNOSE,
             (Evidence::LineForce, U::Evaluate) => &Requirement::EVALUATE,
             (Evidence::LineForce, U::Indicators) => &Requirement::INDICATORS,
-            (Evidence::Poses, U::Identify | U::Diagnose | U::Evaluate) => return None,
+            (Evidence::Poses, U::Identify | U::Diagnose | U::Evaluate | U::Train) => return None,
             (_, U::Identify | U::Diagnose) => &Requirement::IDENTIFY_RIGID_SAMPLES,
             (_, U::IdentifyEvents) => &Requirement::IDENTIFY_RIGID,
             (_, U::Train) => &Requirement::TRAIN_RIGID,

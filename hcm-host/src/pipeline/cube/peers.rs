@@ -1,16 +1,21 @@
-//! The cube preset's comparison with its peers (`hcm reproduce cube-toss --peers`):
-//! MuJoCo and PyBullet fitted and scored beside hcm on the same tosses, by the
-//! repository's `benches/peers/peers.py` in its own virtual environment (pinned
-//! versions; `bash benches/peers/run.sh OUT --quick` installs them). Its table joins the
-//! report; hcm itself never needs Python. The script's own progress goes to stderr.
+//! The tosses' comparison with their peers (`hcm reproduce cube-toss --peers`,
+//! `hcm reproduce elbow-toss --peers`): MuJoCo and PyBullet fitted and scored beside hcm
+//! on the same tosses, by the repository's `benches/peers/peers.py` (the cube) or
+//! `benches/peers/elbow.py` (the elbow: both links, the same URDF) in their own virtual
+//! environment (pinned versions; `bash benches/peers/run.sh OUT --quick` installs them).
+//! Its table joins the report; hcm itself never needs Python. The script's own progress
+//! goes to stderr.
 
 use super::{CubeReproduction, CubeSettings};
 use anyhow::Context;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-/// The script, relative to the repository's root (the working directory).
+/// The cube's script, relative to the repository's root (the working directory).
 const SCRIPT: &str = "benches/peers/peers.py";
+
+/// The elbow's script (a mechanism: both links on the URDF's hinge).
+const ELBOW_SCRIPT: &str = "benches/peers/elbow.py";
 
 /// Its environment's interpreter, relative to the same root.
 const VENV_PYTHON: &str = "benches/peers/.venv/bin/python";
@@ -21,15 +26,24 @@ pub struct Peers {
     script: PathBuf,
 }
 
+/// The peers' script of the example `name` (`cube-toss`, `elbow-toss`).
+fn script_of(name: &str) -> &'static str {
+    match name {
+        "elbow-toss" => ELBOW_SCRIPT,
+        _ => SCRIPT,
+    }
+}
+
 impl Peers {
     /// The interpreter (`HCM_PEERS_PYTHON`, else `benches/peers/.venv/bin/python`) and
-    /// the script, or what to do to have them.
-    pub fn locate() -> anyhow::Result<Peers> {
-        let script = PathBuf::from(SCRIPT);
+    /// example `name`'s script, or what to do to have them.
+    pub fn locate(name: &str) -> anyhow::Result<Peers> {
+        let script = script_of(name);
         anyhow::ensure!(
-            script.is_file(),
-            "--peers runs {SCRIPT}, which is not here: run hcm from the repository's root"
+            Path::new(script).is_file(),
+            "--peers runs {script}, which is not here: run hcm from the repository's root"
         );
+        let script = PathBuf::from(script);
         let python = std::env::var_os("HCM_PEERS_PYTHON")
             .map_or_else(|| PathBuf::from(VENV_PYTHON), PathBuf::from);
         anyhow::ensure!(
@@ -43,7 +57,7 @@ impl Peers {
 
     /// What runs: the interpreter and the script, for a status line.
     pub fn command_line(&self) -> String {
-        format!("{} {SCRIPT}", self.python.display())
+        format!("{} {}", self.python.display(), self.script.display())
     }
 
     /// Writes the peers' inputs into `dir/peers/`, runs the script there (its progress
@@ -76,11 +90,18 @@ impl Peers {
         if let Some(first) = settings.first {
             command.arg("--first").arg(first.to_string());
         }
+        if settings.fit_stride > 1 {
+            // The peers fit the very tosses hcm's fit saw.
+            command
+                .arg("--fit-stride")
+                .arg(settings.fit_stride.to_string());
+        }
+        let script = self.script.display();
         let status = (command.status())
-            .with_context(|| format!("starting {} {SCRIPT}", self.python.display()))?;
+            .with_context(|| format!("starting {} {script}", self.python.display()))?;
         anyhow::ensure!(
             status.success(),
-            "{SCRIPT} failed ({status}); its messages are above"
+            "{script} failed ({status}); its messages are above"
         );
         let table = std::fs::read_to_string(out.join("peers.md"))
             .with_context(|| format!("reading {}", out.join("peers.md").display()))?;
