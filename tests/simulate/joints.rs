@@ -459,7 +459,8 @@ fn the_elbow_tosses_replay_from_starts_the_hinge_allows() {
 }
 
 /// What does not follow a mechanism yet says so: the final face's forecast (a lone box's)
-/// and a residual trained from poses (its samples move one body).
+/// and a contact's residual trained from poses (its samples move one body; the joint's
+/// own residual is learned, `tests/train/joint_residual.rs`).
 #[test]
 fn what_does_not_follow_a_mechanism_yet_is_refused() {
     use hcm_host::dataset::Dataset;

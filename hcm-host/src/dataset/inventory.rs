@@ -64,7 +64,7 @@ pub fn inventory_summary(data: &Dataset, model: &Model, c: usize) -> String {
     let can = match (states || poses, force) {
         (true, true) if !states => "force and poses without velocities: identify (lsq) reads the state from the frames",
         (true, true) => "force and motion: identify (lsq, ga), train, evaluate, diagnose",
-        (true, false) => "motion only: identify, evaluate and diagnose replay the runs from their poses (as `hcm identify-motion`, `hcm predict` and `hcm diagnose-motion`); train needs force",
+        (true, false) => "motion only: identify, evaluate and diagnose replay the runs from their poses (as `hcm identify-motion`, `hcm predict` and `hcm diagnose-motion`); train learns from them too (a contact's residual, or a mechanism's joint torque)",
         (false, true) => "force without the moving body's poses (position and orientation): nothing a rigid contact can be fitted on",
         (false, false) => "neither force nor the moving body's state",
     };

@@ -67,8 +67,9 @@ pub fn motion_rows(
         return Err(TossError::Setup {
             scenario: physics.scenario.name.clone(),
             problem: format!(
-                "joint `{}`: a residual is not trained from the poses of a mechanism yet (its \
-                 samples move one body); `hcm predict` replays it",
+                "joint `{}`: a contact's residual is not trained from the poses of a mechanism \
+                 yet (its samples move one body); the joint's own torque residual is (`hcm \
+                 train` on the mechanism's poses), and `hcm predict` replays it",
                 joint.name
             ),
         });
