@@ -41,7 +41,11 @@ pub struct EventTracker {
 impl EventTracker {
     /// A tracker of `contacts` contacts with the pairs already touching in `y`
     /// opened at `time` (s): overlapping, or touching (separation 0) and approaching.
-    pub fn new(system: &RigidSystem<'_>, time: f64, y: &[f64]) -> Self {
+    pub fn new<const JOINT_PATH: bool>(
+        system: &RigidSystem<'_, JOINT_PATH>,
+        time: f64,
+        y: &[f64],
+    ) -> Self {
         let contacts = system.model.contacts.len();
         let mut tracker = EventTracker {
             open: vec![None; contacts],
@@ -64,9 +68,9 @@ impl EventTracker {
     /// Every touch-down and lift-off inside the last step, in time order: (time (s),
     /// contact). A pair that touches and lets go within one step is not seen (the
     /// scenario's `max_step` bounds how short a missed contact can be).
-    pub fn crossings(
+    pub fn crossings<const JOINT_PATH: bool>(
         &self,
-        system: &RigidSystem<'_>,
+        system: &RigidSystem<'_, JOINT_PATH>,
         stepper: &RigidStepper,
         scratch: &mut StateVector,
     ) -> Vec<(f64, usize)> {
@@ -92,7 +96,13 @@ impl EventTracker {
 
     /// Switches contact `c` at `time` (s), `y` the state there: opens or closes its
     /// event.
-    pub fn switch(&mut self, system: &RigidSystem<'_>, c: usize, time: f64, y: &[f64]) {
+    pub fn switch<const JOINT_PATH: bool>(
+        &mut self,
+        system: &RigidSystem<'_, JOINT_PATH>,
+        c: usize,
+        time: f64,
+        y: &[f64],
+    ) {
         match self.open[c].take() {
             Some(e) => {
                 self.close(system, e, y);
@@ -107,7 +117,12 @@ impl EventTracker {
     }
 
     /// Event `e`'s impulses: the integrals in `y` less those at its touch-down.
-    fn close(&mut self, system: &RigidSystem<'_>, e: usize, y: &[f64]) {
+    fn close<const JOINT_PATH: bool>(
+        &mut self,
+        system: &RigidSystem<'_, JOINT_PATH>,
+        e: usize,
+        y: &[f64],
+    ) {
         let start = self.start_impulse[e];
         let event = &mut self.events[e];
         let i = system.layout.impulse_index(event.contact);
@@ -118,7 +133,13 @@ impl EventTracker {
         }
     }
 
-    fn touch_down(&mut self, system: &RigidSystem<'_>, c: usize, time: f64, y: &[f64]) {
+    fn touch_down<const JOINT_PATH: bool>(
+        &mut self,
+        system: &RigidSystem<'_, JOINT_PATH>,
+        c: usize,
+        time: f64,
+        y: &[f64],
+    ) {
         let i = system.layout.impulse_index(c);
         self.open[c] = Some(self.events.len());
         self.start_impulse.push(std::array::from_fn(|k| y[i + k]));
@@ -135,9 +156,9 @@ impl EventTracker {
     /// Updates every event that was open during the last step: its maxima on a grid
     /// of `PEAK_SUBSTEPS` inner points and the step's end, and its work by Boole's
     /// rule on that grid and the step's start.
-    pub fn track_step(
+    pub fn track_step<const JOINT_PATH: bool>(
         &mut self,
-        system: &RigidSystem<'_>,
+        system: &RigidSystem<'_, JOINT_PATH>,
         stepper: &RigidStepper,
         scratch: &mut StateVector,
         step_start: f64,
@@ -184,7 +205,11 @@ impl EventTracker {
 
     /// Closes the events still open at the end `time` (s) of the run, state `y`:
     /// their impulses so far, lift-off left `None`.
-    pub fn finish(&mut self, system: &RigidSystem<'_>, y: &[f64]) {
+    pub fn finish<const JOINT_PATH: bool>(
+        &mut self,
+        system: &RigidSystem<'_, JOINT_PATH>,
+        y: &[f64],
+    ) {
         for c in 0..self.open.len() {
             if let Some(e) = self.open[c].take() {
                 self.close(system, e, y);
@@ -194,19 +219,23 @@ impl EventTracker {
 }
 
 /// Contact `c`'s signed separation (m) in state `y`.
-fn separation(system: &RigidSystem<'_>, y: &[f64], c: usize) -> f64 {
+fn separation<const JOINT_PATH: bool>(
+    system: &RigidSystem<'_, JOINT_PATH>,
+    y: &[f64],
+    c: usize,
+) -> f64 {
     at_poses(system, y, c, pair_separation)
 }
 
 /// Contact `c`'s indentation rate δ̇ (m/s) in state `y` (see [`pair_rate`]).
-fn rate(system: &RigidSystem<'_>, y: &[f64], c: usize) -> f64 {
+fn rate<const JOINT_PATH: bool>(system: &RigidSystem<'_, JOINT_PATH>, y: &[f64], c: usize) -> f64 {
     at_poses(system, y, c, pair_rate)
 }
 
 /// `of` (a pair quantity of the contact geometry) for contact `c` at its two bodies'
 /// poses in state `y`.
-fn at_poses(
-    system: &RigidSystem<'_>,
+fn at_poses<const JOINT_PATH: bool>(
+    system: &RigidSystem<'_, JOINT_PATH>,
     y: &[f64],
     c: usize,
     of: impl Fn(&Model, &Contact, &Pose, &Pose) -> f64,
@@ -222,7 +251,11 @@ fn at_poses(
 }
 
 /// Kinetic energy (J) of contact `c`'s moving bodies in state `y`.
-fn kinetic_energy(system: &RigidSystem<'_>, y: &[f64], c: usize) -> f64 {
+fn kinetic_energy<const JOINT_PATH: bool>(
+    system: &RigidSystem<'_, JOINT_PATH>,
+    y: &[f64],
+    c: usize,
+) -> f64 {
     let contact = &system.model.contacts[c];
     system.kinetic_energy(y, contact.body_1) + system.kinetic_energy(y, contact.body_2)
 }

@@ -32,7 +32,7 @@ pub struct Linearisation {
     probe: Option<[StateVector; 3]>,
 }
 
-impl LinearlyImplicit<f64, StateVector> for RigidSystem<'_> {
+impl<const JOINT_PATH: bool> LinearlyImplicit<f64, StateVector> for RigidSystem<'_, JOINT_PATH> {
     fn jacobian(
         &mut self,
         time: f64,
@@ -93,7 +93,7 @@ impl LinearlyImplicit<f64, StateVector> for RigidSystem<'_> {
     }
 }
 
-impl RigidSystem<'_> {
+impl<const JOINT_PATH: bool> RigidSystem<'_, JOINT_PATH> {
     /// An estimate of the spectral radius of the kept Jacobian (1/s): the growth
     /// ‖Jᵏx‖ per power from k = 8 to 16 (a ratio of powers, so a dominant complex pair
     /// — a contact's oscillation — counts by its modulus too). 0 before any Jacobian.

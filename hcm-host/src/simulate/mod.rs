@@ -188,6 +188,29 @@ pub(crate) fn simulate_observing(
     model: &Model,
     observed: Observed,
 ) -> Result<Simulation, SimulationError> {
+    run_on_path::<true>(model, observed)
+}
+
+/// [`simulate`] with the joints' loads compiled in (`JOINT_PATH` true, what [`simulate`]
+/// runs) or out (false: the derivative as it was before joints). A scene with joints
+/// always takes the joint path. For measuring what the joint path costs a scene without
+/// joints, both in one benchmark run (`benches/ball_simulation.rs`); generic, so that
+/// only a caller asking for `false` compiles that twin.
+#[doc(hidden)]
+pub fn simulate_on_path<const JOINT_PATH: bool>(
+    model: &Model,
+) -> Result<Simulation, SimulationError> {
+    if !JOINT_PATH && !model.joints.is_empty() {
+        return run_on_path::<true>(model, Observed::Events);
+    }
+    run_on_path::<JOINT_PATH>(model, Observed::Events)
+}
+
+/// [`simulate_observing`] on the derivative `JOINT_PATH` picks ([`RigidSystem`]).
+fn run_on_path<const JOINT_PATH: bool>(
+    model: &Model,
+    observed: Observed,
+) -> Result<Simulation, SimulationError> {
     fits_in_memory(model)?;
     let spec = &model.scenario.simulation;
     let record = &model.scenario.record;
@@ -201,7 +224,7 @@ pub(crate) fn simulate_observing(
     );
     let layout = RigidLayout::new(model);
     let y0 = layout.initial_state(model);
-    let mut system = RigidSystem::new(model, &layout);
+    let mut system = RigidSystem::<JOINT_PATH>::on_path(model, &layout);
     system.latch(&y0.0);
     // A tracker of no contact finds no crossing and tracks no event.
     let mut tracker = match observed {

@@ -65,9 +65,9 @@ impl Recorder {
     /// Samples the step just taken: the ticks in (start, end], at the contact rate
     /// where `events` say a contact (or its margin) is, and — for a touch-down found
     /// in this step — the margin before it, from the recent steps.
-    pub fn record_step(
+    pub fn record_step<const JOINT_PATH: bool>(
         &mut self,
-        system: &RigidSystem<'_>,
+        system: &RigidSystem<'_, JOINT_PATH>,
         stepper: &RigidStepper,
         events: &EventTracker,
         first: bool,
@@ -196,8 +196,8 @@ fn in_window(events: &EventTracker, t: f64, margin: f64) -> bool {
 }
 
 /// Every recorded body at time `t` (s), in state `y`; `loads` is working space.
-fn sample_at(
-    system: &RigidSystem<'_>,
+fn sample_at<const JOINT_PATH: bool>(
+    system: &RigidSystem<'_, JOINT_PATH>,
     y: &[f64],
     t: f64,
     recorded: &[usize],

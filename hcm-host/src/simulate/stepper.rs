@@ -69,8 +69,8 @@ impl Clone for RigidStepper {
 
 impl RigidStepper {
     /// An explicit stepper at (`time` (s), `state`).
-    pub fn new(
-        system: &mut RigidSystem<'_>,
+    pub fn new<const JOINT_PATH: bool>(
+        system: &mut RigidSystem<'_, JOINT_PATH>,
         time: f64,
         state: StateVector,
         settings: Settings<f64>,
@@ -89,9 +89,9 @@ impl RigidStepper {
     /// (h·ρ ≥ 3); Dopri5 again once RODAS's next step is inside that region
     /// (h·ρ(J) < 2). The switch happens before the step,
     /// so the dense output always covers the step just taken.
-    pub fn step(
+    pub fn step<const JOINT_PATH: bool>(
         &mut self,
-        system: &mut RigidSystem<'_>,
+        system: &mut RigidSystem<'_, JOINT_PATH>,
         until: f64,
     ) -> Result<(), IntegrationError> {
         if self.stiff != matches!(self.method, Method::Implicit(_)) {
@@ -115,7 +115,11 @@ impl RigidStepper {
         Ok(())
     }
 
-    fn switch(&mut self, system: &mut RigidSystem<'_>, stiff: bool) {
+    fn switch<const JOINT_PATH: bool>(
+        &mut self,
+        system: &mut RigidSystem<'_, JOINT_PATH>,
+        stiff: bool,
+    ) {
         let (time, state) = (self.time(), self.state().clone());
         let (accepted, rejected) = self.steps();
         self.earlier = (accepted, rejected);
@@ -133,7 +137,12 @@ impl RigidStepper {
     }
 
     /// Restarts the current method from (`time` (s), `state`).
-    pub fn restart(&mut self, system: &mut RigidSystem<'_>, time: f64, state: StateVector) {
+    pub fn restart<const JOINT_PATH: bool>(
+        &mut self,
+        system: &mut RigidSystem<'_, JOINT_PATH>,
+        time: f64,
+        state: StateVector,
+    ) {
         match &mut self.method {
             Method::Explicit(s) => s.restart(system, time, state),
             Method::Implicit(s) => s.restart(system, time, state),

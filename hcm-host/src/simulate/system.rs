@@ -17,8 +17,11 @@ use hcm_core::model::{ContactPoint, Manifold, PairLoad, MAX_POINTS};
 use hcm_core::rigid::RigidBody;
 use nalgebra::Vector3;
 
-/// A scenario's dynamics with the current point histories.
-pub struct RigidSystem<'a> {
+/// A scenario's dynamics with the current point histories. `JOINT_PATH` false compiles
+/// the joints' loads out of the derivative (a scene's joints then go unheeded): what
+/// `benches/ball_simulation.rs` measures the joint path's cost on a scene without joints
+/// against ([`super::simulate_on_path`]); every command runs the default, true.
+pub struct RigidSystem<'a, const JOINT_PATH: bool = true> {
     /// The model.
     pub(crate) model: &'a Model,
     /// State layout.
@@ -33,6 +36,13 @@ pub struct RigidSystem<'a> {
     scratch: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// The Jacobian and factored W of the linearly implicit steps.
     pub(super) linear: Linearisation,
+}
+
+impl RigidSystem<'_> {
+    /// The system of `model` with no contact history (the joint path in).
+    pub fn new<'m>(model: &'m Model, layout: &'m RigidLayout) -> RigidSystem<'m> {
+        RigidSystem::on_path(model, layout)
+    }
 }
 
 /// A contact's touching points with their feature ids and the two bodies' poses.
@@ -62,9 +72,9 @@ pub struct ContactLoad {
     pub(crate) dissipation: f64,
 }
 
-impl RigidSystem<'_> {
-    /// The system of `model` with no contact history.
-    pub fn new<'m>(model: &'m Model, layout: &'m RigidLayout) -> RigidSystem<'m> {
+impl<const JOINT_PATH: bool> RigidSystem<'_, JOINT_PATH> {
+    /// The system of `model` with no contact history, its derivative on `JOINT_PATH`.
+    pub fn on_path<'m>(model: &'m Model, layout: &'m RigidLayout) -> RigidSystem<'m, JOINT_PATH> {
         let bodies = model
             .bodies
             .iter()
@@ -261,7 +271,7 @@ impl RigidSystem<'_> {
     }
 }
 
-impl RigidSystem<'_> {
+impl<const JOINT_PATH: bool> RigidSystem<'_, JOINT_PATH> {
     /// Adds the joints' own torques, then their constraint forces and torques, to
     /// `loads` (the contacts' so far), from every body's motion without the constraints
     /// (`joints.rs`).
@@ -308,7 +318,7 @@ impl RigidSystem<'_> {
     }
 }
 
-impl OdeSystem<f64, StateVector> for RigidSystem<'_> {
+impl<const JOINT_PATH: bool> OdeSystem<f64, StateVector> for RigidSystem<'_, JOINT_PATH> {
     fn derivative(&mut self, _time: f64, state: &StateVector, derivative: &mut StateVector) {
         let (y, dy) = (&state.0, &mut derivative.0);
         let mut loads = std::mem::take(&mut self.scratch);
@@ -318,7 +328,7 @@ impl OdeSystem<f64, StateVector> for RigidSystem<'_> {
             dy[i..i + 3].copy_from_slice(load.on_mover.0.as_slice());
             dy[i + 3..i + 6].copy_from_slice(load.on_mover.1.as_slice());
         });
-        if !self.model.joints.is_empty() {
+        if JOINT_PATH && !self.model.joints.is_empty() {
             self.add_joint_loads(y, &mut loads);
         }
         for (b, body) in self.model.bodies.iter().enumerate() {
