@@ -90,7 +90,7 @@ impl Peers {
         if let Some(first) = settings.first {
             command.arg("--first").arg(first.to_string());
         }
-        if settings.fit_stride > 1 {
+        if self.script == Path::new(ELBOW_SCRIPT) {
             // The peers fit the very tosses hcm's fit saw.
             command
                 .arg("--fit-stride")
