@@ -13,7 +13,7 @@ use rand::RngExt;
 /// starts 0.15–0.25 m above the origin; the joint turned by ±0.8 rad from the
 /// scenario's; the pair moving at 0.8–1.6 m/s sideways and 0.5 m/s down, spinning at
 /// up to 6 rad/s (3 about the vertical), the child turning about the joint at ±5 rad/s
-/// more.
+/// more (a hinge's; a slide or a bolt thrown as one rigid piece).
 pub fn throw_mechanism(model: &mut Model, rng: &mut impl RngExt) {
     let joint = model.joints[0].clone();
     let [parent, child] = joint.bodies;
@@ -25,8 +25,12 @@ pub fn throw_mechanism(model: &mut Model, rng: &mut impl RngExt) {
         )
     };
     // The joint opened by Δθ: the child turned about the axis through the anchor.
+    // A hinge only: a slide or a bolt keeps its links' relative turn (the draws are
+    // made all the same, so that a hinge's throws do not depend on it).
+    let hinge = joint.kind == hcm_host::scenario::JointKind::Revolute;
     let (point, axis) = anchor(model);
-    let open = UnitQuaternion::from_axis_angle(&axis, rng.random_range(-0.8..0.8));
+    let opening = rng.random_range(-0.8..0.8);
+    let open = UnitQuaternion::from_axis_angle(&axis, if hinge { opening } else { 0.0 });
     let c = &mut model.bodies[child];
     c.position = point + open * (c.position - point);
     c.orientation = open * c.orientation;
@@ -55,7 +59,7 @@ pub fn throw_mechanism(model: &mut Model, rng: &mut impl RngExt) {
         rng.random_range(-6.0..6.0),
         rng.random_range(-3.0..3.0),
     );
-    let rate = rng.random_range(-5.0..5.0);
+    let rate = rng.random_range(-5.0..5.0) * if hinge { 1.0 } else { 0.0 };
     for b in [parent, child] {
         let body = &mut model.bodies[b];
         body.velocity = velocity + spin.cross(&(body.position - lifted));

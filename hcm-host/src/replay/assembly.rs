@@ -16,6 +16,7 @@
 
 use super::initial_state::InitialState;
 use super::setup::TossSetup;
+use crate::scenario::{Joint, JointKind};
 use nalgebra::{UnitQuaternion, Vector3};
 
 /// `states` (one per mover, in the setup's order) assembled onto the setup's joints; no
@@ -37,28 +38,65 @@ pub(crate) fn assemble(setup: &TossSetup, states: &mut [InitialState]) {
     };
     let before = centre(states);
     for link in &setup.joints {
-        let joint = &link.joint;
         let parent = states[link.parent].clone();
-        let child = &states[link.child];
-        let angle = joint.angle(&parent.orientation, &child.orientation);
-        let axis = parent.orientation * joint.axis.into_inner();
-        let rate = (child.angular_velocity - parent.angular_velocity).dot(&axis);
-        let orientation = parent.orientation * UnitQuaternion::from_axis_angle(&joint.axis, angle);
-        let angular_velocity = parent.angular_velocity + axis * rate;
-        let (r_parent, r_child) = (
-            parent.orientation * joint.anchors[0],
-            orientation * joint.anchors[1],
-        );
+        let placed = place(&link.joint, &parent, &states[link.child]);
         let child = &mut states[link.child];
-        child.orientation = orientation;
-        child.angular_velocity = angular_velocity;
-        child.position = parent.position + r_parent - r_child;
-        child.velocity = parent.velocity + parent.angular_velocity.cross(&r_parent)
-            - angular_velocity.cross(&r_child);
+        (child.position, child.orientation) = (placed.0, placed.1);
+        (child.velocity, child.angular_velocity) = (placed.2, placed.3);
     }
     let after = centre(states);
     for s in states.iter_mut() {
         s.position += before.0 - after.0;
         s.velocity += before.1 - after.1;
     }
+}
+
+/// The child's position (m), orientation, velocity (m/s) and angular velocity (rad/s) that
+/// `joint` allows beside `parent`, nearest the child's own fit `child`: a hinge keeps the
+/// fits' angle and rate about its axis; a slide keeps their travel along its axis and its
+/// rate, the child turned as the parent; a fixed joint keeps neither.
+fn place(
+    joint: &Joint,
+    parent: &InitialState,
+    child: &InitialState,
+) -> (
+    Vector3<f64>,
+    UnitQuaternion<f64>,
+    Vector3<f64>,
+    Vector3<f64>,
+) {
+    let axis = parent.orientation * joint.axis.into_inner();
+    let (turn, spin) = match joint.kind {
+        JointKind::Revolute => {
+            let angle = joint.angle(&parent.orientation, &child.orientation);
+            let rate = (child.angular_velocity - parent.angular_velocity).dot(&axis);
+            (
+                UnitQuaternion::from_axis_angle(&joint.axis, angle),
+                axis * rate,
+            )
+        }
+        JointKind::Prismatic | JointKind::Fixed => (UnitQuaternion::identity(), Vector3::zeros()),
+    };
+    let orientation = parent.orientation * turn;
+    let angular_velocity = parent.angular_velocity + spin;
+    let r_parent = parent.orientation * joint.anchors[0];
+    let r_child = orientation * joint.anchors[1];
+    // A slide's travel s along its axis and its rate ṡ (the axis turning with the
+    // parent), from the fits' anchors.
+    let (travel, rate) = match joint.kind {
+        JointKind::Prismatic => {
+            let fitted = child.orientation * joint.anchors[1];
+            let gap = (child.position + fitted) - (parent.position + r_parent);
+            let slip = (child.velocity + child.angular_velocity.cross(&fitted))
+                - (parent.velocity + parent.angular_velocity.cross(&r_parent));
+            let rate = parent.angular_velocity.cross(&axis).dot(&gap) + axis.dot(&slip);
+            (axis * axis.dot(&gap), axis * rate)
+        }
+        _ => (Vector3::zeros(), Vector3::zeros()),
+    };
+    let arm = r_parent + travel;
+    let position = parent.position + arm - r_child;
+    let velocity = parent.velocity + parent.angular_velocity.cross(&arm) + rate
+        - angular_velocity.cross(&r_child);
+    (position, orientation, velocity, angular_velocity)
 }

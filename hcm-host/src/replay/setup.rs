@@ -186,21 +186,13 @@ fn mover(model: &Model, body: usize, moving: &[usize]) -> Result<Mover, String> 
     })
 }
 
-/// The joints of `model` between its `movers`, parents before children: every joint a
-/// hinge whose bodies both move (a joint to a fixed body, a slide or a fixed joint are
-/// not replayed from poses yet), and a mover the child of one joint at most, in a tree.
+/// The joints of `model` between its `movers`, parents before children: every joint
+/// one whose bodies both move (a joint to a fixed body is not replayed from poses yet),
+/// and a mover the child of one joint at most, in a tree.
 fn mover_joints(model: &Model, movers: &[Mover]) -> Result<Vec<MoverJoint>, String> {
     let index = |body: usize| movers.iter().position(|m| m.body == body);
     let mut joints = Vec::new();
     for joint in &model.joints {
-        if joint.kind != crate::scenario::JointKind::Revolute {
-            return Err(format!(
-                "joint `{}` is {}: a replay assembles its start onto hinges (revolute \
-                 joints) only so far; `hcm simulate` runs it",
-                joint.name,
-                joint.kind.name()
-            ));
-        }
         let (Some(parent), Some(child)) = (index(joint.bodies[0]), index(joint.bodies[1])) else {
             return Err(format!(
                 "joint `{}` holds a fixed body: a mechanism pinned to the world is not \
