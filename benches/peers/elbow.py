@@ -17,7 +17,6 @@ import argparse
 import csv
 import json
 import math
-import multiprocessing
 import os
 import sys
 import time
@@ -506,21 +505,15 @@ class Scorer(cube.Scorer):
     """The cube's pool of workers (each toss from a fresh world: the scores, in toss
     order, do not depend on the worker count), scoring the elbow's tosses."""
 
-    def __init__(self, tosses, workers, urdf):
-        _shared["tosses"] = tosses
-        _shared["urdf"] = urdf
-        self.index = {t.run: i for i, t in enumerate(tosses)}
-        self.workers = workers
-        context = multiprocessing.get_context("fork")
-        self.pool = context.Pool(workers) if workers > 1 else None
+    chunk = staticmethod(score_chunk)
 
-    def scores(self, peer, params, tosses, substeps=SUBSTEPS):
-        indices = [self.index[t.run] for t in tosses]
-        size = max(1, math.ceil(len(indices) / (4 * self.workers)))
-        jobs = [(peer, params, indices[i:i + size], substeps)
-                for i in range(0, len(indices), size)]
-        mapped = self.pool.map(score_chunk, jobs) if self.pool else map(score_chunk, jobs)
-        return [s for chunk in mapped for s in chunk]
+    def __init__(self, tosses, workers, urdf):
+        _shared["urdf"] = urdf
+        super().__init__(tosses, workers)
+
+    @staticmethod
+    def share(tosses):
+        _shared["tosses"] = tosses
 
 
 # -------------------------------------------------------------- fitting

@@ -434,20 +434,29 @@ class Scorer:
     """Scores tosses in a pool of workers; each toss is simulated from a fresh world,
     so the scores (returned in toss order) do not depend on the worker count."""
 
+    # What a worker runs on a chunk of tosses (a module-level function: the pool pickles
+    # it by name); the elbow's scorer names its own.
+    chunk = staticmethod(score_chunk)
+
     def __init__(self, tosses, workers):
-        _shared["tosses"] = tosses
-        cube_urdf()  # the workers share it
+        self.share(tosses)
         self.index = {t.run: i for i, t in enumerate(tosses)}
         self.workers = workers
         context = multiprocessing.get_context("fork")
         self.pool = context.Pool(workers) if workers > 1 else None
+
+    @staticmethod
+    def share(tosses):
+        """What the workers find when they fork: the tosses, and the cube's URDF."""
+        _shared["tosses"] = tosses
+        cube_urdf()
 
     def scores(self, peer, params, tosses, substeps=SUBSTEPS):
         indices = [self.index[t.run] for t in tosses]
         size = max(1, math.ceil(len(indices) / (4 * self.workers)))
         jobs = [(peer, params, indices[i:i + size], substeps)
                 for i in range(0, len(indices), size)]
-        mapped = self.pool.map(score_chunk, jobs) if self.pool else map(score_chunk, jobs)
+        mapped = self.pool.map(self.chunk, jobs) if self.pool else map(self.chunk, jobs)
         return [s for chunk in mapped for s in chunk]
 
     def close(self):

@@ -29,20 +29,21 @@ fn score(model: &Model, data: &Dataset) -> f64 {
     summary.position.mean + summary.rotation.mean
 }
 
-#[test]
-fn a_hidden_hinge_friction_is_learned_as_the_joint_s_torque_from_poses_alone() {
-    let physics = elbow(&[]);
-    let truth = elbow(&[format!("joint.hinge.law.viscous.damping={DAMPING}")]);
-    let thrown = hcm_tests::mechanism::thrown_mechanisms(&truth, 16, 5);
-    let (training, held_out) = split_tosses(&thrown);
+/// The hinge's residual of `physics` trained on `data` for at most `epochs` (no int8
+/// twin), and its f32 blob decoded as the simulator and a controller read it.
+fn trained(
+    physics: &Model,
+    data: &Dataset,
+    epochs: usize,
+) -> (hcm_host::train::Trained, ContactResidual) {
     let settings = hcm_host::train::ResidualSettings {
-        epochs: 150,
+        epochs,
         int8_epochs: 0,
         seed: 1,
     };
     let trained = hcm_host::train::train_joint_residual(
-        &physics,
-        &training,
+        physics,
+        data,
         0,
         hcm_host::train::HORIZON,
         &settings,
@@ -52,6 +53,16 @@ fn a_hidden_hinge_friction_is_learned_as_the_joint_s_torque_from_poses_alone() {
     let blob =
         hcm_host::export::blob(&trained.residual, hcm_core::residual::Quantisation::F32).unwrap();
     let residual = ContactResidual::decode(&blob.bytes).unwrap();
+    (trained, residual)
+}
+
+#[test]
+fn a_hidden_hinge_friction_is_learned_as_the_joint_s_torque_from_poses_alone() {
+    let physics = elbow(&[]);
+    let truth = elbow(&[format!("joint.hinge.law.viscous.damping={DAMPING}")]);
+    let thrown = hcm_tests::mechanism::thrown_mechanisms(&truth, 16, 5);
+    let (training, held_out) = split_tosses(&thrown);
+    let (trained, residual) = trained(&physics, &training, 150);
     let ContactResidual::JointTorque(joint) = &residual else {
         panic!(
             "a 2-input network decodes as a joint's: {:?}",
@@ -92,23 +103,7 @@ fn a_hidden_hinge_friction_is_learned_as_the_joint_s_torque_from_poses_alone() {
 fn a_joint_s_network_on_a_scene_without_joints_is_refused() {
     let physics = elbow(&[]);
     let thrown = hcm_tests::mechanism::thrown_mechanisms(&physics, 2, 1);
-    let settings = hcm_host::train::ResidualSettings {
-        epochs: 2,
-        int8_epochs: 0,
-        seed: 1,
-    };
-    let trained = hcm_host::train::train_joint_residual(
-        &physics,
-        &thrown,
-        0,
-        hcm_host::train::HORIZON,
-        &settings,
-        &hcm_host::progress::Silent,
-    )
-    .unwrap();
-    let blob =
-        hcm_host::export::blob(&trained.residual, hcm_core::residual::Quantisation::F32).unwrap();
-    let residual = ContactResidual::decode(&blob.bytes).unwrap();
+    let (_, residual) = trained(&physics, &thrown, 2);
     let cube = Scenario::load(&hcm_tests::scenario("cube_toss.toml"), &[])
         .unwrap()
         .model()

@@ -167,12 +167,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "int8 twin: RMS against the f32 network {:.3} N rounded → {:.3} N after {} epochs (worst {:.3} N), {:.2} s",
         tuned.rounded_rms, tuned.tuned_rms, tuned.epochs, tuned.tuned_max, tuned.seconds
     );
-    trained.residual.write(&args.out)?;
-    println!(
-        "→ {} (export with `hcm export --residual {0} --out residual.bin`)",
-        args.out.display()
-    );
-    Ok(())
+    written(&trained, &args.out)
 }
 
 /// The mechanism's path: joint `--joint`'s torque residual from the recorded poses, the
@@ -212,12 +207,7 @@ fn run_joint(args: &Args, pm2: &hcm_host::scenario::Model, data: &Dataset) -> an
              that its angle and rate would tell, or too few frames in flight"
         );
     }
-    trained.residual.write(&args.out)?;
-    println!(
-        "→ {} (export with `hcm export --residual {0} --out residual.bin`)",
-        args.out.display()
-    );
-    Ok(())
+    written(&trained, &args.out)
 }
 
 /// The rigid path: the wrench residual of Eq 12 on every touching sample (or those
@@ -269,10 +259,15 @@ fn run_rigid(
             silenced.join(", ")
         );
     }
-    trained.residual.write(&args.out)?;
+    written(&trained, &args.out)
+}
+
+/// Writes the trained file and says how to export it.
+fn written(trained: &hcm_host::train::Trained, out: &std::path::Path) -> anyhow::Result<()> {
+    trained.residual.write(out)?;
     println!(
         "→ {} (export with `hcm export --residual {0} --out residual.bin`)",
-        args.out.display()
+        out.display()
     );
     Ok(())
 }

@@ -19,7 +19,7 @@
 //! the contact than of the joint. The network so learns the joint's torque where the
 //! joint alone moves the links, and acts everywhere inside its envelope.
 
-use super::motion_samples::{frame_state, State};
+use super::motion_samples::{frame_state, rows_of_runs, State};
 use super::point_samples::RowTimes;
 use super::summed::SummedRow;
 use crate::dataset::{Dataset, Run, Sample};
@@ -27,7 +27,6 @@ use crate::replay::{assemble, orientation, prepare, InitialState, StateSource};
 use crate::replay::{TossError, TossSetup};
 use crate::scenario::{JointKind, Model, Pose};
 use crate::simulate::{joint_compliance, simulate};
-use rayon::prelude::*;
 use std::f64::consts::PI;
 
 /// Dense samples per frame of the physics' path (–).
@@ -66,17 +65,9 @@ pub fn joint_rows(
     }
     joint.residual = None;
     let setup = TossSetup::new(&model)?;
-    let per_run: Vec<Result<Vec<(SummedRow, f64)>, TossError>> = (data.runs.par_iter())
-        .map(|run| toss_rows(&model, &setup, run, j, horizon.max(1)))
-        .collect();
-    let (mut rows, mut at) = (Vec::new(), Vec::new());
-    for (index, result) in per_run.into_iter().enumerate() {
-        for (row, time) in result? {
-            rows.push(row);
-            at.push((index, time));
-        }
-    }
-    Ok((rows, at))
+    rows_of_runs(data, |run| {
+        toss_rows(&model, &setup, run, j, horizon.max(1))
+    })
 }
 
 /// The rows of one toss: one per window frame with a frame `horizon` periods on, of

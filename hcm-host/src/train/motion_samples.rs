@@ -75,9 +75,20 @@ pub fn motion_rows(
         });
     }
     let setup = TossSetup::new(&model)?;
-    let per_run: Vec<Result<Vec<(SummedRow, f64)>, TossError>> = (data.runs.par_iter())
-        .map(|run| toss_rows(&model, &setup, run, c, horizon.max(1)))
-        .collect();
+    rows_of_runs(data, |run| {
+        toss_rows(&model, &setup, run, c, horizon.max(1))
+    })
+}
+
+/// Every run's rows from `of_run` (each row with its start time, s), in parallel over the
+/// runs and gathered in the data's order with each row's run: the same rows whatever the
+/// thread count. The first run that fails stops it.
+pub(super) fn rows_of_runs(
+    data: &Dataset,
+    of_run: impl Fn(&Run) -> Result<Vec<(SummedRow, f64)>, TossError> + Sync + Send,
+) -> Result<(Vec<SummedRow>, RowTimes), TossError> {
+    let per_run: Vec<Result<Vec<(SummedRow, f64)>, TossError>> =
+        data.runs.par_iter().map(&of_run).collect();
     let (mut rows, mut at) = (Vec::new(), Vec::new());
     for (index, result) in per_run.into_iter().enumerate() {
         for (row, time) in result? {
