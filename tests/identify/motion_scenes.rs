@@ -108,6 +108,7 @@ fn a_ball_on_a_tilted_plate_is_fitted_from_its_poses() {
 }
 
 #[test]
+#[ignore = "study, about 10 s of both cores: kept out of CI's 15 minutes (docs/tests.md); cargo test -- --include-ignored"]
 fn a_block_on_a_block_is_fitted_from_its_poses() {
     let truth = [
         "contact.0.friction.mu_static=0.15".to_owned(),
@@ -181,6 +182,7 @@ fn identify_then_diagnose(hcm: &hcm_tests::cli::Hcm, file: &str) -> (serde_json:
 /// base polished, the table offset and then a speed-dependent restitution — the
 /// Hunt–Crossley χ the fit had — were named here).
 #[test]
+#[ignore = "study, about 10 s of both cores: kept out of CI's 15 minutes (docs/tests.md); cargo test -- --include-ignored"]
 fn identify_and_diagnose_on_poses_alone_replay_the_throws() {
     let hcm = hcm_tests::cli::Hcm::new();
     let truth = [
