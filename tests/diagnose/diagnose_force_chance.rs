@@ -47,6 +47,7 @@ fn named(d: &Diagnosis) -> Vec<(String, f64, (f64, f64))> {
 /// parameter that scatters, never the sensor's noise. The extended model's bands hold
 /// the held-out indicators nearer their nominal shares than the deterministic model's.
 #[test]
+#[ignore = "study, about 6 to 10 s of both cores: kept out of CI's 15 minutes (docs/tests.md); cargo test -- --include-ignored"]
 fn the_balls_pm1_scatter_is_named_with_its_sigma() {
     let d = diagnosed(&[], RUNS, 1);
     assert!(

@@ -222,6 +222,7 @@ fn identify_and_diagnose_on_poses_alone_replay_the_throws() {
 /// from motion cannot take (it soaks part of it up: the inertia at its bound, said):
 /// the diagnosis names it.
 #[test]
+#[ignore = "study, about 6 to 10 s of both cores: kept out of CI's 15 minutes (docs/tests.md); cargo test -- --include-ignored"]
 fn a_hidden_rolling_resistance_is_named_from_poses_alone() {
     let hcm = hcm_tests::cli::Hcm::new();
     let truth = [
@@ -241,6 +242,7 @@ fn a_hidden_rolling_resistance_is_named_from_poses_alone() {
 /// out as the force fixes them, and the held-out throws are replayed better than by
 /// the scenario.
 #[test]
+#[ignore = "study, about 6 to 10 s of both cores: kept out of CI's 15 minutes (docs/tests.md); cargo test -- --include-ignored"]
 fn force_and_motion_are_fitted_in_one_objective() {
     use hcm_host::identify::ForceData;
     use hcm_host::identify::{identify_motion_and_force, MotionParameters, MotionTarget};
