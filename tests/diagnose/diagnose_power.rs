@@ -115,6 +115,7 @@ fn show(x: f64) -> String {
 }
 
 #[test]
+#[ignore = "study, about 6 to 12 s of both cores: kept out of CI's 15 minutes (docs/tests.md); cargo test -- --include-ignored"]
 fn every_hidden_effect_is_named_with_its_parameter_in_at_least_8_of_10_seeds() {
     let jobs: Vec<(usize, u64)> = (0..CASES.len())
         .flat_map(|c| SEEDS.map(move |s| (c, s)))
