@@ -134,15 +134,9 @@ fn elliptic_k(k: f64) -> f64 {
 /// 4·√(I_p/(m·g·c))·K(sin(θ₀/2)), I_p = I + m·c² about the pivot, c = 0.15 m.
 #[test]
 fn a_compound_pendulum_swings_with_the_exact_period() {
-    let (half, theta) = (0.15, 0.5);
-    let q = about_y(theta);
-    let centre = -(q * Vector3::new(0.0, 0.0, half));
-    let zero = Vector3::zeros();
-    let bodies = link("link_1", half, centre, q, zero, zero);
-    let joints = joint(
-        ["world", "link_1"],
-        [Vector3::new(0.0, 0.0, 10.0), Vector3::new(0.0, 0.0, half)],
-    );
+    let (half, theta) = PENDULUM;
+    let (bodies, anchors) = released_pendulum();
+    let joints = joint(["world", "link_1"], anchors);
     let simulation = run(&scene(-G, &bodies, &joints, 3.0));
     let angles = swing(&simulation, "link_1");
     // Upward zero crossings, linearly interpolated.
@@ -364,18 +358,31 @@ fn the_elbow_toss_keeps_its_hinge_through_the_landing() {
     }
 }
 
+/// The pendulum's half length (m) and release angle (rad).
+const PENDULUM: (f64, f64) = (0.15, 0.5);
+
+/// The 0.3 m link released at 0.5 rad from the vertical, hung by its top end from a
+/// point 10 m above the world's plane: its body and the hinge's anchors (world, link).
+fn released_pendulum() -> (String, [Vector3<f64>; 2]) {
+    let (half, theta) = PENDULUM;
+    let q = about_y(theta);
+    let centre = -(q * Vector3::new(0.0, 0.0, half));
+    let zero = Vector3::zeros();
+    let bodies = link("link_1", half, centre, q, zero, zero);
+    (
+        bodies,
+        [Vector3::new(0.0, 0.0, 10.0), Vector3::new(0.0, 0.0, half)],
+    )
+}
+
 /// The compound pendulum with viscous and Coulomb friction in its hinge: the energy it
 /// loses is the work the joint's torque does on the swing, −∫ τ(θ̇)·θ̇ dt (the core's
 /// law along the recorded rate, by the trapezoid rule at 1 ms).
 #[test]
 fn joint_friction_takes_the_energy_its_torque_works() {
     use hcm_core::joint::{JointCoulomb, JointLaw, JointViscous};
-    let (half, theta) = (0.15, 0.5);
-    let q = about_y(theta);
-    let centre = -(q * Vector3::new(0.0, 0.0, half));
-    let zero = Vector3::zeros();
-    let bodies = link("link_1", half, centre, q, zero, zero);
-    let anchors = [Vector3::new(0.0, 0.0, 10.0), Vector3::new(0.0, 0.0, half)];
+    let (half, _) = PENDULUM;
+    let (bodies, anchors) = released_pendulum();
     let text =
         "{ viscous = { damping = 0.01 }, coulomb = { torque = 0.02, smoothing_rate = 0.01 } }";
     let joints = joint_with(["world", "link_1"], anchors, text);
@@ -728,12 +735,8 @@ fn a_spinning_slide_keeps_its_axis_momentum_and_energy() {
 /// little), and returns below its release angle, the stop's damper having taken energy.
 #[test]
 fn a_hinge_stop_turns_the_pendulum_back() {
-    let (half, theta) = (0.15, 0.5);
-    let q = about_y(theta);
-    let centre = -(q * Vector3::new(0.0, 0.0, half));
-    let zero = Vector3::zeros();
-    let bodies = link("link_1", half, centre, q, zero, zero);
-    let anchors = [Vector3::new(0.0, 0.0, 10.0), Vector3::new(0.0, 0.0, half)];
+    let (half, theta) = PENDULUM;
+    let (bodies, anchors) = released_pendulum();
     let stop = "{ limit = { lower = -0.3, upper = 0.6, stiffness = 500.0, damping = 0.5 } }";
     let joints = joint_with(["world", "link_1"], anchors, stop);
     let simulation = run(&scene(-G, &bodies, &joints, 1.0));

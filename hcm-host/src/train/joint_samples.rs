@@ -6,7 +6,7 @@
 //! `horizon` periods on, the mechanism is started at the recorded states of frame k
 //! (every link's pose and velocities — or the backward difference from frame k − 1 —
 //! assembled onto the joints as a replay's start is) and simulated over `horizon` frames
-//! to T = t_{k+h}, sampled densely ([`SUBSTEPS`] samples per frame). A torque pair τ(s)
+//! to T = t_{k+h}, sampled densely (the contact rows' `SUBSTEPS` samples per frame). A torque pair τ(s)
 //! on the joint at s < T turns it at T by (T − s)·c(s)·τ(s)·ds, c the joint's compliance
 //! at the bodies' poses then (`simulate::joint_compliance`): so the row's points are the
 //! dense samples, each with the joint's own state [θ (rad), θ̇ (rad/s)] as the network's
@@ -19,7 +19,7 @@
 //! the contact than of the joint. The network so learns the joint's torque where the
 //! joint alone moves the links, and acts everywhere inside its envelope.
 
-use super::motion_samples::{frame_state, rows_of_runs, State};
+use super::motion_samples::{frame_state, rows_of_runs, State, CLOCK_TOLERANCE, SUBSTEPS};
 use super::point_samples::RowTimes;
 use super::summed::SummedRow;
 use crate::dataset::{Dataset, Run, Sample};
@@ -28,12 +28,6 @@ use crate::replay::{TossError, TossSetup};
 use crate::scenario::{JointKind, Model, Pose};
 use crate::simulate::{joint_compliance, simulate};
 use std::f64::consts::PI;
-
-/// Dense samples per frame of the physics' path (–).
-pub const SUBSTEPS: usize = 16;
-
-/// How far a frame's time may lie off the grid of frame periods (as a fraction of one).
-const CLOCK_TOLERANCE: f64 = 1e-3;
 
 /// The rows of joint `j` of `physics` (its residual, if any, left out) from the recorded
 /// poses of every toss of `data`, over `horizon` frames each, with each row's run (index

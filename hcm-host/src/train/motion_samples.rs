@@ -39,7 +39,7 @@ pub const SUBSTEPS: usize = 16;
 
 /// How far a frame's time may lie off the grid of frame periods (as a fraction of one):
 /// a row needs its end frame exactly `horizon` periods on.
-const CLOCK_TOLERANCE: f64 = 1e-3;
+pub(super) const CLOCK_TOLERANCE: f64 = 1e-3;
 
 /// The rows of contact `c` of `physics` (its residual, if any, left out) from the
 /// recorded poses of every toss of `data`, over `horizon` frames each, with each row's
