@@ -1,0 +1,105 @@
+"""Every class of bad input the API shares with the `hcm` command is refused with the
+command's own message (its standard error after `error: `)."""
+
+import pytest
+
+import hcm
+
+BALL = "scenarios/bouncing_ball.toml"
+
+
+def write(folder, name, text):
+    path = folder / name
+    path.write_text(text)
+    return path
+
+
+# (class, the CLI's arguments, the same input through Python); `{tmp}` files are made
+# by `files` below.
+CASES = [
+    ("unknown law", ["force", "--law", "hurtz", "--depth", "1e-5"], lambda t: hcm.Law("hurtz")),
+    (
+        "missing law parameter",
+        ["force", "--law", "hertz", "--set", "stiffness=1e9", "--depth", "1e-5"],
+        lambda t: hcm.Law("hertz", stiffness=1e9),
+    ),
+    (
+        "unknown law parameter",
+        ["force", "--law", "hertz", "--set", "stiffness=1e9", "--set", "exponent=1.5", "--set", "damping=3", "--depth", "1e-5"],
+        lambda t: hcm.Law("hertz", stiffness=1e9, exponent=1.5, damping=3),
+    ),
+    (
+        "law parameter out of its domain",
+        ["force", "--law", "hertz", "--set", "stiffness=-1e9", "--set", "exponent=1.5", "--depth", "1e-5"],
+        lambda t: hcm.Law("hertz", stiffness=-1e9, exponent=1.5),
+    ),
+    (
+        "scenario file missing",
+        ["simulate", "--scenario", "{tmp}/absent.toml", "--out", "{tmp}/out.csv"],
+        lambda t: hcm.Scenario.load(t / "absent.toml"),
+    ),
+    (
+        "scenario not TOML",
+        ["simulate", "--scenario", "{tmp}/broken.toml", "--out", "{tmp}/out.csv"],
+        lambda t: hcm.Scenario.load(t / "broken.toml"),
+    ),
+    (
+        "override of an absent key",
+        ["simulate", "--scenario", BALL, "--set", "body.rock.velocity=[0,0,-1]", "--out", "{tmp}/out.csv"],
+        lambda t: hcm.Scenario.load(BALL, set=["body.rock.velocity=[0,0,-1]"]),
+    ),
+    (
+        "override not key=value",
+        ["simulate", "--scenario", BALL, "--set", "contact.0.law", "--out", "{tmp}/out.csv"],
+        lambda t: hcm.Scenario.load(BALL).with_set(["contact.0.law"]),
+    ),
+    (
+        "scenario with a law's wrong parameter",
+        ["simulate", "--scenario", BALL, "--set", "contact.0.law=\"hertz\"", "--out", "{tmp}/out.csv"],
+        lambda t: hcm.simulate(hcm.Scenario.load(BALL, set=['contact.0.law="hertz"'])),
+    ),
+    (
+        "physics file missing",
+        ["simulate", "--scenario", BALL, "--physics", "{tmp}/absent_pm2.toml", "--out", "{tmp}/out.csv"],
+        lambda t: hcm.Scenario.load(BALL).with_physics(t / "absent_pm2.toml"),
+    ),
+    (
+        "physics file for other bodies",
+        ["simulate", "--scenario", BALL, "--physics", "{tmp}/other_pm2.toml", "--out", "{tmp}/out.csv"],
+        lambda t: hcm.Scenario.load(BALL).with_physics(t / "other_pm2.toml"),
+    ),
+    (
+        "data file with a bad number",
+        ["indicators", "--scenario", BALL, "--data", "{tmp}/bad.csv"],
+        lambda t: hcm.Dataset.read_csv(t / "bad.csv"),
+    ),
+    (
+        "data file without its columns",
+        ["indicators", "--scenario", BALL, "--data", "{tmp}/headless.csv"],
+        lambda t: hcm.Dataset.read_csv(t / "headless.csv"),
+    ),
+]
+
+
+@pytest.fixture
+def files(tmp_path):
+    write(tmp_path, "broken.toml", "name = \"x\"\n[body.ball\nmass = 1\n")
+    write(
+        tmp_path,
+        "other_pm2.toml",
+        '[[contact]]\nbodies = ["peg", "hole"]\nlaw = "hertz"\n\n[contact.parameters]\nstiffness = 1e9\nexponent = 1.5\n',
+    )
+    header = "run,body,time,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,fx,fy,fz,tx,ty,tz\n"
+    write(tmp_path, "bad.csv", header + "0,ball,0.0" + ",0" * 15 + ",1.5e,0,0,0\n")
+    write(tmp_path, "headless.csv", "0,ball,0.0\n")
+    return tmp_path
+
+
+@pytest.mark.parametrize("name, arguments, call", CASES, ids=[c[0] for c in CASES])
+def test_python_raises_the_cli_s_message(cli, root, files, monkeypatch, name, arguments, call):
+    arguments = [a.replace("{tmp}", str(files)) for a in arguments]
+    expected = cli.refusal(*arguments)
+    monkeypatch.chdir(root)
+    with pytest.raises(hcm.HcmError) as raised:
+        call(files)
+    assert str(raised.value) == expected
