@@ -98,10 +98,7 @@ impl Dataset {
 
     /// The columns: `(run ids, body names, numeric [rows, 20])`, one row per sample
     /// per body, runs and bodies in the file's order.
-    fn arrays<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> PyResult<Columns<'py>> {
+    fn arrays<'py>(&self, py: Python<'py>) -> PyResult<Columns<'py>> {
         let (mut runs, mut bodies, mut rows) = (Vec::new(), Vec::new(), Vec::new());
         for run in &self.dataset.runs {
             for track in &run.bodies {
