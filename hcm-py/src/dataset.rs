@@ -22,6 +22,19 @@ type Columns<'py> = (Vec<String>, Vec<String>, Bound<'py, PyArray2<f64>>);
 #[derive(Clone)]
 pub struct Dataset {
     pub dataset: hcm_host::dataset::Dataset,
+    /// What the data are called in messages and fit records: the file's path as given,
+    /// or `<arrays>`, `<simulated>`, `<S1>`, ….
+    pub name: String,
+}
+
+impl Dataset {
+    /// `dataset`, called `name`.
+    pub fn named(dataset: hcm_host::dataset::Dataset, name: &str) -> Self {
+        Dataset {
+            dataset,
+            name: name.to_owned(),
+        }
+    }
 }
 
 #[pymethods]
@@ -32,7 +45,16 @@ impl Dataset {
         let dataset = py
             .detach(|| hcm_host::dataset::Dataset::read(&path))
             .map_err(hcm_error)?;
-        Ok(Dataset { dataset })
+        Ok(Dataset::named(dataset, &path.display().to_string()))
+    }
+
+    /// Reads measured-data CSV text; `name` names it in messages.
+    #[staticmethod]
+    fn from_csv_text(py: Python<'_>, text: &str, name: &str) -> PyResult<Self> {
+        let dataset = py
+            .detach(|| hcm_host::dataset::Dataset::from_reader(name, text.as_bytes()))
+            .map_err(hcm_error)?;
+        Ok(Dataset::named(dataset, name))
     }
 
     /// A data set from its columns: `run` and `body` (text, one per row) and the
@@ -80,7 +102,7 @@ impl Dataset {
         let dataset = py
             .detach(|| hcm_host::dataset::Dataset::from_reader("<arrays>", text.as_bytes()))
             .map_err(hcm_error)?;
-        Ok(Dataset { dataset })
+        Ok(Dataset::named(dataset, "<arrays>"))
     }
 
     /// Writes the data set as a measured-data CSV file, atomically.
@@ -111,6 +133,12 @@ impl Dataset {
         }
         let numeric = PyArray2::from_vec2(py, &rows).map_err(|e| message(e.to_string()))?;
         Ok((runs, bodies, numeric))
+    }
+
+    /// What the data are called in messages: the file's path, or `<arrays>`, ….
+    #[getter]
+    fn name(&self) -> String {
+        self.name.clone()
     }
 
     /// The run ids, in the file's order.

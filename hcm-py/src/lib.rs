@@ -7,11 +7,19 @@
 //! model through the core, and how hcm's errors become Python exceptions.
 
 mod dataset;
+mod diagnose;
 mod errors;
+mod evaluate;
+mod experiment;
 mod hybrid;
+mod identify;
 mod laws;
+mod objective;
+mod progress;
 mod scenario;
 mod simulate;
+mod threads;
+mod train;
 
 use pyo3::prelude::*;
 
@@ -26,5 +34,15 @@ fn _hcm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<dataset::Dataset>()?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_class::<hybrid::HybridModel>()?;
+    m.add_function(wrap_pyfunction!(experiment::generate, m)?)?;
+    m.add_class::<identify::Physics>()?;
+    m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
+    m.add_class::<train::Residual>()?;
+    m.add_function(wrap_pyfunction!(train::train, m)?)?;
+    m.add_function(wrap_pyfunction!(evaluate::evaluate, m)?)?;
+    m.add_class::<objective::Objective>()?;
+    m.add_function(wrap_pyfunction!(threads::set_threads, m)?)?;
+    m.add_class::<diagnose::Diagnosis>()?;
+    m.add_function(wrap_pyfunction!(diagnose::diagnose, m)?)?;
     Ok(())
 }

@@ -49,6 +49,25 @@ impl Scenario {
         Ok(Scenario { scenario })
     }
 
+    /// This scenario with a physics file made in Python (`identify`, a diagnosis's
+    /// extended model) in place of its contact laws.
+    fn with_physics_object(&self, physics: &crate::identify::Physics) -> PyResult<Self> {
+        let scenario = physics.apply(&self.scenario)?;
+        Ok(Scenario { scenario })
+    }
+
+    /// The scenario as TOML text, every override applied (`from_toml` of it with `path`
+    /// gives it back).
+    fn to_toml(&self) -> String {
+        self.scenario.to_toml()
+    }
+
+    /// The scenario file's path (or the name its text was given).
+    #[getter]
+    fn path(&self) -> PathBuf {
+        self.scenario.path().to_owned()
+    }
+
     /// The scenario's name.
     #[getter]
     fn name(&self) -> String {

@@ -14,9 +14,8 @@ pub fn simulate(py: Python<'_>, scenario: &Scenario) -> PyResult<Dataset> {
     let simulation = py
         .detach(|| hcm_host::simulate::simulate(&model))
         .map_err(hcm_error)?;
-    Ok(Dataset {
-        dataset: hcm_host::dataset::Dataset {
-            runs: vec![simulation.run],
-        },
-    })
+    let dataset = hcm_host::dataset::Dataset {
+        runs: vec![simulation.run],
+    };
+    Ok(Dataset::named(dataset, "<simulated>"))
 }

@@ -24,4 +24,5 @@ mod results_json;
 mod rigid_bad_data;
 mod rigid_pipeline;
 mod rigid_scenario_errors;
+mod shards;
 mod simulate_members;

@@ -3,17 +3,14 @@
 
 use super::progress_bar;
 use hcm_host::dataset::{inventory_summary, DataUse, Dataset, Evidence};
-use hcm_host::diagnose::structure_figures;
 use hcm_host::diagnose::BaseFreedom;
 use hcm_host::diagnose::MotionBase;
-use hcm_host::diagnose::{answer, diagnosis_markdown};
-use hcm_host::diagnose::{diagnose, DiagnoseSettings, Diagnosis};
-use hcm_host::identify::PhysicsBody;
-use hcm_host::identify::{FitRecord, Physics};
-use hcm_host::output::{write_bytes, StagedDirectory};
+use hcm_host::diagnose::{diagnose, DiagnoseSettings};
+use hcm_host::diagnose::{write_diagnosis, DiagnosisOf};
+use hcm_host::identify::Physics;
+use hcm_host::output::StagedDirectory;
 use hcm_host::scenario::{Model, Scenario};
-use serde_json::json;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Diagnose a physics model against data: what is wrong, why, and the model extended.
 ///
@@ -255,103 +252,14 @@ fn diagnose_line_force(args: &Args, inputs: &Inputs) -> anyhow::Result<()> {
     let diagnosis = diagnose(&inputs.base, &inputs.data, &settings)?;
     bar.finish_and_clear();
 
-    extended_physics(&inputs.base, args, &diagnosis).write(
-        &out.join("extended.toml"),
-        &format!(
-            "extended model of `{}` from hcm diagnose",
-            inputs.scenario.name
-        ),
-    )?;
-    write_bytes(
-        &out.join("diagnosis.json"),
-        serde_json::to_string_pretty(&json_of(&diagnosis))?.as_bytes(),
-    )?;
-    let figures = write_figures(&out, &diagnosis)?;
-    let report = diagnosis_markdown(&diagnosis, &figures);
-    write_bytes(&out.join("report.md"), report.as_bytes())?;
+    let written = DiagnosisOf {
+        base: &inputs.base,
+        contact: args.contact,
+        data: &args.data.display().to_string(),
+        scenario: &inputs.scenario.name,
+    };
+    let report = write_diagnosis(&out, &written, &diagnosis)?;
     staged.commit()?;
     print!("{report}");
     Ok(())
-}
-
-/// The extended model in the physics-file format every command reads: the re-fitted
-/// law with its effects on the diagnosed contact, and the air drag if one was fitted.
-fn extended_physics(base: &Model, args: &Args, diagnosis: &Diagnosis) -> Physics {
-    let mut extended = Physics::for_contact(
-        base,
-        args.contact,
-        &diagnosis.extended.base,
-        FitRecord {
-            method: "diagnose".into(),
-            data: args.data.display().to_string(),
-            runs: diagnosis.runs.training,
-            ..FitRecord::default()
-        },
-    );
-    extended.contacts[0].effects = diagnosis.extended.effects.iter().copied().collect();
-    if let Some(chance) = &diagnosis.chance {
-        extended.contacts[0].noise = chance.noise().into_iter().collect();
-    }
-    if let Some(air_drag) = diagnosis.drag.as_ref().and_then(|d| d.air_drag()) {
-        extended.bodies.push(PhysicsBody {
-            name: diagnosis.drag_body.clone(),
-            air_drag,
-        });
-    }
-    extended
-}
-
-/// Writes the residual figures (base vs extended) to `out` as SVG and PNG; their names.
-fn write_figures(out: &Path, diagnosis: &Diagnosis) -> anyhow::Result<Vec<&'static str>> {
-    let mut figures = Vec::new();
-    for (name, figure) in structure_figures(
-        &diagnosis.before,
-        Some(&diagnosis.after),
-        ("base", "extended"),
-    ) {
-        write_bytes(&out.join(format!("{name}.svg")), figure.svg().as_bytes())?;
-        write_bytes(&out.join(format!("{name}.png")), &figure.png()?)?;
-        figures.push(name);
-    }
-    Ok(figures)
-}
-
-/// diagnosis.json (documented in the README, "hcm diagnose").
-fn json_of(d: &Diagnosis) -> serde_json::Value {
-    let causes: Vec<_> = d
-        .causes
-        .iter()
-        .map(|c| {
-            json!({
-                "effect": c.effect,
-                "kind": c.family.kind(),
-                "parameters": c.parameters.iter().map(|p| (p.name.clone(), json!(p.value))).collect::<serde_json::Map<_, _>>(),
-                "ci": c.parameters.iter().map(|p| (p.name.clone(), json!([p.ci.0, p.ci.1]))).collect::<serde_json::Map<_, _>>(),
-                "share": c.share,
-            })
-        })
-        .collect();
-    json!({
-        "causes": causes,
-        "unexplained_share": d.unexplained_share,
-        "partial": d.partial,
-        "answer": answer(d),
-        "noise_sigma": d.noise.sigma,
-        "base_structured": d.base_structured,
-        "runs": d.runs,
-        "base_parameters": d.base_parameters,
-        "base_freedom": d.base_freedom,
-        "selection": d.selection,
-        "naming": d.naming,
-        "data_quality": d.data_quality,
-        "not_accepted": d.not_accepted,
-        "ambiguous": d.ambiguous,
-        "chance": d.chance,
-        "sensor_gain": d.sensor_gain,
-        "before": d.before,
-        "after": d.after,
-        "gain": d.gain,
-        "in_sample": d.in_sample,
-        "air_drag_fit": d.drag,
-    })
 }

@@ -1,7 +1,7 @@
 //! `hcm generate`: the noise-added experiment (PM1) and its S1/S2 split.
 
 use super::progress::Bars;
-use hcm_host::experiment::ExperimentWriter;
+use hcm_host::experiment::{write_shard, ExperimentWriter, Shard};
 use hcm_host::output::bytes;
 use std::path::{Path, PathBuf};
 
@@ -36,8 +36,20 @@ pub struct Args {
     seed: u64,
     /// Output file (CSV, measured-data format) for every run; S1 and S2 are written
     /// beside it as OUT.s1.csv and OUT.s2.csv (data.csv → data.s1.csv, data.s2.csv).
+    /// With --shard, OUT holds the shard's runs alone (no S1, S2).
     #[arg(long)]
     out: PathBuf,
+    /// Make only shard I of N (numbered from 0: 0/4 … 3/4), the runs
+    /// [⌊T·I/N⌋, ⌊T·(I+1)/N⌋) of the T runs, to OUT alone — the rows they have in the
+    /// whole experiment; `--merge` joins the shards' files. On a Slurm job array the
+    /// default is the array task's: SLURM_ARRAY_TASK_ID − SLURM_ARRAY_TASK_MIN of
+    /// SLURM_ARRAY_TASK_COUNT.
+    #[arg(long, value_name = "I/N", value_parser = hcm_host::experiment::Shard::parse)]
+    shard: Option<hcm_host::experiment::Shard>,
+    /// Join shard files (`--shard`'s OUTs, in shard order) into OUT, S1 and S2: the same
+    /// bytes as one `hcm generate` with the same --scenario, --set, --runs and --seed.
+    #[arg(long, value_name = "SHARD", num_args = 1.., conflicts_with = "shard")]
+    merge: Vec<PathBuf>,
 }
 
 /// OUT with `suffix` before the extension: data.csv → data.s1.csv.
@@ -54,6 +66,29 @@ const LARGE_OUTPUT: u64 = 1_000_000_000;
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
+    let shard = match (args.shard, args.merge.is_empty()) {
+        (Some(shard), _) => Some(shard),
+        (None, true) => Shard::from_slurm(|name| std::env::var(name).ok())
+            .transpose()
+            .map_err(anyhow::Error::msg)?,
+        (None, false) => None,
+    };
+    if let Some(shard) = shard {
+        let progress = Bars::named(|_| "simulating runs");
+        let written = write_shard(
+            &scenario,
+            (args.runs, args.seed),
+            shard,
+            &args.out,
+            &progress,
+        )?;
+        println!(
+            "{}: shard {shard}: {written} runs → {} (join the shards with --merge)",
+            scenario.name,
+            args.out.display()
+        );
+        return Ok(());
+    }
     let (s1, s2) = (sibling(&args.out, "s1"), sibling(&args.out, "s2"));
     // Every refusal (too few runs, a special file at an output, too little disk space)
     // comes here, before the simulations and before anything appears at the outputs.
@@ -66,7 +101,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
     }
     let conditions = writer.generation().conditions();
-    let written = writer.write(&Bars::named(|_| "simulating runs"))?;
+    let written = if args.merge.is_empty() {
+        writer.write(&Bars::named(|_| "simulating runs"))?
+    } else {
+        writer.merge(&args.merge)?
+    };
     println!(
         "{}: {} runs ({} condition{}) → {}; S1 {} runs → {}; S2 {} runs → {}",
         scenario.name,

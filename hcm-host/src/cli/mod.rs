@@ -63,6 +63,11 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Worker threads for the parallel work (runs, fits, replays); default: one per
+    /// core. The outputs are the same bytes on any count.
+    #[arg(long, global = true, value_name = "N", env = "HCM_THREADS")]
+    #[arg(value_parser = clap::value_parser!(u16).range(1..))]
+    threads: Option<u16>,
 }
 
 /// The subcommands; each one's help is its `Args` struct's doc comment.
@@ -95,6 +100,16 @@ pub fn main() -> ExitCode {
     if let Err(error) = paths::check(&command, &matches) {
         eprintln!("error: {error:#}");
         return ExitCode::FAILURE;
+    }
+    if let Some(threads) = cli.threads {
+        // The first use of rayon's pool: nothing has built it yet.
+        if let Err(error) = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads.into())
+            .build_global()
+        {
+            eprintln!("error: --threads {threads}: {error}");
+            return ExitCode::FAILURE;
+        }
     }
     let result = match cli.command {
         Command::Laws(args) => laws::run(args),

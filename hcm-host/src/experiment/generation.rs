@@ -85,6 +85,11 @@ impl Generation {
             .map_err(|source| ExperimentError::Simulation { run: id, source })
     }
 
+    /// The id run `index` has.
+    pub(crate) fn run_id(&self, index: usize) -> String {
+        self.condition_of(index).1
+    }
+
     /// The model of run `index`'s condition and the run's id.
     fn condition_of(&self, index: usize) -> (&Model, String) {
         let (name, model) = &self.conditions[index / self.runs_per_condition];
@@ -99,15 +104,25 @@ impl Generation {
     pub(crate) fn for_each<E: From<ExperimentError>>(
         &self,
         progress: &dyn Progress,
+        each: impl FnMut(usize, Run) -> Result<(), E>,
+    ) -> Result<(), E> {
+        self.for_each_in(0..self.total, progress, each)
+    }
+
+    /// [`Self::for_each`] for the runs `indices` only (a shard's).
+    pub(crate) fn for_each_in<E: From<ExperimentError>>(
+        &self,
+        indices: std::ops::Range<usize>,
+        progress: &dyn Progress,
         mut each: impl FnMut(usize, Run) -> Result<(), E>,
     ) -> Result<(), E> {
         let chunk = self.chunk.max(1);
-        let steps = self.total as u64;
+        let steps = indices.len() as u64;
         in_stage(progress, Stage::Generate, steps, || {
             // Runs finish on worker threads in any order: count them here.
             let done = AtomicU64::new(0);
-            for start in (0..self.total).step_by(chunk) {
-                let end = self.total.min(start + chunk);
+            for start in indices.clone().step_by(chunk) {
+                let end = indices.end.min(start + chunk);
                 let runs: Vec<Result<Run, ExperimentError>> = (start..end)
                     .into_par_iter()
                     .map(|index| {

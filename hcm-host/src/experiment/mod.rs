@@ -14,6 +14,7 @@ mod generation;
 mod members;
 mod noise;
 mod pre_contact;
+mod shard;
 mod split;
 mod write;
 
@@ -23,8 +24,9 @@ pub use noise::{noisy_model, noisy_run, read_by_sensor, sensor_is_exact};
 pub use pre_contact::{
     pre_contact_states, replay_model, state_before, PreContact, PreContactError,
 };
+pub use shard::Shard;
 pub use split::{check_split, condition_of, split, split_sizes, Holdout, Split};
-pub use write::{ExperimentWriter, Written};
+pub use write::{write_shard, ExperimentWriter, Written};
 
 use crate::dataset::{DataError, Dataset};
 use crate::output::{NoSpace, OutputError};
@@ -121,9 +123,12 @@ pub enum ExperimentError {
         /// Where the output was to go, and the space needed and free there.
         space: NoSpace,
     },
-    /// An output could not be written.
+    /// An output could not be written, or a shard read.
     #[error(transparent)]
     Write(#[from] DataError),
+    /// Shard files that do not make the experiment (`--merge`).
+    #[error("--merge: {0}")]
+    Merge(String),
     /// An output could not be created or moved into place.
     #[error(transparent)]
     Output(#[from] OutputError),

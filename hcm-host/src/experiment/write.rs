@@ -1,12 +1,12 @@
 //! `hcm generate`'s outputs: every run to OUT and each to S1 or S2 beside it, streamed as
 //! the runs are made, the three files appearing together at the end or not at all.
 
-use super::{check_split, ExperimentError, Generation, Holdout};
-use crate::dataset::RunWriter;
+use super::{check_split, ExperimentError, Generation, Holdout, Shard};
+use crate::dataset::{Dataset, Run, RunWriter};
 use crate::output::{commit, ensure_space, StagedFile};
 use crate::scenario::Scenario;
 use std::io::{self, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// How many runs went where.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -87,38 +87,156 @@ impl<'a> ExperimentWriter<'a> {
         self,
         progress: &dyn crate::progress::Progress,
     ) -> Result<Written, ExperimentError> {
+        let (generation, mut router) = self.router();
+        generation.for_each(progress, |_, run| router.route(&run))?;
+        router.commit()
+    }
+
+    /// Writes the runs of shard files (`--shard`'s outputs, in shard order) as this
+    /// experiment's OUT, S1 and S2: the bytes [`Self::write`] writes, without simulating
+    /// the runs again. Each file must hold the next runs of the experiment in order
+    /// (their ids), and each file's first run must be the one this scenario and seed
+    /// make (simulated again to check); together, every run.
+    pub fn merge(self, shards: &[PathBuf]) -> Result<Written, ExperimentError> {
+        let (generation, mut router) = self.router();
+        let total = generation.total_runs();
+        let mut next = 0;
+        for path in shards {
+            let data = Dataset::read(path)?;
+            let shown = path.display();
+            for (k, run) in data.runs.iter().enumerate() {
+                let expected = (next < total).then(|| generation.run_id(next));
+                if expected.as_deref() != Some(run.id.as_str()) {
+                    return Err(merge_error(format!(
+                        "{shown}: holds run `{}` where {} was expected; give every shard \
+                         of `hcm generate --shard I/N` once, in shard order (0/N first)",
+                        run.id,
+                        match expected {
+                            Some(id) => format!("run `{id}` (run {next} of {total})"),
+                            None => format!("no more runs (the experiment has {total})"),
+                        }
+                    )));
+                }
+                if k == 0 && !same_run(run, &generation.run(next)?)? {
+                    return Err(merge_error(format!(
+                        "{shown}: run `{}` is not the one this scenario and --seed make \
+                         (simulated again): make the shards and merge them with the same \
+                         --scenario, --set, --runs and --seed",
+                        run.id
+                    )));
+                }
+                router.route(run)?;
+                next += 1;
+            }
+        }
+        if next < total {
+            return Err(merge_error(format!(
+                "the shards hold {next} of the experiment's {total} runs: run `{}` and \
+                 those after it are missing (a shard not given?)",
+                generation.run_id(next)
+            )));
+        }
+        router.commit()
+    }
+
+    /// The generation and where its runs go.
+    fn router(self) -> (Generation, Router<'a>) {
         let ExperimentWriter {
             scenario,
             generation,
             seed,
-            writers: [mut all, mut training, mut validation],
+            writers,
             ..
         } = self;
-        let mut holdout = Holdout::new(scenario, generation.total_runs(), seed);
-        let mut written = Written {
+        let holdout = Holdout::new(scenario, generation.total_runs(), seed);
+        let written = Written {
             runs: 0,
             training: 0,
             validation: 0,
         };
-        generation.for_each(progress, |_, run| -> Result<(), ExperimentError> {
-            all.write_run(&run)?;
-            written.runs += 1;
-            if holdout.takes(&run.id) {
-                written.validation += 1;
-                validation.write_run(&run)?;
-            } else {
-                written.training += 1;
-                training.write_run(&run)?;
-            }
-            Ok(())
-        })?;
+        (
+            generation,
+            Router {
+                writers,
+                holdout,
+                written,
+            },
+        )
+    }
+}
+
+/// OUT, S1 and S2 being written, and which of S1 and S2 each run goes to.
+struct Router<'a> {
+    writers: [RunWriter<StagedFile>; 3],
+    holdout: Holdout<'a>,
+    written: Written,
+}
+
+impl Router<'_> {
+    /// Writes the next run of the experiment to OUT and to S1 or S2.
+    fn route(&mut self, run: &Run) -> Result<(), ExperimentError> {
+        let [all, training, validation] = &mut self.writers;
+        all.write_run(run)?;
+        self.written.runs += 1;
+        if self.holdout.takes(&run.id) {
+            self.written.validation += 1;
+            validation.write_run(run)?;
+        } else {
+            self.written.training += 1;
+            training.write_run(run)?;
+        }
+        Ok(())
+    }
+
+    /// Moves the three files into place together.
+    fn commit(self) -> Result<Written, ExperimentError> {
         let mut finished = Vec::with_capacity(3);
-        for writer in [all, training, validation] {
+        for writer in self.writers {
             finished.push(writer.finish()?.finish()?);
         }
         commit(finished)?;
-        Ok(written)
+        Ok(self.written)
     }
+}
+
+/// Makes the runs of `shard` of the experiment of `scenario` (`runs_per_condition` runs
+/// of each condition, `seed`) and writes them to `out`, atomically, in the
+/// measured-data format: the rows these runs have in the whole experiment's OUT.
+/// Refuses what the whole experiment would (too few runs for the split) before any
+/// run is made. Returns the runs written.
+pub fn write_shard(
+    scenario: &Scenario,
+    (runs_per_condition, seed): (usize, u64),
+    shard: Shard,
+    out: &Path,
+    progress: &dyn crate::progress::Progress,
+) -> Result<usize, ExperimentError> {
+    let generation = Generation::new(scenario, runs_per_condition, seed)?;
+    check_split(scenario, runs_per_condition)?;
+    let mut writer = RunWriter::new(StagedFile::create(out)?, &out.display().to_string())?;
+    let mut written = 0;
+    let runs = shard.range(generation.total_runs());
+    generation.for_each_in(runs, progress, |_, run| -> Result<(), ExperimentError> {
+        writer.write_run(&run)?;
+        written += 1;
+        Ok(())
+    })?;
+    commit(vec![writer.finish()?.finish()?])?;
+    Ok(written)
+}
+
+/// Whether two runs write the same rows.
+fn same_run(a: &Run, b: &Run) -> Result<bool, ExperimentError> {
+    let text = |run: &Run| -> Result<Vec<u8>, ExperimentError> {
+        let mut writer = RunWriter::new(Vec::new(), "(comparison)")?;
+        writer.write_run(run)?;
+        Ok(writer.finish()?)
+    };
+    Ok(text(a)? == text(b)?)
+}
+
+fn merge_error(message: String) -> ExperimentError {
+    ExperimentError::Merge(message)
 }
 
 /// Bytes of CSV per run, averaged over the conditions: the first run of each, simulated

@@ -5,6 +5,7 @@ mod bounds;
 mod contact_samples;
 mod evolve;
 mod motion;
+mod objective;
 mod physics;
 mod replay;
 mod rigid;
@@ -21,6 +22,7 @@ pub use motion::{
     fitted_assignments, fitted_scenario_text, identify_motion_and_force, part_of, ForceData, Part,
     Search as MotionSearch,
 };
+pub use objective::Objective;
 pub use physics::PhysicsBody;
 pub use physics::PhysicsError;
 pub(crate) use replay::pre_contact_state;

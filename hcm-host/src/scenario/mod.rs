@@ -477,6 +477,17 @@ impl Scenario {
         Ok(scenario)
     }
 
+    /// The file the scenario was read from (or the name its text was given).
+    pub fn path(&self) -> &Path {
+        &self.source.path
+    }
+
+    /// The scenario as TOML text, every override applied: [`Scenario::parse`] of it
+    /// (with [`Scenario::path`]) gives this scenario back.
+    pub fn to_toml(&self) -> String {
+        self.source.document.to_string()
+    }
+
     /// This scenario with more `key=value` overrides applied.
     pub fn with(&self, assignments: &[String]) -> Result<Scenario, ScenarioError> {
         self.with_any(assignments)

@@ -68,6 +68,7 @@ pub use per_output::OutputNets;
 pub use point_residual::{explains_nothing, train_point_residual};
 pub use quantise::{quantisation_aware, QuantiseReport};
 pub use samples::residual_pairs;
+pub use summed::{train_summed, SummedRow};
 pub use trained::{Trained, TrainedResidual};
 pub use wrench_residual::train_wrench_residual;
 pub use wrench_samples::{wrench_pairs, WrenchPairs};

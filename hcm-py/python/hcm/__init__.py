@@ -12,22 +12,45 @@ Errors hcm refuses an input for are raised as :class:`HcmError`, with the messag
 the ``hcm`` command prints after ``error:``.
 """
 
-from ._hcm import HcmError, __version__
+import os as _os
+
+from ._hcm import HcmError, __version__, set_threads
 from .dataset import Dataset
+from .diagnose import Diagnosis, diagnose
+from .evaluate import evaluate
+from .experiment import Experiment, generate
 from .hybrid import HybridModel
+from .identify import Physics, identify
 from .laws import Law, LawInfo, Parameter, laws
+from .objective import Objective
 from .scenario import Scenario
 from .simulate import simulate
+from .train import Residual, train
 
 __all__ = [
     "Dataset",
+    "Diagnosis",
+    "Experiment",
     "HcmError",
     "HybridModel",
     "Law",
     "LawInfo",
+    "Objective",
     "Parameter",
+    "Physics",
+    "Residual",
     "Scenario",
     "__version__",
+    "diagnose",
+    "evaluate",
+    "generate",
+    "identify",
     "laws",
+    "set_threads",
     "simulate",
+    "train",
 ]
+
+# The CLI's HCM_THREADS, read once as the package loads.
+if _os.environ.get("HCM_THREADS"):
+    set_threads(int(_os.environ["HCM_THREADS"]))

@@ -56,6 +56,21 @@ class Dataset:
         text = lambda name: [str(v) for v in np.broadcast_to(np.asarray(columns[name]), (rows,))]
         return cls(_hcm.Dataset.from_arrays(text("run"), text("body"), numeric))
 
+    @classmethod
+    def from_csv(cls, text: str, name: str = "<text>") -> "Dataset":
+        """Reads measured-data CSV text; ``name`` names it in messages."""
+        return cls(_hcm.Dataset.from_csv_text(text, name))
+
+    @property
+    def name(self) -> str:
+        """What the data are called in messages and fit records: the file's path, or
+        ``<arrays>``, ``<simulated>``, ``<S1>``, …."""
+        return self._dataset.name
+
+    def __reduce__(self):
+        # Pickled as its CSV text (for multiprocessing, Ray, Dask).
+        return (Dataset.from_csv, (self.to_csv(), self.name))
+
     def write_csv(self, path: PathLike) -> None:
         """Writes the measured-data CSV file (atomically)."""
         self._dataset.write_csv(os.fspath(path))

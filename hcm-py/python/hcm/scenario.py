@@ -57,14 +57,30 @@ class Scenario:
         texts = assignments(set) + assignments(values or None)
         return Scenario(self._scenario.with_set(texts))
 
-    def with_physics(self, path: PathLike) -> "Scenario":
-        """This scenario with a physics file (``hcm identify``'s) in place of its laws."""
-        return Scenario(self._scenario.with_physics(os.fspath(path)))
+    def with_physics(self, physics) -> "Scenario":
+        """This scenario with a physics file (a path, or a :class:`~hcm.Physics` from
+        ``identify`` or a diagnosis) in place of its laws."""
+        if hasattr(physics, "_physics"):
+            return Scenario(self._scenario.with_physics_object(physics._physics))
+        return Scenario(self._scenario.with_physics(os.fspath(physics)))
 
     @property
     def name(self) -> str:
         """The scenario's name."""
         return self._scenario.name
+
+    @property
+    def path(self) -> str:
+        """The scenario file's path (or the name its text was given)."""
+        return self._scenario.path
+
+    def to_toml(self) -> str:
+        """The scenario as TOML text, every override and physics file applied."""
+        return self._scenario.to_toml()
+
+    def __reduce__(self):
+        # Pickled as its text (for multiprocessing, Ray, Dask): the same scenario back.
+        return (Scenario.from_toml, (self.to_toml(), self.path))
 
     @property
     def bodies(self) -> list[str]:
