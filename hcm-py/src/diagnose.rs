@@ -83,11 +83,7 @@ pub fn diagnose(
     run_stage(py, progress, |_| {
         let base = base.model()?;
         let c = options.contact;
-        anyhow::ensure!(
-            c < base.contacts.len(),
-            "--contact {c}: the scenario has {} contact(s), numbered from 0",
-            base.contacts.len()
-        );
+        base.check_contact(c).map_err(anyhow::Error::msg)?;
         let mut runs = data.dataset.clone();
         if let Some(first) = options.first {
             anyhow::ensure!(first > 0, "--first 0: give at least one run");

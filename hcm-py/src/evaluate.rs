@@ -28,11 +28,7 @@ pub fn evaluate(
         .model()
         .map_err(hcm_error)?;
     let json = run_stage(py, progress, |_| {
-        anyhow::ensure!(
-            contact < pm2.contacts.len(),
-            "--contact {contact}: the scenario has {} contact(s), numbered from 0",
-            pm2.contacts.len()
-        );
+        pm2.check_contact(contact).map_err(anyhow::Error::msg)?;
         let evidence = Evidence::of(&pm2, &data.dataset, contact);
         data.dataset
             .require_for(&data.name, &pm2, contact, evidence, DataUse::Evaluate)?;

@@ -35,12 +35,7 @@ impl HybridModel {
     #[new]
     fn new(scenario: &Scenario, blob: &[u8], contact: usize) -> PyResult<Self> {
         let model = scenario.model()?;
-        let Some(c) = model.contacts.get(contact) else {
-            return Err(message(format!(
-                "contact {contact}: the scenario has {} contact(s), numbered from 0",
-                model.contacts.len()
-            )));
-        };
+        let c = &model.contacts[model.check_contact(contact).map_err(message)?];
         let residual = match ContactResidual::decode(blob).map_err(hcm_error)? {
             ContactResidual::Force(stored) => stored,
             other => {

@@ -144,11 +144,7 @@ fn fit_force(
 ) -> anyhow::Result<(hcm_host::identify::Physics, Vec<(String, f64)>)> {
     let model = scenario.model()?;
     let c = options.contact;
-    anyhow::ensure!(
-        c < model.contacts.len(),
-        "--contact {c}: the scenario has {} contact(s), numbered from 0",
-        model.contacts.len()
-    );
+    model.check_contact(c).map_err(anyhow::Error::msg)?;
     let evidence = Evidence::of(&model, &data.dataset, c);
     anyhow::ensure!(
         evidence == Evidence::LineForce,

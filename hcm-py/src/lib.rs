@@ -15,6 +15,7 @@ mod hybrid;
 mod identify;
 mod laws;
 mod objective;
+mod predict;
 mod progress;
 mod scenario;
 mod simulate;
@@ -41,6 +42,8 @@ fn _hcm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(train::train, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::evaluate, m)?)?;
     m.add_class::<objective::Objective>()?;
+    m.add_class::<predict::Prediction>()?;
+    m.add_function(wrap_pyfunction!(predict::predict, m)?)?;
     m.add_function(wrap_pyfunction!(threads::set_threads, m)?)?;
     m.add_class::<diagnose::Diagnosis>()?;
     m.add_function(wrap_pyfunction!(diagnose::diagnose, m)?)?;

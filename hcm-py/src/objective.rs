@@ -36,12 +36,7 @@ impl Objective {
             }
         };
         let model = scenario.model()?;
-        if contact >= model.contacts.len() {
-            return Err(message(format!(
-                "--contact {contact}: the scenario has {} contact(s), numbered from 0",
-                model.contacts.len()
-            )));
-        }
+        model.check_contact(contact).map_err(message)?;
         let objective = py
             .detach(|| {
                 hcm_host::identify::Objective::new(

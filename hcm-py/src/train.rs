@@ -86,11 +86,7 @@ pub fn train(
     let pm2 = physics.apply(&scenario.scenario)?;
     let trained = run_stage(py, progress, |progress| {
         let pm2 = pm2.model()?;
-        anyhow::ensure!(
-            contact < pm2.contacts.len(),
-            "--contact {contact}: the scenario has {} contact(s), numbered from 0",
-            pm2.contacts.len()
-        );
+        pm2.check_contact(contact).map_err(anyhow::Error::msg)?;
         let evidence = Evidence::of(&pm2, &data.dataset, contact);
         data.dataset
             .require_for(&data.name, &pm2, contact, evidence, DataUse::Train)?;

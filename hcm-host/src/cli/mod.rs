@@ -182,12 +182,7 @@ impl ScenarioArgs {
 
 /// Checks that `contact` indexes one of `model`'s contacts.
 pub fn check_contact(contact: usize, model: &hcm_host::scenario::Model) -> anyhow::Result<usize> {
-    anyhow::ensure!(
-        contact < model.contacts.len(),
-        "--contact {contact}: the scenario has {} contact(s), numbered from 0",
-        model.contacts.len()
-    );
-    Ok(contact)
+    model.check_contact(contact).map_err(anyhow::Error::msg)
 }
 
 #[cfg(test)]

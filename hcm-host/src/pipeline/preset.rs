@@ -42,11 +42,11 @@ impl Shipped {
     /// The file's text as built into the program.
     pub(crate) fn text(self) -> &'static str {
         match self {
-            Shipped::BouncingBall => include_str!("../../../scenarios/bouncing_ball.toml"),
-            Shipped::FlatShot => include_str!("../../../scenarios/flat_shot.toml"),
-            Shipped::PegInHole => include_str!("../../../scenarios/peg_in_hole.toml"),
-            Shipped::CubeToss => include_str!("../../../scenarios/cube_toss.toml"),
-            Shipped::ElbowToss => include_str!("../../../scenarios/elbow_toss.toml"),
+            Shipped::BouncingBall => include_str!("../../scenarios/bouncing_ball.toml"),
+            Shipped::FlatShot => include_str!("../../scenarios/flat_shot.toml"),
+            Shipped::PegInHole => include_str!("../../scenarios/peg_in_hole.toml"),
+            Shipped::CubeToss => include_str!("../../scenarios/cube_toss.toml"),
+            Shipped::ElbowToss => include_str!("../../scenarios/elbow_toss.toml"),
         }
     }
 }

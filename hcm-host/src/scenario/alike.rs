@@ -46,7 +46,7 @@ mod tests {
     use crate::scenario::Scenario;
     use std::path::Path;
 
-    const ELBOW: &str = include_str!("../../../scenarios/elbow_toss.toml");
+    const ELBOW: &str = include_str!("../../scenarios/elbow_toss.toml");
 
     /// The elbow's two links land on the one table with one law: alike. Either link's
     /// contact given another friction leaves each alike with itself alone.

@@ -162,6 +162,18 @@ impl Model {
     pub fn body_index(&self, name: &str) -> Option<usize> {
         self.bodies.iter().position(|b| b.name == name)
     }
+
+    /// `contact` if it numbers one of the contacts; else the message every command's
+    /// `--contact` (and the Python API's `contact=`) gives.
+    pub fn check_contact(&self, contact: usize) -> Result<usize, String> {
+        match contact < self.contacts.len() {
+            true => Ok(contact),
+            false => Err(format!(
+                "--contact {contact}: the scenario has {} contact(s), numbered from 0",
+                self.contacts.len()
+            )),
+        }
+    }
 }
 
 impl Scenario {

@@ -303,7 +303,7 @@ mod tests {
     /// were tracked along, bit for bit.
     #[test]
     fn a_run_observing_its_trajectory_alone_samples_the_same_bits() {
-        let text = include_str!("../../../scenarios/cube_toss.toml");
+        let text = include_str!("../../scenarios/cube_toss.toml");
         let scenario = Scenario::parse(Path::new("cube_toss.toml"), text, &[]).unwrap();
         let mut model = scenario.model().unwrap();
         model.scenario.simulation.stop_after_contacts = 0;

@@ -23,6 +23,7 @@ from .hybrid import HybridModel
 from .identify import Physics, identify
 from .laws import Law, LawInfo, Parameter, laws
 from .objective import Objective
+from .predict import Prediction, predict
 from .scenario import Scenario
 from .simulate import simulate
 from .train import Residual, train
@@ -38,6 +39,7 @@ __all__ = [
     "Objective",
     "Parameter",
     "Physics",
+    "Prediction",
     "Residual",
     "Scenario",
     "__version__",
@@ -46,6 +48,7 @@ __all__ = [
     "generate",
     "identify",
     "laws",
+    "predict",
     "set_threads",
     "simulate",
     "train",

@@ -125,7 +125,7 @@ mod tests {
     use crate::scenario::{Scenario, Shape};
     use std::path::Path;
 
-    const ELBOW: &str = include_str!("../../../../scenarios/elbow_toss.toml");
+    const ELBOW: &str = include_str!("../../../scenarios/elbow_toss.toml");
 
     fn elbow() -> Model {
         let scenario = Scenario::parse(Path::new("elbow_toss.toml"), ELBOW, &[]).unwrap();

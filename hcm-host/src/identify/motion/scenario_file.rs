@@ -148,7 +148,7 @@ mod tests {
     use nalgebra::Matrix3;
     use std::path::Path;
 
-    const SCENARIO: &str = include_str!("../../../../scenarios/cube_toss.toml");
+    const SCENARIO: &str = include_str!("../../../scenarios/cube_toss.toml");
 
     fn scenario(overrides: &[String]) -> Scenario {
         Scenario::parse(Path::new("cube_toss.toml"), SCENARIO, overrides).unwrap()
@@ -199,7 +199,7 @@ mod tests {
     /// for.
     #[test]
     fn a_mechanism_s_fit_is_written_whole() {
-        const ELBOW: &str = include_str!("../../../../scenarios/elbow_toss.toml");
+        const ELBOW: &str = include_str!("../../../scenarios/elbow_toss.toml");
         let sets = ["joint.hinge.law.viscous.damping=0.002".to_owned()];
         let base = Scenario::parse(Path::new("elbow_toss.toml"), ELBOW, &sets).unwrap();
         let model = base.model().unwrap();
