@@ -3,7 +3,7 @@
 //! the report — written to a directory as the command writes it, when one is given.
 
 use crate::dataset::Dataset;
-use crate::errors::message;
+use crate::errors::option;
 use crate::identify::Physics;
 use crate::progress::run_stage;
 use crate::scenario::Scenario;
@@ -12,6 +12,7 @@ use hcm_host::diagnose::{
     diagnose as diagnose_data, diagnosis_json, diagnosis_markdown, extended_physics,
     write_diagnosis, BaseFreedom, DiagnoseSettings, DiagnosisOf,
 };
+use hcm_host::input::numbers;
 use hcm_host::output::StagedDirectory;
 use pyo3::prelude::*;
 use std::path::PathBuf;
@@ -55,14 +56,17 @@ pub fn diagnose(
     scenario: &Scenario,
     physics: &Physics,
     data: &Dataset,
-    contact: usize,
-    seed: u64,
+    contact: i64,
+    seed: i128,
     holdout: f64,
     chance: bool,
     first: Option<usize>,
     out: Option<PathBuf>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Diagnosis> {
+    let contact = option("contact", contact, numbers::contact)?;
+    let seed = option("seed", seed, numbers::seed)?;
+    let holdout = option("holdout", holdout, numbers::share)?;
     let options = DiagnoseOptions {
         contact,
         seed,
@@ -72,12 +76,6 @@ pub fn diagnose(
         out,
     };
     let scenario_name = scenario.scenario.name.clone();
-    // The command's first check, before any file is read.
-    if !(holdout > 0.0 && holdout < 1.0) {
-        return Err(message(format!(
-            "--holdout must lie strictly between 0 and 1, found {holdout}"
-        )));
-    }
     let base = physics.apply(&scenario.scenario)?;
     let fitted = physics.physics.fitted();
     run_stage(py, progress, |_| {

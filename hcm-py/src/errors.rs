@@ -4,7 +4,7 @@
 
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
-use pyo3::PyErr;
+use pyo3::{PyErr, PyResult};
 
 create_exception!(
     hcm,
@@ -22,4 +22,20 @@ pub fn hcm_error(error: impl Into<anyhow::Error>) -> PyErr {
 /// A plain message as an [`HcmError`].
 pub fn message(text: impl Into<String>) -> PyErr {
     HcmError::new_err(text.into())
+}
+
+/// A numeric option checked by the command's own parser (hcm-host's `input::numbers`),
+/// refused with the command's words: `invalid value 'V' for '--NAME <NAME>': why`.
+pub fn option<T>(
+    name: &str,
+    value: impl std::fmt::Display,
+    parse: fn(&str) -> Result<T, String>,
+) -> PyResult<T> {
+    let text = value.to_string();
+    parse(&text).map_err(|reason| {
+        let placeholder = name.to_uppercase().replace('-', "_");
+        message(format!(
+            "invalid value '{text}' for '--{name} <{placeholder}>': {reason}"
+        ))
+    })
 }

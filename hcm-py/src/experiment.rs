@@ -2,9 +2,11 @@
 //! generate` makes them, in memory.
 
 use crate::dataset::Dataset;
+use crate::errors::option;
 use crate::progress::run_stage;
 use crate::scenario::Scenario;
 use hcm_host::experiment::{check_split, generate as generate_runs, split, Generation};
+use hcm_host::input::numbers;
 use pyo3::prelude::*;
 
 /// `runs` noisy runs of every condition of `scenario` drawn with `seed` (Eq 18–19),
@@ -14,10 +16,12 @@ use pyo3::prelude::*;
 pub fn generate(
     py: Python<'_>,
     scenario: &Scenario,
-    runs: usize,
-    seed: u64,
+    runs: i64,
+    seed: i128,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<(Dataset, Dataset, Dataset)> {
+    let runs = option("runs", runs, numbers::runs)?;
+    let seed = option("seed", seed, numbers::seed)?;
     let scenario = &scenario.scenario;
     let (all, split) = run_stage(py, progress, |progress| {
         // In `hcm generate`'s order: the runs, then the split they allow.

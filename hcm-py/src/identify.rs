@@ -2,11 +2,12 @@
 //! makes — the law's values, standard errors, the fit's record, the file's text.
 
 use crate::dataset::Dataset;
-use crate::errors::{hcm_error, message};
+use crate::errors::{hcm_error, message, option};
 use crate::progress::run_stage;
 use crate::scenario::Scenario;
 use hcm_host::dataset::{DataUse, Evidence};
 use hcm_host::identify::{identify as fit, Fitness, Method};
+use hcm_host::input::numbers;
 use hcm_host::numerics::optimize::GeneticSettings;
 use pyo3::prelude::*;
 use std::path::PathBuf;
@@ -113,12 +114,16 @@ pub fn identify(
     law: Option<String>,
     method: String,
     fitness: String,
-    seed: u64,
-    population: usize,
-    generations: usize,
-    contact: usize,
+    seed: i128,
+    population: i64,
+    generations: i64,
+    contact: i64,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Physics> {
+    let seed = option("seed", seed, numbers::seed)?;
+    let population = option("population", population, numbers::population)?;
+    let generations = option("generations", generations, numbers::generations)?;
+    let contact = option("contact", contact, numbers::contact)?;
     let options = FitOptions {
         law,
         method,

@@ -3,12 +3,13 @@
 //! (`hcm export`).
 
 use crate::dataset::Dataset;
-use crate::errors::{hcm_error, message};
+use crate::errors::{hcm_error, message, option};
 use crate::identify::Physics;
 use crate::progress::run_stage;
 use crate::scenario::Scenario;
 use hcm_core::residual::Quantisation;
 use hcm_host::dataset::{DataUse, Evidence};
+use hcm_host::input::numbers;
 use hcm_host::train::{ResidualKind, ResidualSettings, Trained};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
@@ -77,12 +78,16 @@ pub fn train(
     scenario: &Scenario,
     physics: &Physics,
     data: &Dataset,
-    contact: usize,
-    epochs: usize,
-    int8_epochs: usize,
-    seed: u64,
+    contact: i64,
+    epochs: i64,
+    int8_epochs: i64,
+    seed: i128,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Residual> {
+    let contact = option("contact", contact, numbers::contact)?;
+    let epochs = option("epochs", epochs, numbers::epochs)?;
+    let int8_epochs = option("int8-epochs", int8_epochs, numbers::fine_tuning_epochs)?;
+    let seed = option("seed", seed, numbers::seed)?;
     let pm2 = physics.apply(&scenario.scenario)?;
     let trained = run_stage(py, progress, |progress| {
         let pm2 = pm2.model()?;

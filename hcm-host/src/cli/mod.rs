@@ -14,7 +14,7 @@ mod identify_motion;
 mod identify_rigid;
 mod indicators;
 mod laws;
-mod numbers;
+use hcm_host::input::numbers;
 mod paths;
 mod predict;
 mod progress;

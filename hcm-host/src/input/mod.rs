@@ -5,6 +5,8 @@
 //! size, not read; and a parser's message that echoes the offending line (TOML's
 //! does) must not echo a gigabyte-long line to the terminal.
 
+pub mod numbers;
+
 use crate::output::bytes;
 use std::io::Read;
 use std::path::Path;

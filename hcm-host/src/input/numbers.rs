@@ -1,4 +1,5 @@
-//! Value parsers for the numeric options. clap's own say "invalid digit found in
+//! Value parsers for the numeric options (the CLI's, and the Python API's for the same
+//! values, so that both refuse a value with the same words). clap's own say "invalid digit found in
 //! string" for `--runs 1e9` and "unexpected argument '-5'" for `--runs -5`: neither
 //! what the option takes nor what is wrong with the value. One parser per kind of
 //! number; each message says what was expected, with an example, and why the value
