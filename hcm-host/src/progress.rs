@@ -29,6 +29,8 @@ pub enum Stage {
     /// The held-out tosses forecast by the named chance; steps are tosses (ensembles,
     /// then replays).
     Forecast,
+    /// A power study of the diagnosis; steps are data sets made and diagnosed.
+    Power,
 }
 
 /// Which fold of a two-fold split a stage works on.
@@ -58,6 +60,7 @@ impl Stage {
             Stage::Diagnose => "diagnose",
             Stage::Faces => "final faces",
             Stage::Forecast => "forecast by the named chance",
+            Stage::Power => "power study",
         }
     }
 }

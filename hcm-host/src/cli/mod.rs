@@ -16,6 +16,7 @@ mod indicators;
 mod laws;
 use hcm_host::input::numbers;
 mod paths;
+mod power;
 mod predict;
 mod progress;
 mod report;
@@ -52,6 +53,8 @@ use std::process::ExitCode;
 ///                   real cube tosses), with a report
 ///   hcm diagnose    name what a physics law misses in data, and extend it
 ///   hcm predict     replay measured tosses from their window start and score them
+///   hcm power       how strong an effect must be before `hcm diagnose` names it: effects
+///                   hidden in a scenario's generated data, seed after seed (shardable)
 ///   hcm identify-motion  `hcm identify --method motion`: from the poses, whatever else
 ///                   the data hold
 ///   hcm diagnose-motion  `hcm diagnose --from-poses`: what a tossed body's simulation
@@ -87,6 +90,7 @@ enum Command {
     Reproduce(reproduce::Args),
     Diagnose(diagnose::Args),
     Predict(predict::Args),
+    Power(power::Args),
     // `hcm diagnose --from-poses`, with diagnose's help (which says so).
     DiagnoseMotion(diagnose::Args),
 }
@@ -125,6 +129,7 @@ pub fn main() -> ExitCode {
         Command::Reproduce(args) => reproduce::run(args),
         Command::Diagnose(args) => diagnose::run(args),
         Command::Predict(args) => predict::run(args),
+        Command::Power(args) => power::run(args),
         Command::DiagnoseMotion(args) => diagnose::run(args.fitting_poses()),
     };
     match result {

@@ -36,7 +36,8 @@ pub struct DiagnoseSettings {
     pub seed: u64,
     /// Share of the runs (inside the fitted range) held out for the gain table.
     pub holdout_fraction: f64,
-    /// Epochs of the HCM residual network (the comparison model).
+    /// Epochs of the HCM residual network (the comparison model); 0: no HCM (the gain
+    /// table without its row, as where the network cannot be trained).
     pub hcm_epochs: usize,
     /// What of the base law the user's fit had free (see [`BaseFreedom`]).
     pub base_freedom: BaseFreedom,
@@ -581,6 +582,9 @@ fn hcm_contact(
     c: usize,
     settings: &DiagnoseSettings,
 ) -> Result<Option<Contact>, IdentifyError> {
+    if settings.hcm_epochs == 0 {
+        return Ok(None);
+    }
     let trained = train_force_network(base, data, c, settings.hcm_epochs, settings.seed, &Silent);
     let network = match trained {
         Ok((network, _, _)) => network,

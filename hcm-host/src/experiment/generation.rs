@@ -30,10 +30,20 @@ impl Generation {
         runs_per_condition: usize,
         seed: u64,
     ) -> Result<Self, ExperimentError> {
+        Generation::of_conditions(conditions(scenario)?, runs_per_condition, seed)
+    }
+
+    /// The experiment of `conditions` (each a name, "" for a lone one, and its model),
+    /// seeded with `seed`: what [`Self::new`] makes of a scenario's conditions, for
+    /// models changed after their resolution (a power study's hidden effect).
+    pub fn of_conditions(
+        conditions: Vec<(String, Model)>,
+        runs_per_condition: usize,
+        seed: u64,
+    ) -> Result<Self, ExperimentError> {
         if runs_per_condition == 0 {
             return Err(ExperimentError::NoRuns);
         }
-        let conditions = conditions(scenario)?;
         let total = runs_per_condition.checked_mul(conditions.len()).ok_or(
             ExperimentError::TooManyRuns {
                 runs: runs_per_condition,

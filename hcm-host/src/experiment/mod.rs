@@ -216,7 +216,19 @@ pub fn generate(
     seed: u64,
     progress: &dyn Progress,
 ) -> Result<Dataset, ExperimentError> {
-    let generation = Generation::new(scenario, runs_per_condition, seed)?;
+    generated(
+        Generation::new(scenario, runs_per_condition, seed)?,
+        progress,
+    )
+}
+
+/// The runs of `generation` in memory (refused if they would not fit there), reporting
+/// [`Stage::Generate`](crate::progress::Stage::Generate) to `progress`.
+pub fn generated(
+    generation: Generation,
+    progress: &dyn Progress,
+) -> Result<Dataset, ExperimentError> {
+    let runs_per_condition = generation.runs_per_condition();
     fits_in_memory(&generation, runs_per_condition)?;
     let mut runs = Vec::with_capacity(generation.total_runs());
     generation.for_each(progress, |_, run| -> Result<(), ExperimentError> {

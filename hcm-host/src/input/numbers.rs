@@ -11,6 +11,11 @@ pub fn runs(text: &str) -> Result<usize, String> {
     count(text, 1, "a whole number of runs ≥ 1, e.g. --runs 100")
 }
 
+/// `hcm power --seeds`: data sets per effect and strength.
+pub fn seeds(text: &str) -> Result<u64, String> {
+    whole(text, 1, "a whole number of seeds ≥ 1, e.g. --seeds 10")
+}
+
 /// `--seed`: any 64-bit unsigned integer.
 pub fn seed(text: &str) -> Result<u64, String> {
     whole(
