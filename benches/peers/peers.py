@@ -805,7 +805,128 @@ def arguments():
     a.add_argument("--workers", type=int, default=os.cpu_count())
     a.add_argument("--check-tosses", type=int, default=40,
                    help="held-out tosses the free-flight check uses")
-    return a.parse_args()
+    a.add_argument("--shard", metavar="I/N",
+                   help="fit only shard I of N of the peers (numbered from 0), the peers "
+                        "[⌊P·I/N⌋, ⌊P·(I+1)/N⌋) of the P, to OUT/peers.shard-I.json; on a "
+                        "Slurm job array the default is the array task's")
+    a.add_argument("--merge", nargs="+", metavar="SHARD",
+                   help="the shards' files, in order: write peers.md and peers.json as one "
+                        "run does (the fit times are the shards' own)")
+    args = a.parse_args()
+    if args.shard and args.merge:
+        a.error("--shard and --merge: give one (the merge is not a shard)")
+    try:
+        args.shard = parse_shard(args.shard) if args.shard else (
+            None if args.merge else slurm_shard(os.environ))
+    except ValueError as e:
+        a.error(str(e))
+    return args
+
+
+# ------------------------------------------------------ past one machine
+
+
+def parse_shard(text):
+    """`I/N` → (I, N), 0 ≤ I < N: as `hcm generate --shard`."""
+    index, slash, count = text.partition("/")
+    if not (slash and index.strip().isdigit() and count.strip().isdigit()):
+        raise ValueError(f"--shard `{text}` is not I/N (e.g. 0/4: the first of four shards)")
+    index, count = int(index), int(count)
+    if count == 0 or index >= count:
+        raise ValueError(f"--shard `{text}`: shards are numbered 0 to N − 1 of N ≥ 1")
+    return index, count
+
+
+def slurm_shard(env):
+    """The shard a Slurm array task stands for (SLURM_ARRAY_TASK_ID less
+    SLURM_ARRAY_TASK_MIN, of SLURM_ARRAY_TASK_COUNT), or None outside an array."""
+    if "SLURM_ARRAY_TASK_ID" not in env or "SLURM_ARRAY_TASK_COUNT" not in env:
+        return None
+    task, low = env["SLURM_ARRAY_TASK_ID"], env.get("SLURM_ARRAY_TASK_MIN", "0")
+    if not (task.isdigit() and low.isdigit() and int(task) >= int(low)):
+        raise ValueError(f"SLURM_ARRAY_TASK_ID `{task}` and SLURM_ARRAY_TASK_MIN `{low}` "
+                         "do not give a task index; give --shard I/N")
+    return parse_shard(f"{int(task) - int(low)}/{env['SLURM_ARRAY_TASK_COUNT']}")
+
+
+def shard_range(shard, total):
+    """The indices of shard (I, N) among `total` items: [⌊T·I/N⌋, ⌊T·(I+1)/N⌋)."""
+    index, count = shard
+    return range(total * index // count, total * (index + 1) // count)
+
+
+def digest(path):
+    """SHA-256 of a file's bytes (None without a file)."""
+    if not path:
+        return None
+    import hashlib
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def study(args):
+    """What a shard's fits depend on: the inputs' bytes, the fit's settings and the
+    simulators' versions. A shard of another study is refused by the merge."""
+    return {"data": digest(args.data), "scenario_scores": digest(args.scenario_scores),
+            "fitted_scores": digest(args.fitted_scores), "first": args.first,
+            "survey": args.survey, "evaluations": args.evaluations, "versions": versions()}
+
+
+def peer_record(peer, scores, seconds):
+    """A fitted peer as a shard's file keeps it."""
+    return {"name": peer.name, "fitted": peer.fitted, "history": peer.history,
+            "step_check": peer.step_check, "scores": scores, "seconds": seconds}
+
+
+def write_shard(args, chosen, records):
+    """OUT/peers.shard-I.json: the study's key and the shard's fitted peers."""
+    index, count = args.shard
+    os.makedirs(args.out, exist_ok=True)
+    path = os.path.join(args.out, f"peers.shard-{index}.json")
+    shard = {"study": study(args), "shard": f"{index}/{count}", "peers": chosen,
+             "fits": records}
+    atomic_write(path, json.dumps(shard, indent=1))
+    print(f"shard {index}/{count}: peers {chosen} → {path} (join the shards with --merge)")
+
+
+def merged(args, all_peers):
+    """The fitted peers, their held-out scores and fit times from the shards' files, checked
+    to be this study's and to hold every peer once, in order."""
+    key, records = study(args), []
+    for path in args.merge:
+        with open(path) as f:
+            shard = json.load(f)
+        if shard.get("study") != key:
+            sys.exit(f"--merge: {path}: not a shard of this study (other data, scores, "
+                     "settings or simulator versions): run every shard with the same options")
+        if shard["peers"] != list(range(len(records), len(records) + len(shard["fits"]))):
+            sys.exit(f"--merge: {path}: peers {shard['peers']} where peer {len(records)} comes "
+                     "next (give the shards in order, 0/N first, none missing)")
+        records += shard["fits"]
+    if len(records) != len(all_peers):
+        sys.exit(f"--merge: the shards hold {len(records)} of the {len(all_peers)} peers: a "
+                 "shard is missing")
+    timings, rows = {}, {}
+    for peer, record in zip(all_peers, records):
+        assert record["name"] == peer.name, f"{record['name']} in place of {peer.name}"
+        peer.fitted, peer.history = record["fitted"], record["history"]
+        peer.step_check = record["step_check"]
+        rows[peer.name] = [tuple(s) for s in record["scores"]]
+        timings[peer.name] = record["seconds"]
+    return timings, rows
+
+
+def atomic_write(path, text):
+    """`text` to `path` through a temporary beside it: the file appears whole or not."""
+    folder = os.path.dirname(path) or "."
+    handle, temporary = tempfile.mkstemp(dir=folder, prefix=".peers-tmp-")
+    try:
+        with os.fdopen(handle, "w") as f:
+            f.write(text)
+        os.replace(temporary, path)
+    except BaseException:
+        os.unlink(temporary)
+        raise
 
 
 def same_start(a, b):
@@ -888,27 +1009,35 @@ def main():
     args = arguments()
     clock = time.perf_counter()
     scenario, fitted_hcm, tosses, training, held_out = split_tosses(args)
-    scorer = Scorer(tosses, args.workers)  # forks before this process opens PyBullet
-    checks = run_checks(args, tosses, held_out, scenario)
-
-    fitted_peers, timings, rows = peers(), {}, {}
-    for peer in fitted_peers:
-        start = time.perf_counter()
-        rows[peer.name] = fit_and_score(peer, scorer, training, held_out, args)
-        timings[peer.name] = time.perf_counter() - start
-        print(f"{peer.name}: {peer.fitted} in {timings[peer.name]:.0f} s, "
-              f"held-out fitness {peer.step_check}", flush=True)
-    scorer.close()
+    fitted_peers = peers()
+    if args.merge:
+        timings, rows = merged(args, fitted_peers)
+        checks = run_checks(args, tosses, held_out, scenario)
+    else:
+        chosen = list(shard_range(args.shard, len(fitted_peers)) if args.shard
+                      else range(len(fitted_peers)))
+        scorer = Scorer(tosses, args.workers)  # forks before this process opens PyBullet
+        if not args.shard:
+            checks = run_checks(args, tosses, held_out, scenario)
+        timings, rows, records = {}, {}, []
+        for peer in (fitted_peers[i] for i in chosen):
+            start = time.perf_counter()
+            rows[peer.name] = fit_and_score(peer, scorer, training, held_out, args)
+            timings[peer.name] = time.perf_counter() - start
+            records.append(peer_record(peer, rows[peer.name], timings[peer.name]))
+            print(f"{peer.name}: {peer.fitted} in {timings[peer.name]:.0f} s, "
+                  f"held-out fitness {peer.step_check}", flush=True)
+        scorer.close()
+        if args.shard:
+            return write_shard(args, chosen, records)
     table = table_rows(held_out, fitted_hcm, scenario, fitted_peers, rows)
     timings["peers.py total"] = time.perf_counter() - clock
 
     os.makedirs(args.out, exist_ok=True)
     text = markdown(table, held_out, context_lines(args, fitted_peers, timings, *checks))
-    with open(os.path.join(args.out, "peers.md"), "w") as f:
-        f.write(text)
-    with open(os.path.join(args.out, "peers.json"), "w") as f:
-        json.dump(json_report(args, training, held_out, table, fitted_peers, checks, timings),
-                  f, indent=1)
+    report = json_report(args, training, held_out, table, fitted_peers, checks, timings)
+    atomic_write(os.path.join(args.out, "peers.json"), json.dumps(report, indent=1))
+    atomic_write(os.path.join(args.out, "peers.md"), text)
     print(text)
 
 

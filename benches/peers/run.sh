@@ -3,6 +3,7 @@
 #
 #   bash benches/peers/run.sh [OUT] [--quick] [--randomised-only]
 #   bash benches/peers/run.sh [OUT] --elbow [--quick]
+#   bash benches/peers/run.sh [OUT] [--quick] --shards N
 #
 # OUT (default peers-out/) receives hcm's scores and fit, peers.md, peers.json and
 # run.log, then the randomised peers (randomised.py: hcm's ensemble and the peers'
@@ -19,6 +20,10 @@
 # toss with the shipped scenario and with its fitted physics (docs/results/elbow-toss/
 # physics.toml), then elbow.py fits MuJoCo and PyBullet on every 4th even toss and scores
 # them on the odd ones (--quick: the first 40 runs and short fits, about 20 s).
+# --shards N: the peers' fits as N separate processes, each the task of a Slurm job array
+# would be (SLURM_ARRAY_TASK_ID of SLURM_ARRAY_TASK_COUNT: peers.py --shard's default),
+# then `peers.py --merge`: the same peers.md and peers.json but for the fit times
+# (`same_fits.py` compares two OUTs so).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -27,12 +32,20 @@ out=peers-out
 quick=0
 randomised_only=0
 elbow=0
+shards=0
+expect_shards=0
 for arg in "$@"; do
+    if [ "$expect_shards" = 1 ]; then
+        shards="$arg"
+        expect_shards=0
+        continue
+    fi
     case "$arg" in
         --quick) quick=1 ;;
+        --shards) expect_shards=1 ;;
         --randomised-only) randomised_only=1 ;;
         --elbow) elbow=1 ;;
-        -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,26p' "$0"; exit 0 ;;
         -*) echo "unknown option $arg" >&2; exit 2 ;;
         *) out="$arg" ;;
     esac
@@ -123,11 +136,22 @@ if [ "$randomised_only" = 0 ]; then
     step "hcm predict, fitted" "$HCM" predict --scenario "$scenario" --physics "$out/hcm_fit.toml" \
         --data "$data" "${first[@]}" --out "$out/hcm_fitted_predicted.csv" \
         --scores "$out/hcm_fitted_scores.csv"
-    step "peers.py" "$venv/bin/python" "$here/peers.py" --data "$data" \
-        --scenario-scores "$out/hcm_scenario_scores.csv" \
-        --scenario-predicted "$out/hcm_scenario_predicted.csv" \
-        --fitted-scores "$out/hcm_fitted_scores.csv" --hcm-fit "$out/hcm_fit.toml" \
-        --out "$out" "${first[@]}" "${peer_fit[@]}"
+    peers=("$venv/bin/python" "$here/peers.py" --data "$data"
+        --scenario-scores "$out/hcm_scenario_scores.csv"
+        --scenario-predicted "$out/hcm_scenario_predicted.csv"
+        --fitted-scores "$out/hcm_fitted_scores.csv" --hcm-fit "$out/hcm_fit.toml"
+        --out "$out" "${first[@]}" "${peer_fit[@]}")
+    if [ "$shards" -gt 0 ]; then
+        files=()
+        for ((i = 0; i < shards; i++)); do
+            SLURM_ARRAY_TASK_ID=$i SLURM_ARRAY_TASK_COUNT=$shards \
+                step "peers.py, shard $i/$shards" "${peers[@]}"
+            files+=("$out/peers.shard-$i.json")
+        done
+        step "peers.py --merge" "${peers[@]}" --merge "${files[@]}"
+    else
+        step "peers.py" "${peers[@]}"
+    fi
     fits="$out/peers.json"
     merge=(--merge)
 else
@@ -171,6 +195,6 @@ report="$out/peers.md"
 [ "$randomised_only" = 1 ] && report="$out/randomised.md"
 {
     echo
-    echo "Command: \`bash benches/peers/run.sh OUT$( [ "$quick" = 1 ] && echo ' --quick')$( [ "$randomised_only" = 1 ] && echo ' --randomised-only')\`;" \
+    echo "Command: \`bash benches/peers/run.sh OUT$( [ "$quick" = 1 ] && echo ' --quick')$( [ "$randomised_only" = 1 ] && echo ' --randomised-only')$( [ "$shards" -gt 0 ] && echo " --shards $shards")\`;" \
          "wall time $total s on $(nproc) cores (steps: $(grep -o '^\[[^]]*\]' "$log" | tr '\n' ' '))."
 } >> "$report"
