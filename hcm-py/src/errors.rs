@@ -31,9 +31,19 @@ pub fn option<T>(
     value: impl std::fmt::Display,
     parse: fn(&str) -> Result<T, String>,
 ) -> PyResult<T> {
+    let placeholder = name.to_uppercase().replace('-', "_");
+    option_as(name, &placeholder, value, parse)
+}
+
+/// [`option`] for an option whose value the CLI names `placeholder` (`--threads <N>`).
+pub fn option_as<T>(
+    name: &str,
+    placeholder: &str,
+    value: impl std::fmt::Display,
+    parse: fn(&str) -> Result<T, String>,
+) -> PyResult<T> {
     let text = value.to_string();
     parse(&text).map_err(|reason| {
-        let placeholder = name.to_uppercase().replace('-', "_");
         message(format!(
             "invalid value '{text}' for '--{name} <{placeholder}>': {reason}"
         ))

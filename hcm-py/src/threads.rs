@@ -1,17 +1,16 @@
 //! How many threads hcm's parallel work uses in this process (the CLI's `--threads`,
 //! `HCM_THREADS`): rayon's global pool, fixed at its first use.
 
-use crate::errors::message;
+use crate::errors::{message, option_as};
+use hcm_host::input::numbers;
 use pyo3::prelude::*;
 
 /// Sets the worker threads of hcm's parallel work to `threads`; only before the first
 /// parallel call of the process (the pool is built once). The results are the same
 /// bits on any count.
 #[pyfunction]
-pub fn set_threads(threads: usize) -> PyResult<()> {
-    if threads == 0 {
-        return Err(message("threads: give at least 1"));
-    }
+pub fn set_threads(threads: i64) -> PyResult<()> {
+    let threads = option_as("threads", "N", threads, numbers::threads)?;
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build_global()

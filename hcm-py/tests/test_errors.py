@@ -110,6 +110,26 @@ CASES = [
         lambda t: hcm.train(hcm.Scenario.load(BALL), hcm.Physics.read(PM2), hcm.Dataset.read_csv(t / "s1.csv"), epochs=0),
     ),
     (
+        "a negative seed",
+        ["generate", "--scenario", BALL, "--runs", "12", "--seed", "-1", "--out", "{tmp}/pm1.csv"],
+        lambda t: hcm.generate(hcm.Scenario.load(BALL), runs=12, seed=-1),
+    ),
+    (
+        "no worker thread",
+        ["--threads", "0", "laws"],
+        lambda t: hcm.set_threads(0),
+    ),
+    (
+        "data file missing",
+        ["indicators", "--scenario", BALL, "--data", "{tmp}/absent.csv"],
+        lambda t: hcm.Dataset.read_csv(t / "absent.csv"),
+    ),
+    (
+        "data of another scene's bodies",
+        ["identify", "--scenario", BALL, "--data", "{tmp}/cube.csv", "--law", "hertz", "--out", "{tmp}/pm2.toml"],
+        lambda t: hcm.identify(hcm.Scenario.load(BALL), hcm.Dataset.read_csv(t / "cube.csv"), law="hertz"),
+    ),
+    (
         "a hold-out share outside (0, 1)",
         ["diagnose", "--scenario", BALL, "--physics", PM2, "--data", "{tmp}/s1.csv", "--holdout", "1.5", "--out", "{tmp}/d"],
         lambda t: hcm.diagnose(hcm.Scenario.load(BALL), hcm.Physics.read(PM2), hcm.Dataset.read_csv(t / "s1.csv"), holdout=1.5),
@@ -128,6 +148,8 @@ def files(tmp_path, cli):
     header = "run,body,time,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,fx,fy,fz,tx,ty,tz\n"
     write(tmp_path, "bad.csv", header + "0,ball,0.0" + ",0" * 15 + ",1.5e,0,0,0\n")
     write(tmp_path, "headless.csv", "0,ball,0.0\n")
+    cli.ok("generate", "--scenario", BALL.replace("bouncing_ball", "cube_drop"), "--runs", "2",
+           "--out", tmp_path / "cube.csv")
     cli.ok("generate", "--scenario", BALL, "--runs", "12", "--out", tmp_path / "pm1.csv")
     (tmp_path / "pm1.s1.csv").rename(tmp_path / "s1.csv")
     (tmp_path / "pm1.csv").unlink()

@@ -232,7 +232,7 @@ fn drag_found(drag: f64, seed: u64) -> DragTrial {
         hcm_host::experiment::generate(&truth.scenario, RUNS, seed, &hcm_host::progress::Silent)
             .unwrap();
     let samples = hcm_host::diagnose::contact_samples(&truth, &data, 0).unwrap();
-    let fit = hcm_host::diagnose::fit_drag(&samples, truth.bodies[0].mass).unwrap();
+    let fit = hcm_host::diagnose::fit_drag(&samples, truth.bodies[0].mass, 9.81).unwrap();
     DragTrial {
         named: fit.significant,
         coefficient: fit.coefficient,

@@ -66,13 +66,7 @@ const LARGE_OUTPUT: u64 = 1_000_000_000;
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
-    let shard = match (args.shard, args.merge.is_empty()) {
-        (Some(shard), _) => Some(shard),
-        (None, true) => Shard::from_slurm(|name| std::env::var(name).ok())
-            .transpose()
-            .map_err(anyhow::Error::msg)?,
-        (None, false) => None,
-    };
+    let shard = Shard::chosen(args.shard, !args.merge.is_empty()).map_err(anyhow::Error::msg)?;
     if let Some(shard) = shard {
         let progress = Bars::named(|_| "simulating runs");
         let written = write_shard(

@@ -69,8 +69,8 @@ struct Cli {
     /// Worker threads for the parallel work (runs, fits, replays); default: one per
     /// core. The outputs are the same bytes on any count.
     #[arg(long, global = true, value_name = "N", env = "HCM_THREADS")]
-    #[arg(value_parser = clap::value_parser!(u16).range(1..))]
-    threads: Option<u16>,
+    #[arg(allow_negative_numbers = true, value_parser = numbers::threads)]
+    threads: Option<usize>,
 }
 
 /// The subcommands; each one's help is its `Args` struct's doc comment.
@@ -108,7 +108,7 @@ pub fn main() -> ExitCode {
     if let Some(threads) = cli.threads {
         // The first use of rayon's pool: nothing has built it yet.
         if let Err(error) = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads.into())
+            .num_threads(threads)
             .build_global()
         {
             eprintln!("error: --threads {threads}: {error}");

@@ -120,13 +120,7 @@ fn table_path(out: &Path) -> PathBuf {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     let scenario = args.scenario.load()?;
-    let shard = match (args.shard, args.merge.is_empty()) {
-        (Some(shard), _) => Some(shard),
-        (None, true) => Shard::from_slurm(|name| std::env::var(name).ok())
-            .transpose()
-            .map_err(anyhow::Error::msg)?,
-        (None, false) => None,
-    };
+    let shard = Shard::chosen(args.shard, !args.merge.is_empty()).map_err(anyhow::Error::msg)?;
     let settings = PowerSettings {
         runs: args.runs,
         seeds: args.seeds,

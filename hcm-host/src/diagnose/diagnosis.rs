@@ -500,7 +500,7 @@ pub fn diagnose(
     let mut fit = naming.fit.clone();
     let chosen = chosen_causes(&mut naming, &mut fit, &findings.samples, named_gain);
     let body = &base.bodies[base.contacts[c].body_1];
-    let drag = super::drag::fit_drag(&findings.samples, body.mass);
+    let drag = super::drag::fit_drag(&findings.samples, body.mass, base.gravity.norm());
     let lags = (completed.delay, completed.checked_delay);
     let causes = named_causes(chosen, lags, drag.as_ref());
     let unexplained_share = if naming.unexplained {

@@ -56,6 +56,17 @@ impl Shard {
         })
     }
 
+    /// The shard a command makes: `given` (`--shard`), else a Slurm array task's from
+    /// the process's environment — unless it merges shards (`merging`), which is no
+    /// shard's work. None: the whole job.
+    pub fn chosen(given: Option<Shard>, merging: bool) -> Result<Option<Shard>, String> {
+        match (given, merging) {
+            (Some(shard), _) => Ok(Some(shard)),
+            (None, false) => Shard::from_slurm(|name| std::env::var(name).ok()).transpose(),
+            (None, true) => Ok(None),
+        }
+    }
+
     /// The run indices of this shard among `total` runs.
     pub fn range(self, total: usize) -> Range<usize> {
         let bound = |i: usize| ((total as u128 * i as u128) / self.count as u128) as usize;

@@ -11,6 +11,15 @@ pub fn runs(text: &str) -> Result<usize, String> {
     count(text, 1, "a whole number of runs ≥ 1, e.g. --runs 100")
 }
 
+/// `--threads`: worker threads of the parallel work.
+pub fn threads(text: &str) -> Result<usize, String> {
+    count(
+        text,
+        1,
+        "a whole number of worker threads ≥ 1, e.g. --threads 2",
+    )
+}
+
 /// `hcm power --seeds`: data sets per effect and strength.
 pub fn seeds(text: &str) -> Result<u64, String> {
     whole(text, 1, "a whole number of seeds ≥ 1, e.g. --seeds 10")

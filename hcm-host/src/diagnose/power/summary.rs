@@ -7,10 +7,16 @@ use std::fmt::Write;
 
 /// The study's table in Markdown, from its rows (all of them, in order).
 pub fn summary_markdown(study: &PowerStudy, rows: &[PowerRow]) -> String {
-    let settings = study.settings();
-    let seeds = settings.seeds;
-    let levels = &settings.levels;
     let mut out = String::new();
+    introduction(&mut out, study);
+    effect_rows(&mut out, study, rows);
+    false_alarms(&mut out, rows);
+    out
+}
+
+/// The title and what a data set is.
+fn introduction(out: &mut String, study: &PowerStudy) {
+    let settings = study.settings();
     let _ = writeln!(
         out,
         "# Power of `hcm diagnose` on `{}`, contact {}\n",
@@ -28,11 +34,17 @@ pub fn summary_markdown(study: &PowerStudy, rows: &[PowerRow]) -> String {
             super::PowerBase::Scenario => "the scenario's own law (as given)",
             super::PowerBase::Fitted => "the scenario's law fitted by least squares on the same runs (`hcm identify --method lsq`)",
         },
-        seeds,
+        settings.seeds,
         settings.first_seed,
-        settings.first_seed + seeds - 1,
+        settings.first_seed + settings.seeds - 1,
         study.len()
     );
+}
+
+/// The table: per hidden effect, named exactly at each strength, the wrong names and
+/// the intervals that hold the truth.
+fn effect_rows(out: &mut String, study: &PowerStudy, rows: &[PowerRow]) {
+    let levels = &study.settings().levels;
     let heads: Vec<String> = levels.iter().map(|x| format!("{} %", 100.0 * x)).collect();
     let _ = writeln!(
         out,
@@ -61,6 +73,10 @@ pub fn summary_markdown(study: &PowerStudy, rows: &[PowerRow]) -> String {
             counts.join(" | ")
         );
     }
+}
+
+/// What the data sets with nothing hidden named.
+fn false_alarms(out: &mut String, rows: &[PowerRow]) {
     let none: Vec<&PowerRow> = rows.iter().filter(|r| r.effect == "none").collect();
     let alarms: Vec<&str> = none
         .iter()
@@ -85,5 +101,4 @@ pub fn summary_markdown(study: &PowerStudy, rows: &[PowerRow]) -> String {
              insufficient data)."
         );
     }
-    out
 }
