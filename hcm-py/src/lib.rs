@@ -15,6 +15,7 @@ mod hybrid;
 mod identify;
 mod laws;
 mod objective;
+mod power;
 mod predict;
 mod progress;
 mod scenario;
@@ -47,5 +48,6 @@ fn _hcm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(threads::set_threads, m)?)?;
     m.add_class::<diagnose::Diagnosis>()?;
     m.add_function(wrap_pyfunction!(diagnose::diagnose, m)?)?;
+    m.add_class::<power::PowerStudy>()?;
     Ok(())
 }

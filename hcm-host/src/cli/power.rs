@@ -2,7 +2,8 @@
 
 use super::progress::Bars;
 use hcm_host::diagnose::power::{
-    read_rows, summary_markdown, write_rows, PowerBase, PowerRow, PowerSettings, PowerStudy,
+    line_effect, read_rows, summary_markdown, write_rows, PowerBase, PowerRow, PowerSettings,
+    PowerStudy,
 };
 use hcm_host::diagnose::{line_candidates, Candidate, DiagnoseSettings};
 use hcm_host::experiment::Shard;
@@ -56,7 +57,7 @@ pub struct Args {
     /// Effects to hide, comma-separated catalogue names; default: every effect the 1D
     /// diagnosis names (viscous_damping, hysteresis_damping, stiffness_exponent,
     /// adhesion, plasticity, force_offset, sensor_delay, sensor_filter).
-    #[arg(long, value_delimiter = ',', value_parser = effect)]
+    #[arg(long, value_delimiter = ',', value_parser = line_effect)]
     effects: Vec<Candidate>,
     /// What each diagnosis judges the data against: the scenario's own law as given
     /// (`scenario`), or that law fitted by least squares on the same runs (`fitted`,
@@ -95,22 +96,6 @@ enum Base {
     Scenario,
     /// The scenario's law fitted by least squares on each data set's runs.
     Fitted,
-}
-
-/// An effect the 1D diagnosis names, by its catalogue name.
-fn effect(name: &str) -> Result<Candidate, String> {
-    let known: Vec<Candidate> = line_candidates().collect();
-    known
-        .iter()
-        .copied()
-        .find(|c| c.name() == name.trim())
-        .ok_or_else(|| {
-            let names: Vec<&str> = known.iter().map(|c| c.name()).collect();
-            format!(
-                "`{name}` is not an effect the 1D diagnosis names; one of: {}",
-                names.join(", ")
-            )
-        })
 }
 
 /// OUT with the extension .md: power.csv → power.md.

@@ -23,6 +23,7 @@ from .hybrid import HybridModel
 from .identify import Physics, identify
 from .laws import Law, LawInfo, Parameter, laws
 from .objective import Objective
+from .power import PowerResult, PowerStudy, power
 from .predict import Prediction, predict
 from .scenario import Scenario
 from .simulate import simulate
@@ -39,6 +40,8 @@ __all__ = [
     "Objective",
     "Parameter",
     "Physics",
+    "PowerResult",
+    "PowerStudy",
     "Prediction",
     "Residual",
     "Scenario",
@@ -48,6 +51,7 @@ __all__ = [
     "generate",
     "identify",
     "laws",
+    "power",
     "predict",
     "set_threads",
     "simulate",

@@ -298,6 +298,22 @@ impl PowerStudy {
     }
 }
 
+/// An effect the 1D diagnosis names, by its catalogue name (`--effects`).
+pub fn line_effect(name: &str) -> Result<Candidate, String> {
+    let known: Vec<Candidate> = super::line_candidates().collect();
+    known
+        .iter()
+        .copied()
+        .find(|c| c.name() == name.trim())
+        .ok_or_else(|| {
+            let names: Vec<&str> = known.iter().map(|c| c.name()).collect();
+            format!(
+                "`{name}` is not an effect the 1D diagnosis names; one of: {}",
+                names.join(", ")
+            )
+        })
+}
+
 /// Refuses settings that make no study.
 fn check(settings: &PowerSettings) -> Result<(), PowerError> {
     let bad = |what: String| Err(PowerError::Setup(what));
