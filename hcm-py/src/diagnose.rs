@@ -3,7 +3,7 @@
 //! the report — written to a directory as the command writes it, when one is given.
 
 use crate::dataset::Dataset;
-use crate::errors::option;
+use crate::errors::{message, option};
 use crate::identify::Physics;
 use crate::progress::run_stage;
 use crate::scenario::Scenario;
@@ -67,6 +67,9 @@ pub fn diagnose(
     let contact = option("contact", contact, numbers::contact)?;
     let seed = option("seed", seed, numbers::seed)?;
     let holdout = option("holdout", holdout, numbers::share)?;
+    if let Some(out) = &out {
+        hcm_host::output::check_kind("--out", out, true).map_err(message)?;
+    }
     let options = DiagnoseOptions {
         contact,
         seed,

@@ -52,9 +52,7 @@ impl PowerStudy {
         let base = match base {
             "scenario" => PowerBase::Scenario,
             "fitted" => PowerBase::Fitted,
-            other => return Err(message(format!(
-                "invalid value '{other}' for '--base <BASE>' [possible values: scenario, fitted]"
-            ))),
+            other => return Err(unknown_base(other)),
         };
         let contact = option("contact", contact, numbers::contact)?;
         let holdout = option("holdout", holdout, numbers::share)?;
@@ -145,4 +143,11 @@ impl PowerStudy {
         let text = String::from_utf8(text).map_err(hcm_error)?;
         Ok((text, summary_markdown(&self.study, &rows)))
     }
+}
+
+/// `--base`'s refusal of `value`, in clap's words.
+fn unknown_base(value: &str) -> PyErr {
+    message(format!(
+        "invalid value '{value}' for '--base <BASE>'\n  [possible values: scenario, fitted]"
+    ))
 }

@@ -130,6 +130,11 @@ CASES = [
         lambda t: hcm.identify(hcm.Scenario.load(BALL), hcm.Dataset.read_csv(t / "cube.csv"), law="hertz"),
     ),
     (
+        "an output folder that is a file",
+        ["diagnose", "--scenario", BALL, "--physics", PM2, "--data", "{tmp}/s1.csv", "--out", "{tmp}/broken.toml"],
+        lambda t: hcm.diagnose(hcm.Scenario.load(BALL), hcm.Physics.read(PM2), hcm.Dataset.read_csv(t / "s1.csv"), out=t / "broken.toml"),
+    ),
+    (
         "a hold-out share outside (0, 1)",
         ["diagnose", "--scenario", BALL, "--physics", PM2, "--data", "{tmp}/s1.csv", "--holdout", "1.5", "--out", "{tmp}/d"],
         lambda t: hcm.diagnose(hcm.Scenario.load(BALL), hcm.Physics.read(PM2), hcm.Dataset.read_csv(t / "s1.csv"), holdout=1.5),

@@ -52,8 +52,10 @@ def test_chunks_mapped_apart_then_joined_are_the_whole_study(root, by_cli, monke
         (["--levels", "0.01,2"], dict(levels=[0.01, 2])),
         (["--effects", "coulomb_friction"], dict(effects=["coulomb_friction"])),
         (["--seeds", "0"], dict(seeds=0)),
+        (["--base", "other"], dict(base="other")),
     ],
-    ids=["a strength outside (0, 1]", "an effect the 1D diagnosis does not name", "no seed"],
+    ids=["a strength outside (0, 1]", "an effect the 1D diagnosis does not name", "no seed",
+         "an unknown base"],
 )
 def test_refusals_carry_the_command_s_message(cli, root, tmp_path, monkeypatch, flags, options):
     expected = cli.refusal("power", "--scenario", BALL, *flags, "--out", tmp_path / "p.csv")

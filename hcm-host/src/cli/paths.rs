@@ -8,6 +8,7 @@
 //! `.json` writes that one file (`hcm diagnose` from poses writes only its diagnosis).
 
 use clap::ArgMatches;
+use hcm_host::output::check_kind;
 use std::path::{Path, PathBuf};
 
 /// The argument ids of every command that name a file or directory it writes.
@@ -47,26 +48,7 @@ fn place(path: &Path) -> PathBuf {
 /// Refuses an existing output `path` of option `id` of the other kind than the
 /// option writes (`directory`: whether it writes a directory).
 fn same_kind(id: &str, path: &Path, directory: bool) -> anyhow::Result<()> {
-    let Ok(metadata) = std::fs::metadata(path) else {
-        return Ok(());
-    };
-    match (directory, metadata.is_dir()) {
-        (true, false) => anyhow::bail!(
-            "{} {}: is a file; {} names a directory (created if missing): give a \
-             directory's path",
-            option(id),
-            path.display(),
-            option(id)
-        ),
-        (false, true) => anyhow::bail!(
-            "{} {}: is a directory; {} names a file: give a file's path, e.g. {}",
-            option(id),
-            path.display(),
-            option(id),
-            path.join("out").display()
-        ),
-        _ => Ok(()),
-    }
+    check_kind(&option(id), path, directory).map_err(anyhow::Error::msg)
 }
 
 /// Checks the subcommand's output arguments (`command` defines them) against their

@@ -106,6 +106,28 @@ fn special(_: FileType) -> &'static str {
     "a special file"
 }
 
+/// Refuses an existing output `path` of the other kind than the option `option` (as
+/// typed, `--out`) writes (`directory`: whether it writes a directory), naming both, before
+/// any work: the CLI checks every output option so, and the Python API its `out`.
+pub fn check_kind(option: &str, path: &Path, directory: bool) -> Result<(), String> {
+    let Ok(metadata) = fs::metadata(path) else {
+        return Ok(());
+    };
+    match (directory, metadata.is_dir()) {
+        (true, false) => Err(format!(
+            "{option} {}: is a file; {option} names a directory (created if missing): give \
+             a directory's path",
+            path.display()
+        )),
+        (false, true) => Err(format!(
+            "{option} {}: is a directory; {option} names a file: give a file's path, e.g. {}",
+            path.display(),
+            path.join("out").display()
+        )),
+        _ => Ok(()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

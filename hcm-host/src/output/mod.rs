@@ -20,6 +20,7 @@ mod signals;
 mod space;
 mod staged;
 
+pub use destination::check_kind;
 pub use directory::StagedDirectory;
 pub use registry::PREFIX as TEMPORARY_PREFIX;
 pub use signals::remove_temporaries_on_signals;
