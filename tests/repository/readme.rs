@@ -6,9 +6,10 @@
 //! outputs land in the temporary directory. A failing command fails the test, naming its
 //! file and line.
 //!
-//! As the README says, two kinds of line are too long for CI and run smaller: a `--runs`
-//! above [`MOST_RUNS`] runs with `--runs` [`MOST_RUNS`], and `reproduce` (the paper's
-//! 1000 runs by default) with `--runs` [`MOST_RUNS`]. Commands too long even so (minutes)
+//! As the README says, some lines are too long for CI and run smaller: a `--runs`
+//! above [`MOST_RUNS`] runs with `--runs` [`MOST_RUNS`], `reproduce` (the paper's
+//! 1000 runs by default) with `--runs` [`MOST_RUNS`], and `power` (10 seeds by default)
+//! with `--seeds` [`MOST_SEEDS`]. Commands too long even so (minutes)
 //! are shown in `bash`, `console` or `text` blocks, which this test does not run.
 
 use hcm_tests::cli::Hcm;
@@ -17,6 +18,10 @@ use std::path::{Path, PathBuf};
 
 /// The most runs a README command is given here (README: "too long for CI").
 const MOST_RUNS: usize = 20;
+
+/// The most seeds an `hcm power` line is given here: its default study (250 data sets of
+/// 16 runs) took half a minute of this test's both cores in the dev profile.
+const MOST_SEEDS: usize = 1;
 
 /// Lines of `sh` blocks that CI runs itself (`.ci/run`) or that measure this machine:
 /// not run here.
@@ -135,6 +140,15 @@ fn shortened(mut arguments: Vec<String>) -> Vec<String> {
             arguments.extend(["--runs".to_owned(), MOST_RUNS.to_string()]);
         }
         _ => {}
+    }
+    if arguments.first().is_some_and(|a| a == "power") {
+        match arguments.iter().position(|a| a == "--seeds") {
+            Some(i) if i + 1 < arguments.len() => {
+                let asked: usize = arguments[i + 1].parse().expect("--seeds takes a count");
+                arguments[i + 1] = asked.min(MOST_SEEDS).to_string();
+            }
+            _ => arguments.extend(["--seeds".to_owned(), MOST_SEEDS.to_string()]),
+        }
     }
     arguments
 }
@@ -303,4 +317,8 @@ fn command_lines_parse_as_a_shell_would() {
     assert_eq!(shortened(generate)[2], most);
     let few = ["generate", "--runs", "10"].map(String::from).to_vec();
     assert_eq!(shortened(few)[2], "10");
+    let power = ["power", "--out", "p.csv"].map(String::from).to_vec();
+    assert_eq!(shortened(power)[3..], ["--seeds", "1"]);
+    let seeds = ["power", "--seeds", "20"].map(String::from).to_vec();
+    assert_eq!(shortened(seeds)[2], "1");
 }
