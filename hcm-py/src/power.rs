@@ -114,30 +114,15 @@ impl PowerStudy {
     /// order, covering every data set once) as one file, and the study's table:
     /// `(rows, table)`, the bytes `hcm power` writes to OUT and OUT.md.
     fn join(&self, parts: Vec<String>) -> PyResult<(String, String)> {
-        let mut rows = Vec::with_capacity(self.study.len());
-        for (k, part) in parts.iter().enumerate() {
-            let name = format!("part {k}");
-            let read = read_rows(&name, part.as_bytes(), self.study.key()).map_err(hcm_error)?;
-            if let Some(row) = read
-                .iter()
-                .enumerate()
-                .find(|(i, r)| r.data_set != rows.len() + i)
-            {
-                return Err(message(format!(
-                    "{name}: data set {} where {} comes next (give the parts in order, none missing)",
-                    row.1.data_set,
-                    rows.len() + row.0
-                )));
-            }
-            rows.extend(read);
-        }
-        if rows.len() != self.study.len() {
-            return Err(message(format!(
-                "the parts hold data sets 0..{} of {}: a part is missing",
-                rows.len(),
-                self.study.len()
-            )));
-        }
+        let read = (parts.iter().enumerate())
+            .map(|(k, part)| {
+                let name = format!("part {k}");
+                let rows = read_rows(&name, part.as_bytes(), self.study.key())?;
+                Ok((name, rows))
+            })
+            .collect::<Result<Vec<_>, hcm_host::diagnose::power::PowerError>>()
+            .map_err(hcm_error)?;
+        let rows = self.study.join(read).map_err(hcm_error)?;
         let mut text = Vec::new();
         write_rows(&mut text, self.study.key(), &rows).map_err(hcm_error)?;
         let text = String::from_utf8(text).map_err(hcm_error)?;

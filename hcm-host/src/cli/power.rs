@@ -167,23 +167,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 /// to follow one another from data set 0 to the last; each shard's first data set is
 /// made again and must read the same.
 fn merged(study: &PowerStudy, shards: &[PathBuf]) -> anyhow::Result<Vec<PowerRow>> {
-    let mut rows: Vec<PowerRow> = Vec::with_capacity(study.len());
+    let mut parts = Vec::with_capacity(shards.len());
     for path in shards {
         let name = path.display().to_string();
         let bytes = std::fs::read(path)
             .map_err(|e| anyhow::anyhow!("--merge: {name}: cannot read it: {e}"))?;
         let part = read_rows(&name, &bytes, study.key())?;
-        for (k, row) in part.iter().enumerate() {
-            if row.data_set != rows.len() + k {
-                anyhow::bail!(
-                    "--merge: {name}, line {}: data set {} where {} comes next (give the \
-                     shards in order, 0/N first, none missing)",
-                    k + 3,
-                    row.data_set,
-                    rows.len() + k
-                );
-            }
-        }
         if let Some(first) = part.first() {
             let again = study.row(first.data_set)?;
             if line(study, &again)? != line(study, first)? {
@@ -194,16 +183,11 @@ fn merged(study: &PowerStudy, shards: &[PathBuf]) -> anyhow::Result<Vec<PowerRow
                 );
             }
         }
-        rows.extend(part);
+        parts.push((name, part));
     }
-    if rows.len() != study.len() {
-        anyhow::bail!(
-            "--merge: the shards hold data sets 0..{} of {}: a shard is missing",
-            rows.len(),
-            study.len()
-        );
-    }
-    Ok(rows)
+    study
+        .join(parts)
+        .map_err(|e| anyhow::anyhow!("--merge: {e}"))
 }
 
 /// `row` as its file writes it.

@@ -276,6 +276,34 @@ impl PowerStudy {
         })
     }
 
+    /// The study's rows from `parts` (each a name for messages — a shard's file — and its
+    /// rows, as [`read_rows`] reads them), in order: refused unless they hold every data
+    /// set once, from 0, in order. What `hcm power --merge` and the Python API's join do.
+    pub fn join(&self, parts: Vec<(String, Vec<PowerRow>)>) -> Result<Vec<PowerRow>, PowerError> {
+        let mut rows: Vec<PowerRow> = Vec::with_capacity(self.len());
+        for (name, part) in parts {
+            let next = rows.len();
+            if let Some((k, row)) = (part.iter().enumerate()).find(|(k, r)| r.data_set != next + k)
+            {
+                return Err(PowerError::Setup(format!(
+                    "{name}: data set {} where {} comes next (give the parts in order, the \
+                     first first, none missing)",
+                    row.data_set,
+                    next + k
+                )));
+            }
+            rows.extend(part);
+        }
+        if rows.len() != self.len() {
+            return Err(PowerError::Setup(format!(
+                "the parts hold data sets 0..{} of {}: a part is missing",
+                rows.len(),
+                self.len()
+            )));
+        }
+        Ok(rows)
+    }
+
     /// The rows of data sets `range` (in order; made in parallel), reporting
     /// [`Stage::Power`] to `progress`, a step per data set.
     pub fn rows(
